@@ -1,0 +1,156 @@
+// The amphora command line: run, check, defaults, info, study.
+// Exit codes: 0 success, 1 internal error, 2 bad input, 3 run diverged.
+#include <CLI/CLI.hpp>
+
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "io/build_info.hpp"
+#include "io/runner.hpp"
+#include "io/scene.hpp"
+#include "mesh/box_decomposition.hpp"
+#include "mesh/environment.hpp"
+#include "physics/registry.hpp"
+
+namespace {
+
+using namespace amphora;
+
+int fail(const Communicator& comm, const std::string& message, int code) {
+  if (comm.is_root()) std::cerr << "amphora: error: " << message << std::endl;
+  return code;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, sep))
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+int print_defaults(const std::string& name) {
+  if (name == "run") {
+    std::cout << describe_defaults(run_parameter_table());
+    return 0;
+  }
+  if (const ModuleInfo* m = find_module(name)) {
+    std::cout << describe_defaults(m->parameters());
+    return 0;
+  }
+  std::cerr << "amphora: error: unknown module '" << name << "'; known: run";
+  for (const auto& n : module_names()) std::cerr << ", " << n;
+  std::cerr << std::endl;
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Environment env(argc, argv);
+  Communicator comm;
+
+  CLI::App app{"amphora: GPU-portable multiphysics on Kokkos"};
+  app.require_subcommand(1);
+
+  std::string scene_path, restart, defaults_module, study_key, study_values, study_csv;
+  long long max_steps = -1;
+  bool no_output = false;
+
+  auto* run = app.add_subcommand("run", "run a scene");
+  run->add_option("scene", scene_path, "scene file (TOML)")->required();
+  run->add_option("--restart", restart, "continue from this checkpoint");
+  run->add_option("--max-steps", max_steps, "stop after this many steps (writes a checkpoint)");
+  run->add_flag("--no-output", no_output, "write nothing (for timing)");
+
+  auto* check = app.add_subcommand("check", "validate a scene without running it");
+  check->add_option("scene", scene_path, "scene file (TOML)")->required();
+
+  auto* defaults = app.add_subcommand("defaults", "print every key of a module with its default");
+  defaults->add_option("module", defaults_module, "'run' or a module name")->required();
+
+  auto* info = app.add_subcommand("info", "versions, backends, threads, ranks, revision");
+
+  auto* study = app.add_subcommand("study", "run a scene over parameter values, write one CSV");
+  study->add_option("scene", scene_path, "scene file (TOML)")->required();
+  study->add_option("--set", study_key, "table.key to vary")->required();
+  study->add_option("--values", study_values, "comma-separated values")->required();
+  study->add_option("--csv", study_csv, "CSV to write")->required();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return comm.is_root() ? app.exit(e) : (e.get_exit_code() == 0 ? 0 : 2);
+  }
+
+  try {
+    if (*info) {
+      if (comm.is_root())
+        for (const auto& [k, v] : build_info()) std::cout << std::left << std::setw(26) << k << v << "\n";
+      return 0;
+    }
+    if (*defaults) return comm.is_root() ? print_defaults(defaults_module) : 0;
+
+    const Scene scene = load_scene(scene_path);
+    if (*check) {
+      check_scene(scene, comm);
+      if (comm.is_root())
+        std::cout << scene_path << ": ok (scene '" << scene.name << "', module " << scene.module
+                  << ")\n";
+      return 0;
+    }
+    if (*run) {
+      RunOptions opt;
+      opt.restart = restart;
+      opt.max_steps = max_steps;
+      opt.write_output = !no_output;
+      const RunResult r = run_scene(scene, comm, opt);
+      if (r.diverged) return fail(comm, r.message, 3);
+      if (comm.is_root()) {
+        std::cout << "[done] " << r.steps << " steps to t=" << r.time << " in " << r.wall_seconds
+                  << " s stepping, " << r.rate << " " << r.work_unit << "/s";
+        for (const auto& [k, v] : r.diagnostics) std::cout << ", " << k << "=" << v;
+        std::cout << "\n";
+      }
+      return 0;
+    }
+    if (*study) {
+      std::ostringstream csv;
+      csv << std::setprecision(10) << "parameter,value,error,wall_time,steps,work_per_step,rate,unit\n";
+      for (const auto& value : split(study_values, ',')) {
+        const Scene s = load_scene(scene_path, {study_key + "=" + value});
+        RunOptions opt;
+        opt.write_output = false;
+        opt.quiet = true;
+        const RunResult r = run_scene(s, comm, opt);
+        if (r.diverged) return fail(comm, study_key + "=" + value + ": " + r.message, 3);
+        csv << study_key << "," << value << "," << r.error << "," << r.wall_seconds << ","
+            << r.steps << "," << r.work_per_step << "," << r.rate << "," << r.work_unit << "\n";
+        if (comm.is_root())
+          std::cout << "[study] " << study_key << "=" << value << " error=" << r.error
+                    << " wall=" << r.wall_seconds << " s rate=" << r.rate << " " << r.work_unit
+                    << "/s" << std::endl;
+      }
+      if (comm.is_root()) {
+        std::ofstream out(study_csv);
+        out << csv.str();
+        if (!out) return fail(comm, "cannot write '" + study_csv + "'", 2);
+      }
+      return 0;
+    }
+  } catch (const SceneError& e) {
+    return fail(comm, e.what(), 2);
+  } catch (const RunError& e) {
+    return fail(comm, e.what(), 2);
+  } catch (const DecompositionError& e) {
+    return fail(comm, scene_path + ": " + e.what(), 2);
+  } catch (const std::invalid_argument& e) {
+    return fail(comm, scene_path + ": " + e.what(), 2);
+  } catch (const std::exception& e) {
+    return fail(comm, e.what(), 1);
+  }
+  return 0;
+}

@@ -1,0 +1,55 @@
+# Every dependency is found here, once. Required backends and features are checked
+# explicitly so a wrong installation fails at configure time with a message saying what to do.
+
+find_package(Kokkos REQUIRED)
+set(AMPHORA_REQUIRED_KOKKOS_BACKENDS SERIAL OPENMP CACHE STRING
+    "Kokkos backends amphora requires (checked with kokkos_check)")
+foreach(backend IN LISTS AMPHORA_REQUIRED_KOKKOS_BACKENDS)
+  if(COMMAND kokkos_check)
+    kokkos_check(DEVICES ${backend} RETURN_VALUE _has_backend)
+  else()
+    list(FIND Kokkos_DEVICES ${backend} _idx)
+    if(_idx GREATER -1)
+      set(_has_backend TRUE)
+    else()
+      set(_has_backend FALSE)
+    endif()
+  endif()
+  if(NOT _has_backend)
+    message(FATAL_ERROR
+      "The Kokkos found in ${Kokkos_DIR} lacks the ${backend} backend (it has: ${Kokkos_DEVICES}). "
+      "Run scripts/setup.sh (builds Kokkos with Serial+OpenMP under the build tree) or pass "
+      "-DKokkos_ROOT=<prefix of a Kokkos with ${AMPHORA_REQUIRED_KOKKOS_BACKENDS}>.")
+  endif()
+endforeach()
+message(STATUS "Kokkos ${Kokkos_VERSION} from ${Kokkos_DIR}, devices: ${Kokkos_DEVICES}")
+
+find_package(MPI REQUIRED COMPONENTS C CXX)
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+find_package(HYPRE 2.20 REQUIRED)
+
+set(HDF5_PREFER_PARALLEL ON)
+find_package(HDF5 REQUIRED COMPONENTS C)
+if(NOT HDF5_IS_PARALLEL)
+  message(FATAL_ERROR "HDF5 at ${HDF5_INCLUDE_DIRS} is not built with MPI (H5_HAVE_PARALLEL); "
+                      "install libhdf5-openmpi-dev (scripts/setup.sh does).")
+endif()
+add_library(amphora_hdf5 INTERFACE)
+target_include_directories(amphora_hdf5 SYSTEM INTERFACE ${HDF5_INCLUDE_DIRS})
+target_link_libraries(amphora_hdf5 INTERFACE ${HDF5_LIBRARIES})
+target_compile_definitions(amphora_hdf5 INTERFACE ${HDF5_DEFINITIONS})
+
+find_package(tomlplusplus REQUIRED)
+find_package(CLI11 REQUIRED)
+
+if(AMPHORA_ENABLE_BENCHMARKS)
+  find_package(benchmark REQUIRED)
+endif()
+if(AMPHORA_ENABLE_TESTS)
+  find_package(GTest REQUIRED)
+endif()
+
+find_program(AMPHORA_PYTHON NAMES python3 HINTS /usr/bin NO_DEFAULT_PATH)
+if(NOT AMPHORA_PYTHON)
+  find_program(AMPHORA_PYTHON NAMES python3)
+endif()

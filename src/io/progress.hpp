@@ -1,0 +1,29 @@
+#pragma once
+// A plain, greppable progress line on rank 0:
+//   [progress] step 1200/20000 t=6.0000e-02 dt=5.0000e-05 ETA 12.3 s 2.31e+07 point-steps/s
+#include <chrono>
+#include <iosfwd>
+#include <string>
+
+namespace amphora {
+
+class Progress {
+ public:
+  Progress(std::ostream& out, bool active, long long first_step, long long last_step,
+           long long work_per_step, std::string unit, double interval_seconds);
+  /// Prints if `interval_seconds` passed since the last line (or force).
+  void update(long long step, double time, double dt, bool force = false);
+  double elapsed() const;
+  /// Work done per wall-clock second since construction.
+  double rate(long long step) const;
+
+ private:
+  std::ostream& out_;
+  bool active_;
+  long long first_, last_, work_;
+  std::string unit_;
+  double interval_;
+  std::chrono::steady_clock::time_point start_, last_print_;
+};
+
+}  // namespace amphora

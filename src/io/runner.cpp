@@ -1,0 +1,206 @@
+#include "io/runner.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "io/diagnostics_csv.hpp"
+#include "io/field_series.hpp"
+#include "io/hdf5_file.hpp"
+#include "io/progress.hpp"
+#include "physics/registry.hpp"
+
+namespace amphora {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::unique_ptr<Module> make_module(const Scene& scene, const Communicator& comm) {
+  return find_module(scene.module)->create(scene.module_parameters, comm);
+}
+
+/// Creates the output directory and proves it writable, on rank 0; every rank learns the result.
+void prepare_output_dir(const std::string& dir, const Communicator& comm) {
+  std::string error;
+  if (comm.is_root()) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) {
+      error = "output directory '" + dir + "' cannot be created: " + ec.message();
+    } else {
+      const std::string probe = dir + "/.amphora_write_probe";
+      std::ofstream out(probe);
+      out << "probe";
+      out.close();
+      if (!out) error = "output directory '" + dir + "' is not writable";
+      fs::remove(probe, ec);
+    }
+  }
+  error = comm.broadcast(error);
+  if (!error.empty()) throw RunError(error);
+}
+
+std::string fmt(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+struct Checkpoint {
+  long long step;
+  double time, dt;
+  long long n_steps;
+};
+
+void write_checkpoint(const std::string& dir, const Scene& scene, const Communicator& comm,
+                      const Module& module, const FieldSeries& series, const Checkpoint& c) {
+  std::vector<H5Group> groups;
+  for (auto& b : module.state()) groups.push_back({b.name, std::move(b.arrays)});
+  H5Metadata meta;
+  meta.integers["step"] = c.step;
+  meta.integers["n_steps"] = c.n_steps;
+  meta.reals["time"] = c.time;
+  meta.reals["dt"] = c.dt;
+  meta.texts["fingerprint"] = scene.fingerprint;
+  meta.texts["scene"] = scene.name;
+  meta.texts["series"] = series.save();
+  const std::string path = dir + "/checkpoint.h5";
+  // Written whole under a temporary name, then renamed: a run killed mid-write leaves the
+  // previous checkpoint intact.
+  write_h5(path + ".tmp", comm, groups, meta);
+  if (comm.is_root() && std::rename((path + ".tmp").c_str(), path.c_str()) != 0)
+    throw std::runtime_error("cannot rename checkpoint to '" + path + "'");
+  comm.barrier();
+}
+
+}  // namespace
+
+void check_scene(const Scene& scene, const Communicator& comm) { make_module(scene, comm); }
+
+RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptions& options) {
+  const Parameters& run = scene.run;
+  const std::string dir = run.string("output_dir");
+  auto module = make_module(scene, comm);
+
+  // The step: the requested (or cfl-scaled stable) one, shrunk to land on end_time exactly.
+  const double end_time = run.real("end_time");
+  double dt = run.has("dt") ? run.real("dt") : run.real("cfl") * module->stable_dt();
+  long long n_steps = std::max(1LL, static_cast<long long>(std::ceil(end_time / dt - 1e-9)));
+  dt = end_time / double(n_steps);
+  long long step = 0;
+  double t = 0.0;
+
+  // Everything that can be wrong with the input is checked before the first byte is written.
+  std::unique_ptr<H5Reader> restart;
+  if (!options.restart.empty()) {
+    if (!fs::exists(options.restart)) {
+      throw RunError("restart file '" + options.restart + "' not found");
+    }
+    try {
+      restart = std::make_unique<H5Reader>(options.restart, comm);
+    } catch (const std::exception& e) {
+      throw RunError("restart file '" + options.restart + "' is not an amphora checkpoint (" +
+                     e.what() + ")");
+    }
+    if (!restart->has("fingerprint") || !restart->has("scene")) {
+      throw RunError("restart file '" + options.restart + "' is not an amphora checkpoint");
+    }
+    const std::string fp = restart->text("fingerprint");
+    if (fp != scene.fingerprint) {
+      throw RunError("restart file '" + options.restart + "' was written by scene '" +
+                     restart->text("scene") + "' (fingerprint " + fp +
+                     "), not by this scene '" + scene.name + "' (fingerprint " +
+                     scene.fingerprint + "): name, module and module parameters must match");
+    }
+  }
+  if (options.write_output) prepare_output_dir(dir, comm);
+
+  FieldSeries series(dir, scene.name, comm);
+  if (restart) {
+    step = restart->integer("step");
+    t = restart->real("time");
+    dt = restart->real("dt");
+    n_steps = std::max(step, static_cast<long long>(std::llround(end_time / dt)));
+    std::vector<StateBlock> blocks;
+    for (const auto& name : module->owned_blocks()) blocks.push_back({name, restart->group(name)});
+    module->restore(blocks);
+    series.load(restart->text("series"));
+    restart.reset();
+  }
+  DiagnosticsCsv csv(dir + "/diagnostics.csv", options.write_output && comm.is_root(),
+                     options.restart.empty() ? -1 : step);
+  const long long out_every = run.integer("output_every");
+  const long long ck_every = run.integer("checkpoint_every");
+  const long long diag_every = run.integer("diagnostics_every");
+
+  if (comm.is_root() && !options.quiet) {
+    std::cout << "[run] scene " << scene.name << " module " << scene.module << " ranks "
+              << comm.size() << " steps " << step << ".." << n_steps << " dt " << fmt(dt)
+              << " end_time " << fmt(end_time) << (options.restart.empty() ? "" : " (restart)")
+              << "\n";
+  }
+  if (options.write_output && options.restart.empty()) {
+    csv.write(step, t, dt, module->diagnostics(t));
+    series.write(step, t, module->output(t));
+  }
+
+  RunResult result;
+  result.work_per_step = module->work_per_step();
+  result.work_unit = module->work_unit();
+  Progress progress(std::cout, comm.is_root() && !options.quiet, step, n_steps,
+                    result.work_per_step, result.work_unit, run.real("progress_seconds"));
+  const long long first_step = step;
+  double stepping = 0.0;  // wall time in advance() only
+  while (step < n_steps && (options.max_steps < 0 || step - first_step < options.max_steps)) {
+    const double t0 = progress.elapsed();
+    module->advance(t, dt);
+    stepping += progress.elapsed() - t0;
+    t += dt;
+    ++step;
+    if (auto bad = module->find_nonfinite()) {
+      std::ostringstream m;
+      m << "run diverged: non-finite value in field '" << bad->field << "' of block '"
+        << bad->block << "' at x = " << fmt(bad->x) << " (index " << bad->index << ") at step "
+        << step << ", t = " << fmt(t) << " (dt = " << fmt(dt) << "); last good output: "
+        << (series.last_file().empty() ? "none" : series.last_file() + " (step " +
+                                                      std::to_string(series.last_step()) + ")");
+      result.diverged = true;
+      result.message = m.str();
+      result.steps = step - first_step;
+      result.final_step = step;
+      result.time = t;
+      result.dt = dt;
+      return result;
+    }
+    const bool last = step == n_steps;
+    if (options.write_output) {
+      if (last || step % diag_every == 0) csv.write(step, t, dt, module->diagnostics(t));
+      if (last || (out_every > 0 && step % out_every == 0))
+        series.write(step, t, module->output(t));
+      if (!last && ck_every > 0 && step % ck_every == 0)
+        write_checkpoint(dir, scene, comm, *module, series, {step, t, dt, n_steps});
+    }
+    progress.update(step, t, dt);
+  }
+  progress.update(step, t, dt, /*force=*/true);
+  if (options.write_output)
+    write_checkpoint(dir, scene, comm, *module, series, {step, t, dt, n_steps});
+
+  result.steps = step - first_step;
+  result.final_step = step;
+  result.time = t;
+  result.dt = dt;
+  result.wall_seconds = stepping;
+  result.rate = stepping > 0 ? double(result.steps) * double(result.work_per_step) / stepping : 0;
+  result.diagnostics = module->diagnostics(t);
+  for (const auto& [name, v] : result.diagnostics)
+    if (name == module->error_diagnostic()) result.error = v;
+  return result;
+}
+
+}  // namespace amphora

@@ -1,0 +1,69 @@
+#include "mesh/environment.hpp"
+
+#include <Kokkos_Core.hpp>
+
+namespace amphora {
+
+struct Environment::KokkosGuard {
+  KokkosGuard(int& argc, char** argv) : guard(argc, argv) {}
+  Kokkos::ScopeGuard guard;
+};
+
+Environment::Environment(int& argc, char**& argv) {
+  int initialized = 0;
+  MPI_Initialized(&initialized);
+  if (!initialized) {
+    int provided = 0;
+    // Only the thread that called MPI_Init talks to MPI; OpenMP threads never do.
+    MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+    owns_mpi_ = true;
+  }
+  kokkos_ = std::make_unique<KokkosGuard>(argc, argv);
+}
+
+Environment::~Environment() {
+  kokkos_.reset();
+  if (owns_mpi_) {
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized) MPI_Finalize();
+  }
+}
+
+Communicator::Communicator(MPI_Comm comm) : comm_(comm) {
+  MPI_Comm_rank(comm_, &rank_);
+  MPI_Comm_size(comm_, &size_);
+}
+
+namespace {
+template <class T>
+T allreduce(MPI_Comm comm, T x, MPI_Datatype type, MPI_Op op) {
+  T y{};
+  MPI_Allreduce(&x, &y, 1, type, op, comm);
+  return y;
+}
+}  // namespace
+
+double Communicator::sum(double x) const { return allreduce(comm_, x, MPI_DOUBLE, MPI_SUM); }
+double Communicator::max(double x) const { return allreduce(comm_, x, MPI_DOUBLE, MPI_MAX); }
+double Communicator::min(double x) const { return allreduce(comm_, x, MPI_DOUBLE, MPI_MIN); }
+long long Communicator::sum(long long x) const {
+  return allreduce(comm_, x, MPI_LONG_LONG, MPI_SUM);
+}
+long long Communicator::max(long long x) const {
+  return allreduce(comm_, x, MPI_LONG_LONG, MPI_MAX);
+}
+bool Communicator::any(bool flag) const {
+  return allreduce(comm_, static_cast<int>(flag), MPI_INT, MPI_LOR) != 0;
+}
+void Communicator::barrier() const { MPI_Barrier(comm_); }
+
+std::string Communicator::broadcast(const std::string& s, int root) const {
+  long long n = static_cast<long long>(s.size());
+  MPI_Bcast(&n, 1, MPI_LONG_LONG, root, comm_);
+  std::string out = rank_ == root ? s : std::string(static_cast<size_t>(n), '\0');
+  if (n > 0) MPI_Bcast(out.data(), static_cast<int>(n), MPI_CHAR, root, comm_);
+  return out;
+}
+
+}  // namespace amphora

@@ -1,0 +1,30 @@
+#include "physics/registry.hpp"
+
+#include "physics/advection_diffusion_1d/advection_diffusion_1d.hpp"
+
+namespace amphora {
+
+const std::vector<ModuleInfo>& module_registry() {
+  static const std::vector<ModuleInfo> modules = {
+      {"advection_diffusion_1d", advection_diffusion_1d::parameter_table,
+       [](const Parameters& p, const Communicator& c) -> std::unique_ptr<Module> {
+         return std::make_unique<
+             advection_diffusion_1d::AdvectionDiffusion1D<DefaultExecSpace>>(p, c);
+       }},
+  };
+  return modules;
+}
+
+const ModuleInfo* find_module(const std::string& name) {
+  for (const auto& m : module_registry())
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+std::vector<std::string> module_names() {
+  std::vector<std::string> names;
+  for (const auto& m : module_registry()) names.push_back(m.name);
+  return names;
+}
+
+}  // namespace amphora

@@ -1,0 +1,25 @@
+#pragma once
+// The physics modules a scene can name, with their parameter tables and factories.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "mesh/environment.hpp"
+#include "physics/module.hpp"
+#include "physics/parameters.hpp"
+
+namespace amphora {
+
+struct ModuleInfo {
+  std::string name;
+  std::function<ParamTable()> parameters;
+  std::function<std::unique_ptr<Module>(const Parameters&, const Communicator&)> create;
+};
+
+const std::vector<ModuleInfo>& module_registry();
+/// nullptr if no module has that name.
+const ModuleInfo* find_module(const std::string& name);
+std::vector<std::string> module_names();
+
+}  // namespace amphora
