@@ -81,11 +81,11 @@ std::string FieldSeries::write(long long step, double time,
   }
   x << "    </Grid>\n";
   entries_.push_back(x.str());
-  last_file_ = dir_ + "/" + file;
+  last_file_ = file;
   last_step_ = step;
   if (comm_.is_root()) write_xdmf();
   comm_.barrier();
-  return last_file_;
+  return last_file();
 }
 
 void FieldSeries::write_xdmf() const {

@@ -20,7 +20,8 @@ class FieldSeries {
   /// Returns the HDF5 file written.
   std::string write(long long step, double time, const std::vector<OutputBlock>& local_blocks);
 
-  const std::string& last_file() const { return last_file_; }
+  /// Path of the last file written ("" before the first), inside the output directory.
+  std::string last_file() const { return last_file_.empty() ? "" : dir_ + "/" + last_file_; }
   long long last_step() const { return last_step_; }
   std::string series_path() const;
 
@@ -34,7 +35,7 @@ class FieldSeries {
   std::string dir_, name_;
   Communicator comm_;
   std::vector<std::string> entries_;  // one XDMF <Grid> per written step
-  std::string last_file_;
+  std::string last_file_;  // relative to dir_, so a checkpoint does not name its directory
   long long last_step_ = -1;
 };
 

@@ -53,6 +53,8 @@ std::vector<H5DatasetInfo> gather_layout(const Communicator& comm,
 }
 
 hid_t mpio_fapl(const Communicator& comm) {
+  // amphora reports HDF5 failures itself, with the file name; HDF5's own stack dump is noise.
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   hid_t fapl = check_id(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate");
   check(H5Pset_fapl_mpio(fapl, comm.get(), MPI_INFO_NULL), "H5Pset_fapl_mpio");
   return fapl;

@@ -18,7 +18,6 @@ const char* type_name(ParamType t) {
 
 std::string to_string(const ParamValue& v) {
   std::ostringstream s;
-  s.precision(17);
   std::visit(
       [&](const auto& x) {
         using T = std::decay_t<decltype(x)>;
@@ -26,6 +25,17 @@ std::string to_string(const ParamValue& v) {
           s << '"' << x << '"';
         } else if constexpr (std::is_same_v<T, bool>) {
           s << (x ? "true" : "false");
+        } else if constexpr (std::is_same_v<T, double>) {
+          // Shortest of 15 or 17 digits that reads back as the same double.
+          std::ostringstream t;
+          t.precision(15);
+          t << x;
+          if (std::stod(t.str()) != x) {
+            t.str("");
+            t.precision(17);
+            t << x;
+          }
+          s << t.str();
         } else {
           s << x;
         }

@@ -1,0 +1,49 @@
+#include "kernels/stencil_1d.hpp"
+#include "test_backend.hpp"
+
+namespace amphora {
+namespace {
+
+using test::TestExecSpace;
+using View = Kokkos::View<double*, test::TestMemSpace>;
+
+struct ConstantSource {
+  double c;
+  KOKKOS_INLINE_FUNCTION double operator()(double, double) const { return c; }
+};
+
+// D0 and D+D- are exact on quadratics, so one step of the scheme on u = p + q x + r x^2 gives
+// u + dt (-a (q + 2 r x) + 2 nu r + f) to round-off.
+TEST(Stencil1D, ExactOnQuadratics) {
+  const TestExecSpace exec;
+  const int n = 257;
+  const double x0 = -0.3, dx = 1.0 / 256, a = 0.7, nu = 0.05, dt = 1e-3, f = 0.25;
+  const double p = 0.5, q = -1.25, r = 2.0;
+  View u("u", n), v("v", n);
+  Kokkos::parallel_for(
+      "test::quadratic", RangePolicy<TestExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
+        const double x = x0 + i * dx;
+        u(i) = p + q * x + r * x * x;
+      });
+  stencil::advection_diffusion_ftcs(exec, u, v, 1, n - 1, x0, dx, a, nu, 0.0, dt,
+                                    ConstantSource{f});
+  auto uh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), u);
+  auto vh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), v);
+  for (int i = 1; i < n - 1; ++i) {
+    const double x = x0 + i * dx;
+    const double expected = uh(i) + dt * (-a * (q + 2 * r * x) + 2 * nu * r + f);
+    EXPECT_NEAR(vh(i), expected, 1e-13) << "i = " << i;
+  }
+  EXPECT_EQ(vh(0), 0.0);  // outside [first, last): untouched
+  EXPECT_EQ(vh(n - 1), 0.0);
+}
+
+TEST(Stencil1D, StabilityLimit) {
+  // Diffusion-limited and advection-limited regimes of dt <= min(h^2/(2 nu), 2 nu / a^2).
+  EXPECT_DOUBLE_EQ(stencil::advection_diffusion_ftcs_dt_limit(1.0, 0.1, 0.01), 0.0005);
+  EXPECT_DOUBLE_EQ(stencil::advection_diffusion_ftcs_dt_limit(10.0, 0.01, 0.1), 0.0002);
+  EXPECT_DOUBLE_EQ(stencil::advection_diffusion_ftcs_dt_limit(0.0, 0.5, 0.1), 0.01);
+}
+
+}  // namespace
+}  // namespace amphora
