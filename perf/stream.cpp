@@ -1,0 +1,57 @@
+// STREAM copy and triad through Kokkos (McCalpin's kernels, bytes counted as STREAM does:
+// 16 per element for copy, 24 for triad). Reports GB/s; run at 1 and 2 threads
+// (scripts/bench.sh). Sizes: one in cache, the rest well beyond the last-level cache.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+
+#include "kernels/spaces.hpp"
+
+namespace {
+
+using amphora::DefaultExecSpace;
+using amphora::DefaultMemSpace;
+using View = Kokkos::View<double*, DefaultMemSpace>;
+
+template <class Kernel>
+void run(benchmark::State& state, double bytes_per_element, Kernel kernel) {
+  const int n = static_cast<int>(state.range(0));
+  View a("amphora::stream::a", n), b("amphora::stream::b", n), c("amphora::stream::c", n);
+  Kokkos::deep_copy(a, 0.0);
+  Kokkos::deep_copy(b, 1.0);
+  Kokkos::deep_copy(c, 2.0);
+  for (auto _ : state) {
+    Kokkos::fence();
+    const auto t0 = std::chrono::steady_clock::now();
+    kernel(n, a, b, c);
+    Kokkos::fence();
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  const double bytes = bytes_per_element * n;
+  // Shown as e.g. "bandwidth=13.6G/s" (decimal giga, as STREAM reports).
+  state.counters["bandwidth"] = benchmark::Counter(bytes, benchmark::Counter::kIsIterationInvariantRate,
+                                                   benchmark::Counter::OneK::kIs1000);
+  state.counters["MiB"] = 3.0 * 8.0 * n / (1 << 20);
+  state.counters["threads"] = DefaultExecSpace().concurrency();
+}
+
+void StreamCopy(benchmark::State& state) {
+  run(state, 16.0, [](int n, View a, View b, View) {
+    Kokkos::parallel_for("amphora::perf::stream_copy", amphora::RangePolicy<DefaultExecSpace>(0, n),
+                         KOKKOS_LAMBDA(int i) { a(i) = b(i); });
+  });
+}
+
+void StreamTriad(benchmark::State& state) {
+  run(state, 24.0, [](int n, View a, View b, View c) {
+    const double s = 3.0;
+    Kokkos::parallel_for("amphora::perf::stream_triad", amphora::RangePolicy<DefaultExecSpace>(0, n),
+                         KOKKOS_LAMBDA(int i) { a(i) = b(i) + s * c(i); });
+  });
+}
+
+}  // namespace
+
+BENCHMARK(StreamCopy)->UseManualTime()->Unit(benchmark::kMillisecond)->Arg(1 << 10)->Arg(1 << 20)->Arg(1 << 25)->Arg(1 << 26);
+BENCHMARK(StreamTriad)->UseManualTime()->Unit(benchmark::kMillisecond)->Arg(1 << 10)->Arg(1 << 20)->Arg(1 << 25)->Arg(1 << 26);
