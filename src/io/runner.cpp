@@ -160,8 +160,8 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
     const double t0 = progress.elapsed();
     module->advance(t, dt);
     stepping += progress.elapsed() - t0;
-    t += dt;
     ++step;
+    t = double(step) * dt;  // not accumulated: lands on end_time and restarts identically
     if (auto bad = module->find_nonfinite()) {
       std::ostringstream m;
       m << "run diverged: non-finite value in field '" << bad->field << "' of block '"
