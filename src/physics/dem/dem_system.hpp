@@ -1,0 +1,149 @@
+#pragma once
+// The DEM solver: particles with Hertz–Mindlin contacts among themselves and with walls,
+// gravity, velocity-Verlet integration of translation and rotation (LIGGGHTS' nve/sphere
+// splitting), binned contact detection with Verlet lists rebuilt only when the largest
+// displacement since the last build could close half the skin, and spatial decomposition over
+// MPI ranks with ghost particles and migration. Tangential history lives with the list between
+// rebuilds and with the particles across them (records keyed by the partner's global id), so it
+// survives rebuilds, sorting and migration. Forces are summed per particle over its neighbours
+// in global-id order: trajectories are the same bits on any thread or rank count.
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "kernels/verlet_list.hpp"
+#include "mesh/environment.hpp"
+#include "mesh/particle_set.hpp"
+#include "mesh/spatial_decomposition.hpp"
+#include "physics/dem/contact_model.hpp"
+#include "physics/dem/walls.hpp"
+
+namespace amphora::dem {
+
+struct DemConfig {
+  std::vector<Material> materials;  ///< particle and wall materials, indexed by material id
+  std::vector<Wall> walls;
+  std::array<double, 3> gravity{0.0, 0.0, -9.81};
+  std::array<double, 3> domain_lo{0, 0, 0}, domain_hi{1, 1, 1};  ///< particles leaving are removed
+  double dt = 1e-5;
+  double skin = 0;          ///< Verlet skin [m]
+  double max_radius = 0;    ///< largest radius the run will hold (bins, ghost width)
+  int max_contacts = 24;    ///< history records a particle carries across a rebuild
+};
+
+/// One particle to add (host side).
+struct ParticleSpec {
+  double x[3] = {0, 0, 0}, v[3] = {0, 0, 0}, omega[3] = {0, 0, 0};
+  double radius = 0;
+  int material = 0;
+  std::int64_t gid = 0;
+};
+
+struct DemDiagnostics {
+  long long particles = 0, contacts = 0, wall_contacts = 0;
+  double kinetic = 0, rotational = 0, gravity_potential = 0, elastic = 0;
+  double max_overlap = 0;  ///< largest overlap / smaller radius over all contacts
+  double total_energy() const { return kinetic + rotational + gravity_potential + elastic; }
+};
+
+/// Wall-clock seconds per phase (measured only when profiling is on: it fences each phase).
+struct DemTimers {
+  double integrate = 0, binning = 0, list = 0, force = 0, comm = 0;
+  long long rebuilds = 0;
+};
+
+template <class ExecSpace>
+class DemSystem {
+ public:
+  using Mem = typename ExecSpace::memory_space;
+  using Vec = typename ParticleSet<Mem>::Vec;
+  using Hist = Kokkos::View<double** [3], Kokkos::LayoutRight, Mem>;
+  using RecIds = Kokkos::View<std::int64_t**, Kokkos::LayoutRight, Mem>;
+
+  DemSystem(const DemConfig& config, const Communicator& comm, const ExecSpace& exec = ExecSpace());
+
+  /// Adds the particles of `specs` that lie in this rank's subdomain (every rank may pass the
+  /// same list). Throws if a particle's centre lies outside a wall.
+  void add_particles(const std::vector<ParticleSpec>& specs);
+  /// One velocity-Verlet step of length dt. Collective.
+  void step();
+
+  double time() const { return time_; }
+  void set_time(double t) { time_ = t; }
+  long long steps() const { return steps_; }
+  const DemConfig& config() const { return config_; }
+  const SpatialDecomposition& decomposition() const { return decomposition_; }
+  ParticleSet<Mem>& particles() { return p_; }
+  const ParticleSet<Mem>& particles() const { return p_; }
+  const NeighborList<Mem>& neighbor_list() const { return list_; }
+  long long global_count() const { return comm_.sum(static_cast<long long>(p_.n_owned)); }
+
+  /// Pairs (gid_i < gid_j) of owned i now in contact (centre distance < r_i + r_j), as the
+  /// force kernel sees them through the Verlet list.
+  std::vector<std::pair<std::int64_t, std::int64_t>> contact_pairs() const;
+  DemDiagnostics diagnostics() const;  ///< collective
+  void set_profiling(bool on) { profiling_ = on; }
+  const DemTimers& timers() const { return timers_; }
+  /// Forces a neighbour-list rebuild (and migration) before the next force evaluation.
+  void invalidate() { need_rebuild_ = true; }
+
+  /// Per-particle records for a checkpoint (owned particles, host): x, v, omega, force,
+  /// torque, radius, material, gid, wall history, contact records (partner gid, history).
+  struct HostState {
+    std::vector<double> x, v, omega, force, torque, radius, wall_shear, contact_shear;
+    std::vector<std::int64_t> gid, contact_gid;
+    std::vector<int> material;
+  };
+  HostState save() const;
+  /// Replaces all particles with those of `s` that lie in this rank's subdomain.
+  void load(const HostState& s);
+
+ private:
+  void rebuild();
+  void history_to_records();
+  void records_to_history();
+  void remove_and_migrate();
+  void sort_owned_by_cell();
+  void build_ghosts();
+  void forward_ghosts();
+  void compute_forces();
+  double kick_drift();
+  void kick();
+  void resize_owned(int n);
+  double timer_mark(double& slot, double since) const;
+
+  DemConfig config_;
+  Communicator comm_;
+  ExecSpace exec_;
+  SpatialDecomposition decomposition_;
+  Kokkos::View<PairCoefficients**, Mem> pairs_;
+  Kokkos::View<Wall*, Mem> walls_;
+  int n_walls_ = 0;
+  double ghost_width_ = 0;
+
+  ParticleSet<Mem> p_;
+  Vec x_build_;
+  Hist wall_shear_;   // (particle, wall, 3)
+  Hist rec_shear_;    // (particle, record, 3), valid across a rebuild
+  RecIds rec_gid_;    // (particle, record): partner gid or -1
+  NeighborList<Mem> list_;
+  Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> shear_;  // aligned with list_.neighbors
+
+  // Ghost forwarding plan: per exchange (d, side), the local indices sent and where the
+  // received copies start.
+  struct GhostLeg {
+    int d, side;
+    Kokkos::View<int*, Mem> send;
+    int recv_first = 0, recv_count = 0;
+  };
+  std::vector<GhostLeg> legs_;
+
+  double time_ = 0;
+  long long steps_ = 0;
+  bool need_rebuild_ = true;
+  bool forces_valid_ = false;
+  bool profiling_ = false;
+  DemTimers timers_;
+};
+
+}  // namespace amphora::dem

@@ -1,0 +1,83 @@
+#pragma once
+// Point-wise Hertz–Mindlin contact force (the law of LIGGGHTS' `hertz tangential history`,
+// Di Renzo & Di Maio 2004; damping as Tsuji et al. 1992 with the restitution-calibrated
+// factor of contact_model.hpp), Coulomb limit, constant-torque rolling resistance (Ai et al.
+// 2011, model A) and SJKR cohesion. Inline and device-safe: the loops that apply it live in
+// dem_system.cpp and know nothing of the law.
+#include "kernels/kokkos_compat.hpp"
+#include "physics/dem/contact_model.hpp"
+
+namespace amphora::dem {
+
+struct ContactForce {
+  double force[3];   ///< on particle i (normal + tangential + cohesion)
+  double torque[3];  ///< on particle i about its centre (tangential + rolling)
+  double normal;     ///< normal force magnitude (>0 repulsive), for diagnostics
+};
+
+/// Force and torque on particle i from a contact with j (or a wall).
+///   n: unit vector from i's centre towards the contact partner; delta > 0: overlap
+///   v_rel: velocity of i's contact point relative to j's (translation and rotation)
+///   w_rel: omega_i - omega_j (rolling);  lever: distance from i's centre to the contact point
+///   shear: tangential displacement history of this contact, updated in place.
+KOKKOS_INLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& c, double r_eff,
+                                                        double m_eff, const double n[3],
+                                                        double delta, const double v_rel[3],
+                                                        const double w_rel[3], double lever,
+                                                        double dt, double shear[3]) {
+  ContactForce out;
+  const double sqrt_rd = math::sqrt(r_eff * delta);
+  const double kn = (4.0 / 3.0) * c.e_star * sqrt_rd;
+  const double st = 8.0 * c.g_star * sqrt_rd;  // tangential stiffness k_t = S_t
+  const double gamma_n = c.damping * math::sqrt(2.0 * c.e_star * sqrt_rd * m_eff);
+  const double gamma_t = c.damping * math::sqrt(st * m_eff);
+
+  const double vn = v_rel[0] * n[0] + v_rel[1] * n[1] + v_rel[2] * n[2];  // > 0: approaching
+  const double vt[3] = {v_rel[0] - vn * n[0], v_rel[1] - vn * n[1], v_rel[2] - vn * n[2]};
+  // Damping may not turn the contact attractive (the calibration in contact_model.cpp assumes
+  // the same clamp).
+  const double fn_raw = kn * delta + gamma_n * vn;
+  const double fn = fn_raw > 0 ? fn_raw : 0.0;
+
+  // Rotate the history into the current tangent plane, keeping its length, then add v_t dt.
+  const double s_dot_n = shear[0] * n[0] + shear[1] * n[1] + shear[2] * n[2];
+  const double s2_old = shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2];
+  for (int d = 0; d < 3; ++d) shear[d] -= s_dot_n * n[d];
+  const double s2_new = shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2];
+  if (s2_new > 0) {
+    const double scale = math::sqrt(s2_old / s2_new);
+    for (int d = 0; d < 3; ++d) shear[d] *= scale;
+  }
+  for (int d = 0; d < 3; ++d) shear[d] += vt[d] * dt;
+
+  double ft[3];
+  for (int d = 0; d < 3; ++d) ft[d] = -st * shear[d] - gamma_t * vt[d];
+  const double ft_mag = math::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+  const double ft_max = c.friction * fn;
+  if (ft_mag > ft_max) {  // sliding: cap at Coulomb and keep the spring consistent with it
+    const double scale = ft_max / ft_mag;
+    for (int d = 0; d < 3; ++d) {
+      ft[d] *= scale;
+      shear[d] = st > 0 ? -(ft[d] + gamma_t * vt[d]) / st : 0.0;
+    }
+  }
+
+  // SJKR cohesion: attraction k_c * contact area, area from the overlap (pi R* delta).
+  const double f_coh = c.cohesion * math::pi * r_eff * delta;
+  for (int d = 0; d < 3; ++d) out.force[d] = -(fn - f_coh) * n[d] + ft[d];
+
+  // Torque of the tangential force applied at the contact point lever * n.
+  out.torque[0] = lever * (n[1] * ft[2] - n[2] * ft[1]);
+  out.torque[1] = lever * (n[2] * ft[0] - n[0] * ft[2]);
+  out.torque[2] = lever * (n[0] * ft[1] - n[1] * ft[0]);
+  // Rolling resistance: a constant torque mu_r R* |F_n| against the relative rotation.
+  const double w2 = w_rel[0] * w_rel[0] + w_rel[1] * w_rel[1] + w_rel[2] * w_rel[2];
+  if (c.rolling_friction > 0 && w2 > 0) {
+    const double m = c.rolling_friction * r_eff * fn / math::sqrt(w2);
+    for (int d = 0; d < 3; ++d) out.torque[d] -= m * w_rel[d];
+  }
+  out.normal = fn;
+  return out;
+}
+
+}  // namespace amphora::dem
