@@ -80,6 +80,10 @@ PairCoefficients pair_coefficients(const Material& a, const Material& b) {
   c.friction = 0.5 * (a.friction + b.friction);
   c.rolling_friction = 0.5 * (a.rolling_friction + b.rolling_friction);
   c.cohesion = 0.5 * (a.cohesion_energy_density + b.cohesion_energy_density);
+  c.kn = 4.0 / 3.0 * c.e_star;
+  c.kt = 8.0 * c.g_star;
+  c.gamma_n = c.damping * std::sqrt(2.0 * c.e_star);
+  c.gamma_t = c.damping * std::sqrt(8.0 * c.g_star);
   return c;
 }
 

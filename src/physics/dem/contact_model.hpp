@@ -21,10 +21,15 @@ struct Material {
 struct PairCoefficients {
   double e_star = 0;    ///< effective Young's modulus E* [Pa]
   double g_star = 0;    ///< effective shear modulus G* [Pa]
-  double damping = 0;   ///< eta: gamma = eta sqrt(S m*) for S = S_n, S_t
+  double damping = 0;   ///< eta: gamma = eta sqrt(S m*) for S = S_n = 2 E* a, S_t = 8 G* a
   double friction = 0;
   double rolling_friction = 0;
   double cohesion = 0;  ///< SJKR energy density [J/m^3]
+  // Folded constants of the hot loop (a = sqrt(R* delta) is the contact radius):
+  double kn = 0;       ///< (4/3) E*: k_n = kn a
+  double kt = 0;       ///< 8 G*: k_t = kt a
+  double gamma_n = 0;  ///< eta sqrt(2 E*): gamma_n = gamma_n sqrt(m* a)
+  double gamma_t = 0;  ///< eta sqrt(8 G*): gamma_t = gamma_t sqrt(m* a)
 };
 
 /// Coefficients of a pair of materials; restitution, friction and cohesion are the mean of

@@ -26,11 +26,13 @@ KOKKOS_INLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& 
                                                         const double w_rel[3], double lever,
                                                         double dt, double shear[3]) {
   ContactForce out;
-  const double sqrt_rd = math::sqrt(r_eff * delta);
-  const double kn = (4.0 / 3.0) * c.e_star * sqrt_rd;
-  const double st = 8.0 * c.g_star * sqrt_rd;  // tangential stiffness k_t = S_t
-  const double gamma_n = c.damping * math::sqrt(2.0 * c.e_star * sqrt_rd * m_eff);
-  const double gamma_t = c.damping * math::sqrt(st * m_eff);
+  // Contact radius a = sqrt(R* delta); stiffnesses grow with a, damping with sqrt(m* a).
+  const double a = math::sqrt(r_eff * delta);
+  const double sqrt_ma = math::sqrt(m_eff * a);
+  const double kn = c.kn * a;
+  const double kt = c.kt * a;
+  const double gamma_n = c.gamma_n * sqrt_ma;
+  const double gamma_t = c.gamma_t * sqrt_ma;
 
   const double vn = v_rel[0] * n[0] + v_rel[1] * n[1] + v_rel[2] * n[2];  // > 0: approaching
   const double vt[3] = {v_rel[0] - vn * n[0], v_rel[1] - vn * n[1], v_rel[2] - vn * n[2]};
@@ -39,26 +41,20 @@ KOKKOS_INLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& 
   const double fn_raw = kn * delta + gamma_n * vn;
   const double fn = fn_raw > 0 ? fn_raw : 0.0;
 
-  // Rotate the history into the current tangent plane, keeping its length, then add v_t dt.
+  // Keep the history in the current tangent plane (projection, as LAMMPS/LIGGGHTS do), then
+  // add the tangential displacement of this step.
   const double s_dot_n = shear[0] * n[0] + shear[1] * n[1] + shear[2] * n[2];
-  const double s2_old = shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2];
-  for (int d = 0; d < 3; ++d) shear[d] -= s_dot_n * n[d];
-  const double s2_new = shear[0] * shear[0] + shear[1] * shear[1] + shear[2] * shear[2];
-  if (s2_new > 0) {
-    const double scale = math::sqrt(s2_old / s2_new);
-    for (int d = 0; d < 3; ++d) shear[d] *= scale;
-  }
-  for (int d = 0; d < 3; ++d) shear[d] += vt[d] * dt;
+  for (int d = 0; d < 3; ++d) shear[d] += vt[d] * dt - s_dot_n * n[d];
 
   double ft[3];
-  for (int d = 0; d < 3; ++d) ft[d] = -st * shear[d] - gamma_t * vt[d];
-  const double ft_mag = math::sqrt(ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]);
+  for (int d = 0; d < 3; ++d) ft[d] = -kt * shear[d] - gamma_t * vt[d];
+  const double ft2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2];
   const double ft_max = c.friction * fn;
-  if (ft_mag > ft_max) {  // sliding: cap at Coulomb and keep the spring consistent with it
-    const double scale = ft_max / ft_mag;
+  if (ft2 > ft_max * ft_max) {  // sliding: cap at Coulomb and keep the spring consistent with it
+    const double scale = ft_max / math::sqrt(ft2);
     for (int d = 0; d < 3; ++d) {
       ft[d] *= scale;
-      shear[d] = st > 0 ? -(ft[d] + gamma_t * vt[d]) / st : 0.0;
+      shear[d] = kt > 0 ? -(ft[d] + gamma_t * vt[d]) / kt : 0.0;
     }
   }
 
