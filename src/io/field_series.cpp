@@ -38,6 +38,7 @@ std::string FieldSeries::write(long long step, double time,
   std::vector<H5Group> groups;
   for (const auto& b : local_blocks) {
     H5Group g{b.name, {{"x", b.x}, {"y", b.y}, {"z", b.z}}};
+    if (b.points) g.datasets.push_back({"topology_points", {1.0}});  // marks a point set
     for (const auto& f : b.fields) g.datasets.push_back(f);
     groups.push_back(std::move(g));
   }
@@ -59,11 +60,20 @@ std::string FieldSeries::write(long long step, double time,
     << "CollectionType=\"Spatial\">\n      <Time Value=\"" << time << "\"/>\n";
   for (const auto& g : order) {
     const auto& s = sizes[g];
-    const std::string dims = std::to_string(s.at("z")) + " " + std::to_string(s.at("y")) + " " +
-                             std::to_string(s.at("x"));
-    x << "      <Grid Name=\"" << g << "\" GridType=\"Uniform\">\n"
-      << "        <Topology TopologyType=\"3DRectMesh\" Dimensions=\"" << dims << "\"/>\n"
-      << "        <Geometry GeometryType=\"VXVYVZ\">\n";
+    const bool points = s.count("topology_points") != 0;
+    const std::string dims =
+        points ? std::to_string(s.at("x"))
+               : std::to_string(s.at("z")) + " " + std::to_string(s.at("y")) + " " +
+                     std::to_string(s.at("x"));
+    x << "      <Grid Name=\"" << g << "\" GridType=\"Uniform\">\n";
+    if (points) {
+      x << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << s.at("x")
+        << "\" NodesPerElement=\"1\"/>\n"
+        << "        <Geometry GeometryType=\"X_Y_Z\">\n";
+    } else {
+      x << "        <Topology TopologyType=\"3DRectMesh\" Dimensions=\"" << dims << "\"/>\n"
+        << "        <Geometry GeometryType=\"VXVYVZ\">\n";
+    }
     for (const char* c : {"x", "y", "z"}) {
       x << "          <DataItem Dimensions=\"" << s.at(c)
         << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/" << g << "/"
@@ -71,7 +81,9 @@ std::string FieldSeries::write(long long step, double time,
     }
     x << "        </Geometry>\n";
     for (const auto& d : layout) {
-      if (d.group != g || d.name == "x" || d.name == "y" || d.name == "z") continue;
+      if (d.group != g || d.name == "x" || d.name == "y" || d.name == "z" ||
+          d.name == "topology_points")
+        continue;
       x << "        <Attribute Name=\"" << d.name << "\" AttributeType=\"Scalar\" "
         << "Center=\"Node\">\n          <DataItem Dimensions=\"" << dims
         << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/" << g << "/"

@@ -10,17 +10,16 @@ namespace amphora {
 class Progress {
  public:
   Progress(std::ostream& out, bool active, long long first_step, long long last_step,
-           long long work_per_step, std::string unit, double interval_seconds);
-  /// Prints if `interval_seconds` passed since the last line (or force).
-  void update(long long step, double time, double dt, bool force = false);
+           std::string unit, double interval_seconds);
+  /// Prints if `interval_seconds` passed since the last line (or force). `work` is the work
+  /// done since construction (the unit's count: points, particles... times steps).
+  void update(long long step, double time, double dt, double work, bool force = false);
   double elapsed() const;
-  /// Work done per wall-clock second since construction.
-  double rate(long long step) const;
 
  private:
   std::ostream& out_;
   bool active_;
-  long long first_, last_, work_;
+  long long first_, last_;
   std::string unit_;
   double interval_;
   std::chrono::steady_clock::time_point start_, last_print_;

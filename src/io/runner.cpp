@@ -92,6 +92,7 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   double dt = run.has("dt") ? run.real("dt") : run.real("cfl") * module->stable_dt();
   long long n_steps = std::max(1LL, static_cast<long long>(std::ceil(end_time / dt - 1e-9)));
   dt = end_time / double(n_steps);
+  module->set_time_step(dt);  // may refuse a step over the module's stability limit
   long long step = 0;
   double t = 0.0;
 
@@ -125,6 +126,7 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
     step = restart->integer("step");
     t = restart->real("time");
     dt = restart->real("dt");
+    module->set_time_step(dt);
     n_steps = std::max(step, static_cast<long long>(std::llround(end_time / dt)));
     std::vector<StateBlock> blocks;
     for (const auto& name : module->owned_blocks()) blocks.push_back({name, restart->group(name)});
@@ -153,11 +155,13 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   result.work_per_step = module->work_per_step();
   result.work_unit = module->work_unit();
   Progress progress(std::cout, comm.is_root() && !options.quiet, step, n_steps,
-                    result.work_per_step, result.work_unit, run.real("progress_seconds"));
+                    result.work_unit, run.real("progress_seconds"));
+  double work = 0.0;  // work units done by this run (a module's work per step may change)
   const long long first_step = step;
   double stepping = 0.0;  // wall time in advance() only
   while (step < n_steps && (options.max_steps < 0 || step - first_step < options.max_steps)) {
     const double t0 = progress.elapsed();
+    work += double(module->work_per_step());
     module->advance(t, dt);
     stepping += progress.elapsed() - t0;
     ++step;
@@ -185,9 +189,9 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
       if (!last && ck_every > 0 && step % ck_every == 0)
         write_checkpoint(dir, scene, comm, *module, series, {step, t, dt, n_steps});
     }
-    progress.update(step, t, dt);
+    progress.update(step, t, dt, work);
   }
-  progress.update(step, t, dt, /*force=*/true);
+  progress.update(step, t, dt, work, /*force=*/true);
   if (options.write_output)
     write_checkpoint(dir, scene, comm, *module, series, {step, t, dt, n_steps});
 
@@ -196,7 +200,8 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   result.time = t;
   result.dt = dt;
   result.wall_seconds = stepping;
-  result.rate = stepping > 0 ? double(result.steps) * double(result.work_per_step) / stepping : 0;
+  result.work_per_step = module->work_per_step();
+  result.rate = stepping > 0 ? work / stepping : 0;
   result.diagnostics = module->diagnostics(t);
   for (const auto& [name, v] : result.diagnostics)
     if (name == module->error_diagnostic()) result.error = v;

@@ -12,12 +12,14 @@ namespace amphora {
 
 using NamedArray = std::pair<std::string, std::vector<double>>;
 
-/// One structured block of output owned by this rank: rectilinear node coordinates per
-/// direction (length 1 for an unused direction) and point fields stored x fastest.
+/// One block of output owned by this rank: either a rectilinear grid (node coordinates per
+/// direction, length 1 for an unused direction, fields stored x fastest) or a set of points
+/// (`points`: x, y, z hold each point's coordinates, fields one value per point).
 struct OutputBlock {
   std::string name;
   std::vector<double> x, y, z;
   std::vector<NamedArray> fields;
+  bool points = false;
 };
 
 /// Named arrays of one block of state, enough to continue bit for bit.
@@ -42,6 +44,9 @@ class Module {
   virtual std::string name() const = 0;
   /// Largest stable time step for the current state [s].
   virtual double stable_dt() const = 0;
+  /// The step the run will use, before the first advance; a module may refuse it
+  /// (std::invalid_argument naming its limit).
+  virtual void set_time_step(double /*dt*/) {}
   /// Advances the state from time t to t + dt. Collective.
   virtual void advance(double t, double dt) = 0;
   /// Global amount of work in one step and its unit, for throughput ("point-steps/s").

@@ -1,6 +1,7 @@
 #include "physics/registry.hpp"
 
 #include "physics/advection_diffusion_1d/advection_diffusion_1d.hpp"
+#include "physics/dem/dem_module.hpp"
 
 namespace amphora {
 
@@ -10,6 +11,10 @@ const std::vector<ModuleInfo>& module_registry() {
        [](const Parameters& p, const Communicator& c) -> std::unique_ptr<Module> {
          return std::make_unique<
              advection_diffusion_1d::AdvectionDiffusion1D<DefaultExecSpace>>(p, c);
+       }},
+      {"dem", dem::parameter_table,
+       [](const Parameters& p, const Communicator& c) -> std::unique_ptr<Module> {
+         return std::make_unique<dem::DemModule>(p, c);
        }},
   };
   return modules;

@@ -1,6 +1,7 @@
 #include "physics/dem/dem_system.hpp"
 
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -862,6 +863,67 @@ DemDiagnostics DemSystem<ExecSpace>::diagnostics() const {
   out.elastic = comm_.sum(el + wel);
   out.max_overlap = comm_.max(std::max(mo, wmo));
   return out;
+}
+
+template <class ExecSpace>
+void DemSystem<ExecSpace>::set_wall_angular_velocity(int w, const double omega[3]) {
+  for (int d = 0; d < 3; ++d) config_.walls[w].angular_velocity[d] = omega[d];
+  auto wh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), walls_);
+  for (int d = 0; d < 3; ++d) wh(w).angular_velocity[d] = omega[d];
+  Kokkos::deep_copy(walls_, wh);
+}
+
+template <class ExecSpace>
+std::vector<int> DemSystem<ExecSpace>::contact_counts() const {
+  const int n = p_.n_owned;
+  Kokkos::View<int*, Mem> counts("amphora::dem::contact_counts", n);
+  const auto x = p_.x;
+  const auto rad = p_.radius;
+  const auto off = list_.offsets;
+  const auto nbr = list_.neighbors;
+  const auto walls = walls_;
+  const int nw = n_walls_;
+  const double t = time_;
+  const bool have_list = list_.rows() == n;
+  Kokkos::parallel_for(
+      "amphora::dem::contact_counts", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
+        int c = 0;
+        if (have_list) {
+          for (int k = off(i); k < off(i + 1); ++k) {
+            const int j = nbr(k);
+            double d2 = 0;
+            for (int d = 0; d < 3; ++d) d2 += (x(j, d) - x(i, d)) * (x(j, d) - x(i, d));
+            const double rs = rad(i) + rad(j);
+            if (d2 < rs * rs) ++c;
+          }
+        }
+        const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
+        for (int w = 0; w < nw; ++w) {
+          double nn[3], delta, vw[3];
+          if (wall_contact(walls(w), t, xi, rad(i), nn, delta, vw)) ++c;
+        }
+        counts(i) = c;
+      });
+  auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(), counts);
+  return std::vector<int>(h.data(), h.data() + n);
+}
+
+template <class ExecSpace>
+std::int64_t DemSystem<ExecSpace>::first_nonfinite() const {
+  const auto x = p_.x, v = p_.v;
+  const auto gid = p_.gid;
+  std::int64_t bad = std::numeric_limits<std::int64_t>::max();
+  Kokkos::parallel_reduce(
+      "amphora::dem::first_nonfinite", RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
+      KOKKOS_LAMBDA(int i, std::int64_t& acc) {
+        bool ok = true;
+        for (int d = 0; d < 3; ++d) ok = ok && math::isfinite(x(i, d)) && math::isfinite(v(i, d));
+        if (!ok && gid(i) < acc) acc = gid(i);
+      },
+      Kokkos::Min<std::int64_t>(bad));
+  long long global = bad;
+  MPI_Allreduce(MPI_IN_PLACE, &global, 1, MPI_LONG_LONG, MPI_MIN, comm_.get());
+  return global == std::numeric_limits<std::int64_t>::max() ? -1 : global;
 }
 
 template <class ExecSpace>

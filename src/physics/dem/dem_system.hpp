@@ -70,8 +70,14 @@ class DemSystem {
 
   double time() const { return time_; }
   void set_time(double t) { time_ = t; }
+  /// Time and step count, as a checkpoint saved them.
+  void set_clock(double t, long long steps) {
+    time_ = t;
+    steps_ = steps;
+  }
   long long steps() const { return steps_; }
   const DemConfig& config() const { return config_; }
+  void set_dt(double dt) { config_.dt = dt; }
   const SpatialDecomposition& decomposition() const { return decomposition_; }
   ParticleSet<Mem>& particles() { return p_; }
   const ParticleSet<Mem>& particles() const { return p_; }
@@ -86,6 +92,13 @@ class DemSystem {
   const DemTimers& timers() const { return timers_; }
   /// Forces a neighbour-list rebuild (and migration) before the next force evaluation.
   void invalidate() { need_rebuild_ = true; }
+  /// Sets the rigid rotation of wall w (e.g. a drum starting to turn).
+  void set_wall_angular_velocity(int w, const double omega[3]);
+  /// Contacts (particles and walls) of each owned particle, in storage order (host).
+  std::vector<int> contact_counts() const;
+  /// Global id of an owned particle whose position or velocity is not finite, or -1; the
+  /// smallest such gid over all ranks. Collective.
+  std::int64_t first_nonfinite() const;
 
   /// Per-particle records for a checkpoint (owned particles, host): x, v, omega, force,
   /// torque, radius, material, gid, wall history, contact records (partner gid, history).
