@@ -36,3 +36,17 @@ expect_error() {
 
 # same_h5 A B: identical datasets and attributes (h5diff without tolerance compares exactly).
 same_h5() { h5diff -q "$1" "$2" || fail "$1 and $2 differ"; }
+
+# close_csv A B [REL]: same shape, every number equal to REL (default 1e-12) relative.
+close_csv() {
+  paste -d'\n' "$1" "$2" | awk -F, -v rel="${3:-1e-12}" '
+    NR % 2 == 1 { n = split($0, a, ","); next }
+    { m = split($0, b, ","); if (m != n) { print "shape differs at row " NR/2; bad = 1; exit }
+      for (i = 1; i <= n; ++i) {
+        if (a[i] == b[i]) continue
+        x = a[i] + 0; y = b[i] + 0; d = x - y; if (d < 0) d = -d
+        s = (x < 0 ? -x : x); t = (y < 0 ? -y : y); if (t > s) s = t
+        if (d > rel * s) { print "row " NR/2 " column " i ": " a[i] " vs " b[i]; bad = 1 }
+      } }
+    END { exit bad }' || fail "$1 and $2 differ beyond ${3:-1e-12} relative"
+}

@@ -318,6 +318,7 @@ DemModule::System::HostState DemModule::gather() const {
   std::vector<size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return all.gid[a] < all.gid[b]; });
+  // Per-particle widths: wall history (3 per wall), contact records (gid, and 3 of history).
   const size_t nw = n ? all.wall_shear.size() / n : 0, nk = n ? all.contact_gid.size() / n : 0;
   System::HostState s;
   for (size_t i : order) {
@@ -332,7 +333,7 @@ DemModule::System::HostState DemModule::gather() const {
     put(all.radius, s.radius, 1);
     put(all.material, s.material, 1);
     put(all.gid, s.gid, 1);
-    put(all.wall_shear, s.wall_shear, 3 * nw);
+    put(all.wall_shear, s.wall_shear, nw);
     put(all.contact_gid, s.contact_gid, nk);
     put(all.contact_shear, s.contact_shear, 3 * nk);
   }

@@ -125,7 +125,9 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
     }
     if (decomposition_.owner(s.x) == comm_.rank()) mine.push_back(&s);
   }
-  // Drop ghosts: they are rebuilt with the lists.
+  // Save the contact history first, while the partners' (ghosts included) ids are intact: the
+  // new particles take the slots after the owned ones. Ghosts are rebuilt with the lists.
+  history_to_records();
   p_.n_ghost = 0;
   const int n0 = p_.n_owned, n1 = n0 + static_cast<int>(mine.size());
   resize_owned(n1);
@@ -171,8 +173,6 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
   Kokkos::deep_copy(p_.gid, gid);
   Kokkos::deep_copy(wall_shear_, ws);
   Kokkos::deep_copy(rec_gid_, rg);
-  // Keep the contact history of the particles already present through the rebuild.
-  if (list_.rows() == n0 && n0 > 0) history_to_records();
   list_.offsets = Kokkos::View<int*, Mem>("amphora::dem::list_offsets", 1);
   list_.neighbors = Kokkos::View<int*, Mem>("amphora::dem::list_neighbors", 0);
   p_.n_owned = n1;
@@ -191,6 +191,8 @@ double DemSystem<ExecSpace>::timer_mark(double& slot, double since) const {
 
 template <class ExecSpace>
 void DemSystem<ExecSpace>::history_to_records() {
+  // Collective on every path: ranks without particles (or lists) take part in the check.
+  const bool have = list_.rows() == p_.n_owned && p_.n_owned > 0;
   const int n = p_.n_owned;
   const int K = config_.max_contacts;
   const auto off = list_.offsets;
@@ -201,7 +203,7 @@ void DemSystem<ExecSpace>::history_to_records() {
   const auto rs = rec_shear_;
   int overflow = 0;
   Kokkos::parallel_reduce(
-      "amphora::dem::history_to_records", RangePolicy<ExecSpace>(exec_, 0, n),
+      "amphora::dem::history_to_records", RangePolicy<ExecSpace>(exec_, 0, have ? n : 0),
       KOKKOS_LAMBDA(int i, int& over) {
         int r = 0;
         for (int k = off(i); k < off(i + 1); ++k) {
@@ -214,7 +216,10 @@ void DemSystem<ExecSpace>::history_to_records() {
           for (int d = 0; d < 3; ++d) rs(i, r, d) = shear(k, d);
           ++r;
         }
-        for (; r < K; ++r) rg(i, r) = -1;
+        for (; r < K; ++r) {  // empty slots are clean, so a checkpoint holds no stale bits
+          rg(i, r) = -1;
+          rs(i, r, 0) = rs(i, r, 1) = rs(i, r, 2) = 0.0;
+        }
       },
       Kokkos::Max<int>(overflow));
   if (comm_.any(overflow > 0)) {
@@ -421,13 +426,16 @@ void DemSystem<ExecSpace>::build_ghosts() {
   const auto lo = decomposition_.lo(comm_.rank());
   const auto hi = decomposition_.hi(comm_.rank());
   for (int d = 0; d < 3; ++d) {
+    // Candidates: owned particles and ghosts from earlier directions (so edges and corners
+    // arrive), never ghosts that came in along this direction (they would go back home).
+    const int candidates = n + int(data.size()) / kGhostRecord;
     for (int side = 0; side < 2; ++side) {
       GhostLeg leg{d, side, {}, 0, 0};
       std::vector<int> send;
       std::vector<double> out;
       const int total = n + int(data.size()) / kGhostRecord;
       if (decomposition_.neighbor(d, side) >= 0) {
-        for (int i = 0; i < total; ++i) {
+        for (int i = 0; i < candidates; ++i) {
           const double c = value(i, d);
           if (side == 0 ? c < lo[d] + ghost_width_ : c >= hi[d] - ghost_width_) {
             send.push_back(i);
@@ -528,7 +536,7 @@ void DemSystem<ExecSpace>::forward_ghosts() {
 template <class ExecSpace>
 void DemSystem<ExecSpace>::rebuild() {
   double t = profiling_ ? now() : 0.0;
-  if (list_.rows() == p_.n_owned && p_.n_owned > 0) history_to_records();
+  history_to_records();
   p_.n_ghost = 0;
   remove_and_migrate();
   t = timer_mark(timers_.comm, t);
@@ -930,7 +938,7 @@ template <class ExecSpace>
 typename DemSystem<ExecSpace>::HostState DemSystem<ExecSpace>::save() const {
   HostState s;
   auto* self = const_cast<DemSystem*>(this);
-  if (list_.rows() == p_.n_owned && p_.n_owned > 0) self->history_to_records();
+  self->history_to_records();
   const int n = p_.n_owned, nw = int(wall_shear_.extent(1)), K = config_.max_contacts;
   auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.x);
   auto v = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.v);
