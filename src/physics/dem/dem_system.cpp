@@ -81,6 +81,7 @@ DemSystem<ExecSpace>::DemSystem(const DemConfig& config, const Communicator& com
     for (int b = 0; b < nm; ++b) ph(a, b) = pair_coefficients(config_.materials[a], config_.materials[b]);
   Kokkos::deep_copy(pairs_, ph);
   n_walls_ = static_cast<int>(config_.walls.size());
+  if (n_walls_ > 32) throw std::invalid_argument("DEM: at most 32 walls (one bit each)");
   walls_ = Kokkos::View<Wall*, Mem>("amphora::dem::walls", n_walls_);
   auto wh = Kokkos::create_mirror_view(walls_);
   for (int w = 0; w < n_walls_; ++w) {
@@ -558,6 +559,19 @@ void DemSystem<ExecSpace>::rebuild() {
   t = timer_mark(timers_.binning, t);
   list_ = build_verlet_list(exec_, grid, bins, p_.x, p_.radius, p_.gid, n, config_.skin);
   records_to_history();
+  {
+    wall_mask_ = Kokkos::View<unsigned*, Mem>("amphora::dem::wall_mask", n);
+    const auto mask = wall_mask_;
+    const auto ws = wall_shear_;
+    const int nw = n_walls_;
+    Kokkos::parallel_for(
+        "amphora::dem::wall_mask", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
+          unsigned m = 0;
+          for (int w = 0; w < nw; ++w)
+            if (ws(i, w, 0) != 0.0 || ws(i, w, 1) != 0.0 || ws(i, w, 2) != 0.0) m |= 1u << w;
+          mask(i) = m;
+        });
+  }
   if (int(x_build_.extent(0)) < n) x_build_ = Vec("amphora::dem::x_build", n);
   Kokkos::deep_copy(exec_, Kokkos::subview(x_build_, Kokkos::make_pair(0, n), Kokkos::ALL),
                     Kokkos::subview(p_.x, Kokkos::make_pair(0, n), Kokkos::ALL));
@@ -622,6 +636,7 @@ void DemSystem<ExecSpace>::compute_forces() {
   const Kokkos::View<const PairCoefficients**, Mem, R> pairs = pairs_;
   const Kokkos::View<const Wall*, Mem, R> walls = walls_;
   const Kokkos::View<double** [3], Kokkos::LayoutRight, Mem, R> wshear = wall_shear_;
+  const Kokkos::View<unsigned*, Mem, R> wmask = wall_mask_;
   const int nw = n_walls_;
   Kokkos::parallel_for(
       "amphora::dem::compute_forces", RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
@@ -672,10 +687,13 @@ void DemSystem<ExecSpace>::compute_forces() {
           double n[3], delta, vw[3];
           const Wall& wall = walls(w);
           if (!wall_contact(wall, t, xi, ri, n, delta, vw)) {
-            if (wshear(i, w, 0) != 0.0 || wshear(i, w, 1) != 0.0 || wshear(i, w, 2) != 0.0)
+            if (wmask(i) & (1u << w)) {
+              wmask(i) &= ~(1u << w);
               wshear(i, w, 0) = wshear(i, w, 1) = wshear(i, w, 2) = 0.0;
+            }
             continue;
           }
+          wmask(i) |= 1u << w;
           const double vr[3] = {vi[0] - vw[0] + ri * (wi[1] * n[2] - wi[2] * n[1]),
                                 vi[1] - vw[1] + ri * (wi[2] * n[0] - wi[0] * n[2]),
                                 vi[2] - vw[2] + ri * (wi[0] * n[1] - wi[1] * n[0])};

@@ -137,6 +137,9 @@ class DemSystem {
   ParticleSet<Mem> p_;
   Vec x_build_;
   Hist wall_shear_;   // (particle, wall, 3)
+  // Bit w set: wall w's history of this particle may be non-zero. Derived from wall_shear_
+  // at each rebuild, so the force loop reads a particle's wall histories only when it must.
+  Kokkos::View<unsigned*, Mem> wall_mask_;
   Hist rec_shear_;    // (particle, record, 3), valid across a rebuild
   RecIds rec_gid_;    // (particle, record): partner gid or -1
   NeighborList<Mem> list_;
