@@ -119,7 +119,8 @@ int main(int argc, char** argv) {
     }
     if (*study) {
       std::ostringstream csv;
-      csv << std::setprecision(10) << "parameter,value,error,wall_time,steps,work_per_step,rate,unit\n";
+      csv << std::setprecision(10);
+      bool header = false;
       for (const auto& value : split(study_values, ',')) {
         const Scene s = load_scene(scene_path, {study_key + "=" + value});
         RunOptions opt;
@@ -127,8 +128,16 @@ int main(int argc, char** argv) {
         opt.quiet = true;
         const RunResult r = run_scene(s, comm, opt);
         if (r.diverged) return fail(comm, study_key + "=" + value + ": " + r.message, 3);
+        if (!header) {  // the module's final diagnostics follow the fixed columns
+          csv << "parameter,value,error,wall_time,steps,work_per_step,rate,unit";
+          for (const auto& [name, v] : r.diagnostics) csv << "," << name;
+          csv << "\n";
+          header = true;
+        }
         csv << study_key << "," << value << "," << r.error << "," << r.wall_seconds << ","
-            << r.steps << "," << r.work_per_step << "," << r.rate << "," << r.work_unit << "\n";
+            << r.steps << "," << r.work_per_step << "," << r.rate << "," << r.work_unit;
+        for (const auto& [name, v] : r.diagnostics) csv << "," << v;
+        csv << "\n";
         if (comm.is_root())
           std::cout << "[study] " << study_key << "=" << value << " error=" << r.error
                     << " wall=" << r.wall_seconds << " s rate=" << r.rate << " " << r.work_unit

@@ -157,6 +157,7 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   Progress progress(std::cout, comm.is_root() && !options.quiet, step, n_steps,
                     result.work_unit, run.real("progress_seconds"));
   double work = 0.0;  // work units done by this run (a module's work per step may change)
+  Diagnostics last_diagnostics;  // at the final step, computed once
   const long long first_step = step;
   double stepping = 0.0;  // wall time in advance() only
   while (step < n_steps && (options.max_steps < 0 || step - first_step < options.max_steps)) {
@@ -182,8 +183,14 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
       return result;
     }
     const bool last = step == n_steps;
+    // Diagnostics are computed on schedule even when not written: a module may average them
+    // (the drum's regime), and a study's result must not depend on whether files are written.
+    if (last || step % diag_every == 0) {
+      const Diagnostics d = module->diagnostics(t);
+      if (options.write_output) csv.write(step, t, dt, d);
+      if (last) last_diagnostics = d;
+    }
     if (options.write_output) {
-      if (last || step % diag_every == 0) csv.write(step, t, dt, module->diagnostics(t));
       if (last || (out_every > 0 && step % out_every == 0))
         series.write(step, t, module->output(t));
       if (!last && ck_every > 0 && step % ck_every == 0)
@@ -202,7 +209,7 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   result.wall_seconds = stepping;
   result.work_per_step = module->work_per_step();
   result.rate = stepping > 0 ? work / stepping : 0;
-  result.diagnostics = module->diagnostics(t);
+  result.diagnostics = last_diagnostics.empty() ? module->diagnostics(t) : last_diagnostics;
   for (const auto& [name, v] : result.diagnostics)
     if (name == module->error_diagnostic()) result.error = v;
   return result;
