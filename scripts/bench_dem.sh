@@ -33,7 +33,7 @@ liggghts_rate() {  # n ranks
 }
 
 amphora_rate() {  # n threads ranks (rank 0 alone prints, see perf/bench_main.cpp)
-  OMP_NUM_THREADS=$2 mpiexec -n "$3" build/release/perf/bench_dem \
+  OMP_NUM_THREADS=$2 mpiexec --bind-to none -n "$3" build/release/perf/bench_dem \
       --benchmark_filter="^DenseBed/$1/" --benchmark_format=json 2> /dev/null |
     python3 -c "import sys,json; d=json.load(sys.stdin); print(d['benchmarks'][0]['particle_steps_per_s'])"
 }
