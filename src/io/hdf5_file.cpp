@@ -2,6 +2,7 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <sstream>
 #include <stdexcept>
 
@@ -24,30 +25,28 @@ std::vector<H5DatasetInfo> gather_layout(const Communicator& comm,
   for (const auto& g : local)
     for (const auto& [name, data] : g.datasets) s << g.name << '\t' << name << '\t' << data.size() << '\n';
   const std::string mine = s.str();
-  int n = static_cast<int>(mine.size());
-  std::vector<int> counts(comm.size()), displs(comm.size());
-  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm.get());
-  int total = 0;
-  for (int r = 0; r < comm.size(); ++r) {
-    displs[r] = total;
-    total += counts[r];
-  }
-  std::string all(static_cast<size_t>(total), '\0');
-  MPI_Allgatherv(mine.data(), n, MPI_CHAR, all.data(), counts.data(), displs.data(), MPI_CHAR,
-                 comm.get());
+  const std::vector<char> all = comm.allgatherv(std::vector<char>(mine.begin(), mine.end()));
+  // Records are whole lines, so the concatenation parses in rank order; the owner of each
+  // line is recovered from every rank's line count.
+  std::vector<int> lines_per_rank =
+      comm.allgatherv(std::vector<int>{static_cast<int>(std::count(mine.begin(), mine.end(), '\n'))});
   std::vector<H5DatasetInfo> out;
-  for (int r = 0; r < comm.size(); ++r) {
-    std::istringstream in(all.substr(displs[r], counts[r]));
-    std::string line;
-    while (std::getline(in, line)) {
-      std::istringstream f(line);
-      H5DatasetInfo d;
-      std::getline(f, d.group, '\t');
-      std::getline(f, d.name, '\t');
-      f >> d.size;
-      d.owner = r;
-      out.push_back(d);
+  std::istringstream in(std::string(all.begin(), all.end()));
+  std::string line;
+  int rank = 0, seen = 0;
+  while (std::getline(in, line)) {
+    while (rank < comm.size() && seen == lines_per_rank[rank]) {
+      ++rank;
+      seen = 0;
     }
+    std::istringstream f(line);
+    H5DatasetInfo d;
+    std::getline(f, d.group, '\t');
+    std::getline(f, d.name, '\t');
+    f >> d.size;
+    d.owner = rank;
+    out.push_back(d);
+    ++seen;
   }
   return out;
 }

@@ -58,6 +58,23 @@ bool Communicator::any(bool flag) const {
 }
 void Communicator::barrier() const { MPI_Barrier(comm_); }
 
+int Communicator::layout(int n, std::vector<int>& counts, std::vector<int>& displs,
+                         int root) const {
+  counts.assign(size_, 0);
+  displs.assign(size_, 0);
+  if (root < 0) {
+    MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+  } else {
+    MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_);
+  }
+  int total = 0;
+  for (int r = 0; r < size_; ++r) {
+    displs[r] = total;
+    total += counts[r];
+  }
+  return total;
+}
+
 std::string Communicator::broadcast(const std::string& s, int root) const {
   long long n = static_cast<long long>(s.size());
   MPI_Bcast(&n, 1, MPI_LONG_LONG, root, comm_);

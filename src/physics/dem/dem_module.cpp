@@ -287,31 +287,17 @@ long long DemModule::work_per_step() const { return std::max(1LL, system_->globa
 DemModule::System::HostState DemModule::gather() const {
   const System::HostState mine = system_->save();
   System::HostState all;
-  const int root = 0;
-  auto gather_vec = [&](const auto& local, auto& global, MPI_Datatype type) {
-    int n = static_cast<int>(local.size());
-    std::vector<int> counts(comm_.size()), displs(comm_.size());
-    MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, root, comm_.get());
-    int total = 0;
-    for (int r = 0; r < comm_.size(); ++r) {
-      displs[r] = total;
-      total += counts[r];
-    }
-    global.resize(comm_.is_root() ? static_cast<size_t>(total) : 0);
-    MPI_Gatherv(local.data(), n, type, global.data(), counts.data(), displs.data(), type, root,
-                comm_.get());
-  };
-  gather_vec(mine.x, all.x, MPI_DOUBLE);
-  gather_vec(mine.v, all.v, MPI_DOUBLE);
-  gather_vec(mine.omega, all.omega, MPI_DOUBLE);
-  gather_vec(mine.force, all.force, MPI_DOUBLE);
-  gather_vec(mine.torque, all.torque, MPI_DOUBLE);
-  gather_vec(mine.radius, all.radius, MPI_DOUBLE);
-  gather_vec(mine.wall_shear, all.wall_shear, MPI_DOUBLE);
-  gather_vec(mine.contact_shear, all.contact_shear, MPI_DOUBLE);
-  gather_vec(mine.gid, all.gid, MPI_INT64_T);
-  gather_vec(mine.contact_gid, all.contact_gid, MPI_INT64_T);
-  gather_vec(mine.material, all.material, MPI_INT);
+  all.x = comm_.gatherv(mine.x);
+  all.v = comm_.gatherv(mine.v);
+  all.omega = comm_.gatherv(mine.omega);
+  all.force = comm_.gatherv(mine.force);
+  all.torque = comm_.gatherv(mine.torque);
+  all.radius = comm_.gatherv(mine.radius);
+  all.wall_shear = comm_.gatherv(mine.wall_shear);
+  all.contact_shear = comm_.gatherv(mine.contact_shear);
+  all.gid = comm_.gatherv(mine.gid);
+  all.contact_gid = comm_.gatherv(mine.contact_gid);
+  all.material = comm_.gatherv(mine.material);
   if (!comm_.is_root()) return all;
   // Sort by gid so the files do not depend on the rank count.
   const size_t n = all.gid.size();
@@ -378,24 +364,8 @@ DrumClassification DemModule::drum_regime() const {
       vs.push_back(v(i, d));
     }
   // Gather to rank 0, classify there, broadcast the result.
-  auto gather = [&](const auto& local, auto& global, MPI_Datatype type) {
-    int n = static_cast<int>(local.size());
-    std::vector<int> counts(comm_.size()), displs(comm_.size());
-    MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm_.get());
-    int total = 0;
-    for (int r = 0; r < comm_.size(); ++r) {
-      displs[r] = total;
-      total += counts[r];
-    }
-    global.resize(comm_.is_root() ? static_cast<size_t>(total) : 0);
-    MPI_Gatherv(local.data(), n, type, global.data(), counts.data(), displs.data(), type, 0,
-                comm_.get());
-  };
-  std::vector<double> ax, av;
-  std::vector<int> ac;
-  gather(xs, ax, MPI_DOUBLE);
-  gather(vs, av, MPI_DOUBLE);
-  gather(contacts, ac, MPI_INT);
+  const std::vector<double> ax = comm_.gatherv(xs), av = comm_.gatherv(vs);
+  const std::vector<int> ac = comm_.gatherv(contacts);
   DrumClassification c;
   double buf[5] = {0, 0, 0, 0, 0};
   if (comm_.is_root()) {

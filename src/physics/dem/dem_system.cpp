@@ -561,15 +561,23 @@ void DemSystem<ExecSpace>::rebuild() {
   records_to_history();
   {
     wall_mask_ = Kokkos::View<unsigned*, Mem>("amphora::dem::wall_mask", n);
+    row_mask_ = Kokkos::View<unsigned*, Mem>("amphora::dem::row_mask", n);
     const auto mask = wall_mask_;
+    const auto rmask = row_mask_;
     const auto ws = wall_shear_;
+    const auto sh = shear_;
+    const auto off = list_.offsets;
     const int nw = n_walls_;
     Kokkos::parallel_for(
-        "amphora::dem::wall_mask", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
+        "amphora::dem::history_masks", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
           unsigned m = 0;
           for (int w = 0; w < nw; ++w)
             if (ws(i, w, 0) != 0.0 || ws(i, w, 1) != 0.0 || ws(i, w, 2) != 0.0) m |= 1u << w;
           mask(i) = m;
+          unsigned r = 0;
+          for (int k = off(i); k < off(i + 1) && k - off(i) < 32; ++k)
+            if (sh(k, 0) != 0.0 || sh(k, 1) != 0.0 || sh(k, 2) != 0.0) r |= 1u << (k - off(i));
+          rmask(i) = r;
         });
   }
   if (int(x_build_.extent(0)) < n) x_build_ = Vec("amphora::dem::x_build", n);
@@ -637,6 +645,7 @@ void DemSystem<ExecSpace>::compute_forces() {
   const Kokkos::View<const Wall*, Mem, R> walls = walls_;
   const Kokkos::View<double** [3], Kokkos::LayoutRight, Mem, R> wshear = wall_shear_;
   const Kokkos::View<unsigned*, Mem, R> wmask = wall_mask_;
+  const Kokkos::View<unsigned*, Mem, R> rmask = row_mask_;
   const int nw = n_walls_;
   Kokkos::parallel_for(
       "amphora::dem::compute_forces", RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
@@ -648,18 +657,24 @@ void DemSystem<ExecSpace>::compute_forces() {
         const int mati = mat(i);
         double F[3] = {mi * g0, mi * g1, mi * g2};
         double T[3] = {0, 0, 0};
-        for (int k = off(i); k < off(i + 1); ++k) {
+        const int k0 = off(i);
+        unsigned springs = rmask(i);
+        for (int k = k0; k < off(i + 1); ++k) {
           const int j = nbr(k);
           const double dx[3] = {x(j, 0) - xi[0], x(j, 1) - xi[1], x(j, 2) - xi[2]};
           const double d2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
           const double rj = rad(j), rsum = ri + rj;
+          const unsigned bit = k - k0 < 32 ? 1u << (k - k0) : 0u;
           if (d2 >= rsum * rsum) {
-            // Contact lost (or never made): its spring resets. Written only when set, so that
-            // the many near-but-apart neighbours cost no write traffic.
-            if (shear(k, 0) != 0.0 || shear(k, 1) != 0.0 || shear(k, 2) != 0.0)
+            // Contact lost (or never made): its spring resets. Touched only when it may be set,
+            // so the many near-but-apart neighbours cost no history traffic.
+            if (bit == 0u || (springs & bit)) {
               shear(k, 0) = shear(k, 1) = shear(k, 2) = 0.0;
+              springs &= ~bit;
+            }
             continue;
           }
+          springs |= bit;
           const double dist = math::sqrt(d2);
           const double inv = 1.0 / dist;
           const double n[3] = {dx[0] * inv, dx[1] * inv, dx[2] * inv};
@@ -708,6 +723,7 @@ void DemSystem<ExecSpace>::compute_forces() {
             T[d] += c.torque[d];
           }
         }
+        rmask(i) = springs;
         for (int d = 0; d < 3; ++d) {
           f(i, d) = F[d];
           tq(i, d) = T[d];
@@ -724,11 +740,17 @@ void DemSystem<ExecSpace>::step() {
     if (need_rebuild_) rebuild();
     decltype(shear_) springs("amphora::dem::shear_copy", shear_.extent(0));
     Hist wall_springs("amphora::dem::wall_shear_copy", wall_shear_.extent(0), wall_shear_.extent(1));
+    Kokkos::View<unsigned*, Mem> masks("amphora::dem::row_mask_copy", row_mask_.extent(0));
+    Kokkos::View<unsigned*, Mem> wall_masks("amphora::dem::wall_mask_copy", wall_mask_.extent(0));
     Kokkos::deep_copy(springs, shear_);
     Kokkos::deep_copy(wall_springs, wall_shear_);
+    Kokkos::deep_copy(masks, row_mask_);
+    Kokkos::deep_copy(wall_masks, wall_mask_);
     compute_forces();
     Kokkos::deep_copy(shear_, springs);
     Kokkos::deep_copy(wall_shear_, wall_springs);
+    Kokkos::deep_copy(row_mask_, masks);
+    Kokkos::deep_copy(wall_mask_, wall_masks);
     forces_valid_ = true;
     t = timer_mark(timers_.force, t);
   }

@@ -140,6 +140,10 @@ class DemSystem {
   // Bit w set: wall w's history of this particle may be non-zero. Derived from wall_shear_
   // at each rebuild, so the force loop reads a particle's wall histories only when it must.
   Kokkos::View<unsigned*, Mem> wall_mask_;
+  // Bit b set: entry off(i) + b of row i may hold a non-zero spring (rows longer than 32 keep
+  // their tail entries always "set"). Spares the force loop the history reads of the many
+  // listed neighbours that do not touch.
+  Kokkos::View<unsigned*, Mem> row_mask_;
   Hist rec_shear_;    // (particle, record, 3), valid across a rebuild
   RecIds rec_gid_;    // (particle, record): partner gid or -1
   NeighborList<Mem> list_;

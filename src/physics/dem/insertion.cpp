@@ -113,18 +113,7 @@ std::vector<ParticleSpec> random_insertion(const DemSystem<ExecSpace>& system,
       near.push_back(r(i));
     }
   }
-  const Communicator& comm = system.decomposition().comm();
-  int mine = static_cast<int>(near.size());
-  std::vector<int> counts(comm.size()), displs(comm.size());
-  MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm.get());
-  int total = 0;
-  for (int k = 0; k < comm.size(); ++k) {
-    displs[k] = total;
-    total += counts[k];
-  }
-  std::vector<double> all(static_cast<size_t>(total));
-  MPI_Allgatherv(near.data(), mine, MPI_DOUBLE, all.data(), counts.data(), displs.data(),
-                 MPI_DOUBLE, comm.get());
+  const std::vector<double> all = system.decomposition().comm().allgatherv(near);
   std::vector<ParticleSpec> out;
   const long long draws = static_cast<long long>(attempts) * count;
   for (long long a = 0; a < draws && (long long)out.size() < count; ++a) {
