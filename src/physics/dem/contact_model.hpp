@@ -44,8 +44,8 @@ PairCoefficients pair_coefficients(const Material& a, const Material& b);
 /// integrated by RK4.
 double restitution_of_damping(double eta);
 /// The damping factor giving restitution e (bisection on restitution_of_damping). LIGGGHTS'
-/// closed form eta = 2 sqrt(5/6) |ln e| / sqrt(ln^2 e + pi^2) misses e by up to several percent;
-/// this one meets it to 1e-6.
+/// closed form eta = 2 sqrt(5/6) |ln e| / sqrt(ln^2 e + pi^2) comes from the linear spring and is
+/// not exact for the Hertz law; this one meets e to 1e-6.
 double damping_for_restitution(double e);
 /// Scaled contact duration tau (t_c = tau (9 m*^2 / (16 E*^2 R* v))^{1/5}) for damping eta;
 /// tau(0) = 3.2181 gives Hertz's t_c = 2.8686 (m*^2 / (R* E*^2 v))^{1/5}.
