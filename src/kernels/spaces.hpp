@@ -30,3 +30,31 @@ using RangePolicy = Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<int>>;
 std::string enabled_backends();
 
 }  // namespace amphora
+
+// Explicit instantiation of a class template on every enabled execution space, for classes
+// whose members live in a .cpp: AMPHORA_INSTANTIATE_ON_EXEC_SPACES(MyClass) inside its namespace.
+#ifdef KOKKOS_ENABLE_SERIAL
+#define AMPHORA_IF_SERIAL(x) x
+#else
+#define AMPHORA_IF_SERIAL(x)
+#endif
+#ifdef KOKKOS_ENABLE_OPENMP
+#define AMPHORA_IF_OPENMP(x) x
+#else
+#define AMPHORA_IF_OPENMP(x)
+#endif
+#ifdef KOKKOS_ENABLE_CUDA
+#define AMPHORA_IF_CUDA(x) x
+#else
+#define AMPHORA_IF_CUDA(x)
+#endif
+#ifdef KOKKOS_ENABLE_HIP
+#define AMPHORA_IF_HIP(x) x
+#else
+#define AMPHORA_IF_HIP(x)
+#endif
+#define AMPHORA_INSTANTIATE_ON_EXEC_SPACES(CLASS)                \
+  AMPHORA_IF_SERIAL(template class CLASS<Kokkos::Serial>;)       \
+  AMPHORA_IF_OPENMP(template class CLASS<Kokkos::OpenMP>;)       \
+  AMPHORA_IF_CUDA(template class CLASS<Kokkos::Cuda>;)           \
+  AMPHORA_IF_HIP(template class CLASS<Kokkos::Experimental::HIP>;)

@@ -261,17 +261,6 @@ void AdvectionDiffusion1D<ExecSpace>::restore(const std::vector<StateBlock>& blo
   }
 }
 
-#ifdef KOKKOS_ENABLE_SERIAL
-template class AdvectionDiffusion1D<Kokkos::Serial>;
-#endif
-#ifdef KOKKOS_ENABLE_OPENMP
-template class AdvectionDiffusion1D<Kokkos::OpenMP>;
-#endif
-#ifdef KOKKOS_ENABLE_CUDA
-template class AdvectionDiffusion1D<Kokkos::Cuda>;
-#endif
-#ifdef KOKKOS_ENABLE_HIP
-template class AdvectionDiffusion1D<Kokkos::Experimental::HIP>;
-#endif
+AMPHORA_INSTANTIATE_ON_EXEC_SPACES(AdvectionDiffusion1D)
 
 }  // namespace amphora::advection_diffusion_1d

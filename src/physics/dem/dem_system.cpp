@@ -1079,14 +1079,6 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
   forces_valid_ = true;
 }
 
-#ifdef KOKKOS_ENABLE_SERIAL
-template class DemSystem<Kokkos::Serial>;
-#endif
-#ifdef KOKKOS_ENABLE_OPENMP
-template class DemSystem<Kokkos::OpenMP>;
-#endif
-#ifdef KOKKOS_ENABLE_CUDA
-template class DemSystem<Kokkos::Cuda>;
-#endif
+AMPHORA_INSTANTIATE_ON_EXEC_SPACES(DemSystem)
 
 }  // namespace amphora::dem
