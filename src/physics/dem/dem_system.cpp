@@ -109,6 +109,32 @@ void DemSystem<ExecSpace>::resize_owned(int n) {
 }
 
 template <class ExecSpace>
+typename DemSystem<ExecSpace>::HostArrays DemSystem<ExecSpace>::to_host() const {
+  auto copy = [](const auto& view) { return Kokkos::create_mirror_view_and_copy(HostMemSpace(), view); };
+  return {copy(p_.x),      copy(p_.v),          copy(p_.omega),     copy(p_.force),
+          copy(p_.torque), copy(p_.radius),     copy(p_.mass),      copy(p_.inertia),
+          copy(p_.material), copy(p_.gid),      copy(wall_shear_),  copy(rec_shear_),
+          copy(rec_gid_)};
+}
+
+template <class ExecSpace>
+void DemSystem<ExecSpace>::from_host(const HostArrays& h) {
+  Kokkos::deep_copy(p_.x, h.x);
+  Kokkos::deep_copy(p_.v, h.v);
+  Kokkos::deep_copy(p_.omega, h.omega);
+  Kokkos::deep_copy(p_.force, h.force);
+  Kokkos::deep_copy(p_.torque, h.torque);
+  Kokkos::deep_copy(p_.radius, h.radius);
+  Kokkos::deep_copy(p_.mass, h.mass);
+  Kokkos::deep_copy(p_.inertia, h.inertia);
+  Kokkos::deep_copy(p_.material, h.material);
+  Kokkos::deep_copy(p_.gid, h.gid);
+  Kokkos::deep_copy(wall_shear_, h.wall_shear);
+  Kokkos::deep_copy(rec_shear_, h.rec_shear);
+  Kokkos::deep_copy(rec_gid_, h.rec_gid);
+}
+
+template <class ExecSpace>
 void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs) {
   std::vector<const ParticleSpec*> mine;
   for (const auto& s : specs) {
@@ -132,18 +158,10 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
   p_.n_ghost = 0;
   const int n0 = p_.n_owned, n1 = n0 + static_cast<int>(mine.size());
   resize_owned(n1);
-  auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.x);
-  auto v = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.v);
-  auto om = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.omega);
-  auto f = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.force);
-  auto tq = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.torque);
-  auto r = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.radius);
-  auto m = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.mass);
-  auto in = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.inertia);
-  auto mat = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.material);
-  auto gid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.gid);
-  auto ws = Kokkos::create_mirror_view_and_copy(HostMemSpace(), wall_shear_);
-  auto rg = Kokkos::create_mirror_view_and_copy(HostMemSpace(), rec_gid_);
+  HostArrays h = to_host();
+  auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque;
+  auto &r = h.radius, &m = h.mass, &in = h.inertia;
+  auto &mat = h.material, &gid = h.gid, &ws = h.wall_shear, &rg = h.rec_gid;
   for (int k = 0; k < int(mine.size()); ++k) {
     const ParticleSpec& s = *mine[k];
     const int i = n0 + k;
@@ -162,18 +180,7 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
       for (int d = 0; d < 3; ++d) ws(i, w, d) = 0.0;
     for (size_t c = 0; c < rg.extent(1); ++c) rg(i, c) = -1;
   }
-  Kokkos::deep_copy(p_.x, x);
-  Kokkos::deep_copy(p_.v, v);
-  Kokkos::deep_copy(p_.omega, om);
-  Kokkos::deep_copy(p_.force, f);
-  Kokkos::deep_copy(p_.torque, tq);
-  Kokkos::deep_copy(p_.radius, r);
-  Kokkos::deep_copy(p_.mass, m);
-  Kokkos::deep_copy(p_.inertia, in);
-  Kokkos::deep_copy(p_.material, mat);
-  Kokkos::deep_copy(p_.gid, gid);
-  Kokkos::deep_copy(wall_shear_, ws);
-  Kokkos::deep_copy(rec_gid_, rg);
+  from_host(h);
   list_.offsets = Kokkos::View<int*, Mem>("amphora::dem::list_offsets", 1);
   list_.neighbors = Kokkos::View<int*, Mem>("amphora::dem::list_neighbors", 0);
   p_.n_owned = n1;
@@ -280,15 +287,9 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
   // Rare path (rebuilds where something leaves): pack on the host.
   const int nw = static_cast<int>(wall_shear_.extent(1)), K = config_.max_contacts;
   const int rec = 12 + 1 + 3 * nw + 4 * K;  // x v omega radius(mass, inertia recomputed) ...
-  auto hx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.x);
-  auto hv = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.v);
-  auto ho = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.omega);
-  auto hr = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.radius);
-  auto hmat = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.material);
-  auto hgid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.gid);
-  auto hws = Kokkos::create_mirror_view_and_copy(HostMemSpace(), wall_shear_);
-  auto hrg = Kokkos::create_mirror_view_and_copy(HostMemSpace(), rec_gid_);
-  auto hrs = Kokkos::create_mirror_view_and_copy(HostMemSpace(), rec_shear_);
+  HostArrays h = to_host();
+  auto &hx = h.x, &hv = h.v, &ho = h.omega, &hr = h.radius;
+  auto &hmat = h.material, &hgid = h.gid, &hws = h.wall_shear, &hrg = h.rec_gid, &hrs = h.rec_shear;
   auto pack = [&](int i, std::vector<double>& out) {
     for (int d = 0; d < 3; ++d) out.push_back(hx(i, d));
     for (int d = 0; d < 3; ++d) out.push_back(hv(i, d));
@@ -320,17 +321,8 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
 
   p_.n_owned = 0;
   resize_owned(m);
-  auto hm = Kokkos::create_mirror_view(p_.mass);
-  auto hin = Kokkos::create_mirror_view(p_.inertia);
-  hx = Kokkos::create_mirror_view(p_.x);
-  hv = Kokkos::create_mirror_view(p_.v);
-  ho = Kokkos::create_mirror_view(p_.omega);
-  hr = Kokkos::create_mirror_view(p_.radius);
-  hmat = Kokkos::create_mirror_view(p_.material);
-  hgid = Kokkos::create_mirror_view(p_.gid);
-  hws = Kokkos::create_mirror_view(wall_shear_);
-  hrg = Kokkos::create_mirror_view(rec_gid_);
-  hrs = Kokkos::create_mirror_view(rec_shear_);
+  h = to_host();
+  auto &hm = h.mass, &hin = h.inertia;
   for (int i = 0; i < m; ++i) {
     const double* q = kept.data() + size_t(i) * rec;
     for (int d = 0; d < 3; ++d) {
@@ -352,17 +344,7 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
       for (int d = 0; d < 3; ++d) hrs(i, c, d) = *q++;
     }
   }
-  Kokkos::deep_copy(p_.x, hx);
-  Kokkos::deep_copy(p_.v, hv);
-  Kokkos::deep_copy(p_.omega, ho);
-  Kokkos::deep_copy(p_.radius, hr);
-  Kokkos::deep_copy(p_.mass, hm);
-  Kokkos::deep_copy(p_.inertia, hin);
-  Kokkos::deep_copy(p_.material, hmat);
-  Kokkos::deep_copy(p_.gid, hgid);
-  Kokkos::deep_copy(wall_shear_, hws);
-  Kokkos::deep_copy(rec_gid_, hrg);
-  Kokkos::deep_copy(rec_shear_, hrs);
+  from_host(h);
   p_.n_owned = m;
 }
 
@@ -980,17 +962,10 @@ typename DemSystem<ExecSpace>::HostState DemSystem<ExecSpace>::save() const {
   auto* self = const_cast<DemSystem*>(this);
   self->history_to_records();
   const int n = p_.n_owned, nw = int(wall_shear_.extent(1)), K = config_.max_contacts;
-  auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.x);
-  auto v = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.v);
-  auto om = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.omega);
-  auto f = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.force);
-  auto tq = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.torque);
-  auto r = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.radius);
-  auto mat = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.material);
-  auto gid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.gid);
-  auto ws = Kokkos::create_mirror_view_and_copy(HostMemSpace(), wall_shear_);
-  auto rg = Kokkos::create_mirror_view_and_copy(HostMemSpace(), rec_gid_);
-  auto rs = Kokkos::create_mirror_view_and_copy(HostMemSpace(), rec_shear_);
+  const HostArrays h = to_host();
+  const auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque;
+  const auto &r = h.radius, &mat = h.material, &gid = h.gid;
+  const auto &ws = h.wall_shear, &rg = h.rec_gid, &rs = h.rec_shear;
   for (int i = 0; i < n; ++i) {
     for (int d = 0; d < 3; ++d) {
       s.x.push_back(x(i, d));
@@ -1022,19 +997,10 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
   const int n = static_cast<int>(mine.size());
   p_.n_owned = p_.n_ghost = 0;
   resize_owned(n);
-  auto x = Kokkos::create_mirror_view(p_.x);
-  auto v = Kokkos::create_mirror_view(p_.v);
-  auto om = Kokkos::create_mirror_view(p_.omega);
-  auto f = Kokkos::create_mirror_view(p_.force);
-  auto tq = Kokkos::create_mirror_view(p_.torque);
-  auto r = Kokkos::create_mirror_view(p_.radius);
-  auto m = Kokkos::create_mirror_view(p_.mass);
-  auto in = Kokkos::create_mirror_view(p_.inertia);
-  auto mat = Kokkos::create_mirror_view(p_.material);
-  auto gid = Kokkos::create_mirror_view(p_.gid);
-  auto ws = Kokkos::create_mirror_view(wall_shear_);
-  auto rg = Kokkos::create_mirror_view(rec_gid_);
-  auto rs = Kokkos::create_mirror_view(rec_shear_);
+  HostArrays h = to_host();
+  auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque;
+  auto &r = h.radius, &m = h.mass, &in = h.inertia;
+  auto &mat = h.material, &gid = h.gid, &ws = h.wall_shear, &rg = h.rec_gid, &rs = h.rec_shear;
   for (int a = 0; a < n; ++a) {
     const size_t i = mine[a];
     for (int d = 0; d < 3; ++d) {
@@ -1056,19 +1022,7 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
       for (int d = 0; d < 3; ++d) rs(a, c, d) = s.contact_shear[(i * K + c) * 3 + d];
     }
   }
-  Kokkos::deep_copy(p_.x, x);
-  Kokkos::deep_copy(p_.v, v);
-  Kokkos::deep_copy(p_.omega, om);
-  Kokkos::deep_copy(p_.force, f);
-  Kokkos::deep_copy(p_.torque, tq);
-  Kokkos::deep_copy(p_.radius, r);
-  Kokkos::deep_copy(p_.mass, m);
-  Kokkos::deep_copy(p_.inertia, in);
-  Kokkos::deep_copy(p_.material, mat);
-  Kokkos::deep_copy(p_.gid, gid);
-  Kokkos::deep_copy(wall_shear_, ws);
-  Kokkos::deep_copy(rec_gid_, rg);
-  Kokkos::deep_copy(rec_shear_, rs);
+  from_host(h);
   p_.n_owned = n;
   list_.offsets = Kokkos::View<int*, Mem>("amphora::dem::list_offsets", 1);
   list_.neighbors = Kokkos::View<int*, Mem>("amphora::dem::list_neighbors", 0);

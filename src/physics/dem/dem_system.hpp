@@ -112,6 +112,18 @@ class DemSystem {
   void load(const HostState& s);
 
  private:
+  /// Host copies of every per-particle array (mirrors: no copy at all on a host backend).
+  struct HostArrays {
+    host_mirror_t<Vec> x, v, omega, force, torque;
+    host_mirror_t<typename ParticleSet<Mem>::Scalar> radius, mass, inertia;
+    host_mirror_t<typename ParticleSet<Mem>::Int> material;
+    host_mirror_t<typename ParticleSet<Mem>::Id> gid;
+    host_mirror_t<Hist> wall_shear, rec_shear;
+    host_mirror_t<RecIds> rec_gid;
+  };
+  HostArrays to_host() const;
+  void from_host(const HostArrays& h);
+
   void rebuild();
   void history_to_records();
   void records_to_history();
