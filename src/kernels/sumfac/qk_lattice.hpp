@@ -1,0 +1,124 @@
+#pragma once
+// Continuous Q_k DoF numbering on a structured box of hexahedra (quadrilaterals in 2D): the
+// nodes of all cells form a lattice of n_d k + 1 points per direction (n_d k with periodic
+// direction d, whose last layer is the first), numbered lexicographically, x fastest. Cell
+// batches are `width` consecutive cells along x, so a batch's lanes read nodes k apart and no
+// index array is stored: the index traffic of an unstructured code (4 bytes per cell node) is
+// gone. Plain data, copied into kernels by value.
+#include <Kokkos_Core.hpp>
+
+namespace amphora::sumfac {
+
+template <int dim>
+struct QkLattice {
+  int degree = 1;
+  int cells[3] = {1, 1, 1};
+  int nodes[3] = {2, 2, 2};  ///< node layers per direction, periodic wrap not applied
+  int dofs[3] = {2, 2, 2};   ///< distinct DoFs per direction (nodes - 1 if periodic)
+  bool periodic[3] = {false, false, false};
+  int dirichlet_faces = 0;   ///< bit 2d: face x_d = lower; bit 2d+1: face x_d = upper
+  int width = 1;             ///< cells per batch
+  int batches_x = 1;         ///< batches per row of cells along x
+
+  static QkLattice create(int degree, const int* cells, const bool* periodic, int dirichlet_faces,
+                          int width) {
+    QkLattice l;
+    l.degree = degree;
+    l.width = width;
+    l.dirichlet_faces = dirichlet_faces;
+    for (int d = 0; d < dim; ++d) {
+      l.cells[d] = cells[d];
+      l.periodic[d] = periodic[d];
+      l.nodes[d] = cells[d] * degree + 1;
+      l.dofs[d] = periodic[d] ? cells[d] * degree : l.nodes[d];
+    }
+    l.batches_x = (cells[0] + width - 1) / width;
+    return l;
+  }
+
+  KOKKOS_INLINE_FUNCTION long n_dofs() const {
+    long n = 1;
+    for (int d = 0; d < dim; ++d) n *= dofs[d];
+    return n;
+  }
+  KOKKOS_INLINE_FUNCTION long n_nodes() const {
+    long n = 1;
+    for (int d = 0; d < dim; ++d) n *= nodes[d];
+    return n;
+  }
+  KOKKOS_INLINE_FUNCTION int n_batches() const {
+    int n = batches_x;
+    for (int d = 1; d < dim; ++d) n *= cells[d];
+    return n;
+  }
+  /// Cells along the slab direction (the last one), whose parity colours the cell loop.
+  KOKKOS_INLINE_FUNCTION int n_slabs() const { return cells[dim - 1]; }
+  KOKKOS_INLINE_FUNCTION int batches_per_slab() const { return n_batches() / cells[dim - 1]; }
+
+  /// Cell coordinates of lane 0 of batch b: (bx * width, cy, cz).
+  KOKKOS_INLINE_FUNCTION void batch_cell(int b, int* c) const {
+    c[0] = (b % batches_x) * width;
+    const int rest = b / batches_x;
+    if constexpr (dim == 2) {
+      c[1] = rest;
+    } else {
+      c[1] = rest % cells[1];
+      c[2] = rest / cells[1];
+    }
+  }
+  /// Lanes of the batch that hold real cells (the last batch of a row may be partial).
+  KOKKOS_INLINE_FUNCTION int active_lanes(int b) const {
+    const int c0 = (b % batches_x) * width;
+    return cells[0] - c0 < width ? cells[0] - c0 : width;
+  }
+
+  KOKKOS_INLINE_FUNCTION int dof_1d(int d, int node) const {
+    return node == dofs[d] ? 0 : node;  // only a periodic direction reaches node == dofs
+  }
+  KOKKOS_INLINE_FUNCTION bool constrained_1d(int d, int node) const {
+    return (node == 0 && (dirichlet_faces >> (2 * d) & 1)) ||
+           (node == nodes[d] - 1 && (dirichlet_faces >> (2 * d + 1) & 1));
+  }
+  /// Global DoF of lattice node (i, j, k), periodic wrap applied.
+  KOKKOS_INLINE_FUNCTION long dof_index(const int* node) const {
+    long idx = dof_1d(dim - 1, node[dim - 1]);
+    for (int d = dim - 2; d >= 0; --d) idx = idx * dofs[d] + dof_1d(d, node[d]);
+    return idx;
+  }
+  /// Index of lattice node in the unwrapped node lattice (coordinates live there).
+  KOKKOS_INLINE_FUNCTION long node_index(const int* node) const {
+    long idx = node[dim - 1];
+    for (int d = dim - 2; d >= 0; --d) idx = idx * nodes[d] + node[d];
+    return idx;
+  }
+  KOKKOS_INLINE_FUNCTION bool constrained(const int* node) const {
+    for (int d = 0; d < dim; ++d)
+      if (constrained_1d(d, node[d])) return true;
+    return false;
+  }
+  /// Number of cells sharing lattice node (i, j, k) (periodic wrap counted).
+  KOKKOS_INLINE_FUNCTION int multiplicity(const int* node) const {
+    int m = 1;
+    for (int d = 0; d < dim; ++d) {
+      const int i = node[d];
+      const bool vertex_layer = i % degree == 0;
+      const bool boundary = !periodic[d] && (i == 0 || i == nodes[d] - 1);
+      m *= (vertex_layer && !boundary) ? 2 : 1;
+    }
+    return m;
+  }
+  /// True if the batch touches a Dirichlet face or a periodic wrap (the slow gather path).
+  KOKKOS_INLINE_FUNCTION bool special_batch(int b) const {
+    int c[3];
+    batch_cell(b, c);
+    const int last0 = c[0] + active_lanes(b) - 1;
+    for (int d = 0; d < dim; ++d) {
+      const int lo = c[d], hi = d == 0 ? last0 : c[d];
+      if (lo == 0 && (dirichlet_faces >> (2 * d) & 1)) return true;
+      if (hi == cells[d] - 1 && ((dirichlet_faces >> (2 * d + 1) & 1) || periodic[d])) return true;
+    }
+    return false;
+  }
+};
+
+}  // namespace amphora::sumfac

@@ -1,0 +1,84 @@
+#pragma once
+// Evaluation at quadrature points and integration back, for one cell batch of a Q_k element
+// in dim = 2 or 3, as sequences of 1D sweeps (sum factorisation; Orszag 1980). Evaluation and
+// integration are separate steps, as in deal.II's FEEvaluation, so an operator is
+// "evaluate, apply the point-wise physics, integrate". Arrays are lexicographic with x fastest.
+#include "kernels/sumfac/shape_data.hpp"
+
+namespace amphora::sumfac {
+
+constexpr int ipow(int b, int e) { return e == 0 ? 1 : b * ipow(b, e - 1); }
+
+template <int dim, int n_p, int n_q>
+struct TensorProductEvaluator {
+  static_assert(dim == 2 || dim == 3, "dim must be 2 or 3");
+  static constexpr int n_dofs = ipow(n_p, dim);
+  static constexpr int n_points = ipow(n_q, dim);
+  /// Scratch needed by values() and integrate_values().
+  static constexpr int n_scratch = ipow(n_q, dim - 1) * (n_p > n_q ? n_p : n_q);
+
+  /// v = values of u at the points. u and v distinct; v needs n_points, tmp n_scratch.
+  template <class T>
+  KOKKOS_FORCEINLINE_FUNCTION static void values(const ShapeData<n_p, n_q>& s, const T* u, T* v,
+                                                 T* tmp) {
+    if (s.collocated) {
+      for (int i = 0; i < n_points; ++i) v[i] = u[i];
+      return;
+    }
+    if constexpr (dim == 2) {
+      apply_even_odd<n_q, n_p, 1, n_p, false>(s.values, u, tmp);
+      apply_even_odd<n_q, n_p, n_q, 1, false>(s.values, tmp, v);
+    } else {
+      apply_even_odd<n_q, n_p, 1, n_p * n_p, false>(s.values, u, v);
+      apply_even_odd<n_q, n_p, n_q, n_p, false>(s.values, v, tmp);
+      apply_even_odd<n_q, n_p, n_q * n_q, 1, false>(s.values, tmp, v);
+    }
+  }
+
+  /// u = integral of v against the basis (transpose of values()); v is overwritten.
+  template <class T>
+  KOKKOS_FORCEINLINE_FUNCTION static void integrate_values(const ShapeData<n_p, n_q>& s, T* v,
+                                                           T* u, T* tmp) {
+    if (s.collocated) {
+      for (int i = 0; i < n_dofs; ++i) u[i] = v[i];
+      return;
+    }
+    if constexpr (dim == 2) {
+      apply_even_odd<n_p, n_q, n_q, 1, false>(s.values_t, v, tmp);
+      apply_even_odd<n_p, n_q, 1, n_p, false>(s.values_t, tmp, u);
+    } else {
+      apply_even_odd<n_p, n_q, n_q * n_q, 1, false>(s.values_t, v, tmp);
+      apply_even_odd<n_p, n_q, n_q, n_p, false>(s.values_t, tmp, v);
+      apply_even_odd<n_p, n_q, 1, n_p * n_p, false>(s.values_t, v, u);
+    }
+  }
+
+  /// grad[d * n_points + q] = d v / d xi_d at the points (reference coordinates).
+  template <class T>
+  KOKKOS_FORCEINLINE_FUNCTION static void gradients(const ShapeData<n_p, n_q>& s, const T* v,
+                                                    T* grad) {
+    apply_even_odd<n_q, n_q, 1, ipow(n_q, dim - 1), false>(s.derivative, v, grad);
+    apply_even_odd<n_q, n_q, n_q, ipow(n_q, dim - 2), false>(s.derivative, v, grad + n_points);
+    if constexpr (dim == 3)
+      apply_even_odd<n_q, n_q, n_q * n_q, 1, false>(s.derivative, v, grad + 2 * n_points);
+  }
+
+  /// v = sum_d D_d^T flux_d (transpose of gradients()); with `add`, v += ... .
+  template <bool add, class T>
+  KOKKOS_FORCEINLINE_FUNCTION static void integrate_gradients(const ShapeData<n_p, n_q>& s,
+                                                              const T* flux, T* v) {
+    apply_even_odd<n_q, n_q, 1, ipow(n_q, dim - 1), add>(s.derivative_t, flux, v);
+    apply_even_odd<n_q, n_q, n_q, ipow(n_q, dim - 2), true>(s.derivative_t, flux + n_points, v);
+    if constexpr (dim == 3)
+      apply_even_odd<n_q, n_q, n_q * n_q, 1, true>(s.derivative_t, flux + 2 * n_points, v);
+  }
+
+  /// Tensor weight w_i w_j (w_k) of point q.
+  KOKKOS_FORCEINLINE_FUNCTION static double weight(const ShapeData<n_p, n_q>& s, int q) {
+    double w = s.weights[q % n_q] * s.weights[(q / n_q) % n_q];
+    if constexpr (dim == 3) w *= s.weights[q / (n_q * n_q)];
+    return w;
+  }
+};
+
+}  // namespace amphora::sumfac

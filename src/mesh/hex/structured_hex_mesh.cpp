@@ -1,0 +1,66 @@
+#include "mesh/hex/structured_hex_mesh.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace amphora::mesh {
+
+template <int dim>
+void StructuredHexMesh<dim>::validate() const {
+  for (int d = 0; d < dim; ++d) {
+    if (cells[d] < 1)
+      throw std::invalid_argument("mesh: cells[" + std::to_string(d) + "] = " +
+                                  std::to_string(cells[d]) + ", must be at least 1");
+    if (!(upper[d] > lower[d]))
+      throw std::invalid_argument("mesh: upper[" + std::to_string(d) +
+                                  "] must exceed lower[" + std::to_string(d) + "]");
+    if ((faces[2 * d] == FaceCondition::periodic) != (faces[2 * d + 1] == FaceCondition::periodic))
+      throw std::invalid_argument("mesh: direction " + std::to_string(d) +
+                                  " is periodic on one face only; periodic faces come in pairs");
+  }
+}
+
+template <int dim>
+StructuredHexMesh<dim> StructuredHexMesh<dim>::refined() const {
+  StructuredHexMesh m = *this;
+  for (int d = 0; d < dim; ++d) m.cells[d] *= 2;
+  return m;
+}
+
+template <int dim>
+StructuredHexMesh<dim> StructuredHexMesh<dim>::coarsened() const {
+  StructuredHexMesh m = *this;
+  for (int d = 0; d < dim; ++d) {
+    if (cells[d] % 2 != 0)
+      throw std::invalid_argument("mesh: cannot coarsen " + std::to_string(cells[d]) +
+                                  " cells in direction " + std::to_string(d) + " (odd)");
+    m.cells[d] /= 2;
+  }
+  return m;
+}
+
+template <int dim>
+StructuredHexMesh<dim> unit_cube(int n, FaceCondition all_faces) {
+  StructuredHexMesh<dim> m;
+  for (int d = 0; d < dim; ++d) m.cells[d] = n;
+  m.faces.fill(all_faces);
+  return m;
+}
+
+std::function<Point3(const Point3&)> sinusoidal_deformation(int dim, double amplitude) {
+  return [dim, amplitude](const Point3& X) {
+    constexpr double pi = 3.14159265358979323846;
+    double bump = std::sin(pi * X[0]) * std::sin(pi * X[1]);
+    if (dim == 3) bump *= std::sin(pi * X[2]);
+    Point3 x = X;
+    for (int d = 0; d < dim; ++d) x[d] += amplitude * bump * std::cos(1.3 * d + 2.0 * X[(d + 1) % dim]);
+    return x;
+  };
+}
+
+template struct StructuredHexMesh<2>;
+template struct StructuredHexMesh<3>;
+template StructuredHexMesh<2> unit_cube<2>(int, FaceCondition);
+template StructuredHexMesh<3> unit_cube<3>(int, FaceCondition);
+
+}  // namespace amphora::mesh

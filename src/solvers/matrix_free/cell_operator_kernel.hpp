@@ -1,0 +1,339 @@
+#pragma once
+// The cell-batch kernel behind every matrix-free operator: gather a batch's nodal values,
+// evaluate at quadrature points, apply the point-wise physics, integrate, scatter-add. One
+// template serves every (dim, n_p, n_q); MatrixFreeOperator picks the instance from a table.
+//
+// Concurrent scatter-adds into shared nodes are avoided, not locked, on host spaces: a batch's
+// lanes are consecutive cells of one row (one thread adds them in order), and whole slabs of
+// cells (a layer along the last direction) are the parallel items, run in two colours (three
+// for an odd periodic count) so no two concurrent slabs share a node. Sums are then formed in
+// an order that does not depend on the thread count. Device spaces use atomics instead.
+#include <Kokkos_Core.hpp>
+
+#include "kernels/spaces.hpp"
+#include "kernels/sumfac/point_geometry.hpp"
+#include "kernels/sumfac/qk_lattice.hpp"
+#include "kernels/sumfac/simd.hpp"
+#include "kernels/sumfac/tensor_product_evaluator.hpp"
+
+namespace amphora::solvers {
+
+enum class OperatorKind { mass, laplace, convection };
+
+/// How the geometry reaches the quadrature points:
+///  cartesian   axis-aligned box cells: dim numbers per cell
+///  affine      parallelepipeds: one metric per cell
+///  stored      the metric at every quadrature point (any cells; most memory traffic)
+///  on_the_fly  recomputed from the node coordinates at each application (most flops)
+enum class GeometryMode { cartesian, affine, stored, on_the_fly };
+
+template <int dim>
+KOKKOS_INLINE_FUNCTION constexpr int n_point_coefficients(OperatorKind kind) {
+  return kind == OperatorKind::mass ? 1 : kind == OperatorKind::laplace ? sumfac::n_symmetric<dim> : dim;
+}
+
+template <int dim, int n_p, int n_q, class ExecSpace>
+struct CellOperatorKernel {
+  static constexpr int W = sumfac::simd_width_v<ExecSpace>;
+  using T = sumfac::Simd<W>;
+  using Eval = sumfac::TensorProductEvaluator<dim, n_p, n_q>;
+  using memory_space = typename ExecSpace::memory_space;
+  static constexpr int n_dofs = Eval::n_dofs;
+  static constexpr int n_points = Eval::n_points;
+  static constexpr int n_jac = dim * dim;
+
+  sumfac::QkLattice<dim> lattice;
+  sumfac::ShapeData<n_p, n_q> shape;
+  OperatorKind kind = OperatorKind::laplace;
+  GeometryMode mode = GeometryMode::stored;
+  int n_coef = 1;
+  Kokkos::View<const T*, memory_space> batch_coef;  ///< [batch][coef] (cartesian, affine)
+  Kokkos::View<const T*, memory_space> point_coef;  ///< [batch][coef][point] (stored)
+  Kokkos::View<const double*, memory_space> coordinates;  ///< node lattice, blocked
+  /// Coefficient a(x) (Laplace) or velocity b(x) (convection, dim blocked components) as a Q_k
+  /// field; empty: a = 1.
+  Kokkos::View<const double*, memory_space> field;
+
+  /// Scratch of one batch. Allocated on the stack of the calling thread.
+  struct Scratch {
+    T v[n_points];
+    T grad[dim * n_points];
+    T tmp[Eval::n_scratch];
+    T jac[n_jac * n_points];  ///< Jacobians, then (in place) the point coefficients
+    T nodal[dim * n_dofs];
+  };
+
+  // --- gather and scatter -----------------------------------------------------------------
+  /// Lattice node of local node `n` of lane 0's cell, and the per-lane stride along x.
+  KOKKOS_INLINE_FUNCTION void local_node(const int* cell, int n, int* node) const {
+    node[0] = cell[0] * lattice.degree + n % n_p;
+    node[1] = cell[1] * lattice.degree + (n / n_p) % n_p;
+    if constexpr (dim == 3) node[2] = cell[2] * lattice.degree + n / (n_p * n_p);
+  }
+
+  /// u = src at the batch's nodes (DoF lattice); constrained DoFs read as zero.
+  KOKKOS_INLINE_FUNCTION void gather(const double* src, int b, T* u) const {
+    int cell[3];
+    lattice.batch_cell(b, cell);
+    const int k = lattice.degree;
+    if (!lattice.special_batch(b)) {
+      int node0[3];
+      local_node(cell, 0, node0);
+      const long base = lattice.dof_index(node0);
+      const long sx = lattice.dofs[0], sxy = sx * lattice.dofs[1];
+      for (int n = 0; n < n_dofs; ++n) {
+        const long off = base + n % n_p + sx * ((n / n_p) % n_p) + (dim == 3 ? sxy * (n / (n_p * n_p)) : 0);
+        for (int l = 0; l < W; ++l) u[n][l] = src[off + l * k];
+      }
+      return;
+    }
+    const int active = lattice.active_lanes(b);
+    for (int n = 0; n < n_dofs; ++n) {
+      int node[3];
+      local_node(cell, n, node);
+      const int x0 = node[0];
+      for (int l = 0; l < W; ++l) {
+        node[0] = x0 + (l < active ? l : active - 1) * k;
+        u[n][l] = lattice.constrained(node) ? 0.0 : src[lattice.dof_index(node)];
+      }
+    }
+  }
+
+  /// dst += u at the batch's nodes (inactive lanes skipped).
+  template <bool atomic>
+  KOKKOS_INLINE_FUNCTION void scatter_add(double* dst, int b, const T* u) const {
+    int cell[3];
+    lattice.batch_cell(b, cell);
+    const int k = lattice.degree;
+    const int active = lattice.active_lanes(b);
+    if (!lattice.special_batch(b)) {
+      int node0[3];
+      local_node(cell, 0, node0);
+      const long base = lattice.dof_index(node0);
+      const long sx = lattice.dofs[0], sxy = sx * lattice.dofs[1];
+      for (int n = 0; n < n_dofs; ++n) {
+        const long off = base + n % n_p + sx * ((n / n_p) % n_p) + (dim == 3 ? sxy * (n / (n_p * n_p)) : 0);
+        for (int l = 0; l < W; ++l) add<atomic>(dst + off + l * k, u[n][l]);
+      }
+      return;
+    }
+    for (int n = 0; n < n_dofs; ++n) {
+      int node[3];
+      local_node(cell, n, node);
+      const int x0 = node[0];
+      for (int l = 0; l < active; ++l) {
+        node[0] = x0 + l * k;
+        add<atomic>(dst + lattice.dof_index(node), u[n][l]);
+      }
+    }
+  }
+
+  template <bool atomic>
+  KOKKOS_INLINE_FUNCTION static void add(double* p, double v) {
+    if constexpr (atomic) Kokkos::atomic_add(p, v);
+    else *p += v;
+  }
+
+  /// x = a blocked field on the unwrapped node lattice (coordinates), lanes clamped.
+  KOKKOS_INLINE_FUNCTION void gather_nodes(const double* src, int b, T* x) const {
+    int cell[3];
+    lattice.batch_cell(b, cell);
+    const int active = lattice.active_lanes(b);
+    for (int n = 0; n < n_dofs; ++n) {
+      int node[3];
+      local_node(cell, n, node);
+      const int x0 = node[0];
+      for (int l = 0; l < W; ++l) {
+        node[0] = x0 + (l < active ? l : active - 1) * lattice.degree;
+        x[n][l] = src[lattice.node_index(node)];
+      }
+    }
+  }
+
+  // --- geometry ---------------------------------------------------------------------------
+  /// The point coefficients of batch b into s.jac ([coef][point]), from the node coordinates.
+  KOKKOS_INLINE_FUNCTION void point_coefficients(int b, Scratch& s) const {
+    const long n_nodes = lattice.n_nodes();
+    for (int a = 0; a < dim; ++a) {
+      gather_nodes(coordinates.data() + a * n_nodes, b, s.nodal);
+      Eval::values(shape, s.nodal, s.v, s.tmp);
+      Eval::gradients(shape, s.v, s.jac + a * dim * n_points);
+    }
+    // Field values at the points, into s.grad (free until the operator runs).
+    const bool has_field = field.extent(0) > 0;
+    if (has_field) {
+      const int comps = kind == OperatorKind::convection ? dim : 1;
+      const long n = lattice.n_dofs();
+      for (int c = 0; c < comps; ++c) {
+        gather_unconstrained(field.data() + c * n, b, s.nodal);  // a field is not constrained
+        Eval::values(shape, s.nodal, s.grad + c * n_points, s.tmp);
+      }
+    }
+    for (int q = 0; q < n_points; ++q) {
+      T J[n_jac];
+      for (int e = 0; e < n_jac; ++e) J[e] = s.jac[e * n_points + q];
+      const T w(Eval::weight(shape, q));
+      T c[dim];
+      for (int a = 0; a < dim; ++a) c[a] = T(0.0);
+      if (kind == OperatorKind::mass) {
+        c[0] = w * sumfac::determinant<dim>(J);
+      } else if (kind == OperatorKind::laplace) {
+        T G[sumfac::n_symmetric<dim>];
+        const T scale = has_field ? w * s.grad[q] : w;
+        sumfac::laplace_metric<dim>(J, scale, G);
+        for (int e = 0; e < sumfac::n_symmetric<dim>; ++e) s.jac[e * n_points + q] = G[e];
+        continue;
+      } else {
+        T vel[dim];
+        for (int a = 0; a < dim; ++a) vel[a] = has_field ? s.grad[a * n_points + q] : T(0.0);
+        sumfac::convection_metric<dim>(J, w, vel, c);
+      }
+      for (int e = 0; e < n_coef; ++e) s.jac[e * n_points + q] = c[e];
+    }
+  }
+
+  KOKKOS_INLINE_FUNCTION void gather_unconstrained(const double* src, int b, T* u) const {
+    int cell[3];
+    lattice.batch_cell(b, cell);
+    const int active = lattice.active_lanes(b);
+    for (int n = 0; n < n_dofs; ++n) {
+      int node[3];
+      local_node(cell, n, node);
+      const int x0 = node[0];
+      for (int l = 0; l < W; ++l) {
+        node[0] = x0 + (l < active ? l : active - 1) * lattice.degree;
+        u[n][l] = src[lattice.dof_index(node)];
+      }
+    }
+  }
+
+  // --- the operator on one batch ----------------------------------------------------------
+  /// Point coefficients for batch b: a pointer to stored data, or computed into s.jac.
+  KOKKOS_INLINE_FUNCTION const T* coefficients(int b, Scratch& s) const {
+    if (mode == GeometryMode::stored) return point_coef.data() + static_cast<long>(b) * n_coef * n_points;
+    if (mode == GeometryMode::on_the_fly) {
+      point_coefficients(b, s);
+      return s.jac;
+    }
+    return batch_coef.data() + static_cast<long>(b) * n_coef;  // per-cell constants
+  }
+
+  /// u <- A_cell u for batch b, with coefficients `c` from coefficients().
+  KOKKOS_INLINE_FUNCTION void apply_local(const T* c, T* u, Scratch& s) const {
+    Eval::values(shape, u, s.v, s.tmp);
+    const bool per_cell = mode == GeometryMode::cartesian || mode == GeometryMode::affine;
+    if (kind == OperatorKind::mass) {
+      if (per_cell) {
+        for (int q = 0; q < n_points; ++q) s.v[q] *= T(Eval::weight(shape, q)) * c[0];
+      } else {
+        for (int q = 0; q < n_points; ++q) s.v[q] *= c[q];
+      }
+      Eval::integrate_values(shape, s.v, u, s.tmp);
+      return;
+    }
+    Eval::gradients(shape, s.v, s.grad);
+    if (kind == OperatorKind::laplace) {
+      if (mode == GeometryMode::cartesian) {
+        for (int q = 0; q < n_points; ++q) {
+          const T w(Eval::weight(shape, q));
+          for (int a = 0; a < dim; ++a) s.grad[a * n_points + q] *= w * c[a];
+        }
+      } else {
+        const long stride = per_cell ? 0 : n_points;
+        for (int q = 0; q < n_points; ++q) {
+          const long qc = per_cell ? 0 : q;
+          const T w = per_cell ? T(Eval::weight(shape, q)) : T(1.0);
+          T g[dim];
+          for (int a = 0; a < dim; ++a) g[a] = s.grad[a * n_points + q];
+          for (int a = 0; a < dim; ++a) {
+            T f = T(0.0);
+            for (int e = 0; e < dim; ++e) f += c[sumfac::sym_index<dim>(a, e) * stride + qc] * g[e];
+            s.grad[a * n_points + q] = per_cell ? w * f : f;
+          }
+        }
+      }
+      Eval::template integrate_gradients<false>(shape, s.grad, s.v);
+    } else {  // convection: v = c . grad u
+      const long stride = per_cell ? 0 : n_points;
+      for (int q = 0; q < n_points; ++q) {
+        const long qc = per_cell ? 0 : q;
+        T f = T(0.0);
+        for (int a = 0; a < dim; ++a) f += c[a * stride + qc] * s.grad[a * n_points + q];
+        s.v[q] = per_cell ? T(Eval::weight(shape, q)) * f : f;
+      }
+    }
+    Eval::integrate_values(shape, s.v, u, s.tmp);
+  }
+
+  /// dst += A src on batch b, every component.
+  template <bool atomic>
+  KOKKOS_INLINE_FUNCTION void apply_batch(const double* src, double* dst, int n_components,
+                                          int b) const {
+    Scratch s;
+    T u[n_dofs];
+    const T* c = coefficients(b, s);
+    const long n = lattice.n_dofs();
+    for (int comp = 0; comp < n_components; ++comp) {
+      gather(src + comp * n, b, u);
+      apply_local(c, u, s);
+      scatter_add<atomic>(dst + comp * n, b, u);
+    }
+  }
+
+  /// diag += the diagonal of A_cell on batch b (unit vectors through apply_local), every component.
+  template <bool atomic>
+  KOKKOS_INLINE_FUNCTION void diagonal_batch(double* diag, int n_components, int b) const {
+    Scratch s;
+    T u[n_dofs], d[n_dofs];
+    const T* c = coefficients(b, s);
+    for (int j = 0; j < n_dofs; ++j) {
+      for (int i = 0; i < n_dofs; ++i) u[i] = T(i == j ? 1.0 : 0.0);
+      apply_local(c, u, s);
+      d[j] = u[j];
+    }
+    const long n = lattice.n_dofs();
+    for (int comp = 0; comp < n_components; ++comp) scatter_add<atomic>(diag + comp * n, b, d);
+  }
+
+  /// Columns of A_cell (cell-local, lexicographic) of batch b: out[(j * n_dofs + i)] = A_ij.
+  KOKKOS_INLINE_FUNCTION void element_matrix(int b, T* out) const {
+    Scratch s;
+    const T* c = coefficients(b, s);
+    for (int j = 0; j < n_dofs; ++j) {
+      T* u = out + j * n_dofs;
+      for (int i = 0; i < n_dofs; ++i) u[i] = T(i == j ? 1.0 : 0.0);
+      apply_local(c, u, s);
+    }
+  }
+};
+
+/// Runs body(b) for every batch b so that batches running at once share no node (see the top
+/// of this file); on device spaces it runs them all at once and body must add atomically.
+template <class ExecSpace, int dim, class Body>
+void for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice,
+                             const char* label, const Body& body) {
+  constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace,
+                                                   typename ExecSpace::memory_space>::accessible;
+  if constexpr (!host) {
+    Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, lattice.n_batches()), body);
+  } else {
+    const int slabs = lattice.n_slabs(), per_slab = lattice.batches_per_slab();
+    const bool odd_periodic = lattice.periodic[dim - 1] && slabs % 2 == 1 && slabs > 1;
+    const int regular = odd_periodic ? slabs - 1 : slabs;
+    for (int colour = 0; colour < 2; ++colour) {
+      const int items = (regular - colour + 1) / 2;
+      if (items <= 0) continue;
+      Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, items), KOKKOS_LAMBDA(int i) {
+        const int slab = 2 * i + colour;
+        for (int b = slab * per_slab; b < (slab + 1) * per_slab; ++b) body(b);
+      });
+    }
+    if (odd_periodic) {
+      Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, 1), KOKKOS_LAMBDA(int) {
+        for (int b = (slabs - 1) * per_slab; b < slabs * per_slab; ++b) body(b);
+      });
+    }
+  }
+}
+
+}  // namespace amphora::solvers

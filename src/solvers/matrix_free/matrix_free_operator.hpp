@@ -1,0 +1,61 @@
+#pragma once
+// A matrix-free finite-element operator on a Q_k space: mass, Laplace (scalar or vector,
+// optionally with a variable coefficient) or convection, with Dirichlet DoFs treated as
+// identity rows (the constrained system of deal.II's MatrixFree operators). apply(exec, x, y)
+// makes it usable by the Krylov solvers of src/solvers.
+#include <cstddef>
+#include <memory>
+
+#include <Kokkos_Core.hpp>
+
+#include "kernels/sumfac/shape_data.hpp"
+#include "mesh/hex/qk_space.hpp"
+#include "solvers/matrix_free/cell_operator_kernel.hpp"
+
+namespace amphora::solvers {
+
+template <int dim, class ExecSpace>
+class MatrixFreeOperator {
+ public:
+  using memory_space = typename ExecSpace::memory_space;
+  using Vector = Kokkos::View<double*, memory_space>;
+  using Space = mesh::QkSpace<dim, ExecSpace>;
+
+  struct Options {
+    OperatorKind kind = OperatorKind::laplace;
+    GeometryMode geometry = GeometryMode::stored;
+    sumfac::QuadratureKind quadrature = sumfac::QuadratureKind::gauss;
+    int n_q = 0;         ///< points per direction; 0: degree + 1
+    int components = 1;  ///< 3 for the vector Laplace/mass of CEED BP2/4/6
+    /// Laplace: coefficient a(x) as a Q_k field (n_dofs); convection: velocity (dim blocked).
+    Vector field;
+  };
+
+  MatrixFreeOperator(const Space& space, const Options& options);
+
+  /// y = A x (constrained rows: y_i = x_i).
+  void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const;
+  /// The diagonal of A, computed cell by cell (constrained rows: 1).
+  void compute_diagonal(const ExecSpace& exec, const Vector& diagonal) const;
+  /// Element matrices of every cell, host, [cell][j][i] (column j), cell = lexicographic index;
+  /// Dirichlet constraints not applied. For assembly (coarse grids, tests).
+  std::vector<double> element_matrices(const ExecSpace& exec) const;
+
+  long size() const { return space_->n_dofs() * options_.components; }
+  const Space& space() const { return *space_; }
+  const Options& options() const { return options_; }
+  int n_q() const { return n_q_; }
+  /// Bytes of geometry data read by each application (coordinates for on_the_fly).
+  std::size_t geometry_bytes() const;
+
+ public:  // (CUDA: extended lambdas may not live in private member functions)
+  struct Impl;
+
+ private:
+  const Space* space_;
+  Options options_;
+  int n_q_;
+  std::shared_ptr<const Impl> impl_;
+};
+
+}  // namespace amphora::solvers

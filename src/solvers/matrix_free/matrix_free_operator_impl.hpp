@@ -1,0 +1,215 @@
+#pragma once
+// Template definitions of MatrixFreeOperator, included by one .cpp per dimension.
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "kernels/blas1.hpp"
+#include "solvers/matrix_free/degree_dispatch.hpp"
+#include "solvers/matrix_free/matrix_free_operator.hpp"
+
+namespace amphora::solvers {
+
+template <int dim, class ExecSpace>
+struct MatrixFreeOperator<dim, ExecSpace>::Impl {
+  using T = sumfac::Simd<sumfac::simd_width_v<ExecSpace>>;
+  Kokkos::View<T*, memory_space> batch_coef, point_coef;
+  std::shared_ptr<void> shape;  // ShapeData<n_p, n_q>
+  void (*apply)(const MatrixFreeOperator&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
+  void (*diagonal)(const MatrixFreeOperator&, const ExecSpace&, const Vector&) = nullptr;
+  std::vector<double> (*elements)(const MatrixFreeOperator&, const ExecSpace&) = nullptr;
+
+  template <int n_p, int n_q>
+  static CellOperatorKernel<dim, n_p, n_q, ExecSpace> kernel(const MatrixFreeOperator& op) {
+    CellOperatorKernel<dim, n_p, n_q, ExecSpace> k;
+    k.lattice = op.space_->lattice();
+    k.shape = *static_cast<const sumfac::ShapeData<n_p, n_q>*>(op.impl_->shape.get());
+    k.kind = op.options_.kind;
+    k.mode = op.options_.geometry;
+    k.n_coef = coefficient_count(op.options_);
+    k.batch_coef = op.impl_->batch_coef;
+    k.point_coef = op.impl_->point_coef;
+    k.coordinates = op.space_->coordinates();
+    k.field = op.options_.field;
+    return k;
+  }
+
+  static int coefficient_count(const Options& o) {
+    if (o.geometry == GeometryMode::cartesian && o.kind == OperatorKind::laplace) return dim;
+    return n_point_coefficients<dim>(o.kind);
+  }
+
+  template <int n_p, int n_q>
+  static void apply_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
+                         const Vector& y) {
+    const auto k = kernel<n_p, n_q>(op);
+    blas1::fill(exec, y, 0.0);
+    const double* src = x.data();
+    double* dst = y.data();
+    const int comps = op.options_.components;
+    constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
+    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::apply",
+                            KOKKOS_LAMBDA(int b) { k.template apply_batch<atomic>(src, dst, comps, b); });
+    copy_constrained(op, exec, x, y);
+  }
+
+  template <int n_p, int n_q>
+  static void diagonal_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& d) {
+    const auto k = kernel<n_p, n_q>(op);
+    blas1::fill(exec, d, 0.0);
+    double* dst = d.data();
+    const int comps = op.options_.components;
+    constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
+    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::diagonal",
+                            KOKKOS_LAMBDA(int b) { k.template diagonal_batch<atomic>(dst, comps, b); });
+    Vector ones("ones", d.extent(0));
+    blas1::fill(exec, ones, 1.0);
+    copy_constrained(op, exec, ones, d);
+  }
+
+  template <int n_p, int n_q>
+  static std::vector<double> elements_impl(const MatrixFreeOperator& op, const ExecSpace& exec) {
+    const auto k = kernel<n_p, n_q>(op);
+    using K = CellOperatorKernel<dim, n_p, n_q, ExecSpace>;
+    constexpr int nd = K::n_dofs, W = K::W;
+    const int nb = k.lattice.n_batches();
+    Kokkos::View<T*, memory_space> out("amphora::MatrixFreeOperator::elements",
+                                       static_cast<std::size_t>(nb) * nd * nd);
+    Kokkos::parallel_for("amphora::MatrixFreeOperator::element_matrices",
+                         RangePolicy<ExecSpace>(exec, 0, nb),
+                         KOKKOS_LAMBDA(int b) { k.element_matrix(b, out.data() + static_cast<long>(b) * nd * nd); });
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
+    const auto& lat = k.lattice;
+    std::vector<double> m(static_cast<std::size_t>(op.space_->mesh().n_cells()) * nd * nd);
+    for (int b = 0; b < nb; ++b) {
+      int cell[3] = {0, 0, 0};
+      lat.batch_cell(b, cell);
+      for (int l = 0; l < lat.active_lanes(b); ++l) {
+        long c = cell[dim - 1];
+        for (int d = dim - 2; d >= 1; --d) c = c * lat.cells[d] + cell[d];
+        c = c * lat.cells[0] + cell[0] + l;
+        for (int e = 0; e < nd * nd; ++e) m[c * nd * nd + e] = h(static_cast<long>(b) * nd * nd + e)[l];
+      }
+    }
+    (void)W;
+    return m;
+  }
+
+  /// Point coefficients of every batch through the on-the-fly path, kept whole (stored) or
+  /// reduced to one value per cell (cartesian, affine: the metric without the weight).
+  template <int n_p, int n_q>
+  static void setup_geometry(const MatrixFreeOperator& op, Impl& impl) {
+    using K = CellOperatorKernel<dim, n_p, n_q, ExecSpace>;
+    const K kern = kernel<n_p, n_q>(op);
+    const int nb = op.space_->lattice().n_batches();
+    const int n_all = n_point_coefficients<dim>(op.options_.kind);
+    const int n_keep = coefficient_count(op.options_);
+    const bool per_cell = op.options_.geometry == GeometryMode::cartesian ||
+                          op.options_.geometry == GeometryMode::affine;
+    const ExecSpace exec;
+    if (!per_cell) {
+      Kokkos::View<T*, memory_space> pc("amphora::MatrixFreeOperator::point_coef",
+                                        static_cast<std::size_t>(nb) * n_all * K::n_points);
+      Kokkos::parallel_for("amphora::MatrixFreeOperator::setup_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
+                           KOKKOS_LAMBDA(int b) {
+                             typename K::Scratch s;
+                             kern.point_coefficients(b, s);
+                             T* dst = pc.data() + static_cast<long>(b) * n_all * K::n_points;
+                             for (int i = 0; i < n_all * K::n_points; ++i) dst[i] = s.jac[i];
+                           });
+      impl.point_coef = pc;
+    } else {
+      Kokkos::View<T*, memory_space> bc("amphora::MatrixFreeOperator::batch_coef",
+                                        static_cast<std::size_t>(nb) * n_keep);
+      const bool diagonal_only = n_keep != n_all;
+      Kokkos::parallel_for("amphora::MatrixFreeOperator::setup_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
+                           KOKKOS_LAMBDA(int b) {
+                             typename K::Scratch s;
+                             kern.point_coefficients(b, s);
+                             const T w0(K::Eval::weight(kern.shape, 0));
+                             for (int e = 0; e < n_keep; ++e) {
+                               const int src = diagonal_only ? sumfac::sym_index<dim>(e, e) : e;
+                               bc(static_cast<long>(b) * n_keep + e) = s.jac[src * K::n_points] / w0;
+                             }
+                           });
+      impl.batch_coef = bc;
+    }
+    exec.fence();
+  }
+
+  static void copy_constrained(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
+                               const Vector& y) {
+    const auto cons = op.space_->constrained_dofs();
+    const long n = op.space_->n_dofs();
+    const int nc = static_cast<int>(cons.extent(0));
+    for (int comp = 0; comp < op.options_.components; ++comp) {
+      const long off = comp * n;
+      Kokkos::parallel_for("amphora::MatrixFreeOperator::constraints", RangePolicy<ExecSpace>(exec, 0, nc),
+                           KOKKOS_LAMBDA(int i) { y(off + cons(i)) = x(off + cons(i)); });
+    }
+  }
+};
+
+template <int dim, class ExecSpace>
+MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const Options& options)
+    : space_(&space), options_(options) {
+  const int k = space.degree();
+  n_q_ = options.n_q > 0 ? options.n_q : k + 1;
+  const auto& mesh = space.mesh();
+  auto fail = [](const std::string& what) { throw std::invalid_argument("MatrixFreeOperator: " + what); };
+  if (options.components < 1) fail("components must be at least 1");
+  if (options.geometry == GeometryMode::cartesian && !mesh.cartesian())
+    fail("geometry 'cartesian' needs an undeformed box; use 'affine', 'stored' or 'on_the_fly'");
+  if (options.geometry == GeometryMode::affine && !mesh.affine())
+    fail("geometry 'affine' needs an affine deformation; use 'stored' or 'on_the_fly'");
+  const bool per_cell = options.geometry == GeometryMode::cartesian || options.geometry == GeometryMode::affine;
+  if (options.kind == OperatorKind::convection && options.field.extent(0) != static_cast<std::size_t>(dim * space.n_dofs()))
+    fail("convection needs a velocity field of dim x n_dofs entries");
+  if (options.kind == OperatorKind::laplace && options.field.extent(0) > 0 &&
+      options.field.extent(0) != static_cast<std::size_t>(space.n_dofs()))
+    fail("the Laplace coefficient field must have n_dofs entries");
+  if (per_cell && options.field.extent(0) > 0)
+    fail("a coefficient or velocity field varies within cells: use geometry 'stored' or 'on_the_fly'");
+  if (options.quadrature == sumfac::QuadratureKind::gauss_lobatto && n_q_ != k + 1)
+    fail("Gauss-Lobatto quadrature is supported with n_q = degree + 1 (collocation) only");
+
+  auto impl = std::make_shared<Impl>();
+  dispatch_degree(k, n_q_, [&](auto np_c, auto nq_c) {
+    constexpr int n_p = decltype(np_c)::value, n_q = decltype(nq_c)::value;
+    impl->shape = std::make_shared<sumfac::ShapeData<n_p, n_q>>(
+        sumfac::ShapeData<n_p, n_q>::create(options.quadrature));
+    impl->apply = &Impl::template apply_impl<n_p, n_q>;
+    impl->diagonal = &Impl::template diagonal_impl<n_p, n_q>;
+    impl->elements = &Impl::template elements_impl<n_p, n_q>;
+  });
+  impl_ = impl;
+
+  if (options.geometry == GeometryMode::on_the_fly) return;
+  dispatch_degree(k, n_q_, [&](auto np_c, auto nq_c) {
+    Impl::template setup_geometry<decltype(np_c)::value, decltype(nq_c)::value>(*this, *impl);
+  });
+}
+
+template <int dim, class ExecSpace>
+void MatrixFreeOperator<dim, ExecSpace>::apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {
+  impl_->apply(*this, exec, x, y);
+}
+
+template <int dim, class ExecSpace>
+void MatrixFreeOperator<dim, ExecSpace>::compute_diagonal(const ExecSpace& exec, const Vector& d) const {
+  impl_->diagonal(*this, exec, d);
+}
+
+template <int dim, class ExecSpace>
+std::vector<double> MatrixFreeOperator<dim, ExecSpace>::element_matrices(const ExecSpace& exec) const {
+  return impl_->elements(*this, exec);
+}
+
+template <int dim, class ExecSpace>
+std::size_t MatrixFreeOperator<dim, ExecSpace>::geometry_bytes() const {
+  std::size_t bytes = (impl_->batch_coef.extent(0) + impl_->point_coef.extent(0)) * sizeof(typename Impl::T);
+  if (options_.geometry == GeometryMode::on_the_fly) bytes += space_->coordinates().extent(0) * sizeof(double);
+  return bytes;
+}
+
+}  // namespace amphora::solvers
