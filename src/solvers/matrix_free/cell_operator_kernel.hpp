@@ -239,7 +239,7 @@ struct CellOperatorKernel {
           for (int a = 0; a < dim; ++a) s.grad[a * n_points + q] *= w * c[a];
         }
       } else {
-        const long stride = per_cell ? 0 : n_points;
+        const long stride = per_cell ? 1 : n_points;  // [coef] per cell, [coef][point] stored
         for (int q = 0; q < n_points; ++q) {
           const long qc = per_cell ? 0 : q;
           const T w = per_cell ? T(Eval::weight(shape, q)) : T(1.0);
@@ -254,7 +254,7 @@ struct CellOperatorKernel {
       }
       Eval::template integrate_gradients<false>(shape, s.grad, s.v);
     } else {  // convection: v = c . grad u
-      const long stride = per_cell ? 0 : n_points;
+      const long stride = per_cell ? 1 : n_points;
       for (int q = 0; q < n_points; ++q) {
         const long qc = per_cell ? 0 : q;
         T f = T(0.0);

@@ -1,0 +1,209 @@
+// Every matrix-free operator equals the textbook assembled matrix (Eigen) to 1e-12 relative:
+// k = 1..6, 2D and 3D, Cartesian, affine and curved cells, every geometry mode, periodic,
+// Dirichlet and Neumann faces, full and partial cell batches. Plus the diagonal, the mass of
+// the unit cube and the Laplacian of a constant.
+#include <Eigen/Sparse>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "kernels/blas1.hpp"
+#include "reference_assembly.hpp"
+#include "solvers/matrix_free/matrix_free_operator.hpp"
+#include "test_backend.hpp"
+
+namespace amphora::solvers {
+namespace {
+
+using test::TestExecSpace;
+using Vector = Kokkos::View<double*, test::TestMemSpace>;
+using mesh::FaceCondition;
+
+template <int dim>
+mesh::StructuredHexMesh<dim> mixed_mesh(int nx, int ny, int nz, const std::string& shape) {
+  mesh::StructuredHexMesh<dim> m;
+  m.cells = {nx, ny, nz};
+  m.faces = {FaceCondition::periodic, FaceCondition::periodic, FaceCondition::dirichlet,
+             FaceCondition::neumann,  FaceCondition::neumann,  FaceCondition::dirichlet};
+  if (shape == "affine") {
+    m.deformation = [](const mesh::Point3& X) {
+      return mesh::Point3{X[0] + 0.2 * X[1] + 0.1 * X[2], 0.1 * X[0] + 1.1 * X[1], 0.3 * X[1] + 0.9 * X[2]};
+    };
+    m.affine_deformation = true;
+  } else if (shape == "curved") {
+    m.deformation = mesh::sinusoidal_deformation(dim, 0.05);
+  }
+  return m;
+}
+
+Vector to_device(const std::vector<double>& v) {
+  Vector d("v", v.size());
+  auto h = Kokkos::create_mirror_view(d);
+  for (std::size_t i = 0; i < v.size(); ++i) h(i) = v[i];
+  Kokkos::deep_copy(d, h);
+  return d;
+}
+
+std::vector<double> to_host(const Vector& d) {
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
+  return std::vector<double>(h.data(), h.data() + h.extent(0));
+}
+
+struct Case {
+  OperatorKind kind;
+  GeometryMode geometry;
+  std::string shape;  // cartesian, affine, curved
+  int degree;
+  int n_q_extra = 0;  // n_q = degree + 1 + extra
+  bool gauss_lobatto = false;
+  bool with_field = false;
+  int components = 1;
+};
+
+template <int dim>
+void check(const Case& c, int nx, int ny, int nz) {
+  SCOPED_TRACE("dim " + std::to_string(dim) + " k " + std::to_string(c.degree) + " kind " +
+               std::to_string(static_cast<int>(c.kind)) + " geometry " +
+               std::to_string(static_cast<int>(c.geometry)) + " " + c.shape + " nq+" +
+               std::to_string(c.n_q_extra) + (c.gauss_lobatto ? " GL" : "") + (c.with_field ? " field" : ""));
+  const TestExecSpace exec;
+  const auto m = mixed_mesh<dim>(nx, ny, nz, c.shape);
+  const mesh::QkSpace<dim, TestExecSpace> space(m, c.degree);
+  const long n = space.n_dofs();
+  std::vector<double> field;
+  if (c.kind == OperatorKind::convection) {
+    field = space.interpolate([](const mesh::Point3& x, int a) {
+      return a == 0 ? std::sin(3 * x[1]) : a == 1 ? std::cos(2 * x[0]) : 0.5;
+    }, dim);
+  } else if (c.with_field) {
+    field = space.interpolate([](const mesh::Point3& x, int) { return 1.0 + 0.5 * std::sin(3 * x[0]) * std::cos(2 * x[1]); });
+  }
+  typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
+  o.kind = c.kind;
+  o.geometry = c.geometry;
+  o.n_q = c.degree + 1 + c.n_q_extra;
+  o.quadrature = c.gauss_lobatto ? sumfac::QuadratureKind::gauss_lobatto : sumfac::QuadratureKind::gauss;
+  o.components = c.components;
+  if (!field.empty()) o.field = to_device(field);
+  const MatrixFreeOperator<dim, TestExecSpace> op(space, o);
+  const auto A = test::assemble_reference<dim>(space, c.kind, o.n_q, c.gauss_lobatto, field);
+
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> x(n * c.components);
+  for (double& e : x) e = u(rng);
+  Vector xd = to_device(x), yd("y", n * c.components);
+  op.apply(exec, xd, yd);
+  const std::vector<double> y = to_host(yd);
+  double scale = 0.0, err = 0.0;
+  for (int comp = 0; comp < c.components; ++comp) {
+    const Eigen::VectorXd ref = A * Eigen::Map<const Eigen::VectorXd>(x.data() + comp * n, n);
+    for (long i = 0; i < n; ++i) {
+      scale = std::max(scale, std::abs(ref[i]));
+      err = std::max(err, std::abs(ref[i] - y[comp * n + i]));
+    }
+  }
+  EXPECT_LT(err, 1e-12 * scale) << "max |A x - A_ref x| = " << err << " of " << scale;
+
+  if (c.kind != OperatorKind::convection) {
+    Vector dd("d", n * c.components);
+    op.compute_diagonal(exec, dd);
+    const std::vector<double> d = to_host(dd);
+    double derr = 0.0, dscale = 0.0;
+    for (long i = 0; i < n; ++i) {
+      dscale = std::max(dscale, std::abs(A.coeff(i, i)));
+      for (int comp = 0; comp < c.components; ++comp) derr = std::max(derr, std::abs(A.coeff(i, i) - d[comp * n + i]));
+    }
+    EXPECT_LT(derr, 1e-12 * dscale) << "diagonal";
+  }
+}
+
+using K = OperatorKind;
+using G = GeometryMode;
+
+TEST(MatrixFreeOperator, LaplaceAndMassMatchAssembledMatricesForDegrees1To6In2D) {
+  for (int k = 1; k <= 6; ++k) {
+    check<2>({K::laplace, G::stored, "curved", k}, 9, 3, 1);
+    check<2>({K::laplace, G::on_the_fly, "curved", k, 1}, 9, 3, 1);
+    check<2>({K::mass, G::stored, "curved", k, 1}, 9, 3, 1);
+    check<2>({K::laplace, G::affine, "affine", k}, 9, 3, 1);
+    check<2>({K::mass, G::cartesian, "cartesian", k}, 9, 3, 1);
+  }
+}
+
+TEST(MatrixFreeOperator, LaplaceAndMassMatchAssembledMatricesForDegrees1To6In3D) {
+  for (int k = 1; k <= 6; ++k) {
+    const int nx = k <= 3 ? 9 : 9, ny = k <= 3 ? 3 : 3, nz = k <= 4 ? 2 : 1;
+    check<3>({K::laplace, G::stored, "curved", k}, nx, ny, nz);
+    check<3>({K::mass, G::on_the_fly, "curved", k, 1}, nx, ny, nz);
+    if (k <= 4) {
+      check<3>({K::laplace, G::on_the_fly, "curved", k, 1}, nx, ny, nz);
+      check<3>({K::laplace, G::cartesian, "cartesian", k}, nx, ny, nz);
+      check<3>({K::laplace, G::affine, "affine", k}, nx, ny, nz);
+    }
+  }
+}
+
+TEST(MatrixFreeOperator, CollocatedVectorVariableCoefficientAndConvectionOperatorsMatch) {
+  for (int k : {2, 3}) {
+    check<2>({K::laplace, G::stored, "curved", k, 0, true}, 9, 3, 1);   // collocation (BP5)
+    check<3>({K::laplace, G::cartesian, "cartesian", k, 0, true, false, 3}, 9, 3, 2);  // BP6
+    check<3>({K::mass, G::cartesian, "cartesian", k, 1, false, false, 3}, 9, 3, 2);    // BP2
+    check<2>({K::laplace, G::stored, "curved", k, 1, false, true}, 9, 3, 1);
+    check<3>({K::laplace, G::on_the_fly, "curved", k, 0, false, true}, 9, 3, 2);
+    check<2>({K::convection, G::stored, "curved", k, 1}, 9, 3, 1);
+    check<3>({K::convection, G::on_the_fly, "affine", k}, 9, 3, 2);
+  }
+}
+
+TEST(MatrixFreeOperator, MassOfUnitCubeIsOneAndLaplacianOfConstantVanishes) {
+  const TestExecSpace exec;
+  for (int k : {1, 2, 4, 7, 8}) {
+    auto m = mesh::unit_cube<3>(k <= 2 ? 8 : 3, FaceCondition::neumann);
+    m.deformation = mesh::sinusoidal_deformation(3, 0.05);  // boundary fixed: volume stays 1
+    const mesh::QkSpace<3, TestExecSpace> space(m, k);
+    const long n = space.n_dofs();
+    Vector one("one", n), y("y", n);
+    Kokkos::deep_copy(one, 1.0);
+    typename MatrixFreeOperator<3, TestExecSpace>::Options o;
+    o.kind = OperatorKind::mass;
+    o.n_q = k + 2;
+    MatrixFreeOperator<3, TestExecSpace> mass(space, o);
+    mass.apply(exec, one, y);
+    // 1^T M 1 = volume; the deformation keeps the faces, so the volume is exactly 1 (quadrature
+    // integrates det J of the curved map only approximately: tolerance from k+2 points).
+    EXPECT_NEAR(blas1::sum(exec, y), 1.0, k <= 2 ? 1e-4 : 1e-9) << "k " << k;
+    o.kind = OperatorKind::laplace;
+    MatrixFreeOperator<3, TestExecSpace> lap(space, o);
+    lap.apply(exec, one, y);
+    EXPECT_LT(blas1::norm_inf(exec, y), 1e-12) << "k " << k;
+  }
+  // undeformed: exact to round-off
+  const mesh::QkSpace<2, TestExecSpace> space(mesh::unit_cube<2>(5, FaceCondition::neumann), 3);
+  Vector one("one", space.n_dofs()), y("y", space.n_dofs());
+  Kokkos::deep_copy(one, 1.0);
+  typename MatrixFreeOperator<2, TestExecSpace>::Options o;
+  o.kind = OperatorKind::mass;
+  o.geometry = GeometryMode::cartesian;
+  MatrixFreeOperator<2, TestExecSpace> mass(space, o);
+  mass.apply(exec, one, y);
+  EXPECT_NEAR(blas1::sum(exec, y), 1.0, 1e-14);
+}
+
+TEST(MatrixFreeOperator, BadOptionsAreRefusedWithAReason) {
+  const mesh::QkSpace<2, TestExecSpace> curved(mixed_mesh<2>(4, 4, 1, "curved"), 2);
+  typename MatrixFreeOperator<2, TestExecSpace>::Options o;
+  o.geometry = GeometryMode::cartesian;
+  EXPECT_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)), std::invalid_argument);
+  o.geometry = GeometryMode::stored;
+  o.n_q = 7;
+  EXPECT_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)), std::invalid_argument);
+  o.n_q = 0;
+  o.kind = OperatorKind::convection;
+  EXPECT_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)), std::invalid_argument);
+  EXPECT_THROW((mesh::QkSpace<2, TestExecSpace>(mixed_mesh<2>(4, 4, 1, ""), 9)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace amphora::solvers
