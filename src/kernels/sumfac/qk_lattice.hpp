@@ -55,6 +55,24 @@ struct QkLattice {
   KOKKOS_INLINE_FUNCTION int n_slabs() const { return cells[dim - 1]; }
   KOKKOS_INLINE_FUNCTION int batches_per_slab() const { return n_batches() / cells[dim - 1]; }
 
+  /// Colour of slab s in the coloured cell loop: parity, and 2 for the last slab of an odd
+  /// periodic count (it touches slab 0).
+  KOKKOS_INLINE_FUNCTION int slab_colour(int s) const {
+    const int n = cells[dim - 1];
+    return (periodic[dim - 1] && n % 2 == 1 && n > 1 && s == n - 1) ? 2 : s % 2;
+  }
+  /// Node layers (along the last direction) slab s writes first when slabs run by colour:
+  /// [first, end). A layer shared with a slab of an earlier colour is left to that slab.
+  KOKKOS_INLINE_FUNCTION void slab_first_layers(int s, int& first, int& end) const {
+    const int n = cells[dim - 1], k = degree, c = slab_colour(s);
+    const bool per = periodic[dim - 1];
+    const int lower = s > 0 ? s - 1 : (per ? n - 1 : -1);
+    const int upper = s < n - 1 ? s + 1 : (per ? 0 : -1);
+    first = (lower < 0 || lower == s || slab_colour(lower) > c) ? s * k : s * k + 1;
+    const bool upper_wraps = per && s == n - 1;
+    end = (!upper_wraps && (upper < 0 || slab_colour(upper) > c)) ? (s + 1) * k + 1 : (s + 1) * k;
+  }
+
   /// Cell coordinates of lane 0 of batch b: (bx * width, cy, cz).
   KOKKOS_INLINE_FUNCTION void batch_cell(int b, int* c) const {
     c[0] = (b % batches_x) * width;

@@ -71,60 +71,84 @@ struct CellOperatorKernel {
     if constexpr (dim == 3) node[2] = cell[2] * lattice.degree + n / (n_p * n_p);
   }
 
-  /// u = src at the batch's nodes (DoF lattice); constrained DoFs read as zero.
-  KOKKOS_INLINE_FUNCTION void gather(const double* src, int b, T* u) const {
+  /// Where a batch's nodes live: per lane and x-node an offset, per (y, z) row a base, and
+  /// which of them are constrained. The fast batches (full, interior, no periodic wrap) need
+  /// only `start`: lane l, node i of row r is at rows[r] + start + l k + i.
+  static constexpr int n_rows = n_dofs / n_p;
+  struct BatchIndex {
+    bool fast;
+    int active;
+    long start;
+    long rows[n_rows];
+    bool row_constrained[n_rows];
+    int x[W][n_p];
+    bool x_constrained[W][n_p];
+  };
+
+  KOKKOS_INLINE_FUNCTION void batch_index(int b, BatchIndex& ix) const {
     int cell[3];
     lattice.batch_cell(b, cell);
     const int k = lattice.degree;
-    if (!lattice.special_batch(b)) {
-      int node0[3];
-      local_node(cell, 0, node0);
-      const long base = lattice.dof_index(node0);
-      const long sx = lattice.dofs[0], sxy = sx * lattice.dofs[1];
-      for (int n = 0; n < n_dofs; ++n) {
-        const long off = base + n % n_p + sx * ((n / n_p) % n_p) + (dim == 3 ? sxy * (n / (n_p * n_p)) : 0);
-        for (int l = 0; l < W; ++l) u[n][l] = src[off + l * k];
+    ix.fast = !lattice.special_batch(b);
+    ix.active = lattice.active_lanes(b);
+    ix.start = static_cast<long>(cell[0]) * k;
+    const long sx = lattice.dofs[0], sxy = sx * lattice.dofs[1];
+    for (int r = 0; r < n_rows; ++r) {
+      const int ny = cell[1] * k + r % n_p;
+      const int nz = dim == 3 ? cell[2] * k + r / n_p : 0;
+      ix.rows[r] = sx * lattice.dof_1d(1, ny) + (dim == 3 ? sxy * lattice.dof_1d(2, nz) : 0);
+      ix.row_constrained[r] = lattice.constrained_1d(1, ny) || (dim == 3 && lattice.constrained_1d(2, nz));
+    }
+    if (ix.fast) return;
+    for (int l = 0; l < W; ++l)
+      for (int i = 0; i < n_p; ++i) {
+        const int nx = (cell[0] + (l < ix.active ? l : ix.active - 1)) * k + i;
+        ix.x[l][i] = lattice.dof_1d(0, nx);
+        ix.x_constrained[l][i] = lattice.constrained_1d(0, nx);
+      }
+  }
+
+  /// u = src at the batch's nodes (DoF lattice); constrained DoFs read as zero.
+  KOKKOS_INLINE_FUNCTION void gather(const double* src, const BatchIndex& ix, T* u) const {
+    const int k = lattice.degree;
+    if (ix.fast) {
+      for (int r = 0; r < n_rows; ++r) {
+        const double* p = src + ix.rows[r] + ix.start;
+        for (int i = 0; i < n_p; ++i) {
+          T& v = u[r * n_p + i];
+          for (int l = 0; l < W; ++l) v[l] = p[l * k + i];
+        }
       }
       return;
     }
-    const int active = lattice.active_lanes(b);
-    for (int n = 0; n < n_dofs; ++n) {
-      int node[3];
-      local_node(cell, n, node);
-      const int x0 = node[0];
-      for (int l = 0; l < W; ++l) {
-        node[0] = x0 + (l < active ? l : active - 1) * k;
-        u[n][l] = lattice.constrained(node) ? 0.0 : src[lattice.dof_index(node)];
+    for (int r = 0; r < n_rows; ++r) {
+      const double* p = src + ix.rows[r];
+      for (int i = 0; i < n_p; ++i) {
+        T& v = u[r * n_p + i];
+        for (int l = 0; l < W; ++l)
+          v[l] = (ix.row_constrained[r] || ix.x_constrained[l][i]) ? 0.0 : p[ix.x[l][i]];
       }
     }
   }
 
-  /// dst += u at the batch's nodes (inactive lanes skipped).
+  /// dst += u at the batch's nodes (inactive lanes and constrained DoFs skipped).
   template <bool atomic>
-  KOKKOS_INLINE_FUNCTION void scatter_add(double* dst, int b, const T* u) const {
-    int cell[3];
-    lattice.batch_cell(b, cell);
+  KOKKOS_INLINE_FUNCTION void scatter_add(double* dst, const BatchIndex& ix, const T* u) const {
     const int k = lattice.degree;
-    const int active = lattice.active_lanes(b);
-    if (!lattice.special_batch(b)) {
-      int node0[3];
-      local_node(cell, 0, node0);
-      const long base = lattice.dof_index(node0);
-      const long sx = lattice.dofs[0], sxy = sx * lattice.dofs[1];
-      for (int n = 0; n < n_dofs; ++n) {
-        const long off = base + n % n_p + sx * ((n / n_p) % n_p) + (dim == 3 ? sxy * (n / (n_p * n_p)) : 0);
-        for (int l = 0; l < W; ++l) add<atomic>(dst + off + l * k, u[n][l]);
+    if (ix.fast) {
+      for (int r = 0; r < n_rows; ++r) {
+        double* p = dst + ix.rows[r] + ix.start;
+        for (int i = 0; i < n_p; ++i)
+          for (int l = 0; l < W; ++l) add<atomic>(p + l * k + i, u[r * n_p + i][l]);
       }
       return;
     }
-    for (int n = 0; n < n_dofs; ++n) {
-      int node[3];
-      local_node(cell, n, node);
-      const int x0 = node[0];
-      for (int l = 0; l < active; ++l) {
-        node[0] = x0 + l * k;
-        add<atomic>(dst + lattice.dof_index(node), u[n][l]);
-      }
+    for (int r = 0; r < n_rows; ++r) {
+      if (ix.row_constrained[r]) continue;
+      double* p = dst + ix.rows[r];
+      for (int i = 0; i < n_p; ++i)
+        for (int l = 0; l < ix.active; ++l)
+          if (!ix.x_constrained[l][i]) add<atomic>(p + ix.x[l][i], u[r * n_p + i][l]);
     }
   }
 
@@ -271,12 +295,14 @@ struct CellOperatorKernel {
                                           int b) const {
     Scratch s;
     T u[n_dofs];
+    BatchIndex ix;
+    batch_index(b, ix);
     const T* c = coefficients(b, s);
     const long n = lattice.n_dofs();
     for (int comp = 0; comp < n_components; ++comp) {
-      gather(src + comp * n, b, u);
+      gather(src + comp * n, ix, u);
       apply_local(c, u, s);
-      scatter_add<atomic>(dst + comp * n, b, u);
+      scatter_add<atomic>(dst + comp * n, ix, u);
     }
   }
 
@@ -292,7 +318,9 @@ struct CellOperatorKernel {
       d[j] = u[j];
     }
     const long n = lattice.n_dofs();
-    for (int comp = 0; comp < n_components; ++comp) scatter_add<atomic>(diag + comp * n, b, d);
+    BatchIndex ix;
+    batch_index(b, ix);
+    for (int comp = 0; comp < n_components; ++comp) scatter_add<atomic>(diag + comp * n, ix, d);
   }
 
   /// Columns of A_cell (cell-local, lexicographic) of batch b: out[(j * n_dofs + i)] = A_ij.
@@ -308,31 +336,32 @@ struct CellOperatorKernel {
 };
 
 /// Runs body(b) for every batch b so that batches running at once share no node (see the top
-/// of this file); on device spaces it runs them all at once and body must add atomically.
-template <class ExecSpace, int dim, class Body>
-void for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice,
-                             const char* label, const Body& body) {
+/// of this file), calling first_touch(slab) before a slab's batches on host spaces (so a
+/// destination can be zeroed layer by layer while it is in cache: QkLattice::slab_first_layers).
+/// Device spaces run all batches at once: body must add atomically, first_touch is not called.
+/// Returns whether first_touch was called.
+template <class ExecSpace, int dim, class FirstTouch, class Body>
+bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice,
+                             const char* label, const FirstTouch& first_touch, const Body& body) {
   constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace,
                                                    typename ExecSpace::memory_space>::accessible;
   if constexpr (!host) {
     Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, lattice.n_batches()), body);
+    return false;
   } else {
     const int slabs = lattice.n_slabs(), per_slab = lattice.batches_per_slab();
     const bool odd_periodic = lattice.periodic[dim - 1] && slabs % 2 == 1 && slabs > 1;
     const int regular = odd_periodic ? slabs - 1 : slabs;
-    for (int colour = 0; colour < 2; ++colour) {
-      const int items = (regular - colour + 1) / 2;
+    for (int colour = 0; colour < 3; ++colour) {
+      const int items = colour < 2 ? (regular - colour + 1) / 2 : (odd_periodic ? 1 : 0);
       if (items <= 0) continue;
       Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, items), KOKKOS_LAMBDA(int i) {
-        const int slab = 2 * i + colour;
+        const int slab = colour < 2 ? 2 * i + colour : slabs - 1;
+        first_touch(slab);
         for (int b = slab * per_slab; b < (slab + 1) * per_slab; ++b) body(b);
       });
     }
-    if (odd_periodic) {
-      Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, 1), KOKKOS_LAMBDA(int) {
-        for (int b = (slabs - 1) * per_slab; b < slabs * per_slab; ++b) body(b);
-      });
-    }
+    return true;
   }
 }
 

@@ -34,6 +34,25 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     return k;
   }
 
+  /// Zeroes the node layers a slab writes first (every component), see for_each_batch_coloured.
+  struct FirstTouchZero {
+    sumfac::QkLattice<dim> lattice;
+    double* y;
+    int components;
+    KOKKOS_INLINE_FUNCTION void operator()(int slab) const {
+      int first = 0, end = 0;
+      lattice.slab_first_layers(slab, first, end);
+      long layer = lattice.dofs[0];
+      if (dim == 3) layer *= lattice.dofs[1];
+      const long n = lattice.n_dofs();
+      for (int c = 0; c < components; ++c)
+        for (long i = first * layer; i < end * layer; ++i) y[c * n + i] = 0.0;
+    }
+  };
+  static FirstTouchZero first_touch_zero(const MatrixFreeOperator& op, const Vector& y) {
+    return FirstTouchZero{op.space_->lattice(), y.data(), op.options_.components};
+  }
+
   static int coefficient_count(const Options& o) {
     if (o.geometry == GeometryMode::cartesian && o.kind == OperatorKind::laplace) return dim;
     return n_point_coefficients<dim>(o.kind);
@@ -43,12 +62,13 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   static void apply_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
                          const Vector& y) {
     const auto k = kernel<n_p, n_q>(op);
-    blas1::fill(exec, y, 0.0);
     const double* src = x.data();
     double* dst = y.data();
     const int comps = op.options_.components;
     constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
-    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::apply",
+    if (atomic) blas1::fill(exec, y, 0.0);
+    const auto zero = first_touch_zero(op, y);
+    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
                             KOKKOS_LAMBDA(int b) { k.template apply_batch<atomic>(src, dst, comps, b); });
     copy_constrained(op, exec, x, y);
   }
@@ -56,11 +76,11 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   template <int n_p, int n_q>
   static void diagonal_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& d) {
     const auto k = kernel<n_p, n_q>(op);
-    blas1::fill(exec, d, 0.0);
     double* dst = d.data();
     const int comps = op.options_.components;
     constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
-    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::diagonal",
+    if (atomic) blas1::fill(exec, d, 0.0);
+    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::diagonal", first_touch_zero(op, d),
                             KOKKOS_LAMBDA(int b) { k.template diagonal_batch<atomic>(dst, comps, b); });
     Vector ones("ones", d.extent(0));
     blas1::fill(exec, ones, 1.0);
