@@ -21,9 +21,11 @@ struct TensorProductEvaluator {
   template <class T>
   KOKKOS_FORCEINLINE_FUNCTION static void values(const ShapeData<n_p, n_q>& s, const T* u, T* v,
                                                  T* tmp) {
-    if (s.collocated) {
-      for (int i = 0; i < n_points; ++i) v[i] = u[i];
-      return;
+    if constexpr (n_p == n_q) {
+      if (s.collocated) {
+        for (int i = 0; i < n_points; ++i) v[i] = u[i];
+        return;
+      }
     }
     if constexpr (dim == 2) {
       apply_even_odd<n_q, n_p, 1, n_p, false>(s.values, u, tmp);
@@ -39,9 +41,11 @@ struct TensorProductEvaluator {
   template <class T>
   KOKKOS_FORCEINLINE_FUNCTION static void integrate_values(const ShapeData<n_p, n_q>& s, T* v,
                                                            T* u, T* tmp) {
-    if (s.collocated) {
-      for (int i = 0; i < n_dofs; ++i) u[i] = v[i];
-      return;
+    if constexpr (n_p == n_q) {
+      if (s.collocated) {
+        for (int i = 0; i < n_dofs; ++i) u[i] = v[i];
+        return;
+      }
     }
     if constexpr (dim == 2) {
       apply_even_odd<n_p, n_q, n_q, 1, false>(s.values_t, v, tmp);
