@@ -41,6 +41,17 @@ struct ShapeData {
     return s;
   }
 
+  /// Interpolation from the Q_k nodes (k = n_p - 1) to the Gauss–Lobatto nodes of Q_{n_q - 1}
+  /// in `values` (and its transpose): the 1D factor of p- and h-transfers. No derivatives.
+  static ShapeData interpolation() {
+    const std::vector<double> from = gauss_lobatto(n_p).points, to = gauss_lobatto(n_q).points;
+    ShapeData s{};
+    s.values = EvenOddMatrix<n_q, n_p>::from_dense(lagrange_values(from, to), 1);
+    s.values_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(lagrange_values(from, to), n_q, n_p), 1);
+    s.collocated = false;
+    return s;
+  }
+
  private:
   static std::vector<double> transpose(const std::vector<double>& m, int rows, int cols) {
     std::vector<double> t(m.size());

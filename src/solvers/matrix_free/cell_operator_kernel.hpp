@@ -11,6 +11,7 @@
 #include <Kokkos_Core.hpp>
 
 #include "kernels/spaces.hpp"
+#include "kernels/sumfac/batch_dof_access.hpp"
 #include "kernels/sumfac/point_geometry.hpp"
 #include "kernels/sumfac/qk_lattice.hpp"
 #include "kernels/sumfac/simd.hpp"
@@ -33,16 +34,22 @@ KOKKOS_INLINE_FUNCTION constexpr int n_point_coefficients(OperatorKind kind) {
 }
 
 template <int dim, int n_p, int n_q, class ExecSpace>
-struct CellOperatorKernel {
+struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_v<ExecSpace>> {
   static constexpr int W = sumfac::simd_width_v<ExecSpace>;
+  using Access = sumfac::BatchDofAccess<dim, n_p, W>;
   using T = sumfac::Simd<W>;
+  using typename Access::BatchIndex;
+  using Access::lattice;
+  using Access::batch_index;
+  using Access::gather;
+  using Access::gather_nodes;
+  using Access::gather_unconstrained;
   using Eval = sumfac::TensorProductEvaluator<dim, n_p, n_q>;
   using memory_space = typename ExecSpace::memory_space;
   static constexpr int n_dofs = Eval::n_dofs;
   static constexpr int n_points = Eval::n_points;
   static constexpr int n_jac = dim * dim;
 
-  sumfac::QkLattice<dim> lattice;
   sumfac::ShapeData<n_p, n_q> shape;
   OperatorKind kind = OperatorKind::laplace;
   GeometryMode mode = GeometryMode::stored;
@@ -62,117 +69,6 @@ struct CellOperatorKernel {
     T jac[n_jac * n_points];  ///< Jacobians, then (in place) the point coefficients
     T nodal[dim * n_dofs];
   };
-
-  // --- gather and scatter -----------------------------------------------------------------
-  /// Lattice node of local node `n` of lane 0's cell, and the per-lane stride along x.
-  KOKKOS_INLINE_FUNCTION void local_node(const int* cell, int n, int* node) const {
-    node[0] = cell[0] * lattice.degree + n % n_p;
-    node[1] = cell[1] * lattice.degree + (n / n_p) % n_p;
-    if constexpr (dim == 3) node[2] = cell[2] * lattice.degree + n / (n_p * n_p);
-  }
-
-  /// Where a batch's nodes live: per lane and x-node an offset, per (y, z) row a base, and
-  /// which of them are constrained. The fast batches (full, interior, no periodic wrap) need
-  /// only `start`: lane l, node i of row r is at rows[r] + start + l k + i.
-  static constexpr int n_rows = n_dofs / n_p;
-  struct BatchIndex {
-    bool fast;
-    int active;
-    long start;
-    long rows[n_rows];
-    bool row_constrained[n_rows];
-    int x[W][n_p];
-    bool x_constrained[W][n_p];
-  };
-
-  KOKKOS_INLINE_FUNCTION void batch_index(int b, BatchIndex& ix) const {
-    int cell[3];
-    lattice.batch_cell(b, cell);
-    const int k = lattice.degree;
-    ix.fast = !lattice.special_batch(b);
-    ix.active = lattice.active_lanes(b);
-    ix.start = static_cast<long>(cell[0]) * k;
-    const long sx = lattice.dofs[0], sxy = sx * lattice.dofs[1];
-    for (int r = 0; r < n_rows; ++r) {
-      const int ny = cell[1] * k + r % n_p;
-      const int nz = dim == 3 ? cell[2] * k + r / n_p : 0;
-      ix.rows[r] = sx * lattice.dof_1d(1, ny) + (dim == 3 ? sxy * lattice.dof_1d(2, nz) : 0);
-      ix.row_constrained[r] = lattice.constrained_1d(1, ny) || (dim == 3 && lattice.constrained_1d(2, nz));
-    }
-    if (ix.fast) return;
-    for (int l = 0; l < W; ++l)
-      for (int i = 0; i < n_p; ++i) {
-        const int nx = (cell[0] + (l < ix.active ? l : ix.active - 1)) * k + i;
-        ix.x[l][i] = lattice.dof_1d(0, nx);
-        ix.x_constrained[l][i] = lattice.constrained_1d(0, nx);
-      }
-  }
-
-  /// u = src at the batch's nodes (DoF lattice); constrained DoFs read as zero.
-  KOKKOS_INLINE_FUNCTION void gather(const double* src, const BatchIndex& ix, T* u) const {
-    const int k = lattice.degree;
-    if (ix.fast) {
-      for (int r = 0; r < n_rows; ++r) {
-        const double* p = src + ix.rows[r] + ix.start;
-        for (int i = 0; i < n_p; ++i) {
-          T& v = u[r * n_p + i];
-          for (int l = 0; l < W; ++l) v[l] = p[l * k + i];
-        }
-      }
-      return;
-    }
-    for (int r = 0; r < n_rows; ++r) {
-      const double* p = src + ix.rows[r];
-      for (int i = 0; i < n_p; ++i) {
-        T& v = u[r * n_p + i];
-        for (int l = 0; l < W; ++l)
-          v[l] = (ix.row_constrained[r] || ix.x_constrained[l][i]) ? 0.0 : p[ix.x[l][i]];
-      }
-    }
-  }
-
-  /// dst += u at the batch's nodes (inactive lanes and constrained DoFs skipped).
-  template <bool atomic>
-  KOKKOS_INLINE_FUNCTION void scatter_add(double* dst, const BatchIndex& ix, const T* u) const {
-    const int k = lattice.degree;
-    if (ix.fast) {
-      for (int r = 0; r < n_rows; ++r) {
-        double* p = dst + ix.rows[r] + ix.start;
-        for (int i = 0; i < n_p; ++i)
-          for (int l = 0; l < W; ++l) add<atomic>(p + l * k + i, u[r * n_p + i][l]);
-      }
-      return;
-    }
-    for (int r = 0; r < n_rows; ++r) {
-      if (ix.row_constrained[r]) continue;
-      double* p = dst + ix.rows[r];
-      for (int i = 0; i < n_p; ++i)
-        for (int l = 0; l < ix.active; ++l)
-          if (!ix.x_constrained[l][i]) add<atomic>(p + ix.x[l][i], u[r * n_p + i][l]);
-    }
-  }
-
-  template <bool atomic>
-  KOKKOS_INLINE_FUNCTION static void add(double* p, double v) {
-    if constexpr (atomic) Kokkos::atomic_add(p, v);
-    else *p += v;
-  }
-
-  /// x = a blocked field on the unwrapped node lattice (coordinates), lanes clamped.
-  KOKKOS_INLINE_FUNCTION void gather_nodes(const double* src, int b, T* x) const {
-    int cell[3];
-    lattice.batch_cell(b, cell);
-    const int active = lattice.active_lanes(b);
-    for (int n = 0; n < n_dofs; ++n) {
-      int node[3];
-      local_node(cell, n, node);
-      const int x0 = node[0];
-      for (int l = 0; l < W; ++l) {
-        node[0] = x0 + (l < active ? l : active - 1) * lattice.degree;
-        x[n][l] = src[lattice.node_index(node)];
-      }
-    }
-  }
 
   // --- geometry ---------------------------------------------------------------------------
   /// The point coefficients of batch b into s.jac ([coef][point]), from the node coordinates.
@@ -213,21 +109,6 @@ struct CellOperatorKernel {
         sumfac::convection_metric<dim>(J, w, vel, c);
       }
       for (int e = 0; e < n_coef; ++e) s.jac[e * n_points + q] = c[e];
-    }
-  }
-
-  KOKKOS_INLINE_FUNCTION void gather_unconstrained(const double* src, int b, T* u) const {
-    int cell[3];
-    lattice.batch_cell(b, cell);
-    const int active = lattice.active_lanes(b);
-    for (int n = 0; n < n_dofs; ++n) {
-      int node[3];
-      local_node(cell, n, node);
-      const int x0 = node[0];
-      for (int l = 0; l < W; ++l) {
-        node[0] = x0 + (l < active ? l : active - 1) * lattice.degree;
-        u[n][l] = src[lattice.dof_index(node)];
-      }
     }
   }
 
@@ -302,7 +183,7 @@ struct CellOperatorKernel {
     for (int comp = 0; comp < n_components; ++comp) {
       gather(src + comp * n, ix, u);
       apply_local(c, u, s);
-      scatter_add<atomic>(dst + comp * n, ix, u);
+      this->template scatter_add<atomic>(dst + comp * n, ix, u);
     }
   }
 
@@ -320,7 +201,7 @@ struct CellOperatorKernel {
     const long n = lattice.n_dofs();
     BatchIndex ix;
     batch_index(b, ix);
-    for (int comp = 0; comp < n_components; ++comp) scatter_add<atomic>(diag + comp * n, ix, d);
+    for (int comp = 0; comp < n_components; ++comp) this->template scatter_add<atomic>(diag + comp * n, ix, d);
   }
 
   /// Columns of A_cell (cell-local, lexicographic) of batch b: out[(j * n_dofs + i)] = A_ij.

@@ -34,23 +34,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     return k;
   }
 
-  /// Zeroes the node layers a slab writes first (every component), see for_each_batch_coloured.
-  struct FirstTouchZero {
-    sumfac::QkLattice<dim> lattice;
-    double* y;
-    int components;
-    KOKKOS_INLINE_FUNCTION void operator()(int slab) const {
-      int first = 0, end = 0;
-      lattice.slab_first_layers(slab, first, end);
-      long layer = lattice.dofs[0];
-      if (dim == 3) layer *= lattice.dofs[1];
-      const long n = lattice.n_dofs();
-      for (int c = 0; c < components; ++c)
-        for (long i = first * layer; i < end * layer; ++i) y[c * n + i] = 0.0;
-    }
-  };
-  static FirstTouchZero first_touch_zero(const MatrixFreeOperator& op, const Vector& y) {
-    return FirstTouchZero{op.space_->lattice(), y.data(), op.options_.components};
+  static sumfac::FirstTouchZero<dim> first_touch_zero(const MatrixFreeOperator& op, const Vector& y) {
+    return sumfac::FirstTouchZero<dim>{op.space_->lattice(), y.data(), op.options_.components};
   }
 
   static int coefficient_count(const Options& o) {

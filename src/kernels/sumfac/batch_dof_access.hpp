@@ -1,0 +1,175 @@
+#pragma once
+// Reading and writing the nodal values of one cell batch of a Q_k lattice (QkLattice): the
+// gather/scatter half of every matrix-free kernel (operators, transfers, error norms).
+#include "kernels/sumfac/qk_lattice.hpp"
+#include "kernels/sumfac/simd.hpp"
+
+namespace amphora::sumfac {
+
+template <int dim, int n_p, int W>
+struct BatchDofAccess {
+  using T = Simd<W>;
+  static constexpr int n_dofs = dim == 2 ? n_p * n_p : n_p * n_p * n_p;
+  QkLattice<dim> lattice;
+
+  /// Lattice node of local node `n` of lane 0's cell, and the per-lane stride along x.
+  KOKKOS_INLINE_FUNCTION void local_node(const int* cell, int n, int* node) const {
+    node[0] = cell[0] * lattice.degree + n % n_p;
+    node[1] = cell[1] * lattice.degree + (n / n_p) % n_p;
+    if constexpr (dim == 3) node[2] = cell[2] * lattice.degree + n / (n_p * n_p);
+  }
+
+  /// Where a batch's nodes live: per lane and x-node an offset, per (y, z) row a base, and
+  /// which of them are constrained. The fast batches (full, interior, no periodic wrap) need
+  /// only `start`: lane l, node i of row r is at rows[r] + start + l k + i.
+  static constexpr int n_rows = n_dofs / n_p;
+  struct BatchIndex {
+    bool fast;
+    int active;
+    long start;
+    long rows[n_rows];
+    bool row_constrained[n_rows];
+    int x[W][n_p];
+    bool x_constrained[W][n_p];
+  };
+
+  KOKKOS_INLINE_FUNCTION void batch_index(int b, BatchIndex& ix) const {
+    int cell[3];
+    lattice.batch_cell(b, cell);
+    const int k = lattice.degree;
+    ix.fast = !lattice.special_batch(b);
+    ix.active = lattice.active_lanes(b);
+    ix.start = static_cast<long>(cell[0]) * k;
+    const long sx = lattice.dofs[0], sxy = sx * lattice.dofs[1];
+    for (int r = 0; r < n_rows; ++r) {
+      const int ny = cell[1] * k + r % n_p;
+      const int nz = dim == 3 ? cell[2] * k + r / n_p : 0;
+      ix.rows[r] = sx * lattice.dof_1d(1, ny) + (dim == 3 ? sxy * lattice.dof_1d(2, nz) : 0);
+      ix.row_constrained[r] = lattice.constrained_1d(1, ny) || (dim == 3 && lattice.constrained_1d(2, nz));
+    }
+    if (ix.fast) return;
+    for (int l = 0; l < W; ++l)
+      for (int i = 0; i < n_p; ++i) {
+        const int nx = (cell[0] + (l < ix.active ? l : ix.active - 1)) * k + i;
+        ix.x[l][i] = lattice.dof_1d(0, nx);
+        ix.x_constrained[l][i] = lattice.constrained_1d(0, nx);
+      }
+  }
+
+  /// u = src at the batch's nodes (DoF lattice); constrained DoFs read as zero.
+  KOKKOS_INLINE_FUNCTION void gather(const double* src, const BatchIndex& ix, T* u) const {
+    const int k = lattice.degree;
+    if (ix.fast) {
+      for (int r = 0; r < n_rows; ++r) {
+        const double* p = src + ix.rows[r] + ix.start;
+        for (int i = 0; i < n_p; ++i) {
+          T& v = u[r * n_p + i];
+          for (int l = 0; l < W; ++l) v[l] = p[l * k + i];
+        }
+      }
+      return;
+    }
+    for (int r = 0; r < n_rows; ++r) {
+      const double* p = src + ix.rows[r];
+      for (int i = 0; i < n_p; ++i) {
+        T& v = u[r * n_p + i];
+        for (int l = 0; l < W; ++l)
+          v[l] = (ix.row_constrained[r] || ix.x_constrained[l][i]) ? 0.0 : p[ix.x[l][i]];
+      }
+    }
+  }
+
+  /// dst += u at the batch's nodes (inactive lanes and constrained DoFs skipped).
+  template <bool atomic>
+  KOKKOS_INLINE_FUNCTION void scatter_add(double* dst, const BatchIndex& ix, const T* u) const {
+    const int k = lattice.degree;
+    if (ix.fast) {
+      for (int r = 0; r < n_rows; ++r) {
+        double* p = dst + ix.rows[r] + ix.start;
+        for (int i = 0; i < n_p; ++i)
+          for (int l = 0; l < W; ++l) add<atomic>(p + l * k + i, u[r * n_p + i][l]);
+      }
+      return;
+    }
+    for (int r = 0; r < n_rows; ++r) {
+      if (ix.row_constrained[r]) continue;
+      double* p = dst + ix.rows[r];
+      for (int i = 0; i < n_p; ++i)
+        for (int l = 0; l < ix.active; ++l)
+          if (!ix.x_constrained[l][i]) add<atomic>(p + ix.x[l][i], u[r * n_p + i][l]);
+    }
+  }
+
+  template <bool atomic>
+  KOKKOS_INLINE_FUNCTION static void add(double* p, double v) {
+    if constexpr (atomic) Kokkos::atomic_add(p, v);
+    else *p += v;
+  }
+
+  /// x = a blocked field on the unwrapped node lattice (coordinates), lanes clamped.
+  KOKKOS_INLINE_FUNCTION void gather_nodes(const double* src, int b, T* x) const {
+    int cell[3];
+    lattice.batch_cell(b, cell);
+    const int active = lattice.active_lanes(b);
+    for (int n = 0; n < n_dofs; ++n) {
+      int node[3];
+      local_node(cell, n, node);
+      const int x0 = node[0];
+      for (int l = 0; l < W; ++l) {
+        node[0] = x0 + (l < active ? l : active - 1) * lattice.degree;
+        x[n][l] = src[lattice.node_index(node)];
+      }
+    }
+  }
+
+  /// u = src at the batch's nodes, constrained DoFs included (fields, not unknowns).
+  KOKKOS_INLINE_FUNCTION void gather_unconstrained(const double* src, int b, T* u) const {
+    int cell[3];
+    lattice.batch_cell(b, cell);
+    const int active = lattice.active_lanes(b);
+    for (int n = 0; n < n_dofs; ++n) {
+      int node[3];
+      local_node(cell, n, node);
+      const int x0 = node[0];
+      for (int l = 0; l < W; ++l) {
+        node[0] = x0 + (l < active ? l : active - 1) * lattice.degree;
+        u[n][l] = src[lattice.dof_index(node)];
+      }
+    }
+  }
+
+  /// Inverse multiplicities of the batch's nodes (cells sharing each node), lanes clamped.
+  KOKKOS_INLINE_FUNCTION void inverse_multiplicity(int b, T* w) const {
+    int cell[3];
+    lattice.batch_cell(b, cell);
+    const int active = lattice.active_lanes(b);
+    for (int n = 0; n < n_dofs; ++n) {
+      int node[3];
+      local_node(cell, n, node);
+      const int x0 = node[0];
+      for (int l = 0; l < W; ++l) {
+        node[0] = x0 + (l < active ? l : active - 1) * lattice.degree;
+        w[n][l] = 1.0 / lattice.multiplicity(node);
+      }
+    }
+  }
+};
+
+/// Zeroes the node layers a slab writes first (every component), see for_each_batch_coloured.
+template <int dim>
+struct FirstTouchZero {
+  QkLattice<dim> lattice;
+  double* y;
+  int components;
+  KOKKOS_INLINE_FUNCTION void operator()(int slab) const {
+    int first = 0, end = 0;
+    lattice.slab_first_layers(slab, first, end);
+    long layer = lattice.dofs[0];
+    if (dim == 3) layer *= lattice.dofs[1];
+    const long n = lattice.n_dofs();
+    for (int c = 0; c < components; ++c)
+      for (long i = first * layer; i < end * layer; ++i) y[c * n + i] = 0.0;
+  }
+};
+
+}  // namespace amphora::sumfac

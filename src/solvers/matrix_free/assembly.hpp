@@ -1,0 +1,13 @@
+#pragma once
+// The assembled matrix of a matrix-free operator (scalar), from its element matrices, with
+// Dirichlet rows and columns replaced by identity: the same constrained system the operator
+// applies. For coarse-grid AMG and for comparisons against sparse-matrix solvers.
+#include "solvers/csr_matrix.hpp"
+#include "solvers/matrix_free/matrix_free_operator.hpp"
+
+namespace amphora::solvers {
+
+template <int dim, class ExecSpace>
+CsrMatrix assemble(const ExecSpace& exec, const MatrixFreeOperator<dim, ExecSpace>& op);
+
+}  // namespace amphora::solvers

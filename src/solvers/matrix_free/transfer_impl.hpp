@@ -1,0 +1,166 @@
+#pragma once
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include "kernels/sumfac/batch_dof_access.hpp"
+#include "kernels/sumfac/shape_data.hpp"
+#include "kernels/sumfac/tensor_product_evaluator.hpp"
+#include "solvers/matrix_free/cell_operator_kernel.hpp"
+#include "solvers/matrix_free/degree_dispatch.hpp"
+#include "solvers/matrix_free/transfer.hpp"
+
+namespace amphora::solvers {
+
+template <int dim, class ExecSpace>
+struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
+  static constexpr int W = sumfac::simd_width_v<ExecSpace>;
+  using T = sumfac::Simd<W>;
+  sumfac::QkLattice<dim> coarse, fine;  // both on the coarse cells
+  int components = 1;
+  std::shared_ptr<void> shape;
+  void (*prolongate)(const Impl&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
+  void (*restrict_to_coarse)(const Impl&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
+
+  template <int n_pc, int n_pf>
+  struct Kernel {
+    sumfac::BatchDofAccess<dim, n_pc, W> c;
+    sumfac::BatchDofAccess<dim, n_pf, W> f;
+    sumfac::ShapeData<n_pc, n_pf> shape;
+    using Eval = sumfac::TensorProductEvaluator<dim, n_pc, n_pf>;
+
+    template <bool atomic>
+    KOKKOS_INLINE_FUNCTION void prolongate(const double* xc, double* xf, int b) const {
+      T uc[Eval::n_dofs], uf[Eval::n_points], w[Eval::n_points], tmp[Eval::n_scratch];
+      typename sumfac::BatchDofAccess<dim, n_pc, W>::BatchIndex ic;
+      typename sumfac::BatchDofAccess<dim, n_pf, W>::BatchIndex jf;
+      c.batch_index(b, ic);
+      f.batch_index(b, jf);
+      c.gather(xc, ic, uc);
+      Eval::values(shape, uc, uf, tmp);
+      f.inverse_multiplicity(b, w);
+      for (int i = 0; i < Eval::n_points; ++i) uf[i] *= w[i];
+      f.template scatter_add<atomic>(xf, jf, uf);
+    }
+    template <bool atomic>
+    KOKKOS_INLINE_FUNCTION void restrict_to_coarse(const double* xf, double* xc, int b) const {
+      T uc[Eval::n_dofs], uf[Eval::n_points], w[Eval::n_points], tmp[Eval::n_scratch];
+      typename sumfac::BatchDofAccess<dim, n_pc, W>::BatchIndex ic;
+      typename sumfac::BatchDofAccess<dim, n_pf, W>::BatchIndex jf;
+      c.batch_index(b, ic);
+      f.batch_index(b, jf);
+      f.gather(xf, jf, uf);
+      f.inverse_multiplicity(b, w);
+      for (int i = 0; i < Eval::n_points; ++i) uf[i] *= w[i];
+      Eval::integrate_values(shape, uf, uc, tmp);
+      c.template scatter_add<atomic>(xc, ic, uc);
+    }
+  };
+
+  template <int n_pc, int n_pf>
+  static Kernel<n_pc, n_pf> kernel(const Impl& impl) {
+    Kernel<n_pc, n_pf> k;
+    k.c.lattice = impl.coarse;
+    k.f.lattice = impl.fine;
+    k.shape = *static_cast<const sumfac::ShapeData<n_pc, n_pf>*>(impl.shape.get());
+    return k;
+  }
+
+  template <int n_pc, int n_pf>
+  static void prolongate_impl(const Impl& impl, const ExecSpace& exec, const Vector& xc, const Vector& xf) {
+    const auto k = kernel<n_pc, n_pf>(impl);
+    constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
+    if (atomic) Kokkos::deep_copy(exec, xf, 0.0);
+    const long nc = impl.coarse.n_dofs(), nf = impl.fine.n_dofs();
+    for (int comp = 0; comp < impl.components; ++comp) {
+      const double* src = xc.data() + comp * nc;
+      double* dst = xf.data() + comp * nf;
+      for_each_batch_coloured(exec, impl.fine, "amphora::MatrixFreeTransfer::prolongate",
+                              sumfac::FirstTouchZero<dim>{impl.fine, dst, 1},
+                              KOKKOS_LAMBDA(int b) { k.template prolongate<atomic>(src, dst, b); });
+    }
+  }
+
+  template <int n_pc, int n_pf>
+  static void restrict_impl(const Impl& impl, const ExecSpace& exec, const Vector& xf, const Vector& xc) {
+    const auto k = kernel<n_pc, n_pf>(impl);
+    constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
+    if (atomic) Kokkos::deep_copy(exec, xc, 0.0);
+    const long nc = impl.coarse.n_dofs(), nf = impl.fine.n_dofs();
+    for (int comp = 0; comp < impl.components; ++comp) {
+      const double* src = xf.data() + comp * nf;
+      double* dst = xc.data() + comp * nc;
+      for_each_batch_coloured(exec, impl.coarse, "amphora::MatrixFreeTransfer::restrict",
+                              sumfac::FirstTouchZero<dim>{impl.coarse, dst, 1},
+                              KOKKOS_LAMBDA(int b) { k.template restrict_to_coarse<atomic>(src, dst, b); });
+    }
+  }
+};
+
+namespace detail {
+/// Compiled (k_c, k_f) pairs: k_f in k_c + 1 .. 2 k_c + 1 (every step of degree bisection).
+template <int kc = 1, class F>
+void dispatch_transfer(int coarse_degree, int fine_degree, F&& f) {
+  if (coarse_degree == kc) {
+    if constexpr (kc + 1 <= max_compiled_degree) if (fine_degree == kc + 1) return f(std::integral_constant<int, kc + 1>{}, std::integral_constant<int, kc + 2>{});
+    if constexpr (2 * kc <= max_compiled_degree) if (fine_degree == 2 * kc) return f(std::integral_constant<int, kc + 1>{}, std::integral_constant<int, 2 * kc + 1>{});
+    if constexpr (2 * kc + 1 <= max_compiled_degree) if (fine_degree == 2 * kc + 1) return f(std::integral_constant<int, kc + 1>{}, std::integral_constant<int, 2 * kc + 2>{});
+  }
+  if constexpr (kc < 4) {
+    return dispatch_transfer<kc + 1>(coarse_degree, fine_degree, f);
+  } else {
+    throw std::invalid_argument("MatrixFreeTransfer: no kernel from degree " + std::to_string(coarse_degree) +
+                                " to " + std::to_string(fine_degree) +
+                                "; compiled: k_c = 1..4 to k_c + 1, 2 k_c, 2 k_c + 1");
+  }
+}
+}  // namespace detail
+
+template <int dim, class ExecSpace>
+MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, const Space& fine, int components) {
+  auto impl = std::make_shared<Impl>();
+  impl->components = components;
+  impl->coarse = coarse.lattice();
+  const auto& mc = coarse.mesh();
+  const auto& mf = fine.mesh();
+  bool same = true, refined = true;
+  for (int d = 0; d < dim; ++d) {
+    same = same && mf.cells[d] == mc.cells[d];
+    refined = refined && mf.cells[d] == 2 * mc.cells[d];
+  }
+  int fine_degree = fine.degree();
+  if (same && fine.degree() > coarse.degree()) {
+    impl->fine = fine.lattice();
+  } else if (refined && fine.degree() == 1 && coarse.degree() == 1) {
+    bool periodic[3] = {false, false, false};
+    for (int d = 0; d < dim; ++d) periodic[d] = mc.periodic(d);
+    impl->fine = sumfac::QkLattice<dim>::create(2, mc.cells.data(), periodic, mc.dirichlet_faces(),
+                                                impl->coarse.width);
+    fine_degree = 2;
+  } else {
+    throw std::invalid_argument(
+        "MatrixFreeTransfer: the fine space must have the coarse cells and a higher degree, or twice "
+        "the cells per direction with both of degree 1");
+  }
+  detail::dispatch_transfer(coarse.degree(), fine_degree, [&](auto pc, auto pf) {
+    constexpr int n_pc = decltype(pc)::value, n_pf = decltype(pf)::value;
+    impl->shape = std::make_shared<sumfac::ShapeData<n_pc, n_pf>>(sumfac::ShapeData<n_pc, n_pf>::interpolation());
+    impl->prolongate = &Impl::template prolongate_impl<n_pc, n_pf>;
+    impl->restrict_to_coarse = &Impl::template restrict_impl<n_pc, n_pf>;
+  });
+  impl_ = impl;
+}
+
+template <int dim, class ExecSpace>
+void MatrixFreeTransfer<dim, ExecSpace>::prolongate(const ExecSpace& exec, const Vector& coarse,
+                                                    const Vector& fine) const {
+  impl_->prolongate(*impl_, exec, coarse, fine);
+}
+
+template <int dim, class ExecSpace>
+void MatrixFreeTransfer<dim, ExecSpace>::restrict_to_coarse(const ExecSpace& exec, const Vector& fine,
+                                                            const Vector& coarse) const {
+  impl_->restrict_to_coarse(*impl_, exec, fine, coarse);
+}
+
+}  // namespace amphora::solvers
