@@ -19,6 +19,10 @@ struct ShapeData {
   EvenOddMatrix<n_p, n_q> values_t;    ///< its transpose (integration)
   EvenOddMatrix<n_q, n_q> derivative;  ///< d/dx of the Lagrange basis on the points, at the points
   EvenOddMatrix<n_q, n_q> derivative_t;
+  /// Transposed products of basis values s and derivatives d at the points, entry-wise:
+  /// s*s, s*d, d*d. They integrate a point field against phi_i^2 and its derivative
+  /// products, which gives an operator's diagonal in dim sweeps per term.
+  EvenOddMatrix<n_p, n_q> ss_t, sd_t, dd_t;
   double weights[n_q];
   double points[n_q];
   /// Quadrature points coincide with the nodes (n_q = n_p, Gauss–Lobatto): values are identity.
@@ -30,6 +34,14 @@ struct ShapeData {
     ShapeData s{};
     s.values = EvenOddMatrix<n_q, n_p>::from_dense(lagrange_values(nodes, q.points), 1);
     s.values_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(lagrange_values(nodes, q.points), n_q, n_p), 1);
+    {
+      const std::vector<double> v = lagrange_values(nodes, q.points), g = lagrange_derivatives(nodes, q.points);
+      std::vector<double> ss(v.size()), sd(v.size()), dd(v.size());
+      for (std::size_t i = 0; i < v.size(); ++i) ss[i] = v[i] * v[i], sd[i] = v[i] * g[i], dd[i] = g[i] * g[i];
+      s.ss_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(ss, n_q, n_p), 1);
+      s.sd_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(sd, n_q, n_p), -1);
+      s.dd_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(dd, n_q, n_p), 1);
+    }
     const std::vector<double> d = lagrange_derivatives(q.points, q.points);
     s.derivative = EvenOddMatrix<n_q, n_q>::from_dense(d, -1);
     s.derivative_t = EvenOddMatrix<n_q, n_q>::from_dense(transpose(d, n_q, n_q), -1);

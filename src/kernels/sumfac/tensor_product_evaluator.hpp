@@ -57,6 +57,21 @@ struct TensorProductEvaluator {
     }
   }
 
+  /// u (+)= integral of v with a different 1D matrix per direction (m[d], each n_p x n_q);
+  /// v is overwritten.
+  template <bool add, class T>
+  KOKKOS_FORCEINLINE_FUNCTION static void integrate_tensor(const EvenOddMatrix<n_p, n_q>* const* m, T* v,
+                                                           T* u, T* tmp) {
+    if constexpr (dim == 2) {
+      apply_even_odd<n_p, n_q, n_q, 1, false>(*m[1], v, tmp);
+      apply_even_odd<n_p, n_q, 1, n_p, add>(*m[0], tmp, u);
+    } else {
+      apply_even_odd<n_p, n_q, n_q * n_q, 1, false>(*m[2], v, tmp);
+      apply_even_odd<n_p, n_q, n_q, n_p, false>(*m[1], tmp, v);
+      apply_even_odd<n_p, n_q, 1, n_p * n_p, add>(*m[0], v, u);
+    }
+  }
+
   /// grad[d * n_points + q] = d v / d xi_d at the points (reference coordinates).
   template <class T>
   KOKKOS_FORCEINLINE_FUNCTION static void gradients(const ShapeData<n_p, n_q>& s, const T* v,

@@ -170,6 +170,43 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
     Eval::integrate_values(shape, s.v, u, s.tmp);
   }
 
+  /// Entry e of the point coefficients at point q (per-cell modes: times the weight; the
+  /// cartesian Laplace metric is diagonal).
+  KOKKOS_INLINE_FUNCTION T coefficient(const T* c, int e, int q) const {
+    if (mode == GeometryMode::stored || mode == GeometryMode::on_the_fly) return c[e * n_points + q];
+    const T w(Eval::weight(shape, q));
+    if (mode == GeometryMode::cartesian && kind == OperatorKind::laplace) {
+      for (int a = 0; a < dim; ++a)
+        if (sumfac::sym_index<dim>(a, a) == e) return w * c[a];
+      return T(0.0);
+    }
+    return w * c[e];
+  }
+
+  /// d = the diagonal of A_cell: for each term of the bilinear form, the point coefficient
+  /// integrated against products of 1D values/derivatives (ShapeData::ss_t, sd_t, dd_t).
+  KOKKOS_INLINE_FUNCTION void diagonal_local(const T* c, T* d, Scratch& s) const {
+    for (int i = 0; i < n_dofs; ++i) d[i] = T(0.0);
+    using M = sumfac::EvenOddMatrix<n_p, n_q>;
+    if (kind == OperatorKind::mass) {
+      for (int q = 0; q < n_points; ++q) s.v[q] = coefficient(c, 0, q);
+      const M* m[3] = {&shape.ss_t, &shape.ss_t, &shape.ss_t};
+      Eval::template integrate_tensor<true>(m, s.v, d, s.tmp);
+      return;
+    }
+    for (int a = 0; a < dim; ++a)
+      for (int b = a; b < dim; ++b) {
+        if (mode == GeometryMode::cartesian && a != b) continue;
+        const int e = sumfac::sym_index<dim>(a, b);
+        const T f(a == b ? 1.0 : 2.0);
+        for (int q = 0; q < n_points; ++q) s.v[q] = f * coefficient(c, e, q);
+        const M* m[3];
+        for (int dd = 0; dd < dim; ++dd)
+          m[dd] = (dd == a && dd == b) ? &shape.dd_t : (dd == a || dd == b) ? &shape.sd_t : &shape.ss_t;
+        Eval::template integrate_tensor<true>(m, s.v, d, s.tmp);
+      }
+  }
+
   /// dst += A src on batch b, every component.
   template <bool atomic>
   KOKKOS_INLINE_FUNCTION void apply_batch(const double* src, double* dst, int n_components,
@@ -191,13 +228,9 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
   template <bool atomic>
   KOKKOS_INLINE_FUNCTION void diagonal_batch(double* diag, int n_components, int b) const {
     Scratch s;
-    T u[n_dofs], d[n_dofs];
+    T d[n_dofs];
     const T* c = coefficients(b, s);
-    for (int j = 0; j < n_dofs; ++j) {
-      for (int i = 0; i < n_dofs; ++i) u[i] = T(i == j ? 1.0 : 0.0);
-      apply_local(c, u, s);
-      d[j] = u[j];
-    }
+    diagonal_local(c, d, s);
     const long n = lattice.n_dofs();
     BatchIndex ix;
     batch_index(b, ix);

@@ -202,6 +202,8 @@ void MatrixFreeOperator<dim, ExecSpace>::apply(const ExecSpace& exec, const Vect
 
 template <int dim, class ExecSpace>
 void MatrixFreeOperator<dim, ExecSpace>::compute_diagonal(const ExecSpace& exec, const Vector& d) const {
+  if (options_.kind == OperatorKind::convection)
+    throw std::invalid_argument("MatrixFreeOperator::compute_diagonal: not provided for convection");
   impl_->diagonal(*this, exec, d);
 }
 
