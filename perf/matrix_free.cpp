@@ -3,12 +3,38 @@
 // LaplaceDealii/p: the configuration of the deal.II 9.4 anchor in the issue: 3D Laplace on a
 // refined unit cube (Cartesian cells), FE_Q(p), QGauss(p+1), homogeneous Dirichlet, 2–7 million
 // DoFs; one operator application per iteration. Bound: STREAM triad / 16 bytes per DoF
-// (read the source, write the destination once).
+// (read the source, write the destination once). vs_dealii_* divide by the anchor figures.
+//
+// LaplaceLarge/p: the same operator on ~40 million DoFs (vectors of 320 MB, beyond the 300 MiB
+// last-level cache): the memory-bound regime.
+//
+// BP/bp/p/e: the CEED bake-off problems (https://ceed.exascaleproject.org/bps/) on a unit cube
+// of Cartesian cells with about 10^e DoFs: BP1/2 mass (scalar/3 components, Gauss p+2, no
+// Dirichlet), BP3/4 Laplace (Gauss p+2), BP5/6 Laplace collocated on Gauss–Lobatto p+1, BP3-6
+// Dirichlet; unpreconditioned CG, 50 iterations; MDoF/s = DoFs x iterations / CG time.
+// Bound: STREAM / bytes per DoF per iteration of the CG as implemented (separate BLAS-1
+// kernels: operator 16, p.q 16, x += a p 24, r -= a q 24, r.r 8, p = r + b p 24; 112 bytes
+// per component). A CG fused into the operator loop could go down to ~48 bytes.
+//
+// GeometryModes/mode/p: Laplace (Gauss p+1) on ~2 million DoFs with each geometry mode (0
+// cartesian, 1 affine, 2 stored at points, 3 on the fly; curved cells for 2 and 3):
+// throughput against geometry bytes per DoF, the memory-for-flops trade.
+//
+// PoissonSolve/k/solver: -lap u = f on ~2 million DoFs (Q_k, unit cube, Dirichlet) to a
+// relative residual of 1e-8, setup included: solver 0 = matrix-free multigrid-CG, 1 = hypre
+// BoomerAMG-CG on the assembled operator of the same problem (assembly time reported apart).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 
+#include <chrono>
+#include <vector>
+
 #include "kernels/blas1.hpp"
+#include "solvers/conjugate_gradient.hpp"
+#include "solvers/hypre_boomeramg.hpp"
+#include "solvers/matrix_free/assembly.hpp"
+#include "solvers/matrix_free/multigrid.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "stream_bandwidth.hpp"
 
@@ -30,6 +56,10 @@ int dealii_cells(int p) {
     default: return 16;
   }
 }
+
+// deal.II 9.4 MatrixFree anchor (MDoF/s, issue 6), by degree
+constexpr double dealii_1core[] = {0, 0, 69, 73, 88, 79, 83};
+constexpr double dealii_2ranks[] = {0, 0, 112, 136, 150, 160, 182};
 
 void report(benchmark::State& state, double dofs, double bytes_per_dof) {
   const double bw = amphora::perf::stream_triad_bandwidth();
@@ -57,7 +87,180 @@ void LaplaceDealii(benchmark::State& state) {
     exec.fence();
   }
   report(state, static_cast<double>(space.n_dofs()), 16.0);
+  const double rate = static_cast<double>(space.n_dofs());
+  (void)rate;
+  state.counters["vs_dealii_1core"] = benchmark::Counter(space.n_dofs() * 1e-6 / dealii_1core[p], benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["vs_dealii_2ranks"] = benchmark::Counter(space.n_dofs() * 1e-6 / dealii_2ranks[p], benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(LaplaceDealii)->DenseRange(2, 6)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+Vector random_vector(long n, unsigned seed) {
+  Vector v("v", n);
+  Kokkos::parallel_for("amphora::bench::random", amphora::RangePolicy<Exec>(0, static_cast<int>(n)),
+                       KOKKOS_LAMBDA(int i) {
+                         const unsigned h = (static_cast<unsigned>(i) + seed) * 2654435761u;
+                         v(i) = static_cast<double>(h % 1000003u) / 1000003.0 - 0.5;
+                       });
+  return v;
+}
+
+/// Cells per direction for about `target` Q_p DoFs, a multiple of 8 once above 8.
+int cells_for(double target, int p) {
+  int n = static_cast<int>(std::lround((std::cbrt(target) - 1.0) / p));
+  if (n > 8) n = (n + 4) / 8 * 8;
+  return std::max(n, 1);
+}
+
+void LaplaceLarge(benchmark::State& state) {
+  const int p = static_cast<int>(state.range(0));
+  const int n = cells_for(4e7, p);
+  const mesh::QkSpace<3, Exec> space(mesh::unit_cube<3>(n), p);
+  Op::Options o;
+  o.geometry = amphora::solvers::GeometryMode::cartesian;
+  const Op op(space, o);
+  Vector x = random_vector(space.n_dofs(), 1), y("y", space.n_dofs());
+  const Exec exec;
+  op.apply(exec, x, y);
+  exec.fence();
+  for (auto _ : state) {
+    op.apply(exec, x, y);
+    exec.fence();
+  }
+  report(state, static_cast<double>(space.n_dofs()), 16.0);
+}
+BENCHMARK(LaplaceLarge)->DenseRange(2, 6)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BP(benchmark::State& state) {
+  using amphora::solvers::OperatorKind;
+  const int bp = static_cast<int>(state.range(0)), p = static_cast<int>(state.range(1));
+  const double target = std::pow(10.0, static_cast<double>(state.range(2)));
+  const int n = cells_for(target, p);
+  const bool mass = bp <= 2;
+  auto m = mesh::unit_cube<3>(n, mass ? mesh::FaceCondition::neumann : mesh::FaceCondition::dirichlet);
+  const mesh::QkSpace<3, Exec> space(m, p);
+  Op::Options o;
+  o.kind = mass ? OperatorKind::mass : OperatorKind::laplace;
+  o.geometry = amphora::solvers::GeometryMode::cartesian;
+  o.components = bp % 2 == 0 ? 3 : 1;
+  o.n_q = bp >= 5 ? p + 1 : p + 2;
+  o.quadrature = bp >= 5 ? amphora::sumfac::QuadratureKind::gauss_lobatto : amphora::sumfac::QuadratureKind::gauss;
+  const Op op(space, o);
+  const long N = op.size();
+  Vector b = random_vector(N, 7), x("x", N);
+  amphora::solvers::SolverControl control;
+  control.max_iterations = 50;
+  control.relative_tolerance = 0.0;
+  const Exec exec;
+  int iterations = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Kokkos::deep_copy(x, 0.0);
+    exec.fence();
+    state.ResumeTiming();
+    iterations = amphora::solvers::conjugate_gradient(exec, op, b, x, control).iterations;
+    exec.fence();
+  }
+  state.counters["MDoF/s"] = benchmark::Counter(N * iterations * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["DoFs"] = static_cast<double>(N);
+  state.counters["iterations"] = iterations;
+  const double bw = amphora::perf::stream_triad_bandwidth();
+  state.counters["bound_MDoF/s"] = bw / 112.0 * 1e-6;
+}
+void bp_args(benchmark::internal::Benchmark* b) {
+  for (int bp = 1; bp <= 6; ++bp)
+    for (int p = 1; p <= 8; ++p)
+      for (int e = 4; e <= 7; ++e) b->Args({bp, p, e});
+}
+BENCHMARK(BP)->Apply(bp_args)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+void GeometryModes(benchmark::State& state) {
+  using amphora::solvers::GeometryMode;
+  const auto mode = static_cast<GeometryMode>(state.range(0));
+  const int p = static_cast<int>(state.range(1));
+  auto m = mesh::unit_cube<3>(cells_for(2e6, p));
+  if (mode == GeometryMode::stored || mode == GeometryMode::on_the_fly)
+    m.deformation = mesh::sinusoidal_deformation(3, 0.05);
+  const mesh::QkSpace<3, Exec> space(m, p);
+  Op::Options o;
+  o.geometry = mode;
+  const Op op(space, o);
+  Vector x = random_vector(space.n_dofs(), 3), y("y", space.n_dofs());
+  const Exec exec;
+  op.apply(exec, x, y);
+  exec.fence();
+  for (auto _ : state) {
+    op.apply(exec, x, y);
+    exec.fence();
+  }
+  const double n = static_cast<double>(space.n_dofs());
+  report(state, n, 16.0 + op.geometry_bytes() / n);
+  state.counters["geometry_B/DoF"] = op.geometry_bytes() / n;
+}
+BENCHMARK(GeometryModes)->ArgsProduct({{0, 1, 2, 3}, {2, 4, 6}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void PoissonSolve(benchmark::State& state) {
+  using namespace amphora::solvers;
+  const int k = static_cast<int>(state.range(0));
+  const bool amg = state.range(1) == 1;
+  const mesh::QkSpace<3, Exec> space(mesh::unit_cube<3>(cells_for(2e6, k)), k);
+  const long N = space.n_dofs();
+  Op::Options o;
+  o.geometry = GeometryMode::cartesian;
+  const Exec exec;
+  // right-hand side: M f for a smooth f, zero on the Dirichlet DoFs
+  Vector f = random_vector(N, 5), b("b", N), x("x", N);
+  Kokkos::parallel_for("amphora::bench::smooth_f", amphora::RangePolicy<Exec>(0, static_cast<int>(N)),
+                       KOKKOS_LAMBDA(int i) { f(i) = 1.0 + 0.1 * f(i); });
+  {
+    Op::Options om = o;
+    om.kind = OperatorKind::mass;
+    Op(space, om).apply(exec, f, b);
+    auto cons = space.constrained_dofs();
+    Kokkos::parallel_for("amphora::bench::bc", amphora::RangePolicy<Exec>(0, static_cast<int>(cons.extent(0))),
+                         KOKKOS_LAMBDA(int i) { b(cons(i)) = 0.0; });
+  }
+  const Op A(space, o);
+  SolverControl control;
+  control.relative_tolerance = 1e-8;
+  control.max_iterations = 500;
+  int iterations = 0;
+  double assembly_s = 0.0, setup_s = 0.0, total_s = 0.0;
+  CsrMatrix csr;
+  if (amg) {
+    const auto t0 = std::chrono::steady_clock::now();
+    csr = assemble(exec, A);
+    assembly_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  for (auto _ : state) {
+    Kokkos::deep_copy(x, 0.0);
+    exec.fence();
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!amg) {
+      const MatrixFreeMultigrid<3, Exec> mg(exec, A);
+      exec.fence();
+      setup_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      iterations = conjugate_gradient(exec, A, b, x, control, mg).iterations;
+      exec.fence();
+      state.SetLabel(mg.describe());
+    } else {
+      auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b);
+      std::vector<double> xh(N, 0.0);
+      const BoomerAMG solver(csr);
+      iterations = solver.pcg(bh.data(), xh.data(), 1e-8, 500).iterations;  // setup inside
+    }
+    total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+  state.counters["DoFs"] = static_cast<double>(N);
+  state.counters["iterations"] = iterations;
+  state.counters["ns/DoF"] = benchmark::Counter(N * 1e-9, benchmark::Counter::kIsIterationInvariantRate |
+                                                              benchmark::Counter::kInvert);
+  state.counters["total_s"] = total_s;
+  if (!amg) state.counters["setup_s"] = setup_s;
+  if (amg) {
+    state.counters["assembly_s"] = assembly_s;
+    state.counters["nnz"] = static_cast<double>(csr.nnz());
+  }
+}
+BENCHMARK(PoissonSolve)->ArgsProduct({{2, 4}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(1);
 
 }  // namespace
