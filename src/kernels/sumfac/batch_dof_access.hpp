@@ -24,7 +24,9 @@ struct BatchDofAccess {
   /// only `start`: lane l, node i of row r is at rows[r] + start + l k + i.
   static constexpr int n_rows = n_dofs / n_p;
   struct BatchIndex {
-    bool fast;
+    bool fast;     ///< full batch, no periodic wrap: contiguous addressing
+    bool x_lower;  ///< fast batch on a Dirichlet face x = lower: lane 0, node 0 constrained
+    bool x_upper;  ///< ... x = upper: lane W-1, node k constrained
     int active;
     long start;
     long rows[n_rows];
@@ -37,8 +39,10 @@ struct BatchDofAccess {
     int cell[3];
     lattice.batch_cell(b, cell);
     const int k = lattice.degree;
-    ix.fast = !lattice.special_batch(b);
     ix.active = lattice.active_lanes(b);
+    ix.fast = ix.active == W && !lattice.wraps(b);
+    ix.x_lower = cell[0] == 0 && (lattice.dirichlet_faces & 1);
+    ix.x_upper = cell[0] + W == lattice.cells[0] && (lattice.dirichlet_faces >> 1 & 1);
     ix.start = static_cast<long>(cell[0]) * k;
     const long sx = lattice.dofs[0], sxy = sx * lattice.dofs[1];
     for (int r = 0; r < n_rows; ++r) {
@@ -61,11 +65,17 @@ struct BatchDofAccess {
     const int k = lattice.degree;
     if (ix.fast) {
       for (int r = 0; r < n_rows; ++r) {
+        if (ix.row_constrained[r]) {
+          for (int i = 0; i < n_p; ++i) u[r * n_p + i] = T(0.0);
+          continue;
+        }
         const double* p = src + ix.rows[r] + ix.start;
         for (int i = 0; i < n_p; ++i) {
           T& v = u[r * n_p + i];
           for (int l = 0; l < W; ++l) v[l] = p[l * k + i];
         }
+        if (ix.x_lower) u[r * n_p][0] = 0.0;
+        if (ix.x_upper) u[r * n_p + n_p - 1][W - 1] = 0.0;
       }
       return;
     }
@@ -79,12 +89,14 @@ struct BatchDofAccess {
     }
   }
 
-  /// dst += u at the batch's nodes (inactive lanes and constrained DoFs skipped).
+  /// dst += u at the batch's nodes, inactive lanes skipped. Constrained DoFs may receive
+  /// contributions (fast batches on an x face): callers overwrite them afterwards.
   template <bool atomic>
   KOKKOS_INLINE_FUNCTION void scatter_add(double* dst, const BatchIndex& ix, const T* u) const {
     const int k = lattice.degree;
     if (ix.fast) {
       for (int r = 0; r < n_rows; ++r) {
+        if (ix.row_constrained[r]) continue;
         double* p = dst + ix.rows[r] + ix.start;
         for (int i = 0; i < n_p; ++i)
           for (int l = 0; l < W; ++l) add<atomic>(p + l * k + i, u[r * n_p + i][l]);

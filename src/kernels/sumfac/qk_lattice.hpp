@@ -125,18 +125,13 @@ struct QkLattice {
     }
     return m;
   }
-  /// True if the batch is partial or touches a Dirichlet face or a periodic wrap (the slow
-  /// gather path).
-  KOKKOS_INLINE_FUNCTION bool special_batch(int b) const {
+  /// True if a node of the batch lies on the wrapped last layer of a periodic direction.
+  KOKKOS_INLINE_FUNCTION bool wraps(int b) const {
     int c[3];
     batch_cell(b, c);
-    if (active_lanes(b) < width) return true;
-    const int last0 = c[0] + width - 1;
-    for (int d = 0; d < dim; ++d) {
-      const int lo = c[d], hi = d == 0 ? last0 : c[d];
-      if (lo == 0 && (dirichlet_faces >> (2 * d) & 1)) return true;
-      if (hi == cells[d] - 1 && ((dirichlet_faces >> (2 * d + 1) & 1) || periodic[d])) return true;
-    }
+    const int last0 = c[0] + active_lanes(b) - 1;
+    for (int d = 0; d < dim; ++d)
+      if (periodic[d] && (d == 0 ? last0 : c[d]) == cells[d] - 1) return true;
     return false;
   }
 };

@@ -17,7 +17,15 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
   static constexpr int W = sumfac::simd_width_v<ExecSpace>;
   using T = sumfac::Simd<W>;
   sumfac::QkLattice<dim> coarse, fine;  // both on the coarse cells
+  Kokkos::View<long*, typename ExecSpace::memory_space> coarse_constrained, fine_constrained;
   int components = 1;
+
+  static void zero_constrained(const ExecSpace& exec, const Kokkos::View<long*, typename ExecSpace::memory_space>& c,
+                               double* y) {
+    Kokkos::parallel_for("amphora::MatrixFreeTransfer::constraints",
+                         RangePolicy<ExecSpace>(exec, 0, static_cast<int>(c.extent(0))),
+                         KOKKOS_LAMBDA(int i) { y[c(i)] = 0.0; });
+  }
   std::shared_ptr<void> shape;
   void (*prolongate)(const Impl&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
   void (*restrict_to_coarse)(const Impl&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
@@ -78,6 +86,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
       for_each_batch_coloured(exec, impl.fine, "amphora::MatrixFreeTransfer::prolongate",
                               sumfac::FirstTouchZero<dim>{impl.fine, dst, 1},
                               KOKKOS_LAMBDA(int b) { k.template prolongate<atomic>(src, dst, b); });
+      zero_constrained(exec, impl.fine_constrained, dst);
     }
   }
 
@@ -93,6 +102,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
       for_each_batch_coloured(exec, impl.coarse, "amphora::MatrixFreeTransfer::restrict",
                               sumfac::FirstTouchZero<dim>{impl.coarse, dst, 1},
                               KOKKOS_LAMBDA(int b) { k.template restrict_to_coarse<atomic>(src, dst, b); });
+      zero_constrained(exec, impl.coarse_constrained, dst);
     }
   }
 };
@@ -121,6 +131,8 @@ MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, cons
   auto impl = std::make_shared<Impl>();
   impl->components = components;
   impl->coarse = coarse.lattice();
+  impl->coarse_constrained = coarse.constrained_dofs();
+  impl->fine_constrained = fine.constrained_dofs();
   const auto& mc = coarse.mesh();
   const auto& mf = fine.mesh();
   bool same = true, refined = true;
