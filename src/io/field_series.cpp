@@ -39,6 +39,8 @@ std::string FieldSeries::write(long long step, double time,
   for (const auto& b : local_blocks) {
     H5Group g{b.name, {{"x", b.x}, {"y", b.y}, {"z", b.z}}};
     if (b.points) g.datasets.push_back({"topology_points", {1.0}});  // marks a point set
+    if (b.curvilinear)  // marks a curvilinear grid and gives its node counts
+      g.datasets.push_back({"topology_nodes", {double(b.nodes[0]), double(b.nodes[1]), double(b.nodes[2])}});
     for (const auto& f : b.fields) g.datasets.push_back(f);
     groups.push_back(std::move(g));
   }
@@ -47,6 +49,30 @@ std::string FieldSeries::write(long long step, double time,
   meta.integers["step"] = step;
   const auto layout = write_h5(dir_ + "/" + file, comm_, groups, meta);
 
+  // Node counts of curvilinear blocks (gathered: a block is written by one rank).
+  std::map<std::string, std::vector<long>> curvilinear_nodes;
+  {
+    std::vector<double> mine;
+    std::string names;
+    for (const auto& b : local_blocks)
+      if (b.curvilinear) {
+        names += b.name + '\n';
+        for (long n : b.nodes) mine.push_back(static_cast<double>(n));
+      }
+    const auto all_nodes = comm_.allgatherv(mine);
+    std::vector<char> name_chars(names.begin(), names.end());
+    const auto all_names = comm_.allgatherv(name_chars);
+    std::string joined(all_names.begin(), all_names.end());
+    std::size_t pos = 0, i = 0;
+    while (pos < joined.size()) {
+      const std::size_t end = joined.find('\n', pos);
+      curvilinear_nodes[joined.substr(pos, end - pos)] = {static_cast<long>(all_nodes[3 * i]),
+                                                         static_cast<long>(all_nodes[3 * i + 1]),
+                                                         static_cast<long>(all_nodes[3 * i + 2])};
+      pos = end + 1;
+      ++i;
+    }
+  }
   // XDMF for this step: blocks in first-seen order, each with its coordinates' sizes.
   std::vector<std::string> order;
   std::map<std::string, std::map<std::string, unsigned long long>> sizes;
@@ -61,14 +87,22 @@ std::string FieldSeries::write(long long step, double time,
   for (const auto& g : order) {
     const auto& s = sizes[g];
     const bool points = s.count("topology_points") != 0;
-    const std::string dims =
+    const bool curvilinear = s.count("topology_nodes") != 0;
+    std::string dims =
         points ? std::to_string(s.at("x"))
                : std::to_string(s.at("z")) + " " + std::to_string(s.at("y")) + " " +
                      std::to_string(s.at("x"));
+    if (curvilinear) {
+      const auto& nodes = curvilinear_nodes.at(g);
+      dims = std::to_string(nodes[2]) + " " + std::to_string(nodes[1]) + " " + std::to_string(nodes[0]);
+    }
     x << "      <Grid Name=\"" << g << "\" GridType=\"Uniform\">\n";
     if (points) {
       x << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << s.at("x")
         << "\" NodesPerElement=\"1\"/>\n"
+        << "        <Geometry GeometryType=\"X_Y_Z\">\n";
+    } else if (curvilinear) {
+      x << "        <Topology TopologyType=\"3DSMesh\" Dimensions=\"" << dims << "\"/>\n"
         << "        <Geometry GeometryType=\"X_Y_Z\">\n";
     } else {
       x << "        <Topology TopologyType=\"3DRectMesh\" Dimensions=\"" << dims << "\"/>\n"
@@ -82,7 +116,7 @@ std::string FieldSeries::write(long long step, double time,
     x << "        </Geometry>\n";
     for (const auto& d : layout) {
       if (d.group != g || d.name == "x" || d.name == "y" || d.name == "z" ||
-          d.name == "topology_points")
+          d.name == "topology_points" || d.name == "topology_nodes")
         continue;
       x << "        <Attribute Name=\"" << d.name << "\" AttributeType=\"Scalar\" "
         << "Center=\"Node\">\n          <DataItem Dimensions=\"" << dims

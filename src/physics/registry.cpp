@@ -2,6 +2,7 @@
 
 #include "physics/advection_diffusion_1d/advection_diffusion_1d.hpp"
 #include "physics/dem/dem_module.hpp"
+#include "physics/poisson_fem/poisson_fem.hpp"
 
 namespace amphora {
 
@@ -16,6 +17,7 @@ const std::vector<ModuleInfo>& module_registry() {
        [](const Parameters& p, const Communicator& c) -> std::unique_ptr<Module> {
          return std::make_unique<dem::DemModule>(p, c);
        }},
+      {"poisson_fem", poisson_fem::parameter_table, poisson_fem::create},
   };
   return modules;
 }

@@ -1,0 +1,233 @@
+#include "physics/poisson_fem/poisson_fem.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "kernels/blas1.hpp"
+#include "kernels/reductions.hpp"
+#include "mesh/box_decomposition.hpp"
+#include "solvers/conjugate_gradient.hpp"
+#include "solvers/matrix_free/error_norms.hpp"
+#include "solvers/matrix_free/matrix_free_operator.hpp"
+#include "solvers/matrix_free/multigrid.hpp"
+
+namespace amphora::poisson_fem {
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+template <int dim>
+struct SineSolution {
+  KOKKOS_INLINE_FUNCTION double value(const double* x) const {
+    double v = 1.0;
+    for (int d = 0; d < dim; ++d) v *= math::sin(pi * x[d]);
+    return v;
+  }
+  KOKKOS_INLINE_FUNCTION void gradient(const double* x, double* g) const {
+    for (int a = 0; a < dim; ++a) {
+      g[a] = pi;
+      for (int d = 0; d < dim; ++d) g[a] *= d == a ? math::cos(pi * x[d]) : math::sin(pi * x[d]);
+    }
+  }
+};
+
+template <int dim>
+class PoissonFem final : public Module {
+ public:
+  using Exec = DefaultExecSpace;
+  using Space = mesh::QkSpace<dim, Exec>;
+  using Operator = solvers::MatrixFreeOperator<dim, Exec>;
+  using Vector = typename Operator::Vector;
+
+  PoissonFem(const Parameters& p, const Communicator& comm) : comm_(comm) {
+    if (comm.size() > 1)
+      throw DecompositionError("more ranks (" + std::to_string(comm.size()) +
+                               ") than blocks (1): the matrix-free FEM runs on one rank so far");
+    auto m = mesh::unit_cube<dim>(static_cast<int>(p.integer("cells")));
+    const double amplitude = p.real("deformation");
+    if (amplitude > 0.0) m.deformation = mesh::sinusoidal_deformation(dim, amplitude);
+    const std::string geometry = p.string("geometry");
+    if (geometry == "cartesian" && amplitude > 0.0)
+      throw std::invalid_argument("poisson_fem.geometry = \"cartesian\" needs deformation = 0 (allowed for curved "
+                                  "cells: stored, on_the_fly)");
+    space_ = std::make_unique<Space>(m, static_cast<int>(p.integer("degree")));
+    typename Operator::Options o;
+    o.kind = solvers::OperatorKind::laplace;
+    o.geometry = geometry == "cartesian"    ? solvers::GeometryMode::cartesian
+                 : geometry == "on_the_fly" ? solvers::GeometryMode::on_the_fly
+                                            : solvers::GeometryMode::stored;
+    A_ = std::make_unique<Operator>(*space_, o);
+    multigrid_ = p.string("solver") == "multigrid";
+    control_.relative_tolerance = p.real("tolerance");
+    control_.max_iterations = static_cast<int>(p.integer("max_iterations"));
+    u_ = Vector("amphora::PoissonFem::u", space_->n_dofs());
+  }
+
+  std::string name() const override { return "poisson_fem"; }
+  double stable_dt() const override { return 1.0; }  // steady: one step solves
+  void advance(double, double) override {
+    if (solved_) return;
+    const Exec exec;
+    const long n = space_->n_dofs();
+    // b = M f_h, zero on the Dirichlet DoFs
+    const std::vector<double> fh = space_->interpolate([](const mesh::Point3& x, int) {
+      double v = dim * pi * pi;
+      for (int d = 0; d < dim; ++d) v *= std::sin(pi * x[d]);
+      return v;
+    });
+    Vector f("f", n), b("b", n);
+    auto fhost = Kokkos::create_mirror_view(f);
+    for (long i = 0; i < n; ++i) fhost(i) = fh[i];
+    Kokkos::deep_copy(f, fhost);
+    typename Operator::Options om;
+    om.kind = solvers::OperatorKind::mass;
+    om.geometry = A_->options().geometry;
+    om.n_q = space_->degree() + 2;
+    Operator(*space_, om).apply(exec, f, b);
+    auto cons = space_->constrained_dofs();
+    Kokkos::parallel_for("amphora::PoissonFem::bc", RangePolicy<Exec>(exec, 0, static_cast<int>(cons.extent(0))),
+                         KOKKOS_LAMBDA(int i) { b(cons(i)) = 0.0; });
+    blas1::fill(exec, u_, 0.0);
+    if (multigrid_) {
+      const solvers::MatrixFreeMultigrid<dim, Exec> mg(exec, *A_);
+      result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_, mg);
+    } else {
+      Vector d("d", n);
+      A_->compute_diagonal(exec, d);
+      Kokkos::parallel_for("amphora::PoissonFem::invert", RangePolicy<Exec>(exec, 0, static_cast<int>(n)),
+                           KOKKOS_LAMBDA(int i) { d(i) = 1.0 / d(i); });
+      result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_, solvers::JacobiPreconditioner<Vector>{d});
+    }
+    if (!result_.converged)
+      throw std::runtime_error("poisson_fem: CG did not reach the tolerance " +
+                               std::to_string(control_.relative_tolerance) + " in " +
+                               std::to_string(result_.iterations) + " iterations (residual " +
+                               std::to_string(result_.final_residual / result_.rhs_norm) + ")");
+    errors_ = solvers::error_norms(exec, *space_, u_, SineSolution<dim>{});
+    solved_ = true;
+  }
+  long long work_per_step() const override { return space_->n_dofs(); }
+  std::string work_unit() const override { return "DoF-solves"; }
+
+  std::vector<OutputBlock> output(double) const override {
+    const auto& lat = space_->lattice();
+    const long n_nodes = lat.n_nodes();
+    auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space_->coordinates());
+    auto uh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), u_);
+    OutputBlock b;
+    b.name = "solution";
+    b.curvilinear = true;
+    for (int d = 0; d < dim; ++d) b.nodes[d] = lat.nodes[d];
+    b.x.resize(n_nodes);
+    b.y.resize(n_nodes);
+    b.z.assign(n_nodes, 0.0);
+    std::vector<double> u(n_nodes), exact(n_nodes), err(n_nodes);
+    const SineSolution<dim> s;
+    for (long node = 0; node < n_nodes; ++node) {
+      int ijk[3] = {0, 0, 0};
+      long rest = node;
+      for (int d = 0; d < dim; ++d) ijk[d] = static_cast<int>(rest % lat.nodes[d]), rest /= lat.nodes[d];
+      double x[3] = {0.0, 0.0, 0.0};
+      for (int d = 0; d < dim; ++d) x[d] = xh(d * n_nodes + node);
+      b.x[node] = x[0];
+      b.y[node] = x[1];
+      b.z[node] = x[2];
+      u[node] = uh(lat.dof_index(ijk));
+      exact[node] = s.value(x);
+      err[node] = u[node] - exact[node];
+    }
+    b.fields = {{"u", u}, {"u_exact", exact}, {"error", err}};
+    return {b};
+  }
+
+  Diagnostics diagnostics(double) const override {
+    return {{"dofs", static_cast<double>(space_->n_dofs())},
+            {"iterations", static_cast<double>(result_.iterations)},
+            {"relative_residual", result_.rhs_norm > 0 ? result_.final_residual / result_.rhs_norm : 0.0},
+            {"l2_error", errors_.l2},
+            {"h1_error", errors_.h1semi}};
+  }
+  std::string error_diagnostic() const override { return "l2_error"; }
+  std::optional<NonFiniteReport> find_nonfinite() const override {
+    const long i = reduce::first_nonfinite(Exec(), u_);
+    if (i < 0) return std::nullopt;
+    return NonFiniteReport{"u", "solution", i, 0.0};
+  }
+  std::vector<StateBlock> state() const override {
+    auto uh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), u_);
+    return {{"solution",
+             {{"u", std::vector<double>(uh.data(), uh.data() + uh.extent(0))},
+              {"solved", {solved_ ? 1.0 : 0.0}},
+              {"errors", {errors_.l2, errors_.h1semi, double(result_.iterations), result_.final_residual, result_.rhs_norm}}}}};
+  }
+  void restore(const std::vector<StateBlock>& blocks) override {
+    for (const auto& b : blocks) {
+      if (b.name != "solution") continue;
+      for (const auto& [key, v] : b.arrays) {
+        if (key == "u") {
+          auto uh = Kokkos::create_mirror_view(u_);
+          for (std::size_t i = 0; i < v.size(); ++i) uh(i) = v[i];
+          Kokkos::deep_copy(u_, uh);
+        } else if (key == "solved") {
+          solved_ = v.at(0) != 0.0;
+        } else if (key == "errors") {
+          errors_ = {v.at(0), v.at(1)};
+          result_.iterations = static_cast<int>(v.at(2));
+          result_.final_residual = v.at(3);
+          result_.rhs_norm = v.at(4);
+        }
+      }
+    }
+  }
+  std::vector<std::string> owned_blocks() const override { return {"solution"}; }
+
+ private:
+  Communicator comm_;
+  std::unique_ptr<Space> space_;
+  std::unique_ptr<Operator> A_;
+  bool multigrid_ = true;
+  solvers::SolverControl control_;
+  solvers::SolverResult result_;
+  solvers::ErrorNorms errors_;
+  Vector u_;
+  bool solved_ = false;
+};
+
+}  // namespace
+
+ParamTable parameter_table() {
+  ParamTable t;
+  t.name = "poisson_fem";
+  t.doc = "-lap u = f on curved Q_k hexahedra of the unit square/cube, manufactured sine solution";
+  auto dim = int_param("dim", 3, "space dimension");
+  at_least(dim, 2);
+  at_most(dim, 3);
+  auto degree = int_param("degree", 4, "polynomial degree k of Q_k");
+  at_least(degree, 1);
+  at_most(degree, mesh::max_qk_degree);
+  auto cells = int_param("cells", 8, "cells per direction");
+  at_least(cells, 1);
+  at_most(cells, 1024);
+  auto deformation = real_param("deformation", 0.05, "1", "amplitude of the sinusoidal deformation (0: Cartesian)");
+  at_least(deformation, 0.0);
+  at_most(deformation, 0.1);
+  auto geometry = string_param("geometry", std::string("stored"), "how geometry reaches the quadrature points",
+                               {"cartesian", "stored", "on_the_fly"});
+  auto solver = string_param("solver", std::string("multigrid"), "preconditioner of CG", {"multigrid", "jacobi"});
+  auto tol = real_param("tolerance", 1e-10, "1", "relative residual of the CG solve");
+  greater_than(tol, 0.0);
+  less_than(tol, 1.0);
+  auto maxit = int_param("max_iterations", 2000, "CG iteration limit");
+  at_least(maxit, 1);
+  t.specs = {dim, degree, cells, deformation, geometry, solver, tol, maxit};
+  return t;
+}
+
+std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {
+  if (p.integer("dim") == 2) return std::make_unique<PoissonFem<2>>(p, comm);
+  return std::make_unique<PoissonFem<3>>(p, comm);
+}
+
+}  // namespace amphora::poisson_fem
