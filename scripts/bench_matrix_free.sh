@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Matrix-free FEM benchmarks (perf/matrix_free.cpp), each suite at 1 and 2 threads, JSON in
+# output/bench/, then the charts:
+#   matrix_free_bp.png        CEED BP1-6 throughput against degree and problem size (2 threads)
+#   matrix_free_geometry.png  Laplace throughput against geometry bytes per DoF (the modes)
+# and a table of the deal.II comparison, the large-size bandwidth fractions and the
+# multigrid-vs-BoomerAMG solve in output/bench/matrix_free_summary.txt.
+#   scripts/bench_matrix_free.sh [quick]   (quick: BP sizes up to 1e6, no Poisson solves)
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+bash "$here/scripts/build.sh" release
+cd "$here"
+out=output/bench
+mkdir -p "$out"
+export OMP_PROC_BIND=spread OMP_PLACES=threads
+bench=build/release/perf/bench_matrix_free
+run() {  # name threads filter [extra args]
+  local name=$1 threads=$2 filter=$3; shift 3
+  echo "== $name, $threads thread(s)"
+  OMP_NUM_THREADS=$threads "$bench" --benchmark_filter="$filter" \
+    --benchmark_out="$out/matrix_free_${name}_${threads}threads.json" --benchmark_out_format=json "$@" \
+    | grep -E "^(LaplaceDealii|LaplaceLarge|BP|GeometryModes|PoissonSolve)" | grep -v "_mean\|_stddev\|_cv" || true
+}
+bp_filter='^BP/'
+[ "${1:-}" = quick ] && bp_filter='^BP/[1-6]/[1-8]/[4-6]/'
+for t in 1 2; do
+  run dealii $t '^LaplaceDealii' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+  run large $t '^LaplaceLarge' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+  run geometry $t '^GeometryModes' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+  [ "${1:-}" = quick ] || run poisson $t '^PoissonSolve'
+done
+run bp 2 "$bp_filter"
+/usr/bin/python3 scripts/plot_matrix_free.py "$out"
