@@ -171,7 +171,7 @@ void bp_args(benchmark::internal::Benchmark* b) {
     for (int p = 1; p <= 8; ++p)
       for (int e = 4; e <= 7; ++e) b->Args({bp, p, e});
 }
-BENCHMARK(BP)->Apply(bp_args)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+BENCHMARK(BP)->Apply(bp_args)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
 void GeometryModes(benchmark::State& state) {
   using amphora::solvers::GeometryMode;
