@@ -24,7 +24,7 @@ run() {  # name threads filter [extra args]
 bp_filter='^BP/'
 [ "${1:-}" = quick ] && bp_filter='^BP/[1-6]/[1-8]/[4-6]/'
 for t in 1 2; do
-  run dealii $t '^LaplaceDealii' --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+  run dealii $t '^LaplaceDealii' --benchmark_repetitions=5 --benchmark_min_time=2 --benchmark_report_aggregates_only=true
   run large $t '^LaplaceLarge' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
   run geometry $t '^GeometryModes' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
   [ "${1:-}" = quick ] || run poisson $t '^PoissonSolve'
