@@ -20,6 +20,7 @@ struct BoomerAMG::Impl {
   HYPRE_Solver amg = nullptr;
   HYPRE_BigInt n = 0;
   std::vector<HYPRE_BigInt> index;
+  std::vector<double> zero;  // n zeros: the initial guess of a V-cycle
 
   static void configure(HYPRE_Solver s, const BoomerAMGOptions& o) {
     HYPRE_BoomerAMGSetPrintLevel(s, 0);
@@ -77,8 +78,8 @@ BoomerAMG::BoomerAMG(const CsrMatrix& M, const BoomerAMGOptions& options) : impl
   HYPRE_IJVectorSetObjectType(s.bij, HYPRE_PARCSR);
   HYPRE_IJVectorCreate(comm, 0, s.n - 1, &s.xij);
   HYPRE_IJVectorSetObjectType(s.xij, HYPRE_PARCSR);
-  std::vector<double> zero(M.n, 0.0);
-  s.set_vectors(zero.data(), zero.data());
+  s.zero.assign(M.n, 0.0);
+  s.set_vectors(s.zero.data(), s.zero.data());
   HYPRE_IJVectorGetObject(s.bij, reinterpret_cast<void**>(&s.b));
   HYPRE_IJVectorGetObject(s.xij, reinterpret_cast<void**>(&s.x));
 }
@@ -93,8 +94,7 @@ BoomerAMG::~BoomerAMG() {
 
 void BoomerAMG::vcycle(const double* b, double* x) const {
   auto& s = *impl_;
-  std::vector<double> zero(s.n, 0.0);
-  s.set_vectors(b, zero.data());
+  s.set_vectors(b, s.zero.data());
   if (!s.amg) {  // set up on first use
     HYPRE_BoomerAMGCreate(&s.amg);
     Impl::configure(s.amg, s.options);

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "kernels/blas1.hpp"
+#include "kernels/host_vector.hpp"
 #include "reference_assembly.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "test_backend.hpp"
@@ -37,18 +38,8 @@ mesh::StructuredHexMesh<dim> mixed_mesh(int nx, int ny, int nz, const std::strin
   return m;
 }
 
-Vector to_device(const std::vector<double>& v) {
-  Vector d("v", v.size());
-  auto h = Kokkos::create_mirror_view(d);
-  for (std::size_t i = 0; i < v.size(); ++i) h(i) = v[i];
-  Kokkos::deep_copy(d, h);
-  return d;
-}
-
-std::vector<double> to_host(const Vector& d) {
-  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
-  return std::vector<double>(h.data(), h.data() + h.extent(0));
-}
+Vector to_device(const std::vector<double>& v) { return to_view<test::TestMemSpace>(v); }
+std::vector<double> to_host(const Vector& d) { return to_std_vector(d); }
 
 struct Case {
   OperatorKind kind;

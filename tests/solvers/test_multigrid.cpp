@@ -6,7 +6,9 @@
 #include <random>
 #include <vector>
 
+#include "kernels/host_vector.hpp"
 #include "solvers/conjugate_gradient.hpp"
+#include "solvers/matrix_free/load_vector.hpp"
 #include "solvers/matrix_free/multigrid.hpp"
 #include "test_backend.hpp"
 
@@ -17,17 +19,8 @@ using test::TestExecSpace;
 using Vector = Kokkos::View<double*, test::TestMemSpace>;
 using mesh::FaceCondition;
 
-Vector device(const std::vector<double>& v) {
-  Vector d("v", v.size());
-  auto h = Kokkos::create_mirror_view(d);
-  for (std::size_t i = 0; i < v.size(); ++i) h(i) = v[i];
-  Kokkos::deep_copy(d, h);
-  return d;
-}
-std::vector<double> host(const Vector& d) {
-  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), d);
-  return std::vector<double>(h.data(), h.data() + h.extent(0));
-}
+Vector device(const std::vector<double>& v) { return to_view<test::TestMemSpace>(v); }
+std::vector<double> host(const Vector& d) { return to_std_vector(d); }
 
 template <int dim>
 void check_transfer(const mesh::StructuredHexMesh<dim>& mc, int kc, const mesh::StructuredHexMesh<dim>& mf, int kf) {
@@ -109,12 +102,8 @@ int mg_iterations(int k, int n) {
   const std::vector<double> f = space.interpolate([](const mesh::Point3& x, int) {
     return std::exp(x[0]) * std::sin(3 * x[1]) + x[dim - 1];
   });
-  Vector fd = device(f), b("b", space.n_dofs()), x("x", space.n_dofs());
-  o.kind = OperatorKind::mass;
-  MatrixFreeOperator<dim, TestExecSpace>(space, o).apply(exec, fd, b);
-  auto cons = space.constrained_dofs();
-  Kokkos::parallel_for(RangePolicy<TestExecSpace>(exec, 0, static_cast<int>(cons.extent(0))),
-                       KOKKOS_LAMBDA(int i) { b(cons(i)) = 0.0; });
+  const Vector b = load_vector(exec, space, device(f), GeometryMode::stored, k + 1);
+  Vector x("x", space.n_dofs());
   SolverControl control;
   control.relative_tolerance = 1e-8;
   control.max_iterations = 200;

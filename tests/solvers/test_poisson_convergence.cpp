@@ -4,7 +4,10 @@
 #include <cmath>
 #include <vector>
 
+#include "kernels/host_vector.hpp"
+#include "physics/poisson_fem/sine_solution.hpp"
 #include "solvers/conjugate_gradient.hpp"
+#include "solvers/matrix_free/load_vector.hpp"
 #include "solvers/matrix_free/error_norms.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "test_backend.hpp"
@@ -14,22 +17,7 @@ namespace {
 
 using test::TestExecSpace;
 using Vector = Kokkos::View<double*, test::TestMemSpace>;
-constexpr double pi = 3.14159265358979323846;
-
-template <int dim>
-struct SineSolution {
-  KOKKOS_INLINE_FUNCTION double value(const double* x) const {
-    double v = 1.0;
-    for (int d = 0; d < dim; ++d) v *= math::sin(pi * x[d]);
-    return v;
-  }
-  KOKKOS_INLINE_FUNCTION void gradient(const double* x, double* g) const {
-    for (int a = 0; a < dim; ++a) {
-      g[a] = pi;
-      for (int d = 0; d < dim; ++d) g[a] *= d == a ? math::cos(pi * x[d]) : math::sin(pi * x[d]);
-    }
-  }
-};
+using poisson_fem::SineSolution;
 
 template <int dim>
 ErrorNorms solve(int k, int n) {
@@ -38,20 +26,11 @@ ErrorNorms solve(int k, int n) {
   m.deformation = mesh::sinusoidal_deformation(dim, 0.05);
   const mesh::QkSpace<dim, TestExecSpace> space(m, k);
   const long N = space.n_dofs();
-  // b = M f_h (f interpolated: an O(h^(k+1)) perturbation, below the discretisation error)
-  const std::vector<double> fh = space.interpolate([](const mesh::Point3& x, int) {
-    double v = dim * pi * pi;
-    for (int d = 0; d < dim; ++d) v *= std::sin(pi * x[d]);
-    return v;
-  });
-  Vector f("f", N), b("b", N), u("u", N), diag("diag", N);
-  auto fhost = Kokkos::create_mirror_view(f);
-  for (long i = 0; i < N; ++i) fhost(i) = fh[i];
-  Kokkos::deep_copy(f, fhost);
+  const SineSolution<dim> exact;
+  const Vector f = to_view<test::TestMemSpace>(space.interpolate([&](const mesh::Point3& x, int) { return exact.source(x); }));
+  const Vector b = load_vector(exec, space, f, GeometryMode::stored, k + 2);
+  Vector u("u", N), diag("diag", N);
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
-  o.kind = OperatorKind::mass;
-  o.n_q = k + 2;
-  MatrixFreeOperator<dim, TestExecSpace>(space, o).apply(exec, f, b);  // boundary rows: f = 0 there
   o.kind = OperatorKind::laplace;
   o.n_q = k + 1;
   const MatrixFreeOperator<dim, TestExecSpace> A(space, o);

@@ -118,8 +118,11 @@ struct BatchDofAccess {
     else *p += v;
   }
 
-  /// x = a blocked field on the unwrapped node lattice (coordinates), lanes clamped.
-  KOKKOS_INLINE_FUNCTION void gather_nodes(const double* src, int b, T* x) const {
+  /// f(n, l, node) for every local node n and lane l of batch b, with the lattice node of that
+  /// lane's cell (lanes past the last cell of a partial batch repeat it). The general path,
+  /// for setup and fields: no fast addressing.
+  template <class F>
+  KOKKOS_INLINE_FUNCTION void for_each_lane_node(int b, const F& f) const {
     int cell[3];
     lattice.batch_cell(b, cell);
     const int active = lattice.active_lanes(b);
@@ -129,41 +132,24 @@ struct BatchDofAccess {
       const int x0 = node[0];
       for (int l = 0; l < W; ++l) {
         node[0] = x0 + (l < active ? l : active - 1) * lattice.degree;
-        x[n][l] = src[lattice.node_index(node)];
+        f(n, l, node);
       }
     }
+  }
+
+  /// x = a blocked field on the unwrapped node lattice (coordinates), lanes clamped.
+  KOKKOS_INLINE_FUNCTION void gather_nodes(const double* src, int b, T* x) const {
+    for_each_lane_node(b, [&](int n, int l, const int* node) { x[n][l] = src[lattice.node_index(node)]; });
   }
 
   /// u = src at the batch's nodes, constrained DoFs included (fields, not unknowns).
   KOKKOS_INLINE_FUNCTION void gather_unconstrained(const double* src, int b, T* u) const {
-    int cell[3];
-    lattice.batch_cell(b, cell);
-    const int active = lattice.active_lanes(b);
-    for (int n = 0; n < n_dofs; ++n) {
-      int node[3];
-      local_node(cell, n, node);
-      const int x0 = node[0];
-      for (int l = 0; l < W; ++l) {
-        node[0] = x0 + (l < active ? l : active - 1) * lattice.degree;
-        u[n][l] = src[lattice.dof_index(node)];
-      }
-    }
+    for_each_lane_node(b, [&](int n, int l, const int* node) { u[n][l] = src[lattice.dof_index(node)]; });
   }
 
   /// Inverse multiplicities of the batch's nodes (cells sharing each node), lanes clamped.
   KOKKOS_INLINE_FUNCTION void inverse_multiplicity(int b, T* w) const {
-    int cell[3];
-    lattice.batch_cell(b, cell);
-    const int active = lattice.active_lanes(b);
-    for (int n = 0; n < n_dofs; ++n) {
-      int node[3];
-      local_node(cell, n, node);
-      const int x0 = node[0];
-      for (int l = 0; l < W; ++l) {
-        node[0] = x0 + (l < active ? l : active - 1) * lattice.degree;
-        w[n][l] = 1.0 / lattice.multiplicity(node);
-      }
-    }
+    for_each_lane_node(b, [&](int n, int l, const int* node) { w[n][l] = 1.0 / lattice.multiplicity(node); });
   }
 };
 

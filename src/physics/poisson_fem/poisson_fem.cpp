@@ -9,29 +9,15 @@
 #include "kernels/reductions.hpp"
 #include "mesh/box_decomposition.hpp"
 #include "solvers/conjugate_gradient.hpp"
+#include "kernels/host_vector.hpp"
+#include "physics/poisson_fem/sine_solution.hpp"
 #include "solvers/matrix_free/error_norms.hpp"
+#include "solvers/matrix_free/load_vector.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "solvers/matrix_free/multigrid.hpp"
 
 namespace amphora::poisson_fem {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
-
-template <int dim>
-struct SineSolution {
-  KOKKOS_INLINE_FUNCTION double value(const double* x) const {
-    double v = 1.0;
-    for (int d = 0; d < dim; ++d) v *= math::sin(pi * x[d]);
-    return v;
-  }
-  KOKKOS_INLINE_FUNCTION void gradient(const double* x, double* g) const {
-    for (int a = 0; a < dim; ++a) {
-      g[a] = pi;
-      for (int d = 0; d < dim; ++d) g[a] *= d == a ? math::cos(pi * x[d]) : math::sin(pi * x[d]);
-    }
-  }
-};
 
 template <int dim>
 class PoissonFem final : public Module {
@@ -71,24 +57,10 @@ class PoissonFem final : public Module {
     if (solved_) return;
     const Exec exec;
     const long n = space_->n_dofs();
-    // b = M f_h, zero on the Dirichlet DoFs
-    const std::vector<double> fh = space_->interpolate([](const mesh::Point3& x, int) {
-      double v = dim * pi * pi;
-      for (int d = 0; d < dim; ++d) v *= std::sin(pi * x[d]);
-      return v;
-    });
-    Vector f("f", n), b("b", n);
-    auto fhost = Kokkos::create_mirror_view(f);
-    for (long i = 0; i < n; ++i) fhost(i) = fh[i];
-    Kokkos::deep_copy(f, fhost);
-    typename Operator::Options om;
-    om.kind = solvers::OperatorKind::mass;
-    om.geometry = A_->options().geometry;
-    om.n_q = space_->degree() + 2;
-    Operator(*space_, om).apply(exec, f, b);
-    auto cons = space_->constrained_dofs();
-    Kokkos::parallel_for("amphora::PoissonFem::bc", RangePolicy<Exec>(exec, 0, static_cast<int>(cons.extent(0))),
-                         KOKKOS_LAMBDA(int i) { b(cons(i)) = 0.0; });
+    const SineSolution<dim> exact;
+    const Vector f = to_view<typename Exec::memory_space>(
+        space_->interpolate([&](const mesh::Point3& x, int) { return exact.source(x); }));
+    const Vector b = solvers::load_vector(exec, *space_, f, A_->options().geometry, space_->degree() + 2);
     blas1::fill(exec, u_, 0.0);
     if (multigrid_) {
       const solvers::MatrixFreeMultigrid<dim, Exec> mg(exec, *A_);

@@ -67,9 +67,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     if (atomic) blas1::fill(exec, d, 0.0);
     for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::diagonal", first_touch_zero(op, d),
                             KOKKOS_LAMBDA(int b) { k.template diagonal_batch<atomic>(dst, comps, b); });
-    Vector ones("ones", d.extent(0));
-    blas1::fill(exec, ones, 1.0);
-    copy_constrained(op, exec, ones, d);
+    copy_constrained(op, exec, Vector(), d, 1.0);
   }
 
   template <int n_p, int n_q>
@@ -142,15 +140,17 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     exec.fence();
   }
 
+  /// Constrained rows: y_i = x_i (identity rows), or y_i = value if x is empty.
   static void copy_constrained(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
-                               const Vector& y) {
+                               const Vector& y, double value = 0.0) {
     const auto cons = op.space_->constrained_dofs();
     const long n = op.space_->n_dofs();
     const int nc = static_cast<int>(cons.extent(0));
+    const bool from_x = x.extent(0) > 0;
     for (int comp = 0; comp < op.options_.components; ++comp) {
       const long off = comp * n;
       Kokkos::parallel_for("amphora::MatrixFreeOperator::constraints", RangePolicy<ExecSpace>(exec, 0, nc),
-                           KOKKOS_LAMBDA(int i) { y(off + cons(i)) = x(off + cons(i)); });
+                           KOKKOS_LAMBDA(int i) { y(off + cons(i)) = from_x ? x(off + cons(i)) : value; });
     }
   }
 };
