@@ -1,5 +1,5 @@
 #pragma once
-// Copies between host std::vector<double> and 1D Views in any memory space (setup, output, tests).
+// Copies between host std::vector and 1D Views in any memory space (setup, output, tests).
 #include <string>
 #include <vector>
 
@@ -7,9 +7,9 @@
 
 namespace amphora {
 
-template <class MemSpace>
-Kokkos::View<double*, MemSpace> to_view(const std::vector<double>& v, const char* label = "amphora::vector") {
-  Kokkos::View<double*, MemSpace> d(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), v.size());
+template <class MemSpace, class T>
+Kokkos::View<T*, MemSpace> to_view(const std::vector<T>& v, const char* label = "amphora::vector") {
+  Kokkos::View<T*, MemSpace> d(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), v.size());
   auto h = Kokkos::create_mirror_view(d);
   for (std::size_t i = 0; i < v.size(); ++i) h(i) = v[i];
   Kokkos::deep_copy(d, h);

@@ -1,0 +1,170 @@
+#pragma once
+// The 7-point MAC pressure Poisson matrix in conductance form,
+//   (A p)_i = d_i p_i - sum_{fluid neighbours j} c_ij p_j,  d_i = D_i + sum_j c_ij,
+// scaled by h (so a full fluid-fluid face has c = 1): A = -h^2 (div grad) restricted to the
+// fluid cells. D_i collects the free-surface faces: the ghost-fluid method (Gibou, Fedkiw,
+// Cheng & Kang 2002, sec. 3) puts p = 0 on the interface at the fraction theta = phi_i /
+// (phi_i - phi_j) of the way to the air cell, which adds 1/theta to d_i. Solid faces add
+// nothing (Neumann). Rows of non-fluid cells are zero (d = 0), so every vector stays zero there.
+//
+// Stored on the padded lattice of MacGrid: d (double), c_x/c_y/c_z (float: the values are
+// exact small fractions) on the + face of each cell, and 1/d (zero on non-fluid cells).
+#include "kernels/spaces.hpp"
+#include "mesh/mac/mac_grid.hpp"
+
+namespace amphora::kernels::mac {
+
+/// theta of the ghost-fluid method, kept away from zero so d stays bounded (Gibou et al. use
+/// the same clamp; 1e-3 keeps the condition number below 1e3 times the uniform one).
+inline constexpr double min_ghost_fluid_theta = 1e-3;
+
+/// 1/theta for a fluid cell with level set phi_fluid (< 0) next to an air cell with phi_air.
+KOKKOS_INLINE_FUNCTION double ghost_fluid_weight(double phi_fluid, double phi_air) {
+  const double denom = phi_fluid - phi_air;
+  const double theta = denom < 0.0 ? phi_fluid / denom : 1.0;
+  return 1.0 / math::max(theta, min_ghost_fluid_theta);
+}
+
+template <class MemSpace>
+struct PoissonStencil {
+  mesh::MacGrid grid;
+  Kokkos::View<double*, MemSpace> diag, inverse_diag;
+  Kokkos::View<float*, MemSpace> cx, cy, cz;
+
+  PoissonStencil() = default;
+  explicit PoissonStencil(const mesh::MacGrid& g)
+      : grid(g),
+        diag("amphora::mac::diag", g.padded_size()),
+        inverse_diag("amphora::mac::inverse_diag", g.padded_size()),
+        cx("amphora::mac::cx", g.padded_size()),
+        cy("amphora::mac::cy", g.padded_size()),
+        cz("amphora::mac::cz", g.padded_size()) {}
+};
+
+/// y = A x on every interior cell (ghost entries of y are set to zero as well).
+template <class ExecSpace, class MemSpace, class X, class Y>
+void apply(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const X& x, const Y& y) {
+  const auto d = A.diag;
+  const auto cx = A.cx, cy = A.cy, cz = A.cz;
+  const int sy = A.grid.stride_y(), sz = A.grid.stride_z();
+  Kokkos::parallel_for(
+      "amphora::mac::apply",
+      RangePolicy<ExecSpace>(exec, A.grid.first_plane_index(), A.grid.end_plane_index()),
+      KOKKOS_LAMBDA(int c) {
+        y(c) = d(c) * x(c) - (double(cx(c - 1)) * x(c - 1) + double(cx(c)) * x(c + 1) +
+                              double(cy(c - sy)) * x(c - sy) + double(cy(c)) * x(c + sy) +
+                              double(cz(c - sz)) * x(c - sz) + double(cz(c)) * x(c + sz));
+      });
+}
+
+/// r = b - A x.
+template <class ExecSpace, class MemSpace, class B, class X, class R>
+void residual(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const B& b, const X& x,
+              const R& r) {
+  const auto d = A.diag;
+  const auto cx = A.cx, cy = A.cy, cz = A.cz;
+  const int sy = A.grid.stride_y(), sz = A.grid.stride_z();
+  Kokkos::parallel_for(
+      "amphora::mac::residual",
+      RangePolicy<ExecSpace>(exec, A.grid.first_plane_index(), A.grid.end_plane_index()),
+      KOKKOS_LAMBDA(int c) {
+        r(c) = b(c) - d(c) * x(c) +
+               (double(cx(c - 1)) * x(c - 1) + double(cx(c)) * x(c + 1) + double(cy(c - sy)) * x(c - sy) +
+                double(cy(c)) * x(c + sy) + double(cz(c - sz)) * x(c - sz) + double(cz(c)) * x(c + sz));
+      });
+}
+
+/// One Gauss–Seidel half-sweep over the cells with (i + j + k) % 2 == colour: the cells of one
+/// colour only couple to the other colour, so the update is order-free and thread-count-free.
+template <class ExecSpace, class MemSpace, class B, class X>
+void red_black_gauss_seidel(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const B& b,
+                            const X& x, int colour) {
+  const auto inv = A.inverse_diag;
+  const auto cx = A.cx, cy = A.cy, cz = A.cz;
+  const mesh::MacGrid g = A.grid;
+  const int sy = g.stride_y(), sz = g.stride_z();
+  // One work item per x-row; within a row every second cell.
+  Kokkos::parallel_for(
+      "amphora::mac::red_black_gauss_seidel", RangePolicy<ExecSpace>(exec, 0, g.ny * g.nz),
+      KOKKOS_LAMBDA(int row) {
+        const int j = row % g.ny, k = row / g.ny;
+        const int first = (j + k + colour) & 1;
+        const int base = g.index(0, j, k);
+        for (int i = first; i < g.nx; i += 2) {
+          const int c = base + i;
+          x(c) = inv(c) * (b(c) + double(cx(c - 1)) * x(c - 1) + double(cx(c)) * x(c + 1) +
+                           double(cy(c - sy)) * x(c - sy) + double(cy(c)) * x(c + sy) +
+                           double(cz(c - sz)) * x(c - sz) + double(cz(c)) * x(c + sz));
+        }
+      });
+}
+
+/// Damped Jacobi: x_new = x + omega D^-1 (b - A x), written to x_new (x is read only).
+template <class ExecSpace, class MemSpace, class B, class X, class XN>
+void jacobi(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const B& b, const X& x,
+            const XN& x_new, double omega) {
+  const auto d = A.diag, inv = A.inverse_diag;
+  const auto cx = A.cx, cy = A.cy, cz = A.cz;
+  const int sy = A.grid.stride_y(), sz = A.grid.stride_z();
+  Kokkos::parallel_for(
+      "amphora::mac::jacobi",
+      RangePolicy<ExecSpace>(exec, A.grid.first_plane_index(), A.grid.end_plane_index()),
+      KOKKOS_LAMBDA(int c) {
+        const double r = b(c) - d(c) * x(c) +
+                         (double(cx(c - 1)) * x(c - 1) + double(cx(c)) * x(c + 1) +
+                          double(cy(c - sy)) * x(c - sy) + double(cy(c)) * x(c + sy) +
+                          double(cz(c - sz)) * x(c - sz) + double(cz(c)) * x(c + sz));
+        x_new(c) = x(c) + omega * inv(c) * r;
+      });
+}
+
+/// The matrix of a grid's fluid cells: conductance 1 between fluid cells, 1/theta towards air
+/// (phi from the level set; an empty phi puts the interface at the air cell's centre, theta =
+/// 1), Dirichlet p = 0 on open box faces (theta = 1/2), nothing at walls and solids.
+template <class ExecSpace, class MemSpace, class Types, class Phi>
+PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g,
+                                               const Types& type, const Phi& phi,
+                                               const mesh::MacBoxBoundaries& box) {
+  PoissonStencil<MemSpace> A(g);
+  const auto d = A.diag, inv = A.inverse_diag;
+  const auto cx = A.cx, cy = A.cy, cz = A.cz;
+  const bool has_phi = phi.extent(0) > 0;
+  bool open[6];
+  for (int f = 0; f < 6; ++f) open[f] = box[f] == mesh::MacBoundary::open;
+  const bool o0 = open[0], o1 = open[1], o2 = open[2], o3 = open[3], o4 = open[4], o5 = open[5];
+  using mesh::MacCellType;
+  Kokkos::parallel_for(
+      "amphora::mac::build_poisson_stencil",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
+      KOKKOS_LAMBDA(int k, int j, int i) {
+        const int c = g.index(i, j, k);
+        if (type(c) != MacCellType::fluid) return;
+        const int di[6] = {-1, 1, 0, 0, 0, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {0, 0, 0, 0, -1, 1};
+        const bool open_face[6] = {o0, o1, o2, o3, o4, o5};
+        double diag = 0.0;
+        for (int f = 0; f < 6; ++f) {
+          const int in = i + di[f], jn = j + dj[f], kn = k + dk[f];
+          float conductance = 0.0f;
+          if (!g.interior(in, jn, kn)) {
+            if (open_face[f]) diag += 2.0;  // p = 0 on the box face, h/2 away
+          } else {
+            const int n = g.index(in, jn, kn);
+            const MacCellType t = type(n);
+            if (t == MacCellType::fluid) {
+              conductance = 1.0f;
+              diag += 1.0;
+            } else if (t == MacCellType::air) {
+              diag += has_phi ? ghost_fluid_weight(phi(c), phi(n)) : 1.0;
+            }
+          }
+          if (f == 1) cx(c) = conductance;
+          if (f == 3) cy(c) = conductance;
+          if (f == 5) cz(c) = conductance;
+        }
+        d(c) = diag;
+        inv(c) = diag > 0.0 ? 1.0 / diag : 0.0;
+      });
+  return A;
+}
+
+}  // namespace amphora::kernels::mac
