@@ -8,6 +8,7 @@
 
 #include "kernels/host_vector.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
+#include "solvers/mac/pressure_solver.hpp"
 #include "test_backend.hpp"
 
 namespace amphora::solvers::mac {
@@ -137,6 +138,40 @@ TEST(MacMultigrid, GhostFluidSphereConvergesAtSecondOrderWithFlatIterationCounts
                         << runs[2].second;
   std::printf("sphere ghost fluid: errors %.3e %.3e %.3e, MG-CG iterations %d %d %d\n", runs[0].first, runs[1].first,
               runs[2].first, runs[0].second, runs[1].second, runs[2].second);
+}
+
+TEST(PressureSolver, ThreeBackEndsAgreeOnTheSphere) {
+  const TestExecSpace exec;
+  const SphereScene s(32);
+  const auto A = s.stencil();
+  const auto d = to_std_vector(A.diag);
+  std::vector<double> b(d.size(), 0.0);
+  for (int k = 0; k < 32; ++k)
+    for (int j = 0; j < 32; ++j)
+      for (int i = 0; i < 32; ++i) {
+        const int c = s.grid.index(i, j, k);
+        if (d[c] > 0) b[c] = s.grid.h * s.grid.h * s.source(s.grid.cell_centre(i, j, k));
+      }
+  const Vector bv = to_view<TestMemSpace>(b);
+  SolverControl control;
+  control.relative_tolerance = 1e-10;
+  std::vector<std::vector<double>> x;
+  for (const char* name : {"multigrid", "hypre", "mic0"}) {
+    auto solver = make_pressure_solver(parse_pressure_backend(name), exec, A);
+    Vector xv("x", d.size());
+    const SolverResult r = solver->solve(exec, bv, xv, control);
+    EXPECT_TRUE(r.converged) << name << ": " << r.iterations << " iterations";
+    EXPECT_LE(r.final_residual, 1.01e-10 * r.rhs_norm) << name;
+    x.push_back(to_std_vector(xv));
+  }
+  double scale = 0, diff = 0;
+  for (std::size_t c = 0; c < b.size(); ++c) {
+    scale = std::max(scale, std::abs(x[0][c]));
+    for (int m = 1; m < 3; ++m) diff = std::max(diff, std::abs(x[m][c] - x[0][c]));
+  }
+  // relative residual 1e-10 and condition number ~ (n / pi)^2 bound the difference
+  EXPECT_LT(diff, 1e-7 * scale);
+  EXPECT_THROW(parse_pressure_backend("amg"), std::invalid_argument);
 }
 
 TEST(MacMultigrid, RefusesGridsItCannotCoarsenNamingValidSizes) {

@@ -41,7 +41,19 @@ struct PoissonStencil {
         cz("amphora::mac::cz", g.padded_size()) {}
 };
 
-/// y = A x on every interior cell (ghost entries of y are set to zero as well).
+/// v = 0 on the ghost planes k = -1 and k = nz, which the flat stencil loops do not visit (the
+/// ghost cells inside the planes they visit come out zero because their coefficients are).
+template <class ExecSpace, class V>
+void zero_ghost_planes(const ExecSpace& exec, const mesh::MacGrid& g, const V& v) {
+  const int plane = g.stride_z(), last = g.end_plane_index();
+  Kokkos::parallel_for(
+      "amphora::mac::zero_ghost_planes", RangePolicy<ExecSpace>(exec, 0, plane), KOKKOS_LAMBDA(int c) {
+        v(c) = 0.0;
+        v(last + c) = 0.0;
+      });
+}
+
+/// y = A x on every interior cell; every ghost entry of y is zero.
 template <class ExecSpace, class MemSpace, class X, class Y>
 void apply(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const X& x, const Y& y) {
   const auto d = A.diag;
@@ -55,9 +67,10 @@ void apply(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const X& x,
                               double(cy(c - sy)) * x(c - sy) + double(cy(c)) * x(c + sy) +
                               double(cz(c - sz)) * x(c - sz) + double(cz(c)) * x(c + sz));
       });
+  zero_ghost_planes(exec, A.grid, y);
 }
 
-/// r = b - A x.
+/// r = b - A x (b zero on ghost cells: so is r).
 template <class ExecSpace, class MemSpace, class B, class X, class R>
 void residual(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const B& b, const X& x,
               const R& r) {
@@ -72,6 +85,7 @@ void residual(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const B&
                (double(cx(c - 1)) * x(c - 1) + double(cx(c)) * x(c + 1) + double(cy(c - sy)) * x(c - sy) +
                 double(cy(c)) * x(c + sy) + double(cz(c - sz)) * x(c - sz) + double(cz(c)) * x(c + sz));
       });
+  zero_ghost_planes(exec, A.grid, r);
 }
 
 /// One Gauss–Seidel half-sweep over the cells with (i + j + k) % 2 == colour: the cells of one

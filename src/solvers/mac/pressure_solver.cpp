@@ -1,0 +1,135 @@
+#include "solvers/mac/pressure_solver.hpp"
+
+#include <mpi.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "solvers/hypre_struct_pfmg.hpp"
+#include "solvers/mac/mac_multigrid.hpp"
+#include "solvers/mac/stencil_csr.hpp"
+#include "solvers/modified_incomplete_cholesky.hpp"
+
+namespace amphora::solvers::mac {
+
+PressureBackend parse_pressure_backend(const std::string& name) {
+  if (name == "multigrid") return PressureBackend::multigrid;
+  if (name == "hypre") return PressureBackend::hypre;
+  if (name == "mic0") return PressureBackend::mic0;
+  throw std::invalid_argument("unknown pressure solver back end '" + name + "' (allowed: multigrid, hypre, mic0)");
+}
+
+const char* to_string(PressureBackend backend) {
+  switch (backend) {
+    case PressureBackend::multigrid: return "multigrid";
+    case PressureBackend::hypre: return "hypre";
+    case PressureBackend::mic0: return "mic0";
+  }
+  return "?";
+}
+
+namespace {
+
+template <class ExecSpace>
+class MultigridPressureSolver final : public PressureSolver<ExecSpace> {
+ public:
+  using typename PressureSolver<ExecSpace>::Vector;
+  MultigridPressureSolver(const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
+      : mg_(exec, A) {}
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+    return mg_.solve(exec, b, x, c);
+  }
+  PressureBackend backend() const override { return PressureBackend::multigrid; }
+
+ private:
+  MacMultigrid<ExecSpace> mg_;
+};
+
+template <class ExecSpace>
+class PfmgPressureSolver final : public PressureSolver<ExecSpace> {
+ public:
+  using typename PressureSolver<ExecSpace>::Vector;
+  PfmgPressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
+    const auto d = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.diag);
+    const auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cx);
+    const auto y = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cy);
+    const auto z = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cz);
+    pfmg_ = std::make_unique<StructPfmgCG>(MPI_COMM_SELF, A.grid, std::array<int, 3>{0, 0, 0}, d.data(), x.data(),
+                                           y.data(), z.data());
+  }
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+    exec.fence();
+    const auto bh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), b);
+    const auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
+    const HypreSolveResult r = pfmg_->solve(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations);
+    Kokkos::deep_copy(x, xh);
+    SolverResult out;
+    out.iterations = r.iterations;
+    out.converged = r.final_relative_residual <= c.relative_tolerance;
+    double bb = 0.0;
+    for (std::size_t i = 0; i < bh.extent(0); ++i) bb += bh(i) * bh(i);
+    out.rhs_norm = std::sqrt(bb);
+    out.final_residual = r.final_relative_residual * out.rhs_norm;
+    return out;
+  }
+  PressureBackend backend() const override { return PressureBackend::hypre; }
+
+ private:
+  std::unique_ptr<StructPfmgCG> pfmg_;
+};
+
+/// CG with MIC(0) on the compact fluid-cell system, host, sequential.
+template <class ExecSpace>
+class Mic0PressureSolver final : public PressureSolver<ExecSpace> {
+ public:
+  using typename PressureSolver<ExecSpace>::Vector;
+  using HostVector = Kokkos::View<double*, HostMemSpace>;
+#if defined(KOKKOS_ENABLE_SERIAL)
+  using SequentialSpace = Kokkos::Serial;
+#else
+  using SequentialSpace = HostExecSpace;
+#endif
+  Mic0PressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
+      : A_(stencil_to_csr(A, numbering_)), mic_(A_) {}
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+    exec.fence();
+    const auto bh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), b);
+    const auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
+    const long n = numbering_.size();
+    HostVector bc("amphora::mic0::b", n), xc("amphora::mic0::x", n);
+    for (long u = 0; u < n; ++u) bc(u) = bh(numbering_.cell[u]), xc(u) = xh(numbering_.cell[u]);
+    const SolverResult r = conjugate_gradient(SequentialSpace(), CsrOperator{&A_}, bc, xc, c, mic_);
+    for (long u = 0; u < n; ++u) xh(numbering_.cell[u]) = xc(u);
+    Kokkos::deep_copy(x, xh);
+    return r;
+  }
+  PressureBackend backend() const override { return PressureBackend::mic0; }
+
+ private:
+  CompactNumbering numbering_;
+  CsrMatrix A_;
+  ModifiedIncompleteCholesky mic_;
+};
+
+}  // namespace
+
+template <class ExecSpace>
+std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
+    PressureBackend backend, const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
+  switch (backend) {
+    case PressureBackend::multigrid: return std::make_unique<MultigridPressureSolver<ExecSpace>>(exec, A);
+    case PressureBackend::hypre: return std::make_unique<PfmgPressureSolver<ExecSpace>>(A);
+    case PressureBackend::mic0: return std::make_unique<Mic0PressureSolver<ExecSpace>>(A);
+  }
+  throw std::invalid_argument("make_pressure_solver: unknown back end");
+}
+
+template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_pressure_solver(
+    PressureBackend, const DefaultExecSpace&, const kernels::mac::PoissonStencil<DefaultMemSpace>&);
+#if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
+template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_pressure_solver(
+    PressureBackend, const Kokkos::Serial&, const kernels::mac::PoissonStencil<Kokkos::HostSpace>&);
+#endif
+
+}  // namespace amphora::solvers::mac

@@ -1,0 +1,36 @@
+#pragma once
+// One interface to the three pressure back ends on a uniform MAC grid, chosen by name (a scene
+// key): "multigrid" (own geometric MG-preconditioned CG on the execution space), "hypre" (hypre
+// Struct PFMG-preconditioned CG), "mic0" (MIC(0)-preconditioned CG, host, sequential: the
+// classical baseline). Vectors are on the padded lattice of the stencil's grid; b must vanish
+// on non-fluid cells, and x is zero there on return.
+#include <memory>
+#include <string>
+
+#include "kernels/mac/poisson_stencil.hpp"
+#include "solvers/conjugate_gradient.hpp"
+
+namespace amphora::solvers::mac {
+
+enum class PressureBackend { multigrid, hypre, mic0 };
+
+/// Throws std::invalid_argument naming the allowed values.
+PressureBackend parse_pressure_backend(const std::string& name);
+const char* to_string(PressureBackend backend);
+
+template <class ExecSpace>
+class PressureSolver {
+ public:
+  using MemSpace = typename ExecSpace::memory_space;
+  using Vector = Kokkos::View<double*, MemSpace>;
+  virtual ~PressureSolver() = default;
+  /// Solves A x = b to control's tolerances from the guess in x.
+  virtual SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& control) = 0;
+  virtual PressureBackend backend() const = 0;
+};
+
+template <class ExecSpace>
+std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
+    PressureBackend backend, const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A);
+
+}  // namespace amphora::solvers::mac
