@@ -4,10 +4,17 @@
 // `apply(exec, r, z)` (z = M^-1 r). The inner product is a parameter so a distributed vector
 // sums over ranks; vectors are rank-local 1D Views.
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 #include "kernels/blas1.hpp"
 
 namespace amphora::solvers {
+
+template <class Inner, class = void>
+struct has_fused_update : std::false_type {};
+template <class Inner>
+struct has_fused_update<Inner, std::void_t<decltype(std::declval<const Inner&>().reduce(0.0))>> : std::true_type {};
 
 struct SolverControl {
   int max_iterations = 1000;
@@ -23,8 +30,10 @@ struct SolverResult {
   double rhs_norm = 0.0;
 };
 
-/// Rank-local Euclidean inner product.
+/// Rank-local Euclidean inner product. An inner product with reduce(local) (the sum over ranks of
+/// a rank's partial sum) lets CG fuse x += a p, r -= a q and r.r into one pass.
 struct LocalInnerProduct {
+  double reduce(double local) const { return local; }
   template <class ExecSpace, class X, class Y>
   double operator()(const ExecSpace& exec, const X& x, const Y& y) const {
     return blas1::dot(exec, x, y);
@@ -86,9 +95,13 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
     const double pq = dot(exec, p, q);
     if (!(pq > 0.0)) break;  // not SPD (or breakdown): stop, not converged
     const double alpha = rz / pq;
-    blas1::axpy(exec, alpha, p, x);
-    blas1::axpy(exec, -alpha, q, r);
-    rr = dot(exec, r, r);
+    if constexpr (has_fused_update<Inner>::value) {
+      rr = dot.reduce(blas1::cg_update(exec, alpha, p, q, x, r));
+    } else {
+      blas1::axpy(exec, alpha, p, x);
+      blas1::axpy(exec, -alpha, q, r);
+      rr = dot(exec, r, r);
+    }
     result.iterations = it;
     result.final_residual = std::sqrt(rr);
     if (result.final_residual <= target) {

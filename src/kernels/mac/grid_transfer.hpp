@@ -2,8 +2,10 @@
 // Transfers between a MAC cell grid and the grid with cells twice as wide, for geometric
 // multigrid on the pressure (the choices of McAdams, Sifakis & Teran 2010, sec. 4):
 // - prolongation P: cell-centred trilinear interpolation (weights 3/4, 1/4 per direction);
-//   beyond a box face the coarse value is copied from the nearest interior cell (zero normal
-//   derivative), and non-fluid cells of either grid take and give nothing;
+//   beyond a wall the coarse value is copied from the nearest interior cell (even reflection:
+//   zero normal derivative), beyond an open box face it is the negated one (odd reflection:
+//   p = 0 on the face, so linear functions are interpolated exactly), and non-fluid cells of
+//   either grid take and give nothing;
 // - restriction R = P^T exactly (so a symmetric smoother gives a symmetric V-cycle, as CG needs);
 // - coarse matrix by re-discretisation in conductance form: a coarse face conducts half the sum
 //   of its four fine faces, a coarse cell keeps half the free-surface terms of its eight children.
@@ -14,22 +16,33 @@
 namespace amphora::kernels::mac {
 
 namespace detail {
-/// Weight of fine index f (in [-1, 2n_c]) towards coarse index I under P, with the box clamp.
-KOKKOS_INLINE_FUNCTION double transfer_weight_1d(int f, int I, int n_c) {
-  if (f < 0 || f >= 2 * n_c) return 0.0;
-  const int parent = f >> 1;
-  const int other = (f & 1) ? parent + 1 : parent - 1;  // the second-nearest coarse cell
-  const int other_clamped = other < 0 ? 0 : (other >= n_c ? n_c - 1 : other);
-  return (parent == I ? 0.75 : 0.0) + (other_clamped == I ? 0.25 : 0.0);
+/// Weights of fine cells 2I-1 .. 2I+2 towards coarse cell I under P^T along one direction: 1/4,
+/// 3/4, 3/4, 1/4, where a box face (clamped prolongation) moves the outer 1/4 onto the inner cell.
+/// (Fine cells beyond the box are ghosts holding zero; their weight does not matter.)
+template <class S>
+KOKKOS_INLINE_FUNCTION void restriction_weights(int I, int n_c, bool wall_below, bool wall_above, S w[4]) {
+  w[0] = S(0.25);
+  w[1] = I == 0 ? (wall_below ? S(1) : S(0.5)) : S(0.75);
+  w[2] = I == n_c - 1 ? (wall_above ? S(1) : S(0.5)) : S(0.75);
+  w[3] = S(0.25);
+}
+
+/// The weight 1/4 of the second-nearest coarse cell, moved onto the nearest one beyond the box:
+/// +1/4 at a wall (even reflection), -1/4 at an open face (odd reflection).
+template <class S>
+KOKKOS_INLINE_FUNCTION S reflected_weight(bool wall) {
+  return wall ? S(0.25) : S(-0.25);
 }
 }  // namespace detail
 
-/// coarse = R fine, on coarse fluid cells (zero elsewhere).
-template <class ExecSpace, class MemSpace, class FineView, class CoarseView>
-void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A,
-                        const PoissonStencil<MemSpace>& coarse_A, const FineView& fine, const CoarseView& coarse) {
+/// coarse = R fine, on coarse fluid cells (zero elsewhere). fine must be zero on ghost cells.
+template <class ExecSpace, class MemSpace, class S, class FineView, class CoarseView>
+void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& fine_A,
+                        const PoissonStencil<MemSpace, S>& coarse_A, const FineView& fine, const CoarseView& coarse) {
   const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto active = coarse_A.inverse_diag;
+  const int sy = gf.stride_y(), sz = gf.stride_z();
+  const auto wall = coarse_A.walls();
   Kokkos::parallel_for(
       "amphora::mac::restrict_to_coarse",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gc.nz, gc.ny, gc.nx}),
@@ -39,49 +52,76 @@ void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace>& f
           coarse(C) = 0.0;
           return;
         }
-        double wx[4], wy[4], wz[4];
-        for (int a = 0; a < 4; ++a) {
-          wx[a] = detail::transfer_weight_1d(2 * I - 1 + a, I, gc.nx);
-          wy[a] = detail::transfer_weight_1d(2 * J - 1 + a, J, gc.ny);
-          wz[a] = detail::transfer_weight_1d(2 * K - 1 + a, K, gc.nz);
-        }
-        // Fine indices 2I-1 .. 2I+2 exist in the padded lattice (the ghost layer holds zeros).
-        double sum = 0.0;
+        S wx[4], wy[4], wz[4];
+        detail::restriction_weights(I, gc.nx, wall[0], wall[1], wx);
+        detail::restriction_weights(J, gc.ny, wall[2], wall[3], wy);
+        detail::restriction_weights(K, gc.nz, wall[4], wall[5], wz);
+        // Fine cells 2I-1 .. 2I+2 lie in the padded lattice; the ghost ones hold zeros.
+        const int corner = gf.index(2 * I - 1, 2 * J - 1, 2 * K - 1);
+        S sum = 0;
         for (int c = 0; c < 4; ++c) {
+          S plane = 0;
           for (int b = 0; b < 4; ++b) {
-            const int row = gf.index(2 * I - 1, 2 * J - 1 + b, 2 * K - 1 + c);
-            double s = 0.0;
-            for (int a = 0; a < 4; ++a) s += wx[a] * fine(row + a);
-            sum += wz[c] * wy[b] * s;
+            const int row = corner + b * sy + c * sz;
+            plane += wy[b] * (wx[0] * fine(row) + wx[1] * fine(row + 1) + wx[2] * fine(row + 2) +
+                              wx[3] * fine(row + 3));
           }
+          sum += wz[c] * plane;
         }
         coarse(C) = sum;
       });
 }
 
-/// fine += P coarse, on fine fluid cells.
-template <class ExecSpace, class MemSpace, class CoarseView, class FineView>
-void prolongate_add(const ExecSpace& exec, const PoissonStencil<MemSpace>& coarse_A,
-                    const PoissonStencil<MemSpace>& fine_A, const CoarseView& coarse, const FineView& fine) {
+/// fine += P coarse, on fine fluid cells: each coarse cell fills its eight children from its
+/// 3x3x3 neighbourhood (clamped at the box), one direction at a time.
+template <class ExecSpace, class MemSpace, class S, class CoarseView, class FineView>
+void prolongate_add(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& coarse_A,
+                    const PoissonStencil<MemSpace, S>& fine_A, const CoarseView& coarse, const FineView& fine) {
   const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto active = fine_A.inverse_diag;
+  const int fsy = gf.stride_y(), fsz = gf.stride_z();
+  const auto wall = coarse_A.walls();
   Kokkos::parallel_for(
       "amphora::mac::prolongate_add",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gf.nz, gf.ny, gf.nx}),
-      KOKKOS_LAMBDA(int k, int j, int i) {
-        const int c = gf.index(i, j, k);
-        if (active(c) == 0.0) return;
-        const int I0 = i >> 1, J0 = j >> 1, K0 = k >> 1;
-        const int I1 = math::clamp((i & 1) ? I0 + 1 : I0 - 1, 0, gc.nx - 1);
-        const int J1 = math::clamp((j & 1) ? J0 + 1 : J0 - 1, 0, gc.ny - 1);
-        const int K1 = math::clamp((k & 1) ? K0 + 1 : K0 - 1, 0, gc.nz - 1);
-        const int Is[2] = {I0, I1}, Js[2] = {J0, J1}, Ks[2] = {K0, K1};
-        const double w[2] = {0.75, 0.25};
-        double sum = 0.0;
-        for (int c3 = 0; c3 < 2; ++c3)
-          for (int b = 0; b < 2; ++b)
-            for (int a = 0; a < 2; ++a) sum += w[a] * w[b] * w[c3] * coarse(gc.index(Is[a], Js[b], Ks[c3]));
-        fine(c) += sum;
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gc.nz, gc.ny, gc.nx}),
+      KOKKOS_LAMBDA(int K, int J, int I) {
+        const S q = 0.25, t3 = 0.75;
+        // beyond the box, the neighbour is the cell itself with weight +-1/4 (see above)
+        const bool outside_x[2] = {I == 0, I == gc.nx - 1}, outside_y[2] = {J == 0, J == gc.ny - 1},
+                   outside_z[2] = {K == 0, K == gc.nz - 1};
+        const int xs[3] = {outside_x[0] ? I : I - 1, I, outside_x[1] ? I : I + 1};
+        const int ys[3] = {outside_y[0] ? J : J - 1, J, outside_y[1] ? J : J + 1};
+        const int zs[3] = {outside_z[0] ? K : K - 1, K, outside_z[1] ? K : K + 1};
+        const S wx[2] = {outside_x[0] ? detail::reflected_weight<S>(wall[0]) : q,
+                         outside_x[1] ? detail::reflected_weight<S>(wall[1]) : q};
+        const S wy[2] = {outside_y[0] ? detail::reflected_weight<S>(wall[2]) : q,
+                         outside_y[1] ? detail::reflected_weight<S>(wall[3]) : q};
+        const S wz[2] = {outside_z[0] ? detail::reflected_weight<S>(wall[4]) : q,
+                         outside_z[1] ? detail::reflected_weight<S>(wall[5]) : q};
+        // along x: t[c][b][s] for child side s
+        S t[3][3][2];
+        for (int c = 0; c < 3; ++c)
+          for (int b = 0; b < 3; ++b) {
+            const int row = gc.index(0, ys[b], zs[c]);
+            const S centre = coarse(row + I);
+            t[c][b][0] = t3 * centre + wx[0] * coarse(row + xs[0]);
+            t[c][b][1] = t3 * centre + wx[1] * coarse(row + xs[2]);
+          }
+        // along y, then z, then add to the children
+        S u[3][2][2];
+        for (int c = 0; c < 3; ++c)
+          for (int sx = 0; sx < 2; ++sx) {
+            u[c][0][sx] = t3 * t[c][1][sx] + wy[0] * t[c][0][sx];
+            u[c][1][sx] = t3 * t[c][1][sx] + wy[1] * t[c][2][sx];
+          }
+        const int first = gf.index(2 * I, 2 * J, 2 * K);
+        for (int sz_ = 0; sz_ < 2; ++sz_)
+          for (int sy_ = 0; sy_ < 2; ++sy_)
+            for (int sx = 0; sx < 2; ++sx) {
+              const S v = t3 * u[1][sy_][sx] + wz[sz_] * u[sz_ == 0 ? 0 : 2][sy_][sx];
+              const int f = first + sx + sy_ * fsy + sz_ * fsz;
+              if (active(f) != 0.0) fine(f) += v;
+            }
       });
 }
 
@@ -90,6 +130,7 @@ template <class ExecSpace, class MemSpace>
 PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A) {
   const mesh::MacGrid gf = fine_A.grid, gc = gf.coarsened();
   PoissonStencil<MemSpace> coarse_A(gc);
+  coarse_A.box = fine_A.box;
   const auto fd = fine_A.diag, fcx = fine_A.cx, fcy = fine_A.cy, fcz = fine_A.cz;
   const auto cd = coarse_A.diag, cinv = coarse_A.inverse_diag, ccx = coarse_A.cx, ccy = coarse_A.cy, ccz = coarse_A.cz;
   const int sy = gf.stride_y(), sz = gf.stride_z();

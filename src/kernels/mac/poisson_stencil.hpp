@@ -7,8 +7,10 @@
 // (phi_i - phi_j) of the way to the air cell, which adds 1/theta to d_i. Solid faces add
 // nothing (Neumann). Rows of non-fluid cells are zero (d = 0), so every vector stays zero there.
 //
-// Stored on the padded lattice of MacGrid: d (double), c_x/c_y/c_z (float: the values are
-// exact small fractions) on the + face of each cell, and 1/d (zero on non-fluid cells).
+// Stored on the padded lattice of MacGrid: d, c_x/c_y/c_z (float: the values are exact small
+// fractions) on the + face of each cell, and 1/d (zero on non-fluid cells). Scalar is the
+// type of d, 1/d and of the arithmetic: double for the operator CG sees, float for the
+// multigrid preconditioner (half the memory traffic; a preconditioner needs no more).
 #include "kernels/spaces.hpp"
 #include "mesh/mac/mac_grid.hpp"
 
@@ -25,11 +27,20 @@ KOKKOS_INLINE_FUNCTION double ghost_fluid_weight(double phi_fluid, double phi_ai
   return 1.0 / math::max(theta, min_ghost_fluid_theta);
 }
 
-template <class MemSpace>
+template <class MemSpace, class Scalar = double>
 struct PoissonStencil {
+  using scalar_type = Scalar;
   mesh::MacGrid grid;
-  Kokkos::View<double*, MemSpace> diag, inverse_diag;
+  mesh::MacBoxBoundaries box{};  ///< what lies beyond each box face (multigrid transfers)
+  Kokkos::View<Scalar*, MemSpace> diag, inverse_diag;
   Kokkos::View<float*, MemSpace> cx, cy, cz;
+
+  /// Which box faces are walls, as a device-copyable array.
+  Kokkos::Array<bool, 6> walls() const {
+    Kokkos::Array<bool, 6> w;
+    for (int f = 0; f < 6; ++f) w[f] = box[f] == mesh::MacBoundary::wall;
+    return w;
+  }
 
   PoissonStencil() = default;
   explicit PoissonStencil(const mesh::MacGrid& g)
@@ -54,8 +65,8 @@ void zero_ghost_planes(const ExecSpace& exec, const mesh::MacGrid& g, const V& v
 }
 
 /// y = A x on every interior cell; every ghost entry of y is zero.
-template <class ExecSpace, class MemSpace, class X, class Y>
-void apply(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const X& x, const Y& y) {
+template <class ExecSpace, class MemSpace, class S, class X, class Y>
+void apply(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const X& x, const Y& y) {
   const auto d = A.diag;
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
   const int sy = A.grid.stride_y(), sz = A.grid.stride_z();
@@ -63,16 +74,16 @@ void apply(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const X& x,
       "amphora::mac::apply",
       RangePolicy<ExecSpace>(exec, A.grid.first_plane_index(), A.grid.end_plane_index()),
       KOKKOS_LAMBDA(int c) {
-        y(c) = d(c) * x(c) - (double(cx(c - 1)) * x(c - 1) + double(cx(c)) * x(c + 1) +
-                              double(cy(c - sy)) * x(c - sy) + double(cy(c)) * x(c + sy) +
-                              double(cz(c - sz)) * x(c - sz) + double(cz(c)) * x(c + sz));
+        y(c) = d(c) * x(c) - (S(cx(c - 1)) * x(c - 1) + S(cx(c)) * x(c + 1) +
+                              S(cy(c - sy)) * x(c - sy) + S(cy(c)) * x(c + sy) +
+                              S(cz(c - sz)) * x(c - sz) + S(cz(c)) * x(c + sz));
       });
   zero_ghost_planes(exec, A.grid, y);
 }
 
 /// r = b - A x (b zero on ghost cells: so is r).
-template <class ExecSpace, class MemSpace, class B, class X, class R>
-void residual(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const B& b, const X& x,
+template <class ExecSpace, class MemSpace, class S, class B, class X, class R>
+void residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b, const X& x,
               const R& r) {
   const auto d = A.diag;
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
@@ -82,41 +93,49 @@ void residual(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const B&
       RangePolicy<ExecSpace>(exec, A.grid.first_plane_index(), A.grid.end_plane_index()),
       KOKKOS_LAMBDA(int c) {
         r(c) = b(c) - d(c) * x(c) +
-               (double(cx(c - 1)) * x(c - 1) + double(cx(c)) * x(c + 1) + double(cy(c - sy)) * x(c - sy) +
-                double(cy(c)) * x(c + sy) + double(cz(c - sz)) * x(c - sz) + double(cz(c)) * x(c + sz));
+               (S(cx(c - 1)) * x(c - 1) + S(cx(c)) * x(c + 1) + S(cy(c - sy)) * x(c - sy) +
+                S(cy(c)) * x(c + sy) + S(cz(c - sz)) * x(c - sz) + S(cz(c)) * x(c + sz));
       });
   zero_ghost_planes(exec, A.grid, r);
 }
 
 /// One Gauss–Seidel half-sweep over the cells with (i + j + k) % 2 == colour: the cells of one
 /// colour only couple to the other colour, so the update is order-free and thread-count-free.
-template <class ExecSpace, class MemSpace, class B, class X>
-void red_black_gauss_seidel(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const B& b,
+template <class ExecSpace, class MemSpace, class S, class B, class X>
+void red_black_gauss_seidel(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b,
                             const X& x, int colour) {
   const auto inv = A.inverse_diag;
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
   const mesh::MacGrid g = A.grid;
   const int sy = g.stride_y(), sz = g.stride_z();
-  // One work item per x-row; within a row every second cell.
+  // One work item per x-row. The row is updated in chunks: first every cell's Gauss–Seidel
+  // value into a local buffer (contiguous, so it vectorises; only other-colour cells are read for
+  // the cells that are kept), then the cells of this colour are written.
+  constexpr int chunk = 32;
   Kokkos::parallel_for(
       "amphora::mac::red_black_gauss_seidel", RangePolicy<ExecSpace>(exec, 0, g.ny * g.nz),
       KOKKOS_LAMBDA(int row) {
         const int j = row % g.ny, k = row / g.ny;
         const int first = (j + k + colour) & 1;
         const int base = g.index(0, j, k);
-        for (int i = first; i < g.nx; i += 2) {
-          const int c = base + i;
-          x(c) = inv(c) * (b(c) + double(cx(c - 1)) * x(c - 1) + double(cx(c)) * x(c + 1) +
-                           double(cy(c - sy)) * x(c - sy) + double(cy(c)) * x(c + sy) +
-                           double(cz(c - sz)) * x(c - sz) + double(cz(c)) * x(c + sz));
+        for (int i0 = 0; i0 < g.nx; i0 += chunk) {
+          const int len = math::min(chunk, g.nx - i0);
+          S value[chunk];
+          for (int m = 0; m < len; ++m) {
+            const int c = base + i0 + m;
+            value[m] = inv(c) * (b(c) + S(cx(c - 1)) * x(c - 1) + S(cx(c)) * x(c + 1) + S(cy(c - sy)) * x(c - sy) +
+                                 S(cy(c)) * x(c + sy) + S(cz(c - sz)) * x(c - sz) + S(cz(c)) * x(c + sz));
+          }
+          // i0 is even, so the kept cells are m = first, first + 2, ...
+          for (int m = first; m < len; m += 2) x(base + i0 + m) = value[m];
         }
       });
 }
 
 /// Damped Jacobi: x_new = x + omega D^-1 (b - A x), written to x_new (x is read only).
-template <class ExecSpace, class MemSpace, class B, class X, class XN>
-void jacobi(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const B& b, const X& x,
-            const XN& x_new, double omega) {
+template <class ExecSpace, class MemSpace, class S, class B, class X, class XN>
+void jacobi(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b, const X& x,
+            const XN& x_new, S omega) {
   const auto d = A.diag, inv = A.inverse_diag;
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
   const int sy = A.grid.stride_y(), sz = A.grid.stride_z();
@@ -124,10 +143,10 @@ void jacobi(const ExecSpace& exec, const PoissonStencil<MemSpace>& A, const B& b
       "amphora::mac::jacobi",
       RangePolicy<ExecSpace>(exec, A.grid.first_plane_index(), A.grid.end_plane_index()),
       KOKKOS_LAMBDA(int c) {
-        const double r = b(c) - d(c) * x(c) +
-                         (double(cx(c - 1)) * x(c - 1) + double(cx(c)) * x(c + 1) +
-                          double(cy(c - sy)) * x(c - sy) + double(cy(c)) * x(c + sy) +
-                          double(cz(c - sz)) * x(c - sz) + double(cz(c)) * x(c + sz));
+        const S r = b(c) - d(c) * x(c) +
+                         (S(cx(c - 1)) * x(c - 1) + S(cx(c)) * x(c + 1) +
+                          S(cy(c - sy)) * x(c - sy) + S(cy(c)) * x(c + sy) +
+                          S(cz(c - sz)) * x(c - sz) + S(cz(c)) * x(c + sz));
         x_new(c) = x(c) + omega * inv(c) * r;
       });
 }
@@ -140,6 +159,7 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
                                                const Types& type, const Phi& phi,
                                                const mesh::MacBoxBoundaries& box) {
   PoissonStencil<MemSpace> A(g);
+  A.box = box;
   const auto d = A.diag, inv = A.inverse_diag;
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
   const bool has_phi = phi.extent(0) > 0;
@@ -179,6 +199,25 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
         inv(c) = diag > 0.0 ? 1.0 / diag : 0.0;
       });
   return A;
+}
+
+/// The same matrix with d and 1/d in another precision.
+template <class Scalar, class ExecSpace, class MemSpace, class S>
+PoissonStencil<MemSpace, Scalar> convert_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
+  PoissonStencil<MemSpace, Scalar> B;
+  B.grid = A.grid;
+  B.box = A.box;
+  B.cx = A.cx, B.cy = A.cy, B.cz = A.cz;  // float already: shared
+  B.diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::diag", A.diag.extent(0));
+  B.inverse_diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::inverse_diag", A.diag.extent(0));
+  const auto d = A.diag, inv = A.inverse_diag, bd = B.diag, binv = B.inverse_diag;
+  Kokkos::parallel_for(
+      "amphora::mac::convert_stencil", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(d.extent(0))),
+      KOKKOS_LAMBDA(int c) {
+        bd(c) = static_cast<Scalar>(d(c));
+        binv(c) = static_cast<Scalar>(inv(c));
+      });
+  return B;
 }
 
 }  // namespace amphora::kernels::mac

@@ -1,0 +1,184 @@
+// MAC pressure solves: time to a relative residual of 1e-8, setup included, per back end.
+//
+// Uniform/backend/n: the 7-point Poisson problem of the issue's anchors on an n^3 box of fluid
+// cells, pressure zero on all six box faces, a smooth right-hand side; backend 0 = own
+// multigrid-CG (threads: OMP_NUM_THREADS), 1 = hypre Struct PFMG-CG (1 rank, or the ranks of
+// mpiexec, each owning a z slab), 2 = MIC(0)-CG (sequential). Counters: iterations, unknowns,
+// unknowns per second (unknowns / time), setup seconds.
+//
+// Anchors (issue 4, same machine kind, 128^3): PFMG-CG 1.9 s on 1 rank, 0.95 s on 2 (12
+// iterations); BoomerAMG-CG 7.6 s / 4.6 s; MIC(0)-CG 3.0 s (61 iterations).
+#include <benchmark/benchmark.h>
+#include <mpi.h>
+
+#include <chrono>
+#include <memory>
+#include <cmath>
+#include <vector>
+
+#include "kernels/host_vector.hpp"
+#include "solvers/hypre_struct_pfmg.hpp"
+#include "solvers/mac/mac_multigrid.hpp"
+#include "solvers/mac/pressure_solver.hpp"
+
+namespace {
+
+using Exec = amphora::DefaultExecSpace;
+using Mem = Exec::memory_space;
+using Vector = Kokkos::View<double*, Mem>;
+using Stencil = amphora::kernels::mac::PoissonStencil<Mem>;
+namespace mesh = amphora::mesh;
+namespace mac = amphora::solvers::mac;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// This rank's z slab of the fluid box [0,1]^3 with n^3 cells: its stencil (conductances
+/// towards the neighbouring slabs in the ghost layer) and right-hand side h^2 f.
+struct UniformBox {
+  mesh::MacGrid grid;
+  int z0 = 0;
+  Stencil A;
+  Vector b;
+
+  UniformBox(int n, int rank, int ranks) {
+    const int nz = n / ranks;
+    z0 = rank * nz;
+    grid = mesh::MacGrid{n, n, nz, 1.0 / n, {0.0, 0.0, z0 / double(n)}};
+    const Exec exec;
+    Kokkos::View<mesh::MacCellType*, Mem> type("type", grid.padded_size());
+    Kokkos::deep_copy(type, mesh::MacCellType::fluid);
+    mesh::MacBoxBoundaries faces;
+    faces.fill(mesh::MacBoundary::open);
+    const bool below = rank > 0, above = rank + 1 < ranks;
+    if (below) faces[4] = mesh::MacBoundary::wall;
+    if (above) faces[5] = mesh::MacBoundary::wall;
+    A = amphora::kernels::mac::build_poisson_stencil<Exec, Mem>(exec, grid, type, Vector(), faces);
+    // couple the slab faces to the neighbouring ranks' cells
+    auto d = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), A.diag);
+    auto cz = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), A.cz);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        if (below) cz(grid.index(i, j, -1)) = 1.0f, d(grid.index(i, j, 0)) += 1.0;
+        if (above) cz(grid.index(i, j, nz - 1)) = 1.0f, d(grid.index(i, j, nz - 1)) += 1.0;
+      }
+    Kokkos::deep_copy(A.diag, d);
+    Kokkos::deep_copy(A.cz, cz);
+    std::vector<double> f(grid.padded_size(), 0.0);
+    const double h = grid.h, pi = amphora::math::pi;
+    for (int k = 0; k < nz; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const auto x = grid.cell_centre(i, j, k);
+          f[grid.index(i, j, k)] = h * h * (1.0 + std::sin(pi * x[0]) * std::sin(2 * pi * x[1]) * std::cos(pi * x[2]));
+        }
+    b = amphora::to_view<Mem>(f, "b");
+  }
+};
+
+void Uniform(benchmark::State& state) {
+  const int backend = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  if (ranks > 1 && backend != 1) {
+    state.SkipWithError("only the hypre back end runs on several ranks");
+    return;
+  }
+  const UniformBox box(n, rank, ranks);
+  const Exec exec;
+  amphora::solvers::SolverControl control;
+  control.relative_tolerance = 1e-8;
+  control.max_iterations = 2000;
+  Vector x("x", box.grid.padded_size());
+  int iterations = 0;
+  double setup = 0.0, rel = 0.0;
+  for (auto _ : state) {
+    Kokkos::deep_copy(x, 0.0);
+    exec.fence();
+    MPI_Barrier(MPI_COMM_WORLD);
+    const auto t0 = Clock::now();
+    if (backend == 1) {
+      // hypre directly, so several ranks can share the problem
+      const auto d = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.A.diag);
+      const auto cx = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.A.cx);
+      const auto cy = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.A.cy);
+      const auto cz = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.A.cz);
+      const auto bh = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.b);
+      auto xh = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), x);
+      amphora::solvers::StructPfmgCG pfmg(MPI_COMM_WORLD, box.grid, {0, 0, box.z0}, d.data(), cx.data(), cy.data(),
+                                          cz.data());
+      setup = seconds_since(t0);
+      const auto r = pfmg.solve(bh.data(), xh.data(), control.relative_tolerance, control.max_iterations);
+      iterations = r.iterations;
+      rel = r.final_relative_residual;
+      Kokkos::deep_copy(x, xh);
+    } else {
+      auto solver = mac::make_pressure_solver(backend == 0 ? mac::PressureBackend::multigrid : mac::PressureBackend::mic0,
+                                              exec, box.A);
+      exec.fence();
+      setup = seconds_since(t0);
+      const auto r = solver->solve(exec, box.b, x, control);
+      iterations = r.iterations;
+      rel = r.final_residual / r.rhs_norm;
+    }
+    exec.fence();
+    MPI_Barrier(MPI_COMM_WORLD);
+    state.SetIterationTime(seconds_since(t0));
+  }
+  const double unknowns = double(n) * n * n;
+  state.counters["iterations"] = iterations;
+  state.counters["unknowns"] = unknowns;
+  state.counters["setup_s"] = setup;
+  state.counters["relative_residual"] = rel;
+  state.counters["unknowns_per_s"] = benchmark::Counter(unknowns, benchmark::Counter::kIsIterationInvariantRate);
+  static const char* names[] = {"multigrid-CG", "hypre PFMG-CG", "MIC(0)-CG"};
+  state.SetLabel(names[backend]);
+}
+BENCHMARK(Uniform)
+    ->ArgsProduct({{0, 1, 2}, {64, 128, 192}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(1);
+
+/// The hot kernels on the fine 128^3 (or n^3) level: cells per second and bytes moved per second
+/// (the bytes a kernel must move at least: its reads and writes of doubles and floats).
+/// kind 0 = apply (y = A x), 1 = residual, 2 = one red-black Gauss–Seidel sweep (both
+/// colours), 3 = restriction, 4 = prolongation, 5 = one V-cycle.
+void Kernels(benchmark::State& state) {
+  const int kind = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
+  const UniformBox box(n, 0, 1);
+  const Exec exec;
+  const long size = box.grid.padded_size();
+  Vector x("x", size), y("y", size);
+  Kokkos::deep_copy(x, box.b);
+  const Stencil coarse = amphora::kernels::mac::coarsen_stencil(exec, box.A);
+  Vector xc("xc", coarse.grid.padded_size());
+  std::unique_ptr<mac::MacMultigrid<Exec>> mg;
+  if (kind == 5) mg = std::make_unique<mac::MacMultigrid<Exec>>(exec, box.A);
+  for (auto _ : state) {
+    switch (kind) {
+      case 0: amphora::kernels::mac::apply(exec, box.A, x, y); break;
+      case 1: amphora::kernels::mac::residual(exec, box.A, box.b, x, y); break;
+      case 2:
+        amphora::kernels::mac::red_black_gauss_seidel(exec, box.A, box.b, x, 0);
+        amphora::kernels::mac::red_black_gauss_seidel(exec, box.A, box.b, x, 1);
+        break;
+      case 3: amphora::kernels::mac::restrict_to_coarse(exec, box.A, coarse, x, xc); break;
+      case 4: amphora::kernels::mac::prolongate_add(exec, coarse, box.A, xc, x); break;
+      case 5: mg->apply(exec, box.b, x); break;
+    }
+    exec.fence();
+  }
+  const double cells = double(n) * n * n;
+  // doubles and floats each kernel must touch per fine cell
+  const double bytes[] = {8 + 8 + 8 + 12, 8 + 8 + 8 + 8 + 12, 2 * (8 + 8 + 8 + 12) + 8, 8 + 8.0 / 8, 8 + 8 + 8.0 / 8, 0};
+  state.counters["cells_per_s"] = benchmark::Counter(cells, benchmark::Counter::kIsIterationInvariantRate);
+  if (bytes[kind] > 0)
+    state.counters["bytes_per_s"] = benchmark::Counter(cells * bytes[kind], benchmark::Counter::kIsIterationInvariantRate);
+  static const char* names[] = {"apply", "residual", "red-black GS sweep", "restrict", "prolongate", "V-cycle"};
+  state.SetLabel(names[kind]);
+}
+BENCHMARK(Kernels)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {128}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
