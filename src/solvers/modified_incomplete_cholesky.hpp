@@ -24,7 +24,13 @@ class ModifiedIncompleteCholesky {
   }
 
  private:
-  const CsrMatrix* A_;
+  /// The strict lower and upper triangles of A, apart, so each triangular solve streams only
+  /// its own half.
+  struct Triangle {
+    std::vector<int> row_ptr, cols;
+    std::vector<double> values;
+  };
+  Triangle lower_, upper_;
   std::vector<double> inverse_e_;
 };
 

@@ -9,7 +9,7 @@
 #include "solvers/hypre_struct_pfmg.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/stencil_csr.hpp"
-#include "solvers/modified_incomplete_cholesky.hpp"
+#include "solvers/mac/stencil_mic0.hpp"
 
 namespace amphora::solvers::mac {
 
@@ -79,7 +79,7 @@ class PfmgPressureSolver final : public PressureSolver<ExecSpace> {
   std::unique_ptr<StructPfmgCG> pfmg_;
 };
 
-/// CG with MIC(0) on the compact fluid-cell system, host, sequential.
+/// CG with MIC(0) on the stencil, host, sequential.
 template <class ExecSpace>
 class Mic0PressureSolver final : public PressureSolver<ExecSpace> {
  public:
@@ -90,26 +90,40 @@ class Mic0PressureSolver final : public PressureSolver<ExecSpace> {
 #else
   using SequentialSpace = HostExecSpace;
 #endif
-  Mic0PressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
-      : A_(stencil_to_csr(A, numbering_)), mic_(A_) {}
+  using HostStencil = kernels::mac::PoissonStencil<HostMemSpace>;
+
+  explicit Mic0PressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
+      : A_(to_host(A)), mic_(A_) {}
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
     exec.fence();
     const auto bh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), b);
     const auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
-    const long n = numbering_.size();
-    HostVector bc("amphora::mic0::b", n), xc("amphora::mic0::x", n);
-    for (long u = 0; u < n; ++u) bc(u) = bh(numbering_.cell[u]), xc(u) = xh(numbering_.cell[u]);
-    const SolverResult r = conjugate_gradient(SequentialSpace(), CsrOperator{&A_}, bc, xc, c, mic_);
-    for (long u = 0; u < n; ++u) xh(numbering_.cell[u]) = xc(u);
+    const SolverResult r = conjugate_gradient(SequentialSpace(), Operator{A_}, HostVector(bh), HostVector(xh), c, mic_);
     Kokkos::deep_copy(x, xh);
     return r;
   }
   PressureBackend backend() const override { return PressureBackend::mic0; }
 
  private:
-  CompactNumbering numbering_;
-  CsrMatrix A_;
-  ModifiedIncompleteCholesky mic_;
+  struct Operator {
+    HostStencil A;
+    void apply(const SequentialSpace& exec, const HostVector& x, const HostVector& y) const {
+      kernels::mac::apply(exec, A, x, y);
+    }
+  };
+  static HostStencil to_host(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
+    HostStencil H;
+    H.grid = A.grid;
+    H.box = A.box;
+    H.diag = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.diag);
+    H.inverse_diag = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.inverse_diag);
+    H.cx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cx);
+    H.cy = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cy);
+    H.cz = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cz);
+    return H;
+  }
+  HostStencil A_;
+  StencilMic0 mic_;
 };
 
 }  // namespace
