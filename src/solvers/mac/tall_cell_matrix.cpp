@@ -1,0 +1,130 @@
+#include "solvers/mac/tall_cell_matrix.hpp"
+
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+namespace amphora::solvers::mac {
+
+namespace {
+
+/// Rows of a symmetric matrix under assembly: a few entries each, found by linear search.
+class RowAccumulator {
+ public:
+  explicit RowAccumulator(long n) : rows_(n) {}
+  void add(int r, int c, double v) {
+    for (auto& e : rows_[r])
+      if (e.first == c) {
+        e.second += v;
+        return;
+      }
+    rows_[r].emplace_back(c, v);
+  }
+  /// += scale v v^T for the n entries (ids, v).
+  void add_outer(const int* ids, const double* v, int n, double scale) {
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) add(ids[a], ids[b], scale * v[a] * v[b]);
+  }
+  CsrMatrix to_csr() {
+    CsrMatrix M;
+    M.n = static_cast<long>(rows_.size());
+    M.row_ptr.assign(1, 0);
+    for (auto& row : rows_) {
+      std::sort(row.begin(), row.end());
+      for (const auto& [c, v] : row) {
+        M.cols.push_back(c);
+        M.values.push_back(v);
+      }
+      M.row_ptr.push_back(static_cast<long>(M.cols.size()));
+    }
+    return M;
+  }
+
+ private:
+  std::vector<std::vector<std::pair<int, double>>> rows_;
+};
+
+}  // namespace
+
+CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A) {
+  const mesh::MacGrid& g = T.grid();
+  const int sy = g.stride_y(), sz = g.stride_z();
+  RowAccumulator rows(T.unknowns());
+  // c (p_P - p_Q)^2 for lattice cells P and Q, whatever they map to
+  auto add_face = [&](int iP, int jP, int kP, int iQ, int jQ, int kQ, double c) {
+    int ids[4];
+    double v[4];
+    double w[2];
+    int n = T.weights(iP, jP, kP, ids, w);
+    for (int m = 0; m < n; ++m) v[m] = w[m];
+    const int nQ = T.weights(iQ, jQ, kQ, ids + n, w);
+    for (int m = 0; m < nQ; ++m) v[n + m] = -w[m];
+    rows.add_outer(ids, v, n + nQ, c);
+  };
+  const auto& d = A.diag;
+  const auto &cx = A.cx, &cy = A.cy, &cz = A.cz;
+  for (int k = 0; k < g.nz; ++k)
+    for (int i = 0; i < g.nx; ++i) {
+      const mesh::TallCellColumn& col = T.columns()[i + g.nx * k];
+      const double dt = col.has_tall_cell() ? 1.0 / (col.band - 1 - col.terrain) : 0.0;
+      const int bot = col.first_unknown;
+      // free-surface / open-face terms D p^2
+      for (int j = col.terrain; j < g.ny; ++j) {
+        const int c = g.index(i, j, k);
+        if (d(c) == 0.0) continue;
+        const double D = d(c) - (double(cx(c - 1)) + double(cx(c)) + double(cy(c - sy)) + double(cy(c)) +
+                                 double(cz(c - sz)) + double(cz(c)));
+        if (D == 0.0) continue;
+        int ids[2];
+        double w[2];
+        const int n = T.weights(i, j, k, ids, w);
+        rows.add_outer(ids, w, n, D);
+      }
+      // vertical faces: inside the tall cell in one block, the rest one by one
+      double inside = 0.0;
+      for (int j = col.terrain; j + 1 < g.ny; ++j) {
+        const double c = cy(g.index(i, j, k));
+        if (c == 0.0) continue;
+        if (j + 1 < col.band)
+          inside += c;
+        else
+          add_face(i, j, k, i, j + 1, k, c);
+      }
+      if (inside != 0.0) {
+        const int ids[2] = {bot, bot + 1};
+        const double v[2] = {dt, -dt};
+        rows.add_outer(ids, v, 2, inside);
+      }
+      // horizontal faces to the +x and +z neighbours
+      for (int dir = 0; dir < 2; ++dir) {
+        const int in = i + (dir == 0), kn = k + (dir == 1);
+        if (in >= g.nx || kn >= g.nz) continue;
+        const auto& cond = dir == 0 ? cx : cz;
+        const mesh::TallCellColumn& nb = T.columns()[in + g.nx * kn];
+        const double dn = nb.has_tall_cell() ? 1.0 / (nb.band - 1 - nb.terrain) : 0.0;
+        double block[4][4] = {};
+        bool any_block = false;
+        for (int j = std::max(col.terrain, nb.terrain); j < g.ny; ++j) {
+          const double c = cond(g.index(i, j, k));
+          if (c == 0.0) continue;
+          if (j < col.band && j < nb.band) {  // tall against tall: a 4x4 block
+            const double t = (j - col.terrain) * dt, s = (j - nb.terrain) * dn;
+            const double v[4] = {1.0 - t, t, -(1.0 - s), -s};
+            for (int a = 0; a < 4; ++a)
+              for (int b = 0; b < 4; ++b) block[a][b] += c * v[a] * v[b];
+            any_block = true;
+          } else {
+            add_face(i, j, k, in, j, kn, c);
+          }
+        }
+        if (any_block) {
+          const int ids[4] = {bot, bot + 1, nb.first_unknown, nb.first_unknown + 1};
+          for (int a = 0; a < 4; ++a)
+            for (int b = 0; b < 4; ++b) rows.add(ids[a], ids[b], block[a][b]);
+        }
+      }
+    }
+  return rows.to_csr();
+}
+
+}  // namespace amphora::solvers::mac

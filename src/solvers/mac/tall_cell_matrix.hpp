@@ -1,0 +1,14 @@
+#pragma once
+// The pressure matrix of a tall-cell grid, P^T A P (Irving et al. 2006, sec. 4: the tall-cell
+// Laplacian from the linear-in-height pressure), assembled face by face from the quadratic form
+//   p^T A p = sum_faces c_f (p_i - p_j)^2 + sum_cells D_i p_i^2,  p = P y,
+// with the faces inside a tall cell and between two tall cells summed in closed blocks, so the
+// cost follows the uniform cells plus one pass over the tall rows. Host.
+#include "mesh/mac/tall_cell_grid.hpp"
+#include "solvers/csr_matrix.hpp"
+
+namespace amphora::solvers::mac {
+
+CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A);
+
+}  // namespace amphora::solvers::mac
