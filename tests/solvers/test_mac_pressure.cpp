@@ -27,7 +27,8 @@ struct SphereScene {
   Vector phi;
   double cx = 0.5, cy = 0.5, cz = 0.5, R = 0.37;
 
-  explicit SphereScene(int n) : grid{n, n, n, 1.0 / n, {0, 0, 0}} {
+  /// with_terrain: solid cells below an undulating floor cut the sphere's bottom.
+  explicit SphereScene(int n, bool with_terrain = false) : grid{n, n, n, 1.0 / n, {0, 0, 0}} {
     std::vector<MacCellType> t(grid.padded_size(), MacCellType::solid);
     std::vector<double> p(grid.padded_size(), 1.0);
     for (int k = 0; k < n; ++k)
@@ -38,6 +39,7 @@ struct SphereScene {
           const int c = grid.index(i, j, k);
           p[c] = r - R;
           t[c] = p[c] < 0 ? MacCellType::fluid : MacCellType::air;
+          if (with_terrain && x[1] < 0.2 + 0.1 * std::sin(9 * x[0]) * std::cos(7 * x[2])) t[c] = MacCellType::solid;
         }
     type = to_view<TestMemSpace>(t, "type");
     phi = to_view<TestMemSpace>(p, "phi");
@@ -61,8 +63,8 @@ struct SphereScene {
 
 TEST(MacGridTransfer, RestrictionIsTheTransposeOfProlongation) {
   const TestExecSpace exec;
-  for (int n : {8, 12, 16}) {
-    const SphereScene s(n);
+  for (auto [n, terrain] : {std::pair{8, false}, {12, false}, {16, false}, {8, true}, {16, true}}) {
+    const SphereScene s(n, terrain);
     const auto fine = s.stencil();
     const auto coarse = kernels::mac::coarsen_stencil(exec, fine);
     std::mt19937 rng(5);
@@ -72,8 +74,8 @@ TEST(MacGridTransfer, RestrictionIsTheTransposeOfProlongation) {
     for (std::size_t i = 0; i < xc.size(); ++i) xc[i] = cd[i] > 0 ? u(rng) : 0.0;
     for (std::size_t i = 0; i < yf.size(); ++i) yf[i] = fd[i] > 0 ? u(rng) : 0.0;
     Vector Pxc("Pxc", fd.size()), Ryf("Ryf", cd.size());
-    kernels::mac::prolongate_add(exec, coarse, fine, to_view<TestMemSpace>(xc), Pxc);
-    kernels::mac::restrict_to_coarse(exec, fine, coarse, to_view<TestMemSpace>(yf), Ryf);
+    kernels::mac::prolongate_correction(exec, coarse, fine, to_view<TestMemSpace>(xc), Pxc);
+    kernels::mac::restrict_residual(exec, fine, coarse, to_view<TestMemSpace>(yf), Ryf);
     const auto a = to_std_vector(Pxc), b = to_std_vector(Ryf);
     double ab = 0, ba = 0;
     for (std::size_t i = 0; i < a.size(); ++i) ab += a[i] * yf[i];

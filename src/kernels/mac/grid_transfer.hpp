@@ -4,9 +4,11 @@
 // - prolongation P: cell-centred trilinear interpolation (weights 3/4, 1/4 per direction);
 //   beyond a wall the coarse value is copied from the nearest interior cell (even reflection:
 //   zero normal derivative), beyond an open box face it is the negated one (odd reflection:
-//   p = 0 on the face, so linear functions are interpolated exactly), and non-fluid cells of
-//   either grid take and give nothing;
-// - restriction R = P^T exactly (so a symmetric smoother gives a symmetric V-cycle, as CG needs);
+//   p = 0 on the face, so linear functions are interpolated exactly); solid coarse cells inside
+//   the box first take the mean of their fluid face neighbours (an extension E that reflects
+//   across flat terrain as a wall does), air cells stay zero, and non-fluid fine cells take
+//   nothing;
+// - restriction R = P^T exactly (E^T included) (so a symmetric smoother gives a symmetric V-cycle, as CG needs);
 // - coarse matrix by re-discretisation in conductance form: a coarse face conducts half the sum
 //   of its four fine faces, a coarse cell keeps half the free-surface terms of its eight children.
 //   For full faces that is the rediscretised Laplacian at 2h (c = 2 in fine units: area 4h^2 over
@@ -41,6 +43,7 @@ void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
                         const PoissonStencil<MemSpace, S>& coarse_A, const FineView& fine, const CoarseView& coarse) {
   const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto active = coarse_A.inverse_diag;
+  const auto solid = coarse_A.solid;
   const int sy = gf.stride_y(), sz = gf.stride_z();
   const auto wall = coarse_A.walls();
   Kokkos::parallel_for(
@@ -48,7 +51,7 @@ void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gc.nz, gc.ny, gc.nx}),
       KOKKOS_LAMBDA(int K, int J, int I) {
         const int C = gc.index(I, J, K);
-        if (active(C) == 0.0) {
+        if (active(C) == 0.0 && !solid(C)) {
           coarse(C) = 0.0;
           return;
         }
@@ -125,6 +128,81 @@ void prolongate_add(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& co
       });
 }
 
+namespace detail {
+/// Fluid face neighbours of cell c.
+template <class Active>
+KOKKOS_INLINE_FUNCTION int fluid_neighbours(const Active& active, int c, int sy, int sz, int nbr[6]) {
+  const int offsets[6] = {-1, 1, -sy, sy, -sz, sz};
+  int n = 0;
+  for (int f = 0; f < 6; ++f)
+    if (active(c + offsets[f]) != 0) nbr[n++] = c + offsets[f];
+  return n;
+}
+}  // namespace detail
+
+/// E: every solid cell takes the mean of its fluid face neighbours (zero if it has none).
+template <class ExecSpace, class MemSpace, class S, class V>
+void extend_into_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const V& v) {
+  const mesh::MacGrid g = A.grid;
+  const auto active = A.inverse_diag;
+  const auto solid = A.solid;
+  const int sy = g.stride_y(), sz = g.stride_z();
+  Kokkos::parallel_for(
+      "amphora::mac::extend_into_solids", RangePolicy<ExecSpace>(exec, g.first_plane_index(), g.end_plane_index()),
+      KOKKOS_LAMBDA(int c) {
+        if (!solid(c)) return;
+        int nbr[6];
+        const int n = detail::fluid_neighbours(active, c, sy, sz, nbr);
+        typename V::non_const_value_type sum = 0;
+        for (int m = 0; m < n; ++m) sum += v(nbr[m]);
+        v(c) = n > 0 ? sum / n : 0;
+      });
+}
+
+/// E^T, then zero on every non-fluid cell: each fluid cell adds the share it gave to each solid
+/// neighbour.
+template <class ExecSpace, class MemSpace, class S, class V>
+void gather_from_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const V& v) {
+  const mesh::MacGrid g = A.grid;
+  const auto active = A.inverse_diag;
+  const auto solid = A.solid;
+  const int sy = g.stride_y(), sz = g.stride_z();
+  const int first = g.first_plane_index(), end = g.end_plane_index();
+  Kokkos::parallel_for(
+      "amphora::mac::gather_from_solids", RangePolicy<ExecSpace>(exec, first, end), KOKKOS_LAMBDA(int c) {
+        if (active(c) == 0) return;
+        const int offsets[6] = {-1, 1, -sy, sy, -sz, sz};
+        typename V::non_const_value_type add = 0;
+        for (int f = 0; f < 6; ++f) {
+          const int s = c + offsets[f];
+          if (!solid(s)) continue;
+          int nbr[6];
+          add += v(s) / detail::fluid_neighbours(active, s, sy, sz, nbr);  // >= 1: c is one
+        }
+        v(c) += add;
+      });
+  Kokkos::parallel_for(
+      "amphora::mac::zero_non_fluid", RangePolicy<ExecSpace>(exec, first, end), KOKKOS_LAMBDA(int c) {
+        if (active(c) == 0) v(c) = 0;
+      });
+}
+
+/// The restriction of a multigrid cycle: coarse = R fine = E^T P^T fine (zero off the fluid).
+template <class ExecSpace, class MemSpace, class S, class FineView, class CoarseView>
+void restrict_residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& fine_A,
+                       const PoissonStencil<MemSpace, S>& coarse_A, const FineView& fine, const CoarseView& coarse) {
+  restrict_to_coarse(exec, fine_A, coarse_A, fine, coarse);
+  gather_from_solids(exec, coarse_A, coarse);
+}
+
+/// The prolongation of a multigrid cycle: fine += P E coarse (E writes coarse's solid cells).
+template <class ExecSpace, class MemSpace, class S, class CoarseView, class FineView>
+void prolongate_correction(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& coarse_A,
+                           const PoissonStencil<MemSpace, S>& fine_A, const CoarseView& coarse, const FineView& fine) {
+  extend_into_solids(exec, coarse_A, coarse);
+  prolongate_add(exec, coarse_A, fine_A, coarse, fine);
+}
+
 /// The coarse matrix of a fine one (grid dimensions even): see the header comment.
 template <class ExecSpace, class MemSpace>
 PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A) {
@@ -133,6 +211,7 @@ PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonSte
   coarse_A.box = fine_A.box;
   const auto fd = fine_A.diag, fcx = fine_A.cx, fcy = fine_A.cy, fcz = fine_A.cz;
   const auto cd = coarse_A.diag, cinv = coarse_A.inverse_diag, ccx = coarse_A.cx, ccy = coarse_A.cy, ccz = coarse_A.cz;
+  const auto fsolid = fine_A.solid, csolid = coarse_A.solid;
   const int sy = gf.stride_y(), sz = gf.stride_z();
   // Pass 1: conductances of the + faces of every coarse cell.
   Kokkos::parallel_for(
@@ -158,11 +237,12 @@ PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonSte
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gc.nz, gc.ny, gc.nx}),
       KOKKOS_LAMBDA(int K, int J, int I) {
         double dirichlet = 0.0;
-        bool any_fluid = false;
+        bool any_fluid = false, all_solid = true;
         for (int c3 = 0; c3 < 2; ++c3)
           for (int b = 0; b < 2; ++b)
             for (int a = 0; a < 2; ++a) {
               const int f = gf.index(2 * I + a, 2 * J + b, 2 * K + c3);
+              all_solid = all_solid && fsolid(f);
               if (fd(f) == 0.0) continue;
               any_fluid = true;
               dirichlet += fd(f) - (double(fcx(f - 1)) + double(fcx(f)) + double(fcy(f - sy)) + double(fcy(f)) +
@@ -174,6 +254,7 @@ PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonSte
                                       : 0.0;
         cd(c) = diag;
         cinv(c) = diag > 0.0 ? 1.0 / diag : 0.0;
+        csolid(c) = all_solid;
       });
   return coarse_A;
 }

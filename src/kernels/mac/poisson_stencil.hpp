@@ -34,6 +34,9 @@ struct PoissonStencil {
   mesh::MacBoxBoundaries box{};  ///< what lies beyond each box face (multigrid transfers)
   Kokkos::View<Scalar*, MemSpace> diag, inverse_diag;
   Kokkos::View<float*, MemSpace> cx, cy, cz;
+  /// 1 on solid cells inside the box (terrain, obstacles): multigrid extends a correction into
+  /// them as across a wall, where air cells take zero.
+  Kokkos::View<std::uint8_t*, MemSpace> solid;
 
   /// Which box faces are walls, as a device-copyable array.
   Kokkos::Array<bool, 6> walls() const {
@@ -49,7 +52,8 @@ struct PoissonStencil {
         inverse_diag("amphora::mac::inverse_diag", g.padded_size()),
         cx("amphora::mac::cx", g.padded_size()),
         cy("amphora::mac::cy", g.padded_size()),
-        cz("amphora::mac::cz", g.padded_size()) {}
+        cz("amphora::mac::cz", g.padded_size()),
+        solid("amphora::mac::solid", g.padded_size()) {}
 };
 
 /// v = 0 on the ghost planes k = -1 and k = nz, which the flat stencil loops do not visit (the
@@ -162,6 +166,7 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
   A.box = box;
   const auto d = A.diag, inv = A.inverse_diag;
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
+  const auto solid = A.solid;
   const bool has_phi = phi.extent(0) > 0;
   bool open[6];
   for (int f = 0; f < 6; ++f) open[f] = box[f] == mesh::MacBoundary::open;
@@ -172,6 +177,7 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         const int c = g.index(i, j, k);
+        solid(c) = type(c) == MacCellType::solid;
         if (type(c) != MacCellType::fluid) return;
         const int di[6] = {-1, 1, 0, 0, 0, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {0, 0, 0, 0, -1, 1};
         const bool open_face[6] = {o0, o1, o2, o3, o4, o5};
@@ -208,6 +214,7 @@ PoissonStencil<MemSpace, Scalar> convert_stencil(const ExecSpace& exec, const Po
   B.grid = A.grid;
   B.box = A.box;
   B.cx = A.cx, B.cy = A.cy, B.cz = A.cz;  // float already: shared
+  B.solid = A.solid;
   B.diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::diag", A.diag.extent(0));
   B.inverse_diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::inverse_diag", A.diag.extent(0));
   const auto d = A.diag, inv = A.inverse_diag, bd = B.diag, binv = B.inverse_diag;

@@ -10,6 +10,7 @@
 // cell's bottom and top samples, then the column's fluid cells upwards.
 #include <vector>
 
+#include "kernels/host_vector.hpp"
 #include "kernels/mac/poisson_stencil.hpp"
 
 namespace amphora::mesh {
@@ -52,5 +53,44 @@ class TallCellGrid {
   std::vector<TallCellColumn> columns_;
   std::vector<int> cell_unknown_;
 };
+
+}  // namespace amphora::mesh
+
+namespace amphora::mesh {
+
+/// The tall-cell grid's arrays in a memory space, for kernels (device-copyable).
+template <class MemSpace>
+struct TallCellLayout {
+  MacGrid grid;
+  Kokkos::View<int*, MemSpace> terrain, band, first_unknown;  ///< per column, x fastest
+  Kokkos::View<int*, MemSpace> cell_unknown;                  ///< per padded lattice cell
+
+  /// p = sum w y for lattice cell (i, j, k) (zero off the fluid).
+  template <class Y>
+  KOKKOS_INLINE_FUNCTION double lattice_value(int i, int j, int k, const Y& y) const {
+    const int col = i + grid.nx * k;
+    const int j0 = terrain(col), jb = band(col);
+    if (j >= j0 && j < jb) {
+      const double t = double(j - j0) / double(jb - 1 - j0);
+      const int u = first_unknown(col);
+      return (1.0 - t) * y(u) + t * y(u + 1);
+    }
+    const int u = cell_unknown(grid.index(i, j, k));
+    return u >= 0 ? double(y(u)) : 0.0;
+  }
+};
+
+template <class MemSpace>
+TallCellLayout<MemSpace> make_layout(const TallCellGrid& T) {
+  std::vector<int> t, b, f;
+  for (const TallCellColumn& c : T.columns()) t.push_back(c.terrain), b.push_back(c.band), f.push_back(c.first_unknown);
+  TallCellLayout<MemSpace> L;
+  L.grid = T.grid();
+  L.terrain = to_view<MemSpace>(t, "amphora::tall::terrain");
+  L.band = to_view<MemSpace>(b, "amphora::tall::band");
+  L.first_unknown = to_view<MemSpace>(f, "amphora::tall::first_unknown");
+  L.cell_unknown = to_view<MemSpace>(T.cell_unknown(), "amphora::tall::cell_unknown");
+  return L;
+}
 
 }  // namespace amphora::mesh

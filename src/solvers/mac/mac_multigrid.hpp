@@ -141,9 +141,9 @@ void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
     kernels::mac::red_black_gauss_seidel(exec, A, b, x, 1);
   }
   kernels::mac::residual(exec, A, b, x, r_[l]);
-  kernels::mac::restrict_to_coarse(exec, A, levels_[l + 1], r_[l], b_[l + 1]);
+  kernels::mac::restrict_residual(exec, A, levels_[l + 1], r_[l], b_[l + 1]);
   vcycle(exec, l + 1);
-  kernels::mac::prolongate_add(exec, levels_[l + 1], A, x_[l + 1], x);
+  kernels::mac::prolongate_correction(exec, levels_[l + 1], A, x_[l + 1], x);
   for (int s = 0; s < nu; ++s) {
     kernels::mac::red_black_gauss_seidel(exec, A, b, x, 1);
     kernels::mac::red_black_gauss_seidel(exec, A, b, x, 0);

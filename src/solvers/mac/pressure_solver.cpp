@@ -9,7 +9,10 @@
 #include "solvers/hypre_struct_pfmg.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/stencil_csr.hpp"
+#include "solvers/hypre_boomeramg.hpp"
 #include "solvers/mac/stencil_mic0.hpp"
+#include "solvers/mac/tall_cell_multigrid.hpp"
+#include "solvers/modified_incomplete_cholesky.hpp"
 
 namespace amphora::solvers::mac {
 
@@ -126,7 +129,94 @@ class Mic0PressureSolver final : public PressureSolver<ExecSpace> {
   StencilMic0 mic_;
 };
 
+template <class ExecSpace>
+class TallCellMultigridSolver final : public PressureSolver<ExecSpace> {
+ public:
+  using typename PressureSolver<ExecSpace>::Vector;
+  TallCellMultigridSolver(const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t,
+                          const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
+      : mg_(exec, T, A_t, A) {}
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+    return mg_.solve(exec, b, x, c);
+  }
+  PressureBackend backend() const override { return PressureBackend::multigrid; }
+
+ private:
+  TallCellMultigrid<ExecSpace> mg_;
+};
+
+/// Copies b and x to the host and back around a host solve.
+template <class ExecSpace, class HostSolve>
+SolverResult solve_on_host(const ExecSpace& exec, const Kokkos::View<double*, typename ExecSpace::memory_space>& b,
+                           const Kokkos::View<double*, typename ExecSpace::memory_space>& x, HostSolve&& host_solve) {
+  exec.fence();
+  const auto bh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), b);
+  const auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
+  const SolverResult r = host_solve(Kokkos::View<double*, HostMemSpace>(bh), Kokkos::View<double*, HostMemSpace>(xh));
+  Kokkos::deep_copy(x, xh);
+  return r;
+}
+
+template <class ExecSpace>
+class BoomerAMGPressureSolver final : public PressureSolver<ExecSpace> {
+ public:
+  using typename PressureSolver<ExecSpace>::Vector;
+  explicit BoomerAMGPressureSolver(const CsrMatrix& A_t) : A_(A_t) {}
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+    return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
+      const BoomerAMG amg(A_);
+      const HypreSolveResult h = amg.pcg(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations);
+      SolverResult r;
+      r.iterations = h.iterations;
+      r.converged = h.final_relative_residual <= c.relative_tolerance;
+      double bb = 0.0;
+      for (std::size_t i = 0; i < bh.extent(0); ++i) bb += bh(i) * bh(i);
+      r.rhs_norm = std::sqrt(bb);
+      r.final_residual = h.final_relative_residual * r.rhs_norm;
+      return r;
+    });
+  }
+  PressureBackend backend() const override { return PressureBackend::hypre; }
+
+ private:
+  CsrMatrix A_;
+};
+
+template <class ExecSpace>
+class CsrMic0PressureSolver final : public PressureSolver<ExecSpace> {
+ public:
+  using typename PressureSolver<ExecSpace>::Vector;
+#if defined(KOKKOS_ENABLE_SERIAL)
+  using SequentialSpace = Kokkos::Serial;
+#else
+  using SequentialSpace = HostExecSpace;
+#endif
+  explicit CsrMic0PressureSolver(const CsrMatrix& A_t) : A_(A_t), mic_(A_) {}
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+    return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
+      return conjugate_gradient(SequentialSpace(), CsrOperator{&A_}, bh, xh, c, mic_);
+    });
+  }
+  PressureBackend backend() const override { return PressureBackend::mic0; }
+
+ private:
+  CsrMatrix A_;
+  ModifiedIncompleteCholesky mic_;
+};
+
 }  // namespace
+
+template <class ExecSpace>
+std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
+    PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t,
+    const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
+  switch (backend) {
+    case PressureBackend::multigrid: return std::make_unique<TallCellMultigridSolver<ExecSpace>>(exec, T, A_t, A);
+    case PressureBackend::hypre: return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(A_t);
+    case PressureBackend::mic0: return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(A_t);
+  }
+  throw std::invalid_argument("make_tall_cell_pressure_solver: unknown back end");
+}
 
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
@@ -141,9 +231,15 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
 
 template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_pressure_solver(
     PressureBackend, const DefaultExecSpace&, const kernels::mac::PoissonStencil<DefaultMemSpace>&);
+template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_tall_cell_pressure_solver(
+    PressureBackend, const DefaultExecSpace&, const mesh::TallCellGrid&, const CsrMatrix&,
+    const kernels::mac::PoissonStencil<DefaultMemSpace>&);
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_pressure_solver(
     PressureBackend, const Kokkos::Serial&, const kernels::mac::PoissonStencil<Kokkos::HostSpace>&);
+template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_tall_cell_pressure_solver(
+    PressureBackend, const Kokkos::Serial&, const mesh::TallCellGrid&, const CsrMatrix&,
+    const kernels::mac::PoissonStencil<Kokkos::HostSpace>&);
 #endif
 
 }  // namespace amphora::solvers::mac

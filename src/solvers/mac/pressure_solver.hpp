@@ -4,11 +4,17 @@
 // Struct PFMG-preconditioned CG), "mic0" (MIC(0)-preconditioned CG, host, sequential: the
 // classical baseline). Vectors are on the padded lattice of the stencil's grid; b must vanish
 // on non-fluid cells, and x is zero there on return.
+//
+// On a tall-cell grid the same names pick: "multigrid" (TallCellMultigrid-preconditioned CG),
+// "hypre" (BoomerAMG-preconditioned CG), "mic0" (MIC(0)-CG on the assembled matrix); vectors
+// are then in the tall-cell numbering.
 #include <memory>
 #include <string>
 
 #include "kernels/mac/poisson_stencil.hpp"
+#include "mesh/mac/tall_cell_grid.hpp"
 #include "solvers/conjugate_gradient.hpp"
+#include "solvers/csr_matrix.hpp"
 
 namespace amphora::solvers::mac {
 
@@ -32,5 +38,11 @@ class PressureSolver {
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
     PressureBackend backend, const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A);
+
+/// A_t = P^T A P of the tall-cell grid T over the uniform stencil A.
+template <class ExecSpace>
+std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
+    PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t,
+    const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A);
 
 }  // namespace amphora::solvers::mac

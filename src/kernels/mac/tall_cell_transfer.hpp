@@ -1,0 +1,70 @@
+#pragma once
+// The linear-in-height prolongation P of a tall-cell grid and its transpose, as kernels:
+// lattice = P y (one work item per lattice cell) and y = P^T lattice (one work item per column,
+// so the sums over a tall cell need no atomics), and y = (P^T P)^-1 y (per column: a 2x2 solve
+// for the tall samples, identity for the uniform cells): the least-squares fit of a lattice
+// function by tall-cell unknowns, which the tall-cell multigrid uses to pass to and from the
+// uniform coarse grid.
+#include "mesh/mac/tall_cell_grid.hpp"
+
+namespace amphora::kernels::mac {
+
+template <class ExecSpace, class MemSpace, class Y, class L>
+void tall_cell_prolongate(const ExecSpace& exec, const mesh::TallCellLayout<MemSpace>& T, const Y& y, const L& lattice) {
+  const mesh::MacGrid g = T.grid;
+  Kokkos::parallel_for(
+      "amphora::mac::tall_cell_prolongate",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
+      KOKKOS_LAMBDA(int k, int j, int i) { lattice(g.index(i, j, k)) = T.lattice_value(i, j, k, y); });
+}
+
+template <class ExecSpace, class MemSpace, class L, class Y>
+void tall_cell_restrict(const ExecSpace& exec, const mesh::TallCellLayout<MemSpace>& T, const L& lattice, const Y& y) {
+  const mesh::MacGrid g = T.grid;
+  Kokkos::parallel_for(
+      "amphora::mac::tall_cell_restrict", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz), KOKKOS_LAMBDA(int col) {
+        const int i = col % g.nx, k = col / g.nx;
+        const int j0 = T.terrain(col), jb = T.band(col);
+        if (jb > j0) {
+          double bottom = 0.0, top = 0.0;
+          const double dt = 1.0 / double(jb - 1 - j0);
+          for (int j = j0; j < jb; ++j) {
+            const double t = (j - j0) * dt, v = lattice(g.index(i, j, k));
+            bottom += (1.0 - t) * v;
+            top += t * v;
+          }
+          y(T.first_unknown(col)) = bottom;
+          y(T.first_unknown(col) + 1) = top;
+        }
+        for (int j = jb; j < g.ny; ++j) {
+          const int c = g.index(i, j, k), u = T.cell_unknown(c);
+          if (u >= 0) y(u) = lattice(c);
+        }
+      });
+}
+
+/// y = (P^T P)^-1 y: for a tall cell of L rows, P^T P = sum_j [(1-t)^2, t(1-t); t(1-t), t^2],
+/// t = j/(L-1) (summed in the kernel: a tall cell is a few hundred rows at most).
+template <class ExecSpace, class MemSpace, class Y>
+void tall_cell_gram_solve(const ExecSpace& exec, const mesh::TallCellLayout<MemSpace>& T, const Y& y) {
+  const mesh::MacGrid g = T.grid;
+  Kokkos::parallel_for(
+      "amphora::mac::tall_cell_gram_solve", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz), KOKKOS_LAMBDA(int col) {
+        const int j0 = T.terrain(col), jb = T.band(col);
+        if (jb <= j0) return;
+        double a = 0.0, b = 0.0, c = 0.0;
+        const double dt = 1.0 / double(jb - 1 - j0);
+        for (int j = j0; j < jb; ++j) {
+          const double t = (j - j0) * dt;
+          a += (1.0 - t) * (1.0 - t);
+          b += t * (1.0 - t);
+          c += t * t;
+        }
+        const int u = T.first_unknown(col);
+        const double det = a * c - b * b, y0 = y(u), y1 = y(u + 1);
+        y(u) = (c * y0 - b * y1) / det;
+        y(u + 1) = (a * y1 - b * y0) / det;
+      });
+}
+
+}  // namespace amphora::kernels::mac

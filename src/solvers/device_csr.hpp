@@ -1,0 +1,65 @@
+#pragma once
+// An assembled CSR matrix in a memory space, with y = A x as a kernel (one row per work item)
+// and 1/diag(A) for Jacobi-type smoothers.
+#include <vector>
+
+#include "kernels/host_vector.hpp"
+#include "kernels/spaces.hpp"
+#include "solvers/csr_matrix.hpp"
+
+namespace amphora::solvers {
+
+template <class MemSpace>
+struct DeviceCsrMatrix {
+  using Vector = Kokkos::View<double*, MemSpace>;
+  int n = 0;
+  Kokkos::View<int*, MemSpace> row_ptr, cols;
+  Vector values, inverse_diagonal;
+
+  DeviceCsrMatrix() = default;
+  explicit DeviceCsrMatrix(const CsrMatrix& A) : n(static_cast<int>(A.n)) {
+    std::vector<int> rp(A.row_ptr.begin(), A.row_ptr.end());
+    std::vector<double> inv(A.n, 0.0);
+    for (long i = 0; i < A.n; ++i)
+      for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e)
+        if (A.cols[e] == i && A.values[e] != 0.0) inv[i] = 1.0 / A.values[e];
+    row_ptr = to_view<MemSpace>(rp, "amphora::csr::row_ptr");
+    cols = to_view<MemSpace>(A.cols, "amphora::csr::cols");
+    values = to_view<MemSpace>(A.values, "amphora::csr::values");
+    inverse_diagonal = to_view<MemSpace>(inv, "amphora::csr::inverse_diagonal");
+  }
+
+  template <class ExecSpace, class X, class Y>
+  void apply(const ExecSpace& exec, const X& x, const Y& y) const {
+    const auto rp = row_ptr;
+    const auto c = cols;
+    const auto v = values;
+    Kokkos::parallel_for(
+        "amphora::DeviceCsrMatrix::apply", RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
+          double s = 0.0;
+          for (int e = rp(i); e < rp(i + 1); ++e) s += v(e) * x(c(e));
+          y(i) = s;
+        });
+  }
+};
+
+}  // namespace amphora::solvers
+
+namespace amphora::kernels::mac {
+
+/// r = b - A x for an assembled matrix.
+template <class ExecSpace, class MemSpace, class B, class X, class R>
+void residual_csr(const ExecSpace& exec, const solvers::DeviceCsrMatrix<MemSpace>& A, const B& b, const X& x,
+                  const R& r) {
+  const auto rp = A.row_ptr;
+  const auto c = A.cols;
+  const auto v = A.values;
+  Kokkos::parallel_for(
+      "amphora::residual_csr", RangePolicy<ExecSpace>(exec, 0, A.n), KOKKOS_LAMBDA(int i) {
+        double s = b(i);
+        for (int e = rp(i); e < rp(i + 1); ++e) s -= v(e) * x(c(e));
+        r(i) = s;
+      });
+}
+
+}  // namespace amphora::kernels::mac
