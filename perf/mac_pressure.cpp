@@ -6,6 +6,12 @@
 // mpiexec, each owning a z slab), 2 = MIC(0)-CG (sequential). Counters: iterations, unknowns,
 // unknowns per second (unknowns / time), setup seconds.
 //
+// TallCells/backend/n: the same footprint as deep water: an n^3 box with walls and an open top,
+// water to 0.9 n over an undulating floor (0.1 +- 0.05), tall cells below an optical depth of
+// n/8 cells; backend 0 = tall-cell multigrid-CG, 1 = BoomerAMG-CG, 2 = IC(0)-CG. Setup includes
+// building the tall-cell grid and assembling P^T A P. Counters as above, plus the uniform
+// unknowns of the same water and their ratio to the tall-cell ones.
+//
 // Anchors (issue 4, same machine kind, 128^3): PFMG-CG 1.9 s on 1 rank, 0.95 s on 2 (12
 // iterations); BoomerAMG-CG 7.6 s / 4.6 s; MIC(0)-CG 3.0 s (61 iterations).
 #include <benchmark/benchmark.h>
@@ -20,6 +26,7 @@
 #include "solvers/hypre_struct_pfmg.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
+#include "solvers/mac/tall_cell_matrix.hpp"
 
 namespace {
 
@@ -27,6 +34,7 @@ using Exec = amphora::DefaultExecSpace;
 using Mem = Exec::memory_space;
 using Vector = Kokkos::View<double*, Mem>;
 using Stencil = amphora::kernels::mac::PoissonStencil<Mem>;
+using kernels_mac_host_stencil_t = amphora::kernels::mac::PoissonStencil<amphora::HostMemSpace>;
 namespace mesh = amphora::mesh;
 namespace mac = amphora::solvers::mac;
 using Clock = std::chrono::steady_clock;
@@ -136,6 +144,94 @@ void Uniform(benchmark::State& state) {
   state.SetLabel(names[backend]);
 }
 BENCHMARK(Uniform)
+    ->ArgsProduct({{0, 1, 2}, {64, 128, 192}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime()
+    ->Iterations(1);
+
+/// Deep water over an undulating floor, on the host (the tall-cell grid is built there).
+kernels_mac_host_stencil_t deep_water(int n) {
+  const mesh::MacGrid g{n, n, n, 1.0 / n, {0, 0, 0}};
+  std::vector<mesh::MacCellType> type(g.padded_size(), mesh::MacCellType::solid);
+  std::vector<double> phi(g.padded_size(), 1.0);
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const auto x = g.cell_centre(i, j, k);
+        const int c = g.index(i, j, k);
+        phi[c] = x[1] - 0.9;
+        const double floor = 0.1 + 0.05 * std::sin(6 * x[0]) * std::cos(4 * x[2]);
+        type[c] = x[1] < floor ? mesh::MacCellType::solid : (phi[c] < 0 ? mesh::MacCellType::fluid : mesh::MacCellType::air);
+      }
+  mesh::MacBoxBoundaries faces;
+  faces.fill(mesh::MacBoundary::wall);
+  faces[3] = mesh::MacBoundary::open;
+  return amphora::kernels::mac::build_poisson_stencil<amphora::HostExecSpace, amphora::HostMemSpace>(
+      amphora::HostExecSpace(), g, amphora::to_view<amphora::HostMemSpace>(type),
+      amphora::to_view<amphora::HostMemSpace>(phi), faces);
+}
+
+void TallCells(benchmark::State& state) {
+  const int backend = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
+  const auto host_A = deep_water(n);
+  // the same stencil in the execution space's memory
+  Stencil A(host_A.grid);
+  A.box = host_A.box;
+  Kokkos::deep_copy(A.diag, host_A.diag);
+  Kokkos::deep_copy(A.inverse_diag, host_A.inverse_diag);
+  Kokkos::deep_copy(A.cx, host_A.cx);
+  Kokkos::deep_copy(A.cy, host_A.cy);
+  Kokkos::deep_copy(A.cz, host_A.cz);
+  Kokkos::deep_copy(A.solid, host_A.solid);
+  const Exec exec;
+  amphora::solvers::SolverControl control;
+  control.relative_tolerance = 1e-8;
+  control.max_iterations = 3000;
+  int iterations = 0;
+  double setup = 0.0, rel = 0.0;
+  long unknowns = 0, uniform = 0;
+  const mesh::MacGrid g = host_A.grid;
+  for (long c = 0; c < g.padded_size(); ++c) uniform += host_A.diag(c) > 0.0;
+  for (auto _ : state) {
+    exec.fence();
+    const auto t0 = Clock::now();
+    const mesh::TallCellGrid T(host_A, n / 8);
+    const amphora::solvers::CsrMatrix M = mac::assemble_tall_cell_matrix(T, host_A);
+    unknowns = T.unknowns();
+    // right-hand side: P^T (h^2 f) for a smooth f
+    std::vector<double> f(g.padded_size(), 0.0), bt(unknowns);
+    for (int k = 0; k < n; ++k)
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const auto x = g.cell_centre(i, j, k);
+          f[g.index(i, j, k)] = g.h * g.h * (1.0 + std::sin(amphora::math::pi * x[0]) * std::cos(2 * x[2]) * x[1]);
+        }
+    T.restrict_to_unknowns(f.data(), bt.data());
+    const Vector b = amphora::to_view<Mem>(bt, "b");
+    Vector x("x", unknowns);
+    static const mac::PressureBackend backends[] = {mac::PressureBackend::multigrid, mac::PressureBackend::hypre,
+                                                    mac::PressureBackend::mic0};
+    auto solver = mac::make_tall_cell_pressure_solver(backends[backend], exec, T, M, A);
+    exec.fence();
+    setup = seconds_since(t0);
+    const auto r = solver->solve(exec, b, x, control);
+    exec.fence();
+    iterations = r.iterations;
+    rel = r.final_residual / r.rhs_norm;
+    state.SetIterationTime(seconds_since(t0));
+  }
+  state.counters["iterations"] = iterations;
+  state.counters["unknowns"] = double(unknowns);
+  state.counters["uniform_unknowns"] = double(uniform);
+  state.counters["reduction"] = double(uniform) / double(unknowns);
+  state.counters["setup_s"] = setup;
+  state.counters["relative_residual"] = rel;
+  state.counters["unknowns_per_s"] =
+      benchmark::Counter(double(unknowns), benchmark::Counter::kIsIterationInvariantRate);
+  static const char* names[] = {"tall-cell multigrid-CG", "BoomerAMG-CG", "IC(0)-CG"};
+  state.SetLabel(names[backend]);
+}
+BENCHMARK(TallCells)
     ->ArgsProduct({{0, 1, 2}, {64, 128, 192}})
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime()
