@@ -3,6 +3,7 @@
 #include "physics/advection_diffusion_1d/advection_diffusion_1d.hpp"
 #include "physics/dem/dem_module.hpp"
 #include "physics/poisson_fem/poisson_fem.hpp"
+#include "physics/water_mac/water_mac.hpp"
 
 namespace amphora {
 
@@ -18,6 +19,7 @@ const std::vector<ModuleInfo>& module_registry() {
          return std::make_unique<dem::DemModule>(p, c);
        }},
       {"poisson_fem", poisson_fem::parameter_table, poisson_fem::create},
+      {"water_mac", water_mac::parameter_table, water_mac::create},
   };
   return modules;
 }

@@ -1,0 +1,138 @@
+#pragma once
+// The pieces of the pressure projection on a MAC grid (Bridson, Fluid Simulation for Computer
+// Graphics, 2nd ed., ch. 5), in the units of kernels/mac/poisson_stencil.hpp:
+//   A p = b,  b = -(rho h^2 / dt) div u*  on fluid cells,
+//   u = u* - dt / (rho h) (p_R - p_L) on faces next to fluid,
+// where across a free-surface face p on the air side is the ghost-fluid value that vanishes at
+// the interface: (p_R - p_L) -> -p_fluid / theta (Gibou et al. 2002). Faces touching a solid
+// or the box keep the solid's (zero) normal velocity. Velocities are extrapolated from the faces
+// next to fluid into the air, layer by layer, for the next advection.
+#include "kernels/mac/poisson_stencil.hpp"
+
+namespace amphora::kernels::mac {
+
+namespace detail {
+/// The two cells of face c of component d: L = c - stride, R = c; false if the face is on the
+/// box boundary (i == 0 or i == n along d).
+KOKKOS_INLINE_FUNCTION bool face_cells(const mesh::MacGrid& g, int d, int i, int j, int k, int& L, int& R) {
+  const int idx[3] = {i, j, k}, n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
+  R = g.index(i, j, k);
+  L = R - stride[d];
+  return idx[d] > 0 && idx[d] < n[d];
+}
+}  // namespace detail
+
+/// Faces of component d that touch a solid cell or the box take the solid's (zero) normal
+/// velocity: before the divergence is taken, so the right-hand side sees the walls.
+template <class ExecSpace, class T, class F>
+void enforce_solid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const F& face) {
+  using mesh::MacCellType;
+  const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
+  Kokkos::parallel_for(
+      "amphora::mac::enforce_solid_faces",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
+      KOKKOS_LAMBDA(int k, int j, int i) {
+        int L, R;
+        if (!detail::face_cells(g, d, i, j, k, L, R) || type(L) == MacCellType::solid ||
+            type(R) == MacCellType::solid)
+          face(g.index(i, j, k)) = 0.0;
+      });
+}
+
+/// b = -(rho h / dt) (sum of outward face velocities) on fluid cells, zero elsewhere.
+template <class ExecSpace, class T, class U, class V, class W, class B>
+void pressure_rhs(const ExecSpace& exec, const mesh::MacGrid& g, const T& type, const U& u, const V& v, const W& w,
+                  double rho, double dt, const B& b) {
+  const int sy = g.stride_y(), sz = g.stride_z();
+  const double scale = -rho * g.h / dt;
+  Kokkos::parallel_for(
+      "amphora::mac::pressure_rhs", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(g.padded_size())),
+      KOKKOS_LAMBDA(int c) {
+        int i, j, k;
+        g.ijk(c, i, j, k);
+        if (!g.interior(i, j, k) || type(c) != mesh::MacCellType::fluid) {
+          b(c) = 0.0;
+          return;
+        }
+        b(c) = scale * (u(c + 1) - u(c) + v(c + sy) - v(c) + w(c + sz) - w(c));
+      });
+}
+
+/// u -= dt/(rho h) dp on the faces of component d next to fluid (ghost fluid at the surface);
+/// zero on faces touching a solid or the box.
+template <class ExecSpace, class T, class Phi, class P, class F>
+void subtract_pressure_gradient(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const Phi& phi,
+                                const P& p, double rho, double dt, const F& face) {
+  using mesh::MacCellType;
+  const double scale = dt / (rho * g.h);
+  const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
+  Kokkos::parallel_for(
+      "amphora::mac::subtract_pressure_gradient",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
+      KOKKOS_LAMBDA(int k, int j, int i) {
+        int L, R;
+        if (!detail::face_cells(g, d, i, j, k, L, R)) {
+          face(g.index(i, j, k)) = 0.0;
+          return;
+        }
+        const MacCellType tl = type(L), tr = type(R);
+        if (tl == MacCellType::solid || tr == MacCellType::solid) {
+          face(R) = 0.0;
+        } else if (tl == MacCellType::fluid && tr == MacCellType::fluid) {
+          face(R) -= scale * (p(R) - p(L));
+        } else if (tl == MacCellType::fluid) {  // air on the right
+          face(R) -= scale * (-p(L) * ghost_fluid_weight(phi(L), phi(R)));
+        } else if (tr == MacCellType::fluid) {  // air on the left
+          face(R) -= scale * (p(R) * ghost_fluid_weight(phi(R), phi(L)));
+        }
+      });
+}
+
+/// valid(face) = 1 where the face of component d touches fluid and no solid (its velocity is
+/// known after the projection), else 0.
+template <class ExecSpace, class T, class M>
+void mark_fluid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const M& valid) {
+  using mesh::MacCellType;
+  const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
+  Kokkos::parallel_for(
+      "amphora::mac::mark_fluid_faces",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
+      KOKKOS_LAMBDA(int k, int j, int i) {
+        int L, R;
+        const bool inside = detail::face_cells(g, d, i, j, k, L, R);
+        const bool solid = !inside || type(L) == MacCellType::solid || type(R) == MacCellType::solid;
+        valid(R) = !solid && (type(L) == MacCellType::fluid || type(R) == MacCellType::fluid);
+      });
+}
+
+/// One layer of extrapolation: every unknown, non-solid face of component d with known face
+/// neighbours (same component, 6 directions) takes their mean. Reads face/valid, writes
+/// face_new/valid_new (both initialised as copies by the caller).
+template <class ExecSpace, class T, class F, class M, class FN, class MN>
+void extrapolate_layer(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const F& face,
+                       const M& valid, const FN& face_new, const MN& valid_new) {
+  using mesh::MacCellType;
+  const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
+  const int sy = g.stride_y(), sz = g.stride_z();
+  Kokkos::parallel_for(
+      "amphora::mac::extrapolate_layer",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
+      KOKKOS_LAMBDA(int k, int j, int i) {
+        int L, R;
+        const bool inside = detail::face_cells(g, d, i, j, k, L, R);
+        if (valid(R) || !inside || type(L) == MacCellType::solid || type(R) == MacCellType::solid) return;
+        const int idx[3] = {i, j, k}, ext[3] = {ex, ey, ez}, stride[3] = {1, sy, sz};
+        double sum = 0.0;
+        int n = 0;
+        for (int e = 0; e < 3; ++e) {
+          if (idx[e] > 0 && valid(R - stride[e])) sum += face(R - stride[e]), ++n;
+          if (idx[e] + 1 < ext[e] && valid(R + stride[e])) sum += face(R + stride[e]), ++n;
+        }
+        if (n > 0) {
+          face_new(R) = sum / n;
+          valid_new(R) = 1;
+        }
+      });
+}
+
+}  // namespace amphora::kernels::mac

@@ -1,0 +1,57 @@
+#pragma once
+// Trilinear interpolation on the MAC lattice (Bridson, Fluid Simulation for Computer Graphics,
+// 2nd ed., sec. 3.3): a cell-centred field at (i + 1/2) h, each velocity component at the
+// centres of the faces normal to it. Sample positions are clamped to the samples inside the box
+// (no values are invented beyond them).
+#include "kernels/spaces.hpp"
+#include "mesh/mac/mac_grid.hpp"
+
+namespace amphora::kernels::mac {
+
+/// Which lattice a field lives on: cell centres, or faces normal to x, y or z.
+enum class Staggering : int { centre = -1, x = 0, y = 1, z = 2 };
+
+/// Interpolates field f (padded lattice) of staggering s at point p (physical coordinates).
+template <class F>
+KOKKOS_INLINE_FUNCTION double interpolate(const mesh::MacGrid& g, const F& f, Staggering s, const double p[3]) {
+  const int n[3] = {g.nx, g.ny, g.nz};
+  int base[3];
+  double w[3];
+  for (int d = 0; d < 3; ++d) {
+    // samples of this direction sit at (m + offset) h, m = 0 .. last
+    const bool on_faces = static_cast<int>(s) == d;
+    const double offset = on_faces ? 0.0 : 0.5;
+    const int last = on_faces ? n[d] : n[d] - 1;
+    double q = (p[d] - g.origin[d]) / g.h - offset;
+    q = math::clamp(q, 0.0, double(last));
+    int m = static_cast<int>(q);
+    if (m >= last) m = last > 0 ? last - 1 : 0;
+    base[d] = m;
+    w[d] = last > 0 ? q - m : 0.0;
+  }
+  double v = 0.0;
+  for (int c = 0; c < 2; ++c)
+    for (int b = 0; b < 2; ++b)
+      for (int a = 0; a < 2; ++a) {
+        const double wt = (a ? w[0] : 1.0 - w[0]) * (b ? w[1] : 1.0 - w[1]) * (c ? w[2] : 1.0 - w[2]);
+        if (wt != 0.0) v += wt * f(g.index(base[0] + a, base[1] + b, base[2] + c));
+      }
+  return v;
+}
+
+/// The velocity at point p from its three face components.
+template <class U, class V, class W>
+KOKKOS_INLINE_FUNCTION void velocity_at(const mesh::MacGrid& g, const U& u, const V& v, const W& w, const double p[3],
+                                        double vel[3]) {
+  vel[0] = interpolate(g, u, Staggering::x, p);
+  vel[1] = interpolate(g, v, Staggering::y, p);
+  vel[2] = interpolate(g, w, Staggering::z, p);
+}
+
+/// Position of sample (i, j, k) of a lattice.
+KOKKOS_INLINE_FUNCTION void sample_position(const mesh::MacGrid& g, Staggering s, int i, int j, int k, double p[3]) {
+  const int idx[3] = {i, j, k};
+  for (int d = 0; d < 3; ++d) p[d] = g.origin[d] + (idx[d] + (static_cast<int>(s) == d ? 0.0 : 0.5)) * g.h;
+}
+
+}  // namespace amphora::kernels::mac

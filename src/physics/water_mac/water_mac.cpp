@@ -1,0 +1,511 @@
+#include "physics/water_mac/water_mac.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "kernels/blas1.hpp"
+#include "kernels/host_vector.hpp"
+#include "kernels/mac/level_set.hpp"
+#include "kernels/mac/projection.hpp"
+#include "kernels/mac/semi_lagrangian.hpp"
+#include "kernels/mac/tall_cell_transfer.hpp"
+#include "kernels/reductions.hpp"
+#include "mesh/box_decomposition.hpp"
+#include "mesh/mac/tall_cell_grid.hpp"
+#include "solvers/mac/mac_multigrid.hpp"
+#include "solvers/mac/pressure_solver.hpp"
+#include "solvers/mac/tall_cell_matrix.hpp"
+
+namespace amphora::water_mac {
+
+double martin_moyce_front(double T) {
+  // Martin & Moyce (1952), fig. 3, n^2 = 2, a = 2.25 in (digitised; as tabulated in PySPH's
+  // examples/dam_break data module): T = t sqrt(2 g / a), Z = x / a.
+  static const double data[][2] = {{0.832, 1.217}, {1.219, 1.474}, {1.997, 2.292}, {2.547, 2.995}, {3.345, 4.134},
+                                   {4.034, 4.944}, {4.418, 5.881}, {5.091, 6.980}, {5.685, 7.945}, {6.306, 8.966},
+                                   {6.822, 9.986}, {7.439, 10.963}, {8.031, 11.977}, {8.633, 13.005}, {9.237, 13.970}};
+  constexpr int n = sizeof(data) / sizeof(data[0]);
+  if (T <= data[0][0]) return data[0][1];
+  for (int m = 1; m < n; ++m)
+    if (T <= data[m][0]) {
+      const double s = (T - data[m - 1][0]) / (data[m][0] - data[m - 1][0]);
+      return data[m - 1][1] + s * (data[m][1] - data[m - 1][1]);
+    }
+  return data[n - 1][1];
+}
+
+ParamTable parameter_table() {
+  ParamTable t;
+  t.name = "water_mac";
+  t.doc = "water on a uniform MAC grid: level set, semi-Lagrangian advection, ghost-fluid pressure projection";
+  auto scene = string_param("scene", std::string("dam_break"), "initial state", {"dam_break", "splash", "still"});
+  auto nx = int_param("cells_x", 64, "cells along x");
+  auto ny = int_param("cells_y", 32, "cells along y (up)");
+  auto nz = int_param("cells_z", 4, "cells along z");
+  for (auto* s : {&nx, &ny, &nz}) {
+    at_least(*s, 2);
+    at_most(*s, 2048);
+  }
+  auto lx = real_param("length_x", 0.2286, "m", "box length along x (the cell width is length_x / cells_x)");
+  greater_than(lx, 0.0);
+  auto g = real_param("gravity", 9.81, "m/s^2", "gravitational acceleration (along -y)");
+  at_least(g, 0.0);
+  auto rho = real_param("density", 1000.0, "kg/m^3", "water density");
+  greater_than(rho, 0.0);
+  auto cfl = real_param("cfl", 1.0, "1", "largest CFL number of a sub-step (semi-Lagrangian: the trace length in cells)");
+  greater_than(cfl, 0.0);
+  at_most(cfl, 2.0);
+  auto solver = string_param("solver", std::string("multigrid"), "pressure back end", {"multigrid", "hypre", "mic0"});
+  auto tol = real_param("tolerance", 1e-8, "1", "relative residual of the pressure solve");
+  greater_than(tol, 0.0);
+  less_than(tol, 1.0);
+  auto maxit = int_param("max_iterations", 500, "pressure CG iteration limit");
+  at_least(maxit, 1);
+  auto reinit = int_param("reinitialise_iterations", 2, "pseudo-time steps of level-set reinitialisation per sub-step");
+  at_least(reinit, 0);
+  auto depth = int_param("optical_depth", 0, "uniform cells below the surface before the tall cells (0: no tall cells)");
+  at_least(depth, 0);
+  auto a = real_param("column_width", 0.05715, "m", "dam break: width a of the water column (its height is 2a)");
+  greater_than(a, 0.0);
+  auto pool = real_param("pool_depth", 0.6, "m", "splash and still water: depth of the water above y = 0");
+  greater_than(pool, 0.0);
+  auto r = real_param("drop_radius", 0.08, "m", "splash: radius of the falling ball of water");
+  greater_than(r, 0.0);
+  auto hc = real_param("drop_height", 0.85, "m", "splash: height of the ball's centre");
+  greater_than(hc, 0.0);
+  auto vd = real_param("drop_speed", 2.0, "m/s", "splash: initial downward speed of the ball");
+  at_least(vd, 0.0);
+  auto terrain = real_param("terrain_amplitude", 0.0, "m", "still/splash: amplitude of the sinusoidal bottom");
+  at_least(terrain, 0.0);
+  auto base = real_param("terrain_base", 0.0, "m", "still/splash: mean height of the bottom");
+  at_least(base, 0.0);
+  t.specs = {scene, nx, ny, nz, lx, g, rho, cfl, solver, tol, maxit, reinit, depth, a, pool, r, hc, vd, terrain, base};
+  return t;
+}
+
+namespace {
+
+using Exec = DefaultExecSpace;
+using Mem = Exec::memory_space;
+using Vector = Kokkos::View<double*, Mem>;
+using Types = Kokkos::View<mesh::MacCellType*, Mem>;
+using Stencil = kernels::mac::PoissonStencil<Mem>;
+using kernels::mac::Staggering;
+
+class WaterMac final : public Module {
+ public:
+  WaterMac(const Parameters& p, const Communicator& comm) : comm_(comm) {
+    if (comm.size() > 1)
+      throw DecompositionError("more ranks (" + std::to_string(comm.size()) +
+                               ") than blocks (1): water_mac runs on one rank so far");
+    scene_ = p.string("scene");
+    const int nx = static_cast<int>(p.integer("cells_x")), ny = static_cast<int>(p.integer("cells_y")),
+              nz = static_cast<int>(p.integer("cells_z"));
+    grid_ = mesh::MacGrid{nx, ny, nz, p.real("length_x") / nx, {0.0, 0.0, 0.0}};
+    gravity_ = p.real("gravity");
+    rho_ = p.real("density");
+    cfl_ = p.real("cfl");
+    backend_ = solvers::mac::parse_pressure_backend(p.string("solver"));
+    control_.relative_tolerance = p.real("tolerance");
+    control_.max_iterations = static_cast<int>(p.integer("max_iterations"));
+    reinit_ = static_cast<int>(p.integer("reinitialise_iterations"));
+    optical_depth_ = static_cast<int>(p.integer("optical_depth"));
+    column_width_ = p.real("column_width");
+    // the band of uniform cells must hold a whole semi-Lagrangian trace and the extrapolation
+    const int band = static_cast<int>(std::ceil(cfl_)) + 2;
+    if (optical_depth_ > 0 && optical_depth_ < band) {
+      std::ostringstream m;
+      m << "water_mac.optical_depth = " << optical_depth_ << " is below the band the advection needs: with cfl = " << cfl_
+        << " a sub-step traces up to " << std::ceil(cfl_) << " cells and the velocity is extrapolated 2 more, so "
+        << "optical_depth must be at least " << band << " (or 0 for no tall cells)";
+      throw std::invalid_argument(m.str());
+    }
+    if (backend_ == solvers::mac::PressureBackend::multigrid) {
+      const std::string e = solvers::mac::multigrid_size_error(grid_, solvers::mac::MacMultigridOptions{}.max_coarse_cells);
+      if (!e.empty()) throw std::invalid_argument("water_mac (solver = \"multigrid\"): " + e);
+    }
+    extrapolation_layers_ = band;
+    allocate();
+    initialise(p);
+  }
+
+  std::string name() const override { return "water_mac"; }
+
+  double stable_dt() const override {
+    // the CFL step of the fastest of: the flow now, and free fall / gravity waves over the box
+    const double speed = std::max(max_speed(), std::sqrt(gravity_ * grid_.h * grid_.ny));
+    return grid_.h / std::max(speed, 1e-12);
+  }
+
+  void advance(double, double dt) override {
+    double done = 0.0;
+    while (done < dt * (1.0 - 1e-12)) {
+      const double speed = max_speed() + gravity_ * std::min(dt - done, grid_.h / std::max(max_speed(), 1e-3));
+      double sub = std::min(dt - done, cfl_ * grid_.h / std::max(speed, 1e-12));
+      if (dt - done - sub < 1e-3 * sub) sub = dt - done;
+      substep(sub);
+      done += sub;
+    }
+  }
+
+  long long work_per_step() const override { return grid_.cells(); }
+  std::string work_unit() const override { return "cell-steps"; }
+
+  std::vector<OutputBlock> output(double) const override {
+    const mesh::MacGrid& g = grid_;
+    OutputBlock b;
+    b.name = "water";
+    for (int i = 0; i < g.nx; ++i) b.x.push_back(g.origin[0] + (i + 0.5) * g.h);
+    for (int j = 0; j < g.ny; ++j) b.y.push_back(g.origin[1] + (j + 0.5) * g.h);
+    for (int k = 0; k < g.nz; ++k) b.z.push_back(g.origin[2] + (k + 0.5) * g.h);
+    const auto phi = to_std_vector(phi_), p = to_std_vector(p_);
+    const auto u = to_std_vector(u_), v = to_std_vector(v_), w = to_std_vector(w_);
+    std::vector<double> fphi, fp, fu, fv, fw, fspeed;
+    for (int k = 0; k < g.nz; ++k)
+      for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+          const int c = g.index(i, j, k);
+          fphi.push_back(phi[c]);
+          fp.push_back(p[c]);
+          const double uc = 0.5 * (u[c] + u[c + 1]), vc = 0.5 * (v[c] + v[c + g.stride_y()]),
+                       wc = 0.5 * (w[c] + w[c + g.stride_z()]);
+          fu.push_back(uc);
+          fv.push_back(vc);
+          fw.push_back(wc);
+          fspeed.push_back(std::sqrt(uc * uc + vc * vc + wc * wc));
+        }
+    b.fields = {{"phi", fphi}, {"pressure", fp}, {"u", fu}, {"v", fv}, {"w", fw}, {"speed", fspeed}};
+    return {b};
+  }
+
+  Diagnostics diagnostics(double t) const override {
+    Diagnostics d;
+    d.emplace_back("volume", volume());
+    d.emplace_back("max_speed", max_speed());
+    d.emplace_back("pressure_iterations", last_iterations_);
+    d.emplace_back("pressure_unknowns", double(last_unknowns_));
+    d.emplace_back("substeps", double(substeps_));
+    if (scene_ == "dam_break") {
+      const double a = column_width_, Z = front() / a, T = t * std::sqrt(2.0 * gravity_ / a);
+      d.emplace_back("front_Z", Z);
+      d.emplace_back("front_T", T);
+      const bool measured = T >= 0.832 && T <= 9.237;
+      d.emplace_back("front_error", measured ? (Z - martin_moyce_front(T)) / martin_moyce_front(T) : 0.0);
+    } else {
+      d.emplace_back("surface_height", surface_height());
+    }
+    return d;
+  }
+  std::string error_diagnostic() const override { return scene_ == "dam_break" ? "front_error" : "max_speed"; }
+
+  std::optional<NonFiniteReport> find_nonfinite() const override {
+    const Exec exec;
+    for (const auto& [name, f] : {std::pair<const char*, Vector>{"phi", phi_}, {"u", u_}, {"v", v_}, {"w", w_}, {"pressure", p_}}) {
+      const int bad = reduce::first_nonfinite(exec, f);
+      if (bad >= 0 && bad < static_cast<int>(f.extent(0))) {
+        int i, j, k;
+        grid_.ijk(bad, i, j, k);
+        return NonFiniteReport{name, "water", bad, grid_.origin[0] + (i + 0.5) * grid_.h};
+      }
+    }
+    return std::nullopt;
+  }
+
+  std::vector<StateBlock> state() const override {
+    StateBlock b;
+    b.name = "water";
+    b.arrays = {{"phi", to_std_vector(phi_)}, {"u", to_std_vector(u_)}, {"v", to_std_vector(v_)},
+                {"w", to_std_vector(w_)}, {"pressure", to_std_vector(p_)},
+                {"substeps", {double(substeps_)}}};
+    return {b};
+  }
+  void restore(const std::vector<StateBlock>& blocks) override {
+    for (const auto& b : blocks)
+      for (const auto& [name, a] : b.arrays) {
+        if (name == "substeps") substeps_ = static_cast<long>(a.at(0));
+        Vector target = name == "phi" ? phi_ : name == "u" ? u_ : name == "v" ? v_ : name == "w" ? w_ : name == "pressure" ? p_ : Vector();
+        if (target.extent(0) == a.size()) Kokkos::deep_copy(target, to_view<Mem>(a));
+      }
+    classify();
+  }
+  std::vector<std::string> owned_blocks() const override { return {"water"}; }
+
+ private:
+  void allocate() {
+    const long n = grid_.padded_size();
+    phi_ = Vector("amphora::water::phi", n);
+    phi_tmp_ = Vector("amphora::water::phi_tmp", n);
+    phi0_ = Vector("amphora::water::phi0", n);
+    u_ = Vector("amphora::water::u", n), v_ = Vector("amphora::water::v", n), w_ = Vector("amphora::water::w", n);
+    u_tmp_ = Vector("amphora::water::u_tmp", n), v_tmp_ = Vector("amphora::water::v_tmp", n);
+    w_tmp_ = Vector("amphora::water::w_tmp", n);
+    p_ = Vector("amphora::water::p", n);
+    b_ = Vector("amphora::water::b", n);
+    type_ = Types("amphora::water::type", n);
+    solid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::solid", n);
+    valid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::valid", n);
+    valid_tmp_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::valid_tmp", n);
+  }
+
+  /// Signed distances of the initial water and the solid floor, on the host.
+  void initialise(const Parameters& p) {
+    const mesh::MacGrid& g = grid_;
+    std::vector<double> phi(g.padded_size(), g.h), v(g.padded_size(), 0.0);
+    std::vector<std::uint8_t> solid(g.padded_size(), 0);
+    const double lx = g.nx * g.h, ly = g.ny * g.h, lz = g.nz * g.h;
+    const double amp = p.real("terrain_amplitude"), base = p.real("terrain_base");
+    auto floor = [&](double x, double z) {
+      return base + amp * std::sin(2 * math::pi * x / lx) * std::cos(2 * math::pi * z / lz + 0.3);
+    };
+    const double a = column_width_, pool = p.real("pool_depth"), r = p.real("drop_radius"), hc = p.real("drop_height");
+    if (scene_ == "dam_break" && (a >= lx || 2 * a >= ly))
+      throw std::invalid_argument("water_mac: the dam-break column (" + std::to_string(a) + " x " + std::to_string(2 * a) +
+                                  " m) must fit in the box (" + std::to_string(lx) + " x " + std::to_string(ly) + " m)");
+    bool water_above_terrain = false;
+    for (int k = 0; k < g.nz; ++k)
+      for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+          const auto x = g.cell_centre(i, j, k);
+          const int c = g.index(i, j, k);
+          double d;
+          if (scene_ == "dam_break") {
+            // outside distance to the column [0, a] x [0, 2a] (the box walls are not surface)
+            const double dx = x[0] - a, dy = x[1] - 2 * a;
+            d = (dx > 0 || dy > 0) ? std::hypot(std::max(dx, 0.0), std::max(dy, 0.0)) : std::max(dx, dy);
+          } else {
+            d = x[1] - pool;
+            if (scene_ == "splash") {
+              const double ball = std::sqrt((x[0] - 0.5 * lx) * (x[0] - 0.5 * lx) + (x[1] - hc) * (x[1] - hc) +
+                                            (x[2] - 0.5 * lz) * (x[2] - 0.5 * lz)) - r;
+              d = std::min(d, ball);
+              if (ball < 0) v[c] = -p.real("drop_speed");
+            }
+            solid[c] = x[1] < floor(x[0], x[2]);
+            if (!solid[c] && d < 0) water_above_terrain = true;
+          }
+          phi[c] = d;
+        }
+    if (scene_ != "dam_break" && !water_above_terrain)
+      throw std::invalid_argument("water_mac: the terrain (terrain_base = " + std::to_string(base) +
+                                  " m, amplitude " + std::to_string(amp) + " m) is above the water (pool_depth = " +
+                                  std::to_string(pool) + " m) everywhere: no water to simulate");
+    Kokkos::deep_copy(phi_, to_view<Mem>(phi));
+    Kokkos::deep_copy(v_, to_view<Mem>(v));
+    Kokkos::deep_copy(solid_, to_view<Mem>(solid));
+    classify();
+    extrapolate_velocity();
+  }
+
+  void classify() { kernels::mac::classify_cells(Exec(), grid_, solid_, phi_, type_); }
+
+  void substep(double dt) {
+    const Exec exec;
+    const mesh::MacGrid& g = grid_;
+    // 1. advection of the level set and the velocity (all from the old velocity)
+    kernels::mac::advect(exec, g, Staggering::centre, phi_, phi_tmp_, u_, v_, w_, dt);
+    kernels::mac::advect(exec, g, Staggering::x, u_, u_tmp_, u_, v_, w_, dt);
+    kernels::mac::advect(exec, g, Staggering::y, v_, v_tmp_, u_, v_, w_, dt);
+    kernels::mac::advect(exec, g, Staggering::z, w_, w_tmp_, u_, v_, w_, dt);
+    std::swap(phi_, phi_tmp_);
+    std::swap(u_, u_tmp_), std::swap(v_, v_tmp_), std::swap(w_, w_tmp_);
+    // 2. reinitialisation towards a signed distance
+    if (reinit_ > 0) {
+      Kokkos::deep_copy(exec, phi0_, phi_);
+      for (int it = 0; it < reinit_; ++it) {
+        kernels::mac::reinitialise_step(exec, g, phi0_, phi_, phi_tmp_);
+        std::swap(phi_, phi_tmp_);
+      }
+    }
+    classify();
+    // 3. gravity, on the y faces inside the box
+    const double dv = gravity_ * dt;
+    const auto v = v_;
+    const mesh::MacGrid gg = g;
+    Kokkos::parallel_for(
+        "amphora::water::gravity",
+        Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>(exec, {0, 1, 0}, {g.nz, g.ny, g.nx}),
+        KOKKOS_LAMBDA(int k, int j, int i) { v(gg.index(i, j, k)) -= dv; });
+    // 4. projection
+    project(dt);
+    extrapolate_velocity();
+    ++substeps_;
+  }
+
+  void project(double dt) {
+    const Exec exec;
+    const mesh::MacGrid& g = grid_;
+    mesh::MacBoxBoundaries box;
+    box.fill(mesh::MacBoundary::wall);
+    box[3] = mesh::MacBoundary::open;
+    const Stencil A = kernels::mac::build_poisson_stencil<Exec, Mem>(exec, g, type_, phi_, box);
+    kernels::mac::enforce_solid_faces(exec, g, 0, type_, u_);
+    kernels::mac::enforce_solid_faces(exec, g, 1, type_, v_);
+    kernels::mac::enforce_solid_faces(exec, g, 2, type_, w_);
+    kernels::mac::pressure_rhs(exec, g, type_, u_, v_, w_, rho_, dt, b_);
+    solvers::SolverResult r;
+    if (optical_depth_ == 0) {
+      auto solver = solvers::mac::make_pressure_solver(backend_, exec, A);
+      r = solver->solve(exec, b_, p_, control_);
+      last_unknowns_ = count_fluid();
+    } else {
+      // tall cells: solve P^T A P y = P^T b, then p = P y on the lattice
+      kernels::mac::PoissonStencil<HostMemSpace> H(g);
+      H.box = A.box;
+      Kokkos::deep_copy(H.diag, A.diag);
+      Kokkos::deep_copy(H.inverse_diag, A.inverse_diag);
+      Kokkos::deep_copy(H.cx, A.cx);
+      Kokkos::deep_copy(H.cy, A.cy);
+      Kokkos::deep_copy(H.cz, A.cz);
+      Kokkos::deep_copy(H.solid, A.solid);
+      const mesh::TallCellGrid T(H, optical_depth_);
+      const solvers::CsrMatrix M = solvers::mac::assemble_tall_cell_matrix(T, H);
+      const auto layout = mesh::make_layout<Mem>(T);
+      Vector bt("amphora::water::b_tall", T.unknowns()), y("amphora::water::p_tall", T.unknowns());
+      kernels::mac::tall_cell_restrict(exec, layout, b_, bt);
+      auto solver = solvers::mac::make_tall_cell_pressure_solver(backend_, exec, T, M, A);
+      r = solver->solve(exec, bt, y, control_);
+      kernels::mac::tall_cell_prolongate(exec, layout, y, p_);
+      last_unknowns_ = T.unknowns();
+    }
+    last_iterations_ = r.iterations;
+    if (!r.converged)
+      throw std::runtime_error("water_mac: the pressure solve did not reach the relative residual " +
+                               std::to_string(control_.relative_tolerance) + " in " + std::to_string(r.iterations) +
+                               " iterations (reached " + std::to_string(r.final_residual / std::max(r.rhs_norm, 1e-300)) +
+                               ") at sub-step " + std::to_string(substeps_));
+    kernels::mac::subtract_pressure_gradient(exec, g, 0, type_, phi_, p_, rho_, dt, u_);
+    kernels::mac::subtract_pressure_gradient(exec, g, 1, type_, phi_, p_, rho_, dt, v_);
+    kernels::mac::subtract_pressure_gradient(exec, g, 2, type_, phi_, p_, rho_, dt, w_);
+  }
+
+  void extrapolate_velocity() {
+    const Exec exec;
+    const mesh::MacGrid& g = grid_;
+    Vector faces[3] = {u_, v_, w_}, tmp[3] = {u_tmp_, v_tmp_, w_tmp_};
+    for (int d = 0; d < 3; ++d) {
+      // faces next to fluid keep their values; solid and box faces are zero (the projection
+      // set them), the rest are filled layer by layer from known neighbours
+      kernels::mac::mark_fluid_faces(exec, g, d, type_, valid_);
+      const auto f = faces[d];
+      const auto valid = valid_;
+      const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
+      Kokkos::parallel_for(
+          "amphora::water::clear_unknown_faces",
+          Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
+          KOKKOS_LAMBDA(int k, int j, int i) {
+            const int c = g.index(i, j, k);
+            if (!valid(c)) f(c) = 0.0;
+          });
+      for (int layer = 0; layer < extrapolation_layers_; ++layer) {
+        Kokkos::deep_copy(exec, tmp[d], faces[d]);
+        Kokkos::deep_copy(exec, valid_tmp_, valid_);
+        kernels::mac::extrapolate_layer(exec, g, d, type_, faces[d], valid_, tmp[d], valid_tmp_);
+        Kokkos::deep_copy(exec, faces[d], tmp[d]);
+        Kokkos::deep_copy(exec, valid_, valid_tmp_);
+      }
+    }
+  }
+
+  int count_fluid() const {
+    const auto type = type_;
+    int n = 0;
+    Kokkos::parallel_reduce(
+        "amphora::water::count_fluid", RangePolicy<Exec>(0, static_cast<int>(grid_.padded_size())),
+        KOKKOS_LAMBDA(int c, int& acc) { acc += type(c) == mesh::MacCellType::fluid; }, n);
+    return n;
+  }
+
+  double max_speed() const {
+    const auto u = u_, v = v_, w = w_;
+    double m = 0.0;
+    Kokkos::parallel_reduce(
+        "amphora::water::max_speed", RangePolicy<Exec>(0, static_cast<int>(grid_.padded_size())),
+        KOKKOS_LAMBDA(int c, double& acc) {
+          acc = math::max(acc, math::max(math::abs(u(c)), math::max(math::abs(v(c)), math::abs(w(c)))));
+        },
+        Kokkos::Max<double>(m));
+    return m;
+  }
+
+  /// Water volume: the cells' water fractions from the level set (smeared over one cell).
+  double volume() const {
+    const auto phi = phi_;
+    const auto solid = solid_;
+    const mesh::MacGrid g = grid_;
+    double vol = 0.0;
+    Kokkos::parallel_reduce(
+        "amphora::water::volume", Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz, g.ny, g.nx}),
+        KOKKOS_LAMBDA(int k, int j, int i, double& acc) {
+          const int c = g.index(i, j, k);
+          if (!solid(c)) acc += math::clamp(0.5 - phi(c) / g.h, 0.0, 1.0);
+        },
+        vol);
+    return vol * g.h * g.h * g.h;
+  }
+
+  /// The dam-break front: the largest x where the bottom row's level set crosses zero
+  /// (linear between cell centres), averaged over z.
+  double front() const {
+    const auto phi = to_std_vector(phi_);
+    const mesh::MacGrid& g = grid_;
+    double sum = 0.0;
+    for (int k = 0; k < g.nz; ++k) {
+      double x = 0.0;
+      for (int i = 0; i < g.nx; ++i) {
+        const double p0 = phi[g.index(i, 0, k)];
+        if (p0 >= 0) continue;
+        if (i + 1 == g.nx) {
+          x = g.nx * g.h;
+          continue;
+        }
+        const double p1 = phi[g.index(i + 1, 0, k)];
+        x = (i + 0.5) * g.h + (p1 > 0 ? g.h * p0 / (p0 - p1) : g.h);
+      }
+      sum += x;
+    }
+    return sum / g.nz;
+  }
+
+  /// Mean height of the highest zero crossing of the level set over the columns.
+  double surface_height() const {
+    const auto phi = to_std_vector(phi_);
+    const mesh::MacGrid& g = grid_;
+    double sum = 0.0;
+    for (int k = 0; k < g.nz; ++k)
+      for (int i = 0; i < g.nx; ++i) {
+        double y = 0.0;
+        for (int j = 0; j + 1 < g.ny; ++j) {
+          const double p0 = phi[g.index(i, j, k)], p1 = phi[g.index(i, j + 1, k)];
+          if (p0 < 0 && p1 >= 0) y = (j + 0.5) * g.h + g.h * p0 / (p0 - p1);
+        }
+        sum += y;
+      }
+    return sum / (double(g.nx) * g.nz);
+  }
+
+  Communicator comm_;
+  std::string scene_;
+  mesh::MacGrid grid_;
+  double gravity_ = 9.81, rho_ = 1000.0, cfl_ = 1.0, column_width_ = 0.05;
+  solvers::mac::PressureBackend backend_ = solvers::mac::PressureBackend::multigrid;
+  solvers::SolverControl control_;
+  int reinit_ = 2, optical_depth_ = 0, extrapolation_layers_ = 3;
+  Vector phi_, phi_tmp_, phi0_, u_, v_, w_, u_tmp_, v_tmp_, w_tmp_, p_, b_;
+  Types type_;
+  Kokkos::View<std::uint8_t*, Mem> solid_, valid_, valid_tmp_;
+  long substeps_ = 0;
+  int last_iterations_ = 0;
+  long last_unknowns_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {
+  return std::make_unique<WaterMac>(p, comm);
+}
+
+}  // namespace amphora::water_mac

@@ -1,0 +1,29 @@
+#pragma once
+// Water on a uniform MAC grid (Foster & Fedkiw 2001; Bridson 2015): level-set free surface
+// (semi-Lagrangian advection, PDE reinitialisation), semi-Lagrangian velocity advection,
+// gravity, pressure projection with ghost-fluid free-surface conditions and solid terrain,
+// the pressure solved by the back end a scene names (multigrid, hypre, mic0), optionally on a
+// tall-cell grid below an optical depth (Irving et al. 2006: pressure only; the velocity stays
+// on the lattice). Each run step is split into sub-steps that keep the CFL number at most `cfl`.
+//
+// Scenes: a dam break (a water column of width a and height 2a collapsing along x; the front
+// against Martin & Moyce 1952), a drop splashing into a deep pool, still water over uneven
+// terrain (must stay at rest with hydrostatic pressure).
+#include <memory>
+
+#include "mesh/environment.hpp"
+#include "physics/module.hpp"
+#include "physics/parameters.hpp"
+
+namespace amphora::water_mac {
+
+/// The scene table `[water_mac]`.
+ParamTable parameter_table();
+
+std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm);
+
+/// Martin & Moyce (1952), fig. 3, n^2 = 2, a = 2.25 in: front position Z = x/a against
+/// T = t sqrt(2 g / a), linearly interpolated (T within the measured 0.832 .. 9.237).
+double martin_moyce_front(double T);
+
+}  // namespace amphora::water_mac
