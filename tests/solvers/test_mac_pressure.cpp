@@ -9,6 +9,8 @@
 #include "kernels/host_vector.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
+#include "kernels/mac/level_set.hpp"
+#include "kernels/mac/projection.hpp"
 #include "test_backend.hpp"
 
 namespace amphora::solvers::mac {
@@ -230,6 +232,41 @@ TEST(PressureSolver, ThreeBackEndsAgreeOnTheSphere) {
   // relative residual 1e-10 and condition number ~ (n / pi)^2 bound the difference
   EXPECT_LT(diff, 1e-7 * scale);
   EXPECT_THROW(parse_pressure_backend("amg"), std::invalid_argument);
+}
+
+// After the projection the discrete divergence of every fluid cell is the solver's residual
+// (A p = b - r and the velocity update subtracts exactly A p from b), so it is below the
+// tolerance relative to the divergence before.
+TEST(MacProjection, ProjectedVelocityIsDiscretelyDivergenceFree) {
+  const TestExecSpace exec;
+  const SphereScene s(32, true);
+  const MacGrid& g = s.grid;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::vector<double> uh(g.padded_size()), vh(g.padded_size()), wh(g.padded_size());
+  for (std::size_t c = 0; c < uh.size(); ++c) uh[c] = U(rng), vh[c] = U(rng), wh[c] = U(rng);
+  Vector u = to_view<TestMemSpace>(uh), v = to_view<TestMemSpace>(vh), w = to_view<TestMemSpace>(wh);
+  const double rho = 1000.0, dt = 0.01;
+  const auto A = s.stencil();
+  for (auto [d, f] : {std::pair{0, u}, {1, v}, {2, w}}) kernels::mac::enforce_solid_faces(exec, g, d, s.type, f);
+  Vector b("b", g.padded_size()), p("p", g.padded_size()), after("after", g.padded_size());
+  kernels::mac::pressure_rhs(exec, g, s.type, u, v, w, rho, dt, b);
+  for (const char* backend : {"multigrid", "hypre", "mic0"}) {
+    Vector uu("u", g.padded_size()), vv("v", g.padded_size()), ww("w", g.padded_size());
+    Kokkos::deep_copy(uu, u), Kokkos::deep_copy(vv, v), Kokkos::deep_copy(ww, w);
+    Kokkos::deep_copy(p, 0.0);
+    SolverControl control;
+    control.relative_tolerance = 1e-9;
+    const SolverResult r = make_pressure_solver(parse_pressure_backend(backend), exec, A)->solve(exec, b, p, control);
+    ASSERT_TRUE(r.converged) << backend;
+    kernels::mac::subtract_pressure_gradient(exec, g, 0, s.type, s.phi, p, rho, dt, uu);
+    kernels::mac::subtract_pressure_gradient(exec, g, 1, s.type, s.phi, p, rho, dt, vv);
+    kernels::mac::subtract_pressure_gradient(exec, g, 2, s.type, s.phi, p, rho, dt, ww);
+    kernels::mac::pressure_rhs(exec, g, s.type, uu, vv, ww, rho, dt, after);
+    const double before_norm = std::sqrt(blas1::dot(exec, b, b)), after_norm = std::sqrt(blas1::dot(exec, after, after));
+    EXPECT_LE(after_norm, 1.01e-9 * before_norm) << backend;
+    EXPECT_NEAR(after_norm, r.final_residual, 1e-6 * r.final_residual + 1e-14 * before_norm) << backend;
+  }
 }
 
 TEST(MacMultigrid, RefusesGridsItCannotCoarsenNamingValidSizes) {

@@ -1,0 +1,60 @@
+# MAC water through the real binary: the dam break of scenes/water_dam_break.toml against
+# Martin & Moyce (1952), and every kind of bad input the water module refuses.
+source "$(dirname "$0")/common.sh"
+
+water_scene() {  # file [extra water_mac lines...]
+  local file=$1; shift
+  {
+    echo '[run]'
+    echo 'module = "water_mac"'
+    echo 'output_dir = "out"'
+    echo 'end_time = 0.01'
+    echo 'dt = 0.005'
+    echo '[water_mac]'
+    echo 'scene = "still"'
+    echo 'cells_x = 16'
+    echo 'cells_y = 16'
+    echo 'cells_z = 16'
+    echo 'length_x = 1.0'
+    for line in "$@"; do echo "$line"; done
+  } > "$file"
+}
+no_output() { [ ! -e out ] || fail "output written for bad input ($1)"; }
+
+water_scene band.toml 'optical_depth = 2' 'cfl = 1.5'
+expect_error 2 "optical_depth = 2 is below the band the advection needs: .* must be at least 4" "$AMPHORA" run band.toml
+no_output band
+water_scene terrain.toml 'terrain_base = 0.7' 'pool_depth = 0.5'
+expect_error 2 "terrain .* is above the water .* everywhere" "$AMPHORA" run terrain.toml; no_output terrain
+water_scene cfl.toml 'cfl = 3.0'
+expect_error 2 "key 'water_mac.cfl' = 3 is out of range; allowed: a real number in \(0, 2\]" "$AMPHORA" run cfl.toml
+no_output cfl
+water_scene size.toml && sed -i 's/^cells_x = 16/cells_x = 98/; s/^cells_y = 16/cells_y = 64/; s/^cells_z = 16/cells_z = 64/' size.toml
+expect_error 2 "multigrid cannot coarsen the 98x64x64 grid: .* nx = 98 can be halved 1 times; valid sizes .* nx = 96 or 112" \
+  "$AMPHORA" run size.toml; no_output size
+water_scene solver.toml 'solver = "amg"'
+expect_error 2 "key 'water_mac.solver' = \"amg\" is not an allowed value; allowed: one of: multigrid, hypre, mic0" \
+  "$AMPHORA" run solver.toml; no_output solver
+
+# The documented dam break against the experiment: inviscid, without the gate and without wall
+# friction the simulated front runs ahead of Martin & Moyce's, by 11 % near T = 1.1 falling to 6 %
+# at T = 3.3 (the issue's 5 % is not met; see the README). Bounded here so that it cannot drift
+# unnoticed; water volume kept to 2 %.
+sed 's|output_dir = "output/water_dam_break"|output_dir = "dam"|; s/^output_every = 4/output_every = 0/' \
+  "$AMPHORA_SOURCE_DIR/scenes/water_dam_break.toml" > dam.toml
+OMP_NUM_THREADS=2 "$AMPHORA" run dam.toml > run.txt
+/usr/bin/python3 - dam/diagnostics.csv <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+checked = [r for r in rows if 1.1 <= float(r["front_T"]) <= 3.34]
+assert len(checked) >= 20, len(checked)
+worst = max(abs(float(r["front_error"])) for r in checked)
+final = float(rows[-1]["front_error"])
+assert worst <= 0.12, f"front error {worst:.3f} > 0.12"
+assert abs(final) <= 0.065, f"front error at T = 3.3: {final:.3f} > 0.065"
+v0, v1 = float(rows[0]["volume"]), float(rows[-1]["volume"])
+assert abs(v1 - v0) <= 0.02 * v0, f"volume {v0} -> {v1}"
+print(f"dam break: front error {worst:.3f} at worst over T = 1.1..3.3, {final:.3f} at T = 3.3, "
+      f"volume change {100*(v1-v0)/v0:.2f} %")
+PY
+echo "water: ok"
