@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""The tall-cell study of issue 4: the splash of scenes/water_splash.toml with uniform cells
+everywhere (optical_depth = 0) and with tall cells below several optical depths. For each run:
+pressure unknowns (mean over the run), wall time per step, and the surface-height error against
+the uniform run at the end (max over the columns of |eta - eta_uniform|, relative to the largest
+surface displacement of the uniform run). Writes output/study_splash/splash_study.csv and
+splash_study.png (error against time per step).
+
+    /usr/bin/python3 scripts/study_splash.py [--depths 0,24,16,8,4] [--threads 2]
+"""
+import argparse
+import csv
+import os
+import re
+import subprocess
+import sys
+
+import numpy as np
+
+here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+amphora = os.path.join(here, "build", "release", "apps", "amphora")
+out = os.path.join(here, "output", "study_splash")
+
+
+def read_dataset(path, name):
+    tmp = os.path.join(out, "dataset.bin")
+    subprocess.run(["h5dump", "-d", name, "-b", "LE", "-o", tmp, path], check=True, stdout=subprocess.DEVNULL)
+    return np.fromfile(tmp, dtype="<f8")
+
+
+def surface(fields):
+    """eta(x, z): the highest zero crossing of phi in each column."""
+    x, y, z = (read_dataset(fields, f"/water/{c}") for c in "xyz")
+    phi = read_dataset(fields, "/water/phi").reshape(len(z), len(y), len(x))
+    eta = np.zeros((len(z), len(x)))
+    for j in range(len(y) - 1):
+        p0, p1 = phi[:, j, :], phi[:, j + 1, :]
+        cross = (p0 < 0) & (p1 >= 0)
+        eta = np.where(cross, y[j] + (y[j + 1] - y[j]) * p0 / np.where(cross, p0 - p1, 1.0), eta)
+    return eta
+
+
+def run(depth, threads, base):
+    d = os.path.join(out, f"depth_{depth}")
+    scene = os.path.join(out, f"splash_depth_{depth}.toml")
+    text = re.sub(r'output_dir = ".*"', f'output_dir = "{d}"', base)
+    text = re.sub(r"optical_depth = \d+", f"optical_depth = {depth}", text)
+    text = re.sub(r"output_every = \d+", "output_every = 1000", text)
+    open(scene, "w").write(text)
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND="spread", OMP_PLACES="threads")
+    log = subprocess.run([amphora, "run", scene], check=True, capture_output=True, text=True, env=env).stdout
+    m = re.search(r"\[done\] (\d+) steps to t=\S+ in (\S+) s stepping", log)
+    steps, seconds = int(m.group(1)), float(m.group(2))
+    rows = list(csv.DictReader(open(os.path.join(d, "diagnostics.csv"))))
+    unknowns = np.mean([float(r["pressure_unknowns"]) for r in rows[1:]])
+    last = sorted(f for f in os.listdir(d) if f.startswith("fields_"))[-1]
+    return {"depth": depth, "unknowns": unknowns, "seconds_per_step": seconds / steps,
+            "eta": surface(os.path.join(d, last))}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--depths", default="0,24,16,8,4")
+    ap.add_argument("--threads", type=int, default=2)
+    args = ap.parse_args()
+    os.makedirs(out, exist_ok=True)
+    base = open(os.path.join(here, "scenes", "water_splash.toml")).read()
+    pool = float(re.search(r"pool_depth = (\S+)", base).group(1))
+    depths = [int(v) for v in args.depths.split(",")]
+    if depths[0] != 0:
+        sys.exit("the first depth must be 0 (the uniform reference)")
+    runs = []
+    for depth in depths:
+        r = run(depth, args.threads, base)
+        runs.append(r)
+        print(f"optical depth {depth:3d}: {r['unknowns']:9.0f} pressure unknowns, {r['seconds_per_step']:.3f} s/step",
+              flush=True)
+    ref = runs[0]
+    amplitude = np.max(np.abs(ref["eta"] - pool))
+    with open(os.path.join(out, "splash_study.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["optical_depth", "pressure_unknowns", "unknowns_ratio", "seconds_per_step", "time_ratio",
+                    "surface_error"])
+        for r in runs:
+            r["error"] = np.max(np.abs(r["eta"] - ref["eta"])) / amplitude
+            w.writerow([r["depth"], f"{r['unknowns']:.0f}", f"{ref['unknowns'] / r['unknowns']:.3f}",
+                        f"{r['seconds_per_step']:.4f}", f"{ref['seconds_per_step'] / r['seconds_per_step']:.3f}",
+                        f"{r['error']:.4e}"])
+            print(f"optical depth {r['depth']:3d}: unknowns x{ref['unknowns'] / r['unknowns']:.2f} fewer, "
+                  f"time per step x{ref['seconds_per_step'] / r['seconds_per_step']:.2f} less, "
+                  f"surface error {100 * r['error']:.2f} % of the splash amplitude {amplitude:.4f} m")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for r in runs:
+        ax.plot(r["seconds_per_step"], 100 * r["error"], "o", color="C0" if r["depth"] else "C3")
+        label = "uniform" if r["depth"] == 0 else f"D = {r['depth']}"
+        ax.annotate(f"{label}\n{r['unknowns'] / 1e3:.0f}k unknowns", (r["seconds_per_step"], 100 * r["error"]),
+                    textcoords="offset points", xytext=(6, 4), fontsize=8)
+    ax.axhline(5, color="grey", lw=0.8, ls="--")
+    ax.margins(0.2)
+    ax.set_xlabel("wall time per step [s]")
+    ax.set_ylabel("surface-height error vs uniform [% of splash amplitude]")
+    ax.set_title("Splash: tall cells below optical depth D (pressure on tall cells)")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "splash_study.png"), dpi=120)
+    print("wrote", os.path.join(out, "splash_study.csv"), "and splash_study.png")
+
+
+if __name__ == "__main__":
+    main()
