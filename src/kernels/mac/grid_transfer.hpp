@@ -192,14 +192,14 @@ template <class ExecSpace, class MemSpace, class S, class FineView, class Coarse
 void restrict_residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& fine_A,
                        const PoissonStencil<MemSpace, S>& coarse_A, const FineView& fine, const CoarseView& coarse) {
   restrict_to_coarse(exec, fine_A, coarse_A, fine, coarse);
-  gather_from_solids(exec, coarse_A, coarse);
+  if (coarse_A.any_solid) gather_from_solids(exec, coarse_A, coarse);
 }
 
 /// The prolongation of a multigrid cycle: fine += P E coarse (E writes coarse's solid cells).
 template <class ExecSpace, class MemSpace, class S, class CoarseView, class FineView>
 void prolongate_correction(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& coarse_A,
                            const PoissonStencil<MemSpace, S>& fine_A, const CoarseView& coarse, const FineView& fine) {
-  extend_into_solids(exec, coarse_A, coarse);
+  if (coarse_A.any_solid) extend_into_solids(exec, coarse_A, coarse);
   prolongate_add(exec, coarse_A, fine_A, coarse, fine);
 }
 
@@ -256,6 +256,7 @@ PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonSte
         cinv(c) = diag > 0.0 ? 1.0 / diag : 0.0;
         csolid(c) = all_solid;
       });
+  coarse_A.any_solid = fine_A.any_solid && count_solid(exec, coarse_A) > 0;
   return coarse_A;
 }
 

@@ -37,6 +37,7 @@ struct PoissonStencil {
   /// 1 on solid cells inside the box (terrain, obstacles): multigrid extends a correction into
   /// them as across a wall, where air cells take zero.
   Kokkos::View<std::uint8_t*, MemSpace> solid;
+  bool any_solid = false;  ///< some cell is solid (else the multigrid skips the extension)
 
   /// Which box faces are walls, as a device-copyable array.
   Kokkos::Array<bool, 6> walls() const {
@@ -155,6 +156,17 @@ void jacobi(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B
       });
 }
 
+/// Number of solid cells.
+template <class ExecSpace, class MemSpace, class S>
+int count_solid(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
+  const auto solid = A.solid;
+  int n = 0;
+  Kokkos::parallel_reduce(
+      "amphora::mac::count_solid", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(solid.extent(0))),
+      KOKKOS_LAMBDA(int c, int& acc) { acc += solid(c); }, n);
+  return n;
+}
+
 /// The matrix of a grid's fluid cells: conductance 1 between fluid cells, 1/theta towards air
 /// (phi from the level set; an empty phi puts the interface at the air cell's centre, theta =
 /// 1), Dirichlet p = 0 on open box faces (theta = 1/2), nothing at walls and solids.
@@ -204,6 +216,7 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
         d(c) = diag;
         inv(c) = diag > 0.0 ? 1.0 / diag : 0.0;
       });
+  A.any_solid = count_solid(exec, A) > 0;
   return A;
 }
 
@@ -215,6 +228,7 @@ PoissonStencil<MemSpace, Scalar> convert_stencil(const ExecSpace& exec, const Po
   B.box = A.box;
   B.cx = A.cx, B.cy = A.cy, B.cz = A.cz;  // float already: shared
   B.solid = A.solid;
+  B.any_solid = A.any_solid;
   B.diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::diag", A.diag.extent(0));
   B.inverse_diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::inverse_diag", A.diag.extent(0));
   const auto d = A.diag, inv = A.inverse_diag, bd = B.diag, binv = B.inverse_diag;
