@@ -63,6 +63,48 @@ struct SphereScene {
   }
 };
 
+// Smoother kernels: after a red (black) half-sweep every red (black) fluid cell satisfies its
+// equation exactly; a damped Jacobi sweep is x + omega D^-1 (b - A x) cell by cell.
+TEST(MacSmoothers, RedBlackSweepsSolveTheirColourAndJacobiIsItsFormula) {
+  const TestExecSpace exec;
+  const SphereScene s(16, true);
+  const MacGrid& g = s.grid;
+  const auto A = s.stencil();
+  const auto d = to_std_vector(A.diag);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::vector<double> bh(d.size(), 0.0), xh(d.size(), 0.0);
+  for (std::size_t c = 0; c < d.size(); ++c)
+    if (d[c] > 0) bh[c] = U(rng), xh[c] = U(rng);
+  const Vector b = to_view<TestMemSpace>(bh);
+  for (int colour : {0, 1}) {
+    const Vector x = to_view<TestMemSpace>(xh);
+    Vector r("r", d.size());
+    kernels::mac::red_black_gauss_seidel(exec, A, b, x, colour);
+    kernels::mac::residual(exec, A, b, x, r);
+    const auto rh = to_std_vector(r);
+    double on = 0, off = 0;
+    for (int k = 0; k < g.nz; ++k)
+      for (int j = 0; j < g.ny; ++j)
+        for (int i = 0; i < g.nx; ++i) {
+          const int c = g.index(i, j, k);
+          if (d[c] == 0) continue;
+          ((i + j + k) % 2 == colour ? on : off) = std::max((i + j + k) % 2 == colour ? on : off, std::abs(rh[c]));
+        }
+    EXPECT_LT(on, 1e-12) << "colour " << colour;
+    EXPECT_GT(off, 1e-3) << "colour " << colour;  // the other colour was not touched
+  }
+  const Vector x = to_view<TestMemSpace>(xh);
+  Vector xn("xn", d.size()), r("r", d.size());
+  kernels::mac::jacobi(exec, A, b, x, xn, 0.8);
+  kernels::mac::residual(exec, A, b, x, r);
+  const auto xnh = to_std_vector(xn), rh = to_std_vector(r);
+  double err = 0;
+  for (std::size_t c = 0; c < d.size(); ++c)
+    if (d[c] > 0) err = std::max(err, std::abs(xnh[c] - (xh[c] + 0.8 * rh[c] / d[c])));
+  EXPECT_LT(err, 1e-13);
+}
+
 TEST(MacGridTransfer, RestrictionIsTheTransposeOfProlongation) {
   const TestExecSpace exec;
   for (auto [n, terrain] : {std::pair{8, false}, {12, false}, {16, false}, {8, true}, {16, true}}) {
