@@ -175,14 +175,7 @@ void TallCells(benchmark::State& state) {
   const int backend = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
   const auto host_A = deep_water(n);
   // the same stencil in the execution space's memory
-  Stencil A(host_A.grid);
-  A.box = host_A.box;
-  Kokkos::deep_copy(A.diag, host_A.diag);
-  Kokkos::deep_copy(A.inverse_diag, host_A.inverse_diag);
-  Kokkos::deep_copy(A.cx, host_A.cx);
-  Kokkos::deep_copy(A.cy, host_A.cy);
-  Kokkos::deep_copy(A.cz, host_A.cz);
-  Kokkos::deep_copy(A.solid, host_A.solid);
+  const Stencil A = amphora::kernels::mac::copy_stencil<Mem>(host_A);
   const Exec exec;
   amphora::solvers::SolverControl control;
   control.relative_tolerance = 1e-8;

@@ -167,14 +167,7 @@ std::pair<int, std::vector<double>> solve_basin(const Basin& b, int depth, const
       }
   T.restrict_to_unknowns(f.data(), bt.data());
   // the uniform stencil in the test's memory space
-  kernels::mac::PoissonStencil<TestMemSpace> A(b.grid);
-  A.box = b.A.box;
-  Kokkos::deep_copy(A.diag, b.A.diag);
-  Kokkos::deep_copy(A.inverse_diag, b.A.inverse_diag);
-  Kokkos::deep_copy(A.cx, b.A.cx);
-  Kokkos::deep_copy(A.cy, b.A.cy);
-  Kokkos::deep_copy(A.cz, b.A.cz);
-  Kokkos::deep_copy(A.solid, b.A.solid);
+  const auto A = kernels::mac::copy_stencil<TestMemSpace>(b.A);
   auto solver = make_tall_cell_pressure_solver(parse_pressure_backend(backend), exec, T, M, A);
   Kokkos::View<double*, TestMemSpace> x("x", T.unknowns());
   SolverControl control;

@@ -11,6 +11,8 @@
 // fractions) on the + face of each cell, and 1/d (zero on non-fluid cells). Scalar is the
 // type of d, 1/d and of the arithmetic: double for the operator CG sees, float for the
 // multigrid preconditioner (half the memory traffic; a preconditioner needs no more).
+#include <type_traits>
+
 #include "kernels/spaces.hpp"
 #include "mesh/mac/mac_grid.hpp"
 
@@ -38,6 +40,14 @@ struct PoissonStencil {
   /// them as across a wall, where air cells take zero.
   Kokkos::View<std::uint8_t*, MemSpace> solid;
   bool any_solid = false;  ///< some cell is solid (else the multigrid skips the extension)
+
+  /// sum_j c_ij x_j over the six neighbours of cell c (x zero where a cell is not fluid).
+  template <class X>
+  KOKKOS_INLINE_FUNCTION Scalar neighbour_sum(const X& x, int c) const {
+    const int sy = grid.stride_y(), sz = grid.stride_z();
+    return Scalar(cx(c - 1)) * x(c - 1) + Scalar(cx(c)) * x(c + 1) + Scalar(cy(c - sy)) * x(c - sy) +
+           Scalar(cy(c)) * x(c + sy) + Scalar(cz(c - sz)) * x(c - sz) + Scalar(cz(c)) * x(c + sz);
+  }
 
   /// Which box faces are walls, as a device-copyable array.
   Kokkos::Array<bool, 6> walls() const {
@@ -72,17 +82,11 @@ void zero_ghost_planes(const ExecSpace& exec, const mesh::MacGrid& g, const V& v
 /// y = A x on every interior cell; every ghost entry of y is zero.
 template <class ExecSpace, class MemSpace, class S, class X, class Y>
 void apply(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const X& x, const Y& y) {
-  const auto d = A.diag;
-  const auto cx = A.cx, cy = A.cy, cz = A.cz;
-  const int sy = A.grid.stride_y(), sz = A.grid.stride_z();
+  const PoissonStencil<MemSpace, S> a = A;
   Kokkos::parallel_for(
       "amphora::mac::apply",
       RangePolicy<ExecSpace>(exec, A.grid.first_plane_index(), A.grid.end_plane_index()),
-      KOKKOS_LAMBDA(int c) {
-        y(c) = d(c) * x(c) - (S(cx(c - 1)) * x(c - 1) + S(cx(c)) * x(c + 1) +
-                              S(cy(c - sy)) * x(c - sy) + S(cy(c)) * x(c + sy) +
-                              S(cz(c - sz)) * x(c - sz) + S(cz(c)) * x(c + sz));
-      });
+      KOKKOS_LAMBDA(int c) { y(c) = a.diag(c) * x(c) - a.neighbour_sum(x, c); });
   zero_ghost_planes(exec, A.grid, y);
 }
 
@@ -90,17 +94,11 @@ void apply(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const X&
 template <class ExecSpace, class MemSpace, class S, class B, class X, class R>
 void residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b, const X& x,
               const R& r) {
-  const auto d = A.diag;
-  const auto cx = A.cx, cy = A.cy, cz = A.cz;
-  const int sy = A.grid.stride_y(), sz = A.grid.stride_z();
+  const PoissonStencil<MemSpace, S> a = A;
   Kokkos::parallel_for(
       "amphora::mac::residual",
       RangePolicy<ExecSpace>(exec, A.grid.first_plane_index(), A.grid.end_plane_index()),
-      KOKKOS_LAMBDA(int c) {
-        r(c) = b(c) - d(c) * x(c) +
-               (S(cx(c - 1)) * x(c - 1) + S(cx(c)) * x(c + 1) + S(cy(c - sy)) * x(c - sy) +
-                S(cy(c)) * x(c + sy) + S(cz(c - sz)) * x(c - sz) + S(cz(c)) * x(c + sz));
-      });
+      KOKKOS_LAMBDA(int c) { r(c) = b(c) - a.diag(c) * x(c) + a.neighbour_sum(x, c); });
   zero_ghost_planes(exec, A.grid, r);
 }
 
@@ -109,10 +107,8 @@ void residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const
 template <class ExecSpace, class MemSpace, class S, class B, class X>
 void red_black_gauss_seidel(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b,
                             const X& x, int colour) {
-  const auto inv = A.inverse_diag;
-  const auto cx = A.cx, cy = A.cy, cz = A.cz;
+  const PoissonStencil<MemSpace, S> a = A;
   const mesh::MacGrid g = A.grid;
-  const int sy = g.stride_y(), sz = g.stride_z();
   // One work item per x-row. The row is updated in chunks: first every cell's Gauss–Seidel
   // value into a local buffer (contiguous, so it vectorises; only other-colour cells are read for
   // the cells that are kept), then the cells of this colour are written.
@@ -128,8 +124,7 @@ void red_black_gauss_seidel(const ExecSpace& exec, const PoissonStencil<MemSpace
           S value[chunk];
           for (int m = 0; m < len; ++m) {
             const int c = base + i0 + m;
-            value[m] = inv(c) * (b(c) + S(cx(c - 1)) * x(c - 1) + S(cx(c)) * x(c + 1) + S(cy(c - sy)) * x(c - sy) +
-                                 S(cy(c)) * x(c + sy) + S(cz(c - sz)) * x(c - sz) + S(cz(c)) * x(c + sz));
+            value[m] = a.inverse_diag(c) * (b(c) + a.neighbour_sum(x, c));
           }
           // i0 is even, so the kept cells are m = first, first + 2, ...
           for (int m = first; m < len; m += 2) x(base + i0 + m) = value[m];
@@ -141,18 +136,13 @@ void red_black_gauss_seidel(const ExecSpace& exec, const PoissonStencil<MemSpace
 template <class ExecSpace, class MemSpace, class S, class B, class X, class XN>
 void jacobi(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b, const X& x,
             const XN& x_new, S omega) {
-  const auto d = A.diag, inv = A.inverse_diag;
-  const auto cx = A.cx, cy = A.cy, cz = A.cz;
-  const int sy = A.grid.stride_y(), sz = A.grid.stride_z();
+  const PoissonStencil<MemSpace, S> a = A;
   Kokkos::parallel_for(
       "amphora::mac::jacobi",
       RangePolicy<ExecSpace>(exec, A.grid.first_plane_index(), A.grid.end_plane_index()),
       KOKKOS_LAMBDA(int c) {
-        const S r = b(c) - d(c) * x(c) +
-                         (S(cx(c - 1)) * x(c - 1) + S(cx(c)) * x(c + 1) +
-                          S(cy(c - sy)) * x(c - sy) + S(cy(c)) * x(c + sy) +
-                          S(cz(c - sz)) * x(c - sz) + S(cz(c)) * x(c + sz));
-        x_new(c) = x(c) + omega * inv(c) * r;
+        const S r = b(c) - a.diag(c) * x(c) + a.neighbour_sum(x, c);
+        x_new(c) = x(c) + omega * a.inverse_diag(c) * r;
       });
 }
 
@@ -218,6 +208,26 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
       });
   A.any_solid = count_solid(exec, A) > 0;
   return A;
+}
+
+/// A deep copy of A in another memory space (setup: host assembly, device solves).
+template <class DstMemSpace, class MemSpace, class S>
+PoissonStencil<DstMemSpace, S> copy_stencil(const PoissonStencil<MemSpace, S>& A) {
+  PoissonStencil<DstMemSpace, S> B;
+  B.grid = A.grid;
+  B.box = A.box;
+  B.any_solid = A.any_solid;
+  auto copy = [](const auto& v) {
+    using V = std::decay_t<decltype(v)>;
+    Kokkos::View<typename V::non_const_value_type*, DstMemSpace> w(
+        Kokkos::view_alloc(Kokkos::WithoutInitializing, v.label()), v.extent(0));
+    Kokkos::deep_copy(w, v);
+    return w;
+  };
+  B.diag = copy(A.diag), B.inverse_diag = copy(A.inverse_diag);
+  B.cx = copy(A.cx), B.cy = copy(A.cy), B.cz = copy(A.cz);
+  B.solid = copy(A.solid);
+  return B;
 }
 
 /// The same matrix with d and 1/d in another precision.

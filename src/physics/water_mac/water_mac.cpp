@@ -353,14 +353,7 @@ class WaterMac final : public Module {
       last_unknowns_ = count_fluid();
     } else {
       // tall cells: solve P^T A P y = P^T b, then p = P y on the lattice
-      kernels::mac::PoissonStencil<HostMemSpace> H(g);
-      H.box = A.box;
-      Kokkos::deep_copy(H.diag, A.diag);
-      Kokkos::deep_copy(H.inverse_diag, A.inverse_diag);
-      Kokkos::deep_copy(H.cx, A.cx);
-      Kokkos::deep_copy(H.cy, A.cy);
-      Kokkos::deep_copy(H.cz, A.cz);
-      Kokkos::deep_copy(H.solid, A.solid);
+      const auto H = kernels::mac::copy_stencil<HostMemSpace>(A);
       const mesh::TallCellGrid T(H, optical_depth_);
       const solvers::CsrMatrix M = solvers::mac::assemble_tall_cell_matrix(T, H);
       const auto layout = mesh::make_layout<Mem>(T);

@@ -34,6 +34,31 @@ const char* to_string(PressureBackend backend) {
 
 namespace {
 
+/// A hypre result in the terms of CG: hypre reports the relative residual.
+template <class B>
+SolverResult from_hypre(const HypreSolveResult& h, const B& b, double relative_tolerance) {
+  SolverResult r;
+  r.iterations = h.iterations;
+  r.converged = h.final_relative_residual <= relative_tolerance;
+  double bb = 0.0;
+  for (std::size_t i = 0; i < b.extent(0); ++i) bb += b(i) * b(i);
+  r.rhs_norm = std::sqrt(bb);
+  r.final_residual = h.final_relative_residual * r.rhs_norm;
+  return r;
+}
+
+/// Copies b and x to the host and back around a host solve.
+template <class ExecSpace, class HostSolve>
+SolverResult solve_on_host(const ExecSpace& exec, const Kokkos::View<double*, typename ExecSpace::memory_space>& b,
+                           const Kokkos::View<double*, typename ExecSpace::memory_space>& x, HostSolve&& host_solve) {
+  exec.fence();
+  const auto bh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), b);
+  const auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
+  const SolverResult r = host_solve(Kokkos::View<double*, HostMemSpace>(bh), Kokkos::View<double*, HostMemSpace>(xh));
+  Kokkos::deep_copy(x, xh);
+  return r;
+}
+
 template <class ExecSpace>
 class MultigridPressureSolver final : public PressureSolver<ExecSpace> {
  public:
@@ -62,19 +87,10 @@ class PfmgPressureSolver final : public PressureSolver<ExecSpace> {
                                            y.data(), z.data());
   }
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
-    exec.fence();
-    const auto bh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), b);
-    const auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
-    const HypreSolveResult r = pfmg_->solve(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations);
-    Kokkos::deep_copy(x, xh);
-    SolverResult out;
-    out.iterations = r.iterations;
-    out.converged = r.final_relative_residual <= c.relative_tolerance;
-    double bb = 0.0;
-    for (std::size_t i = 0; i < bh.extent(0); ++i) bb += bh(i) * bh(i);
-    out.rhs_norm = std::sqrt(bb);
-    out.final_residual = r.final_relative_residual * out.rhs_norm;
-    return out;
+    return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
+      return from_hypre(pfmg_->solve(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations), bh,
+                        c.relative_tolerance);
+    });
   }
   PressureBackend backend() const override { return PressureBackend::hypre; }
 
@@ -96,14 +112,11 @@ class Mic0PressureSolver final : public PressureSolver<ExecSpace> {
   using HostStencil = kernels::mac::PoissonStencil<HostMemSpace>;
 
   explicit Mic0PressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
-      : A_(to_host(A)), mic_(A_) {}
+      : A_(kernels::mac::copy_stencil<HostMemSpace>(A)), mic_(A_) {}
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
-    exec.fence();
-    const auto bh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), b);
-    const auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
-    const SolverResult r = conjugate_gradient(SequentialSpace(), Operator{A_}, HostVector(bh), HostVector(xh), c, mic_);
-    Kokkos::deep_copy(x, xh);
-    return r;
+    return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
+      return conjugate_gradient(SequentialSpace(), Operator{A_}, bh, xh, c, mic_);
+    });
   }
   PressureBackend backend() const override { return PressureBackend::mic0; }
 
@@ -114,17 +127,6 @@ class Mic0PressureSolver final : public PressureSolver<ExecSpace> {
       kernels::mac::apply(exec, A, x, y);
     }
   };
-  static HostStencil to_host(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
-    HostStencil H;
-    H.grid = A.grid;
-    H.box = A.box;
-    H.diag = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.diag);
-    H.inverse_diag = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.inverse_diag);
-    H.cx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cx);
-    H.cy = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cy);
-    H.cz = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cz);
-    return H;
-  }
   HostStencil A_;
   StencilMic0 mic_;
 };
@@ -145,17 +147,6 @@ class TallCellMultigridSolver final : public PressureSolver<ExecSpace> {
   TallCellMultigrid<ExecSpace> mg_;
 };
 
-/// Copies b and x to the host and back around a host solve.
-template <class ExecSpace, class HostSolve>
-SolverResult solve_on_host(const ExecSpace& exec, const Kokkos::View<double*, typename ExecSpace::memory_space>& b,
-                           const Kokkos::View<double*, typename ExecSpace::memory_space>& x, HostSolve&& host_solve) {
-  exec.fence();
-  const auto bh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), b);
-  const auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
-  const SolverResult r = host_solve(Kokkos::View<double*, HostMemSpace>(bh), Kokkos::View<double*, HostMemSpace>(xh));
-  Kokkos::deep_copy(x, xh);
-  return r;
-}
 
 template <class ExecSpace>
 class BoomerAMGPressureSolver final : public PressureSolver<ExecSpace> {
@@ -165,15 +156,7 @@ class BoomerAMGPressureSolver final : public PressureSolver<ExecSpace> {
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
       const BoomerAMG amg(A_);
-      const HypreSolveResult h = amg.pcg(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations);
-      SolverResult r;
-      r.iterations = h.iterations;
-      r.converged = h.final_relative_residual <= c.relative_tolerance;
-      double bb = 0.0;
-      for (std::size_t i = 0; i < bh.extent(0); ++i) bb += bh(i) * bh(i);
-      r.rhs_norm = std::sqrt(bb);
-      r.final_residual = h.final_relative_residual * r.rhs_norm;
-      return r;
+      return from_hypre(amg.pcg(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations), bh, c.relative_tolerance);
     });
   }
   PressureBackend backend() const override { return PressureBackend::hypre; }

@@ -4,21 +4,6 @@
 
 namespace amphora::solvers::mac {
 
-namespace {
-template <class MemSpace>
-kernels::mac::PoissonStencil<HostMemSpace> host_copy(const kernels::mac::PoissonStencil<MemSpace>& A) {
-  kernels::mac::PoissonStencil<HostMemSpace> H;
-  H.grid = A.grid;
-  H.box = A.box;
-  H.diag = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.diag);
-  H.inverse_diag = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.inverse_diag);
-  H.cx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cx);
-  H.cy = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cy);
-  H.cz = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cz);
-  return H;
-}
-}  // namespace
-
 template <class ExecSpace>
 TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T,
                                                 const CsrMatrix& A_t, const Stencil& A,
@@ -51,8 +36,9 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     // the next level: the same optical depth in metres on the coarser lattice
     level_A = kernels::mac::coarsen_stencil(exec, level_A);
     const int depth = (T.optical_depth() + (2 << l) - 1) >> (l + 1);
-    level_grid = mesh::TallCellGrid(host_copy(level_A), std::max(depth, 1));
-    level_matrix = assemble_tall_cell_matrix(level_grid, host_copy(level_A));
+    const auto host_A = kernels::mac::copy_stencil<HostMemSpace>(level_A);
+    level_grid = mesh::TallCellGrid(host_A, std::max(depth, 1));
+    level_matrix = assemble_tall_cell_matrix(level_grid, host_A);
   }
 }
 
