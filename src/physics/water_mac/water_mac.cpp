@@ -254,7 +254,8 @@ class WaterMac final : public Module {
   /// Signed distances of the initial water and the solid floor, on the host.
   void initialise(const Parameters& p) {
     const mesh::MacGrid& g = grid_;
-    std::vector<double> phi(g.padded_size(), g.h), v(g.padded_size(), 0.0);
+    // ghost entries are never read; zero in every buffer, so a restart restores them exactly
+    std::vector<double> phi(g.padded_size(), 0.0), v(g.padded_size(), 0.0);
     std::vector<std::uint8_t> solid(g.padded_size(), 0);
     const double lx = g.nx * g.h, ly = g.ny * g.h, lz = g.nz * g.h;
     const double amp = p.real("terrain_amplitude"), base = p.real("terrain_base");
