@@ -9,14 +9,17 @@
 namespace amphora::kernels::mac {
 
 namespace detail {
+/// The departure point, in cell widths, of a sample at q (cell widths) traced back over dt with
+/// the midpoint rule.
 template <class U, class V, class W>
 KOKKOS_INLINE_FUNCTION void departure_point(const mesh::MacGrid& g, const U& u, const V& v, const W& w, double dt,
-                                            const double x[3], double out[3]) {
+                                            const double q[3], double out[3]) {
+  const double scale = dt / g.h;  // velocity x dt in cell widths
   double vel[3], mid[3];
-  velocity_at(g, u, v, w, x, vel);
-  for (int d = 0; d < 3; ++d) mid[d] = x[d] - 0.5 * dt * vel[d];
-  velocity_at(g, u, v, w, mid, vel);
-  for (int d = 0; d < 3; ++d) out[d] = x[d] - dt * vel[d];
+  velocity_at_cells(g, u, v, w, q, vel);
+  for (int d = 0; d < 3; ++d) mid[d] = q[d] - 0.5 * scale * vel[d];
+  velocity_at_cells(g, u, v, w, mid, vel);
+  for (int d = 0; d < 3; ++d) out[d] = q[d] - scale * vel[d];
 }
 }  // namespace detail
 
@@ -29,10 +32,12 @@ void advect(const ExecSpace& exec, const mesh::MacGrid& g, Staggering s, const Q
   Kokkos::parallel_for(
       "amphora::mac::advect", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
-        double x[3], back[3];
-        sample_position(g, s, i, j, k, x);
+        // the sample's position in cell widths from the box corner
+        const double x[3] = {i + (s == Staggering::x ? 0.0 : 0.5), j + (s == Staggering::y ? 0.0 : 0.5),
+                             k + (s == Staggering::z ? 0.0 : 0.5)};
+        double back[3];
         detail::departure_point(g, u, v, w, dt, x, back);
-        q_new(g.index(i, j, k)) = interpolate(g, q, s, back);
+        q_new(g.index(i, j, k)) = interpolate_cells(g, q, s, back);
       });
 }
 

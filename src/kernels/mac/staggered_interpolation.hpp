@@ -11,23 +11,21 @@ namespace amphora::kernels::mac {
 /// Which lattice a field lives on: cell centres, or faces normal to x, y or z.
 enum class Staggering : int { centre = -1, x = 0, y = 1, z = 2 };
 
-/// Interpolates field f (padded lattice) of staggering s at point p (physical coordinates).
+/// Interpolates field f (padded lattice) of staggering s at q, a position in cell widths from
+/// the box's lower corner.
 template <class F>
-KOKKOS_INLINE_FUNCTION double interpolate(const mesh::MacGrid& g, const F& f, Staggering s, const double p[3]) {
+KOKKOS_INLINE_FUNCTION double interpolate_cells(const mesh::MacGrid& g, const F& f, Staggering s, const double q[3]) {
   const int n[3] = {g.nx, g.ny, g.nz};
   int base[3];
   double w[3];
   for (int d = 0; d < 3; ++d) {
     // samples of this direction sit at (m + offset) h, m = 0 .. last
     const bool on_faces = static_cast<int>(s) == d;
-    const double offset = on_faces ? 0.0 : 0.5;
     const int last = on_faces ? n[d] : n[d] - 1;
-    double q = (p[d] - g.origin[d]) / g.h - offset;
-    q = math::clamp(q, 0.0, double(last));
-    int m = static_cast<int>(q);
-    if (m >= last) m = last > 0 ? last - 1 : 0;
+    const double t = math::clamp(on_faces ? q[d] : q[d] - 0.5, 0.0, double(last));
+    const int m = math::min(static_cast<int>(t), math::max(last - 1, 0));
     base[d] = m;
-    w[d] = last > 0 ? q - m : 0.0;
+    w[d] = last > 0 ? t - m : 0.0;
   }
   // the eight corners from one base index (in a direction with a single sample the weight of
   // the second corner is zero and it reads a finite ghost entry)
@@ -39,13 +37,36 @@ KOKKOS_INLINE_FUNCTION double interpolate(const mesh::MacGrid& g, const F& f, St
   return (1.0 - w[2]) * lo + w[2] * hi;
 }
 
+/// Position p (physical coordinates) in cell widths from the box's lower corner.
+KOKKOS_INLINE_FUNCTION void to_cells(const mesh::MacGrid& g, const double p[3], double q[3]) {
+  const double inv_h = 1.0 / g.h;
+  for (int d = 0; d < 3; ++d) q[d] = (p[d] - g.origin[d]) * inv_h;
+}
+
+/// Interpolates field f (padded lattice) of staggering s at point p (physical coordinates).
+template <class F>
+KOKKOS_INLINE_FUNCTION double interpolate(const mesh::MacGrid& g, const F& f, Staggering s, const double p[3]) {
+  double q[3];
+  to_cells(g, p, q);
+  return interpolate_cells(g, f, s, q);
+}
+
+/// The velocity at q (cell widths) from its three face components.
+template <class U, class V, class W>
+KOKKOS_INLINE_FUNCTION void velocity_at_cells(const mesh::MacGrid& g, const U& u, const V& v, const W& w,
+                                              const double q[3], double vel[3]) {
+  vel[0] = interpolate_cells(g, u, Staggering::x, q);
+  vel[1] = interpolate_cells(g, v, Staggering::y, q);
+  vel[2] = interpolate_cells(g, w, Staggering::z, q);
+}
+
 /// The velocity at point p from its three face components.
 template <class U, class V, class W>
 KOKKOS_INLINE_FUNCTION void velocity_at(const mesh::MacGrid& g, const U& u, const V& v, const W& w, const double p[3],
                                         double vel[3]) {
-  vel[0] = interpolate(g, u, Staggering::x, p);
-  vel[1] = interpolate(g, v, Staggering::y, p);
-  vel[2] = interpolate(g, w, Staggering::z, p);
+  double q[3];
+  to_cells(g, p, q);
+  velocity_at_cells(g, u, v, w, q, vel);
 }
 
 /// Position of sample (i, j, k) of a lattice.
