@@ -6,7 +6,7 @@
 namespace amphora {
 
 BoxDecomposition::BoxDecomposition(Index3 global_cells, std::array<bool, 3> periodic, int nranks,
-                                   int min_block_cells)
+                                   int min_block_cells, std::array<bool, 3> splittable)
     : global_(global_cells), periodic_(periodic) {
   for (int d = 0; d < 3; ++d) {
     if (global_[d] < 1) {
@@ -21,7 +21,7 @@ BoxDecomposition::BoxDecomposition(Index3 global_cells, std::array<bool, 3> peri
   // Largest number of blocks per direction that keeps every block at least min_block_cells
   // wide; a direction that is not split may be thinner.
   Index3 max_blocks;
-  for (int d = 0; d < 3; ++d) max_blocks[d] = std::max(1, global_[d] / min_block_cells);
+  for (int d = 0; d < 3; ++d) max_blocks[d] = splittable[d] ? std::max(1, global_[d] / min_block_cells) : 1;
 
   double best_surface = std::numeric_limits<double>::max();
   bool found = false;

@@ -25,10 +25,11 @@ class DecompositionError : public std::runtime_error {
 class BoxDecomposition {
  public:
   /// Splits `global_cells` into `nranks` blocks of at least `min_block_cells` cells per split
-  /// direction, choosing the factorisation with the least halo surface. Throws
-  /// DecompositionError if no split exists (more ranks than blocks).
+  /// direction, choosing the factorisation with the least halo surface; directions with
+  /// `splittable` false stay whole (e.g. the vertical of a water grid, whose columns must not
+  /// be cut). Throws DecompositionError if no split exists (more ranks than blocks).
   BoxDecomposition(Index3 global_cells, std::array<bool, 3> periodic, int nranks,
-                   int min_block_cells = 1);
+                   int min_block_cells = 1, std::array<bool, 3> splittable = {true, true, true});
 
   const Index3& global_cells() const { return global_; }
   const Index3& blocks() const { return blocks_; }

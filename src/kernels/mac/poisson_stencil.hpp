@@ -159,7 +159,10 @@ int count_solid(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
 
 /// The matrix of a grid's fluid cells: conductance 1 between fluid cells, 1/theta towards air
 /// (phi from the level set; an empty phi puts the interface at the air cell's centre, theta =
-/// 1), Dirichlet p = 0 on open box faces (theta = 1/2), nothing at walls and solids.
+/// 1), Dirichlet p = 0 on open box faces (theta = 1/2), nothing at walls and solids. Across a
+/// `neighbour` face the ghost cells (type and phi filled by a halo exchange) are treated as
+/// interior; the conductances of the ghost cells' own + faces (towards this block's first layer)
+/// are then filled by exchanging cx/cy/cz.
 template <class ExecSpace, class MemSpace, class Types, class Phi>
 PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g,
                                                const Types& type, const Phi& phi,
@@ -170,9 +173,11 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
   const auto solid = A.solid;
   const bool has_phi = phi.extent(0) > 0;
-  bool open[6];
-  for (int f = 0; f < 6; ++f) open[f] = box[f] == mesh::MacBoundary::open;
-  const bool o0 = open[0], o1 = open[1], o2 = open[2], o3 = open[3], o4 = open[4], o5 = open[5];
+  Kokkos::Array<bool, 6> open_face, neighbour_face;
+  for (int f = 0; f < 6; ++f) {
+    open_face[f] = box[f] == mesh::MacBoundary::open;
+    neighbour_face[f] = box[f] == mesh::MacBoundary::neighbour;
+  }
   using mesh::MacCellType;
   Kokkos::parallel_for(
       "amphora::mac::build_poisson_stencil",
@@ -182,12 +187,11 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
         solid(c) = type(c) == MacCellType::solid;
         if (type(c) != MacCellType::fluid) return;
         const int di[6] = {-1, 1, 0, 0, 0, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {0, 0, 0, 0, -1, 1};
-        const bool open_face[6] = {o0, o1, o2, o3, o4, o5};
         double diag = 0.0;
         for (int f = 0; f < 6; ++f) {
           const int in = i + di[f], jn = j + dj[f], kn = k + dk[f];
           float conductance = 0.0f;
-          if (!g.interior(in, jn, kn)) {
+          if (!g.interior(in, jn, kn) && !neighbour_face[f]) {
             if (open_face[f]) diag += 2.0;  // p = 0 on the box face, h/2 away
           } else {
             const int n = g.index(in, jn, kn);

@@ -50,9 +50,10 @@ struct MacGrid {
   MacGrid coarsened() const { return MacGrid{nx / 2, ny / 2, nz / 2, 2 * h, origin}; }
 };
 
-/// What lies beyond each face of the box: a wall (no flow through it; pressure Neumann) or open
-/// air (pressure zero on the face). Order: -x, +x, -y, +y, -z, +z.
-enum class MacBoundary : std::uint8_t { wall = 0, open = 1 };
+/// What lies beyond each face of the box: a wall (no flow through it; pressure Neumann), open
+/// air (pressure zero on the face), or another rank's block (its cells are in the ghost layer,
+/// filled by a halo exchange). Order: -x, +x, -y, +y, -z, +z.
+enum class MacBoundary : std::uint8_t { wall = 0, open = 1, neighbour = 2 };
 using MacBoxBoundaries = std::array<MacBoundary, 6>;
 
 }  // namespace amphora::mesh
