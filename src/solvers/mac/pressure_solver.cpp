@@ -78,13 +78,13 @@ template <class ExecSpace>
 class PfmgPressureSolver final : public PressureSolver<ExecSpace> {
  public:
   using typename PressureSolver<ExecSpace>::Vector;
-  PfmgPressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
+  PfmgPressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A, const MacBlock& block) {
     const auto d = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.diag);
     const auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cx);
     const auto y = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cy);
     const auto z = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cz);
-    pfmg_ = std::make_unique<StructPfmgCG>(MPI_COMM_SELF, A.grid, std::array<int, 3>{0, 0, 0}, d.data(), x.data(),
-                                           y.data(), z.data());
+    pfmg_ = std::make_unique<StructPfmgCG>(block.comm, A.grid, block.global_lower, d.data(), x.data(), y.data(),
+                                           z.data());
   }
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
@@ -206,23 +206,29 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
 
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
-    PressureBackend backend, const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
+    PressureBackend backend, const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
+    const MacBlock& block) {
+  bool split = false;
+  for (const auto f : A.box) split = split || f == mesh::MacBoundary::neighbour;
+  if (split && backend != PressureBackend::hypre)
+    throw std::invalid_argument(std::string("pressure back end '") + to_string(backend) +
+                                "' solves a grid on one rank; for a grid split over ranks use 'hypre'");
   switch (backend) {
     case PressureBackend::multigrid: return std::make_unique<MultigridPressureSolver<ExecSpace>>(exec, A);
-    case PressureBackend::hypre: return std::make_unique<PfmgPressureSolver<ExecSpace>>(A);
+    case PressureBackend::hypre: return std::make_unique<PfmgPressureSolver<ExecSpace>>(A, block);
     case PressureBackend::mic0: return std::make_unique<Mic0PressureSolver<ExecSpace>>(A);
   }
   throw std::invalid_argument("make_pressure_solver: unknown back end");
 }
 
 template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_pressure_solver(
-    PressureBackend, const DefaultExecSpace&, const kernels::mac::PoissonStencil<DefaultMemSpace>&);
+    PressureBackend, const DefaultExecSpace&, const kernels::mac::PoissonStencil<DefaultMemSpace>&, const MacBlock&);
 template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_tall_cell_pressure_solver(
     PressureBackend, const DefaultExecSpace&, const mesh::TallCellGrid&, const CsrMatrix&,
     const kernels::mac::PoissonStencil<DefaultMemSpace>&);
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_pressure_solver(
-    PressureBackend, const Kokkos::Serial&, const kernels::mac::PoissonStencil<Kokkos::HostSpace>&);
+    PressureBackend, const Kokkos::Serial&, const kernels::mac::PoissonStencil<Kokkos::HostSpace>&, const MacBlock&);
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_tall_cell_pressure_solver(
     PressureBackend, const Kokkos::Serial&, const mesh::TallCellGrid&, const CsrMatrix&,
     const kernels::mac::PoissonStencil<Kokkos::HostSpace>&);

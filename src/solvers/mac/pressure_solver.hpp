@@ -8,6 +8,9 @@
 // On a tall-cell grid the same names pick: "multigrid" (TallCellMultigrid-preconditioned CG),
 // "hypre" (BoomerAMG-preconditioned CG), "mic0" (MIC(0)-CG on the assembled matrix); vectors
 // are then in the tall-cell numbering.
+#include <mpi.h>
+
+#include <array>
 #include <memory>
 #include <string>
 
@@ -35,9 +38,18 @@ class PressureSolver {
   virtual PressureBackend backend() const = 0;
 };
 
+/// The block this rank holds of a grid split over the ranks of `comm` (see
+/// tests/mesh/test_mac_decomposition.cpp): `global_lower` is its first cell in global indices.
+/// Only the hypre back end solves a split grid; the others refuse a stencil with neighbour faces.
+struct MacBlock {
+  MPI_Comm comm = MPI_COMM_SELF;
+  std::array<int, 3> global_lower{0, 0, 0};
+};
+
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
-    PressureBackend backend, const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A);
+    PressureBackend backend, const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
+    const MacBlock& block = {});
 
 /// A_t = P^T A P of the tall-cell grid T over the uniform stencil A.
 template <class ExecSpace>
