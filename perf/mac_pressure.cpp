@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "kernels/host_vector.hpp"
+#include "mesh/mac/lattice_halo.hpp"
 #include "solvers/hypre_struct_pfmg.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
@@ -50,28 +51,22 @@ struct UniformBox {
   Vector b;
 
   UniformBox(int n, int rank, int ranks) {
-    const int nz = n / ranks;
-    z0 = rank * nz;
+    // z slabs (a horizontal split), block faces between ranks coupled through the ghost layer
+    const amphora::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1, {false, false, true});
+    const amphora::Box box = dec.box(rank);
+    const int nz = box.extent(2);
+    z0 = box.lo[2];
     grid = mesh::MacGrid{n, n, nz, 1.0 / n, {0.0, 0.0, z0 / double(n)}};
     const Exec exec;
     Kokkos::View<mesh::MacCellType*, Mem> type("type", grid.padded_size());
-    Kokkos::deep_copy(type, mesh::MacCellType::fluid);
+    Kokkos::deep_copy(type, mesh::MacCellType::fluid);  // ghosts too: the neighbours are all fluid
     mesh::MacBoxBoundaries faces;
     faces.fill(mesh::MacBoundary::open);
-    const bool below = rank > 0, above = rank + 1 < ranks;
-    if (below) faces[4] = mesh::MacBoundary::wall;
-    if (above) faces[5] = mesh::MacBoundary::wall;
+    if (dec.neighbor(rank, 2, 0) >= 0) faces[4] = mesh::MacBoundary::neighbour;
+    if (dec.neighbor(rank, 2, 1) >= 0) faces[5] = mesh::MacBoundary::neighbour;
     A = amphora::kernels::mac::build_poisson_stencil<Exec, Mem>(exec, grid, type, Vector(), faces);
-    // couple the slab faces to the neighbouring ranks' cells
-    auto d = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), A.diag);
-    auto cz = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), A.cz);
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        if (below) cz(grid.index(i, j, -1)) = 1.0f, d(grid.index(i, j, 0)) += 1.0;
-        if (above) cz(grid.index(i, j, nz - 1)) = 1.0f, d(grid.index(i, j, nz - 1)) += 1.0;
-      }
-    Kokkos::deep_copy(A.diag, d);
-    Kokkos::deep_copy(A.cz, cz);
+    const amphora::HaloExchange<Mem> halo(dec, amphora::Communicator(), 1);
+    mesh::exchange_lattice_ghosts(exec, halo, grid, A.cz);  // the ghost cells' + faces
     std::vector<double> f(grid.padded_size(), 0.0);
     const double h = grid.h, pi = amphora::math::pi;
     for (int k = 0; k < nz; ++k)

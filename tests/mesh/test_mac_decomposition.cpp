@@ -11,6 +11,7 @@
 #include "kernels/mac/poisson_stencil.hpp"
 #include "mesh/box_decomposition.hpp"
 #include "mesh/halo_exchange.hpp"
+#include "mesh/mac/lattice_halo.hpp"
 #include "solvers/hypre_struct_pfmg.hpp"
 #include "solvers/mac/pressure_solver.hpp"
 #include "test_backend.hpp"
@@ -39,17 +40,13 @@ struct Block {
   std::vector<double> b;
 };
 
-/// Copies a padded lattice array (any value type) through a halo exchange of its ghost layer.
+/// A padded lattice array through the halo exchange of its ghost layer (host data).
 template <class T>
 void exchange(const HaloExchange<Mem>& halo, const MacGrid& g, T* data) {
-  const long n = g.padded_size();
-  Kokkos::View<double***, Kokkos::LayoutLeft, Mem> f("f", g.nx + 2, g.ny + 2, g.nz + 2);
-  auto h = Kokkos::create_mirror_view(f);
-  for (long c = 0; c < n; ++c) h.data()[c] = static_cast<double>(data[c]);
-  Kokkos::deep_copy(f, h);
-  halo.exchange(Exec(), f);
-  Kokkos::deep_copy(h, f);
-  for (long c = 0; c < n; ++c) data[c] = static_cast<T>(h.data()[c]);
+  Kokkos::View<T*, Mem> v("v", g.padded_size());
+  Kokkos::deep_copy(v, Kokkos::View<T*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(data, g.padded_size()));
+  mesh::exchange_lattice_ghosts(Exec(), halo, g, v);
+  Kokkos::deep_copy(Kokkos::View<T*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(data, g.padded_size()), v);
 }
 
 /// The block of `box` (global cell indices) with the given box faces; ghost types and phi come

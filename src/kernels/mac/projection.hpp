@@ -105,12 +105,14 @@ void mark_fluid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, cons
       });
 }
 
-/// One layer of extrapolation: every unknown, non-solid face of component d with known face
-/// neighbours (same component, 6 directions) takes their mean. Reads face/valid, writes
-/// face_new/valid_new (both initialised as copies by the caller).
-template <class ExecSpace, class T, class F, class M, class FN, class MN>
+/// Layer `layer` (>= 2) of extrapolation, in place: every unknown (mark 0), non-solid face of
+/// component d with face neighbours (same component, 6 directions) marked 1 .. layer - 1 takes
+/// their mean and the mark `layer`. Faces marked in this layer are not read by it (their mark is
+/// either 0 or `layer` while it runs), so the update is order- and thread-count-free without a
+/// second buffer. Marks: 1 = known (next to fluid), 0 = unknown.
+template <class ExecSpace, class T, class F, class M>
 void extrapolate_layer(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const F& face,
-                       const M& valid, const FN& face_new, const MN& valid_new) {
+                       const M& mark, int layer) {
   using mesh::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   const int sy = g.stride_y(), sz = g.stride_z();
@@ -120,17 +122,21 @@ void extrapolate_layer(const ExecSpace& exec, const mesh::MacGrid& g, int d, con
       KOKKOS_LAMBDA(int k, int j, int i) {
         int L, R;
         const bool inside = detail::face_cells(g, d, i, j, k, L, R);
-        if (valid(R) || !inside || type(L) == MacCellType::solid || type(R) == MacCellType::solid) return;
+        if (mark(R) || !inside || type(L) == MacCellType::solid || type(R) == MacCellType::solid) return;
         const int idx[3] = {i, j, k}, ext[3] = {ex, ey, ez}, stride[3] = {1, sy, sz};
         double sum = 0.0;
         int n = 0;
         for (int e = 0; e < 3; ++e) {
-          if (idx[e] > 0 && valid(R - stride[e])) sum += face(R - stride[e]), ++n;
-          if (idx[e] + 1 < ext[e] && valid(R + stride[e])) sum += face(R + stride[e]), ++n;
+          for (int side = -1; side <= 1; side += 2) {
+            if ((side < 0 && idx[e] == 0) || (side > 0 && idx[e] + 1 >= ext[e])) continue;
+            const int nb = R + side * stride[e];
+            const int m = mark(nb);
+            if (m >= 1 && m < layer) sum += face(nb), ++n;
+          }
         }
         if (n > 0) {
-          face_new(R) = sum / n;
-          valid_new(R) = 1;
+          face(R) = sum / n;
+          mark(R) = static_cast<typename M::non_const_value_type>(layer);
         }
       });
 }

@@ -144,7 +144,8 @@ class WaterMac final : public Module {
   void advance(double, double dt) override {
     double done = 0.0;
     while (done < dt * (1.0 - 1e-12)) {
-      const double speed = max_speed() + gravity_ * std::min(dt - done, grid_.h / std::max(max_speed(), 1e-3));
+      const double now = max_speed();
+      const double speed = now + gravity_ * std::min(dt - done, grid_.h / std::max(now, 1e-3));
       double sub = std::min(dt - done, cfl_ * grid_.h / std::max(speed, 1e-12));
       if (dt - done - sub < 1e-3 * sub) sub = dt - done;
       substep(sub);
@@ -248,7 +249,6 @@ class WaterMac final : public Module {
     type_ = Types("amphora::water::type", n);
     solid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::solid", n);
     valid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::valid", n);
-    valid_tmp_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::valid_tmp", n);
   }
 
   /// Signed distances of the initial water and the solid floor, on the host.
@@ -379,7 +379,7 @@ class WaterMac final : public Module {
   void extrapolate_velocity() {
     const Exec exec;
     const mesh::MacGrid& g = grid_;
-    Vector faces[3] = {u_, v_, w_}, tmp[3] = {u_tmp_, v_tmp_, w_tmp_};
+    const Vector faces[3] = {u_, v_, w_};
     for (int d = 0; d < 3; ++d) {
       // faces next to fluid keep their values; solid and box faces are zero (the projection
       // set them), the rest are filled layer by layer from known neighbours
@@ -394,13 +394,8 @@ class WaterMac final : public Module {
             const int c = g.index(i, j, k);
             if (!valid(c)) f(c) = 0.0;
           });
-      for (int layer = 0; layer < extrapolation_layers_; ++layer) {
-        Kokkos::deep_copy(exec, tmp[d], faces[d]);
-        Kokkos::deep_copy(exec, valid_tmp_, valid_);
-        kernels::mac::extrapolate_layer(exec, g, d, type_, faces[d], valid_, tmp[d], valid_tmp_);
-        Kokkos::deep_copy(exec, faces[d], tmp[d]);
-        Kokkos::deep_copy(exec, valid_, valid_tmp_);
-      }
+      for (int layer = 2; layer < 2 + extrapolation_layers_; ++layer)
+        kernels::mac::extrapolate_layer(exec, g, d, type_, faces[d], valid_, layer);
     }
   }
 
@@ -490,7 +485,7 @@ class WaterMac final : public Module {
   int reinit_ = 2, optical_depth_ = 0, extrapolation_layers_ = 3;
   Vector phi_, phi_tmp_, phi0_, u_, v_, w_, u_tmp_, v_tmp_, w_tmp_, p_, b_;
   Types type_;
-  Kokkos::View<std::uint8_t*, Mem> solid_, valid_, valid_tmp_;
+  Kokkos::View<std::uint8_t*, Mem> solid_, valid_;
   long substeps_ = 0;
   int last_iterations_ = 0;
   long last_unknowns_ = 0;

@@ -59,19 +59,20 @@ SolverResult solve_on_host(const ExecSpace& exec, const Kokkos::View<double*, ty
   return r;
 }
 
-template <class ExecSpace>
+/// Multigrid-preconditioned CG of either grid: Multigrid is MacMultigrid or TallCellMultigrid.
+template <class ExecSpace, class Multigrid>
 class MultigridPressureSolver final : public PressureSolver<ExecSpace> {
  public:
   using typename PressureSolver<ExecSpace>::Vector;
-  MultigridPressureSolver(const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
-      : mg_(exec, A) {}
+  template <class... Args>
+  explicit MultigridPressureSolver(const ExecSpace& exec, const Args&... args) : mg_(exec, args...) {}
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
     return mg_.solve(exec, b, x, c);
   }
   PressureBackend backend() const override { return PressureBackend::multigrid; }
 
  private:
-  MacMultigrid<ExecSpace> mg_;
+  Multigrid mg_;
 };
 
 template <class ExecSpace>
@@ -132,23 +133,6 @@ class Mic0PressureSolver final : public PressureSolver<ExecSpace> {
 };
 
 template <class ExecSpace>
-class TallCellMultigridSolver final : public PressureSolver<ExecSpace> {
- public:
-  using typename PressureSolver<ExecSpace>::Vector;
-  TallCellMultigridSolver(const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t,
-                          const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
-      : mg_(exec, T, A_t, A) {}
-  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
-    return mg_.solve(exec, b, x, c);
-  }
-  PressureBackend backend() const override { return PressureBackend::multigrid; }
-
- private:
-  TallCellMultigrid<ExecSpace> mg_;
-};
-
-
-template <class ExecSpace>
 class BoomerAMGPressureSolver final : public PressureSolver<ExecSpace> {
  public:
   using typename PressureSolver<ExecSpace>::Vector;
@@ -197,7 +181,8 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
     PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
   switch (backend) {
-    case PressureBackend::multigrid: return std::make_unique<TallCellMultigridSolver<ExecSpace>>(exec, T, A_t, A);
+    case PressureBackend::multigrid:
+      return std::make_unique<MultigridPressureSolver<ExecSpace, TallCellMultigrid<ExecSpace>>>(exec, T, A_t, A);
     case PressureBackend::hypre: return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(A_t);
     case PressureBackend::mic0: return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(A_t);
   }
@@ -214,7 +199,8 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
     throw std::invalid_argument(std::string("pressure back end '") + to_string(backend) +
                                 "' solves a grid on one rank; for a grid split over ranks use 'hypre'");
   switch (backend) {
-    case PressureBackend::multigrid: return std::make_unique<MultigridPressureSolver<ExecSpace>>(exec, A);
+    case PressureBackend::multigrid:
+      return std::make_unique<MultigridPressureSolver<ExecSpace, MacMultigrid<ExecSpace>>>(exec, A);
     case PressureBackend::hypre: return std::make_unique<PfmgPressureSolver<ExecSpace>>(A, block);
     case PressureBackend::mic0: return std::make_unique<Mic0PressureSolver<ExecSpace>>(A);
   }
