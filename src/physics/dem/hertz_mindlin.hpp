@@ -20,7 +20,7 @@ struct ContactForce {
 ///   v_rel: velocity of i's contact point relative to j's (translation and rotation)
 ///   w_rel: omega_i - omega_j (rolling);  lever: distance from i's centre to the contact point
 ///   shear: tangential displacement history of this contact, updated in place.
-KOKKOS_INLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& c, double r_eff,
+KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& c, double r_eff,
                                                         double m_eff, const double n[3],
                                                         double delta, const double v_rel[3],
                                                         const double w_rel[3], double lever,
