@@ -49,6 +49,17 @@ function(amphora_backend_test name)
   endforeach()
 endfunction()
 
+# amphora_host_test(NAME src... [LABELS l...]): host-only code (no kernels), one executable.
+function(amphora_host_test name)
+  cmake_parse_arguments(ARG "" "" "LABELS" ${ARGN})
+  add_executable(${name} ${ARG_UNPARSED_ARGUMENTS})
+  target_compile_definitions(${name} PRIVATE AMPHORA_TEST_BACKEND=Kokkos::DefaultHostExecutionSpace)
+  target_link_libraries(${name} PRIVATE amphora_test_main amphora_warnings)
+  add_test(NAME ${name} COMMAND ${name})
+  _amphora_set_test_env(${name} 1)
+  set_tests_properties(${name} PROPERTIES LABELS "unit;${ARG_LABELS}")
+endfunction()
+
 # amphora_mpi_test(NAME src...): default execution space, run at 1 and 2 ranks, 1 thread each.
 function(amphora_mpi_test name)
   add_executable(${name} ${ARGN})
