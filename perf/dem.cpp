@@ -101,6 +101,10 @@ void run(benchmark::State& state, bool phases) {
   state.counters["threads"] = amphora::DefaultExecSpace().concurrency();
   const DemTimers& t = s.timers();
   state.counters["rebuilds"] = double(t.rebuilds - before.rebuilds);
+  // The workload: pair contacts (each counted once) and wall contacts per particle.
+  const DemDiagnostics d = s.diagnostics();
+  state.counters["contacts_per_particle"] = double(d.contacts) / n;
+  state.counters["wall_contacts_per_particle"] = double(d.wall_contacts) / n;
   if (phases) {
     const double total = (t.integrate - before.integrate) + (t.binning - before.binning) +
                          (t.list - before.list) + (t.force - before.force) + (t.comm - before.comm);
