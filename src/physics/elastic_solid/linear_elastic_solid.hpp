@@ -1,0 +1,105 @@
+#pragma once
+// The 2D linear elastic bulk solid of the FSI model problems (Banks, Henshaw & Schwendeman,
+// MP-VE: the solid 0 < y < Hbar, periodic in x), in displacement form on a uniform node grid,
+// second order in space and time (kernels/elastic/elastic_wave_step.hpp). Runs alone with
+// Dirichlet rows; the couplings will set the interface row from their own conditions.
+// Time levels rotate in place: after step(), displacement() is u at time(), previous() at
+// time() - dt.
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "kernels/elastic/elastic_wave_step.hpp"
+
+namespace amphora::elastic {
+
+template <class ExecSpace>
+class LinearElasticSolid {
+ public:
+  using Mem = typename ExecSpace::memory_space;
+  using Field = NodeField<Mem>;
+
+  /// Throws std::invalid_argument for rho, mu <= 0, lambda + mu <= 0 (not elliptic), grids
+  /// below 3 x 2 cells, or dt above the stability limit (the message names it).
+  LinearElasticSolid(const ElasticGrid& g, const ElasticMaterial& m, double dt,
+                     const ExecSpace& exec = ExecSpace())
+      : g_(g), m_(m), dt_(dt), exec_(exec) {
+    auto fail = [](const std::string& what) { throw std::invalid_argument("elastic solid: " + what); };
+    if (!(m.rho > 0)) fail("density must be > 0");
+    if (!(m.mu > 0)) fail("mu must be > 0");
+    if (!(m.lambda + m.mu > 0)) fail("lambda + mu must be > 0");
+    if (g.nx < 3 || g.ny < 2 || !(g.hx > 0) || !(g.hy > 0)) fail("grid needs nx >= 3, ny >= 2, h > 0");
+    const double limit = elastic_wave_dt_limit(g, m);
+    if (!(dt > 0) || dt > limit) {
+      std::ostringstream s;
+      s << "dt = " << dt << " outside (0, " << limit << "], the leapfrog stability limit";
+      fail(s.str());
+    }
+    u_old_ = Field("amphora::elastic::u_old", g.ny + 1, g.nx);
+    u_ = Field("amphora::elastic::u", g.ny + 1, g.nx);
+    u_new_ = Field("amphora::elastic::u_new", g.ny + 1, g.nx);
+    f_ = Field("amphora::elastic::f", g.ny + 1, g.nx);
+  }
+
+  const ElasticGrid& grid() const { return g_; }
+  const ElasticMaterial& material() const { return m_; }
+  double dt() const { return dt_; }
+  double time() const { return t_; }
+  Field displacement() const { return u_; }
+  Field previous() const { return u_old_; }
+  /// The body force at time(): filled by the caller before step().
+  Field forcing() const { return f_; }
+
+  /// Sets u at t and at t - dt from a device functor value(x, y, t, c).
+  template <class Value>
+  void set_state(double t, const Value& value) {
+    t_ = t;
+    fill(u_, value, t);
+    fill(u_old_, value, t - dt_);
+  }
+
+  /// Fills f from a device functor force(x, y, t, c) at time().
+  template <class Force>
+  void set_forcing(const Force& force) {
+    fill(f_, force, t_);
+  }
+
+  /// One leapfrog step; the boundary rows 0 and ny of the new level from boundary(x, y, t, c).
+  template <class Boundary>
+  void step(const Boundary& boundary) {
+    elastic_wave_step(exec_, g_, m_, dt_, u_old_, u_, f_, u_new_);
+    const ElasticGrid g = g_;
+    const double t = t_ + dt_;
+    const Field un = u_new_;
+    Kokkos::parallel_for(
+        "amphora::elastic::boundary_rows",
+        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>(exec_, {0, 0}, {2, g.nx}),
+        KOKKOS_LAMBDA(int side, int i) {
+          const int j = side == 0 ? 0 : g.ny;
+          for (int c = 0; c < 2; ++c) un(j, i, c) = boundary(i * g.hx, j * g.hy, t, c);
+        });
+    std::swap(u_old_, u_);  // u_old <- u
+    std::swap(u_, u_new_);  // u <- u_new (the old u_old becomes scratch)
+    t_ = t;
+  }
+
+ private:
+  template <class Value>
+  void fill(const Field& field, const Value& value, double t) const {
+    const ElasticGrid g = g_;
+    Kokkos::parallel_for(
+        "amphora::elastic::fill",
+        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>(exec_, {0, 0}, {g.ny + 1, g.nx}),
+        KOKKOS_LAMBDA(int j, int i) {
+          for (int c = 0; c < 2; ++c) field(j, i, c) = value(i * g.hx, j * g.hy, t, c);
+        });
+  }
+
+  ElasticGrid g_;
+  ElasticMaterial m_;
+  double dt_, t_ = 0;
+  ExecSpace exec_;
+  Field u_old_, u_, u_new_, f_;
+};
+
+}  // namespace amphora::elastic
