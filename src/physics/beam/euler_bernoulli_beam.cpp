@@ -16,7 +16,7 @@ void require(bool ok, const std::string& what) {
 }
 
 /// The periodic 5-point stencil of A: A eta_i = sum_{o=-2..2} c[o+2] eta_{i+o}.
-std::array<double, 5> stencil(const BeamParameters& p, double h) {
+std::array<double, 5> beam_stencil(const BeamParameters& p, double h) {
   const double t = p.tension / (h * h), b = p.stiffness / (h * h * h * h);
   return {b, -t - 4 * b, p.spring + 2 * t + 6 * b, -t - 4 * b, b};
 }
@@ -44,7 +44,7 @@ EulerBernoulliBeam::EulerBernoulliBeam(const BeamParameters& p, double dt)
   eta_.assign(n, 0.0);
   v_.assign(n, 0.0);
   a_.assign(n, 0.0);
-  const auto c = stencil(p, h_);
+  const auto c = beam_stencil(p, h_);
   std::vector<Eigen::Triplet<double>> entries;
   for (int i = 0; i < n; ++i)
     for (int o = -2; o <= 2; ++o) {
@@ -63,7 +63,7 @@ EulerBernoulliBeam::EulerBernoulliBeam(EulerBernoulliBeam&&) noexcept = default;
 
 std::vector<double> EulerBernoulliBeam::restoring_force(const std::vector<double>& eta) const {
   const int n = p_.points;
-  const auto c = stencil(p_, h_);
+  const auto c = beam_stencil(p_, h_);
   std::vector<double> out(n);
   for (int i = 0; i < n; ++i) {
     double s = 0;
@@ -101,6 +101,8 @@ void EulerBernoulliBeam::step(const std::vector<double>& f_next) {
   }
   t_ += dt_;
 }
+
+std::array<double, 5> EulerBernoulliBeam::stencil() const { return beam_stencil(p_, h_); }
 
 double EulerBernoulliBeam::energy() const {
   const auto r = restoring_force(eta_);

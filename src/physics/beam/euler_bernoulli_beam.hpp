@@ -11,6 +11,7 @@
 // energy in a coupled run is the coupling's doing. The implicit matrix rho_h I + dt^2/4 A is
 // factored once (Eigen sparse LDL^T); a beam holds at most a few thousand points, so it lives
 // on the host.
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -45,6 +46,8 @@ class EulerBernoulliBeam {
 
   /// (A eta)_i = K eta_i - T (D+D- eta)_i + B (D+D-)^2 eta)_i: minus the elastic force.
   std::vector<double> restoring_force(const std::vector<double>& eta) const;
+  /// A's periodic stencil: (A eta)_i = sum_{o=-2..2} c[o+2] eta_{i+o}.
+  std::array<double, 5> stencil() const;
   /// h/2 (rho_h |v|^2 + eta . A eta).
   double energy() const;
 
