@@ -20,83 +20,135 @@ const char* to_string(BeamScheme s) { return s == BeamScheme::amp ? "amp" : "tp"
 
 namespace {
 
-/// The exact wave: eta = cos(k x - w t), p = rho w^2 cosh(k (y + H)) / (k sinh kH) cos(k x - w t).
-struct ExactWave {
-  double k, w, H, rho;
-  double eta(double x, double t) const { return std::cos(k * x - w * t); }
-  double velocity(double x, double t) const { return w * std::sin(k * x - w * t); }
-  double pressure(double x, double y, double t) const {
-    return rho * w * w * std::cosh(k * (y + H)) / (k * std::sinh(k * H)) * std::cos(k * x - w * t);
+channel::ChannelGrid fluid_grid_of(const BeamChannelSetup& s) {
+  channel::ChannelGrid g;
+  g.nx = s.beam.points;
+  g.ny = s.fluid_rows;
+  g.length = s.beam.length;
+  g.depth = s.depth;
+  return g;
+}
+
+/// TP: Neumann data p_y = -rho a^n (B = identity). AMP: the beam's own update,
+/// (rho_h + dt^2/4 A) a^{n+1} = p - A eta*, with a^{n+1} = -p_y / rho from the fluid, is the
+/// Robin condition p + (rho_h I + dt^2/4 A) p_y / rho = A eta* (Newmark predictor eta* = eta +
+/// dt v + dt^2/4 a). Its leading weight is rho_h / rho; the dt^2 A part is the implicit beam's.
+channel::ChannelPressure fluid_of(const BeamChannelSetup& s, const beam::EulerBernoulliBeam& b) {
+  std::array<double, 5> top{0, 0, 1, 0, 0};
+  const bool amp = s.scheme == BeamScheme::amp;
+  if (amp) {
+    const auto c = b.stencil();
+    for (int o = 0; o < 5; ++o)
+      top[o] = (0.25 * s.dt * s.dt * c[o] + (o == 2 ? s.beam.rho_h : 0.0)) / s.rho;
   }
-};
+  return channel::ChannelPressure(fluid_grid_of(s), amp ? 1.0 : 0.0, top);
+}
 
 }  // namespace
 
-BeamChannelResult run_beam_channel(const BeamChannelSetup& s) {
+BeamChannelFsi::BeamChannelFsi(const BeamChannelSetup& s)
+    : s_(s),
+      grid_(fluid_grid_of(s)),
+      k_(2 * 3.141592653589793 * s.mode / s.beam.length),
+      omega_(beam_channel_frequency(s.beam, k_, s.depth, s.rho)),
+      beam_(s.beam, s.dt),
+      fluid_(fluid_of(s, beam_)) {
   const int nx = s.beam.points;
-  const double pi = 3.141592653589793;
-  channel::ChannelGrid grid;
-  grid.nx = nx;
-  grid.ny = s.fluid_rows;
-  grid.length = s.beam.length;
-  grid.depth = s.depth;
-  const double k = 2 * pi * s.mode / s.beam.length;
-  const ExactWave exact{k, beam_channel_frequency(s.beam, k, s.depth, s.rho), s.depth, s.rho};
-  const bool amp = s.scheme == BeamScheme::amp;
-  beam::EulerBernoulliBeam solid(s.beam, s.dt);
-  // TP: Neumann data p_y = -rho a^n. AMP: the beam's own update, (rho_h + dt^2/4 A) a^{n+1} =
-  // p - A eta*, with a^{n+1} = -p_y / rho from the fluid, is the Robin condition
-  // p + (rho_h I + dt^2/4 A) p_y / rho = A eta* (the Newmark predictor eta* = eta + dt v +
-  // dt^2/4 a). Its leading weight is rho_h / rho; the dt^2 A part is the implicit beam's.
-  std::array<double, 5> top{0, 0, 1, 0, 0};
-  if (amp) {
-    const auto c = solid.stencil();
-    for (int o = 0; o < 5; ++o) top[o] = (0.25 * s.dt * s.dt * c[o] + (o == 2 ? s.beam.rho_h : 0.0)) / s.rho;
-  }
-  const channel::ChannelPressure fluid(grid, amp ? 1.0 : 0.0, top);
-
-  const double hx = grid.hx();
-  std::vector<double> eta(nx), v(nx), p_top(nx), g(nx);
+  const double hx = grid_.hx();
+  std::vector<double> eta(nx), v(nx), p_top(nx);
   for (int i = 0; i < nx; ++i) {
-    eta[i] = exact.eta(i * hx, 0.0);
-    v[i] = exact.velocity(i * hx, 0.0);
-    p_top[i] = exact.pressure(i * hx, 0.0, 0.0);
+    eta[i] = exact_eta(i * hx, 0.0);
+    v[i] = omega_ * std::sin(k_ * i * hx);
+    p_top[i] = exact_pressure(i * hx, 0.0, 0.0);
   }
-  solid.set_state(0.0, eta, v, p_top);
+  beam_.set_state(0.0, eta, v, p_top);
+  p_.assign(size_t(grid_.ny + 1) * nx, 0.0);
+  for (int j = 0; j <= grid_.ny; ++j)
+    for (int i = 0; i < nx; ++i) p_[size_t(j) * nx + i] = exact_pressure(i * hx, -s.depth + j * grid_.hy(), 0.0);
+}
 
-  BeamChannelResult r;
-  r.omega = exact.w;
-  const int steps = static_cast<int>(std::lround(s.end_time / s.dt));
-  std::vector<double> p;
-  for (int n = 0; n < steps; ++n) {
-    const auto& e = solid.displacement();
-    const auto& vel = solid.velocity();
-    const auto& a = solid.acceleration();
+double BeamChannelFsi::exact_eta(double x, double t) const { return std::cos(k_ * x - omega_ * t); }
+
+double BeamChannelFsi::exact_pressure(double x, double y, double t) const {
+  return s_.rho * omega_ * omega_ * std::cosh(k_ * (y + s_.depth)) / (k_ * std::sinh(k_ * s_.depth)) *
+         std::cos(k_ * x - omega_ * t);
+}
+
+void BeamChannelFsi::step() {
+  const int nx = grid_.nx;
+  const auto& e = beam_.displacement();
+  const auto& vel = beam_.velocity();
+  const auto& a = beam_.acceleration();
+  std::vector<double> g(nx), p;
+  if (s_.scheme == BeamScheme::amp) {
+    std::vector<double> predicted(nx);
+    for (int i = 0; i < nx; ++i) predicted[i] = e[i] + s_.dt * vel[i] + 0.25 * s_.dt * s_.dt * a[i];
+    p = fluid_.solve(beam_.restoring_force(predicted));
+  } else {
+    // Volume conservation fixes the constant: the mean of eta_tt vanishes, so the mean of p
+    // on the interface balances the spring's K mean(eta).
     double mean_eta = 0;
     for (int i = 0; i < nx; ++i) mean_eta += e[i] / nx;
-    if (amp) {
-      std::vector<double> predicted(nx);
-      for (int i = 0; i < nx; ++i) predicted[i] = e[i] + s.dt * vel[i] + 0.25 * s.dt * s.dt * a[i];
-      g = solid.restoring_force(predicted);
-      p = fluid.solve(g);
-    } else {
-      // Volume conservation fixes the constant: the mean of eta_tt vanishes, so the mean of
-      // p on the interface balances the spring's K mean(eta).
-      for (int i = 0; i < nx; ++i) g[i] = -s.rho * a[i];
-      p = fluid.solve(g, s.beam.spring * mean_eta);
-    }
-    for (int i = 0; i < nx; ++i) p_top[i] = p[size_t(grid.ny) * nx + i];
-    solid.step(p_top);
+    for (int i = 0; i < nx; ++i) g[i] = -s_.rho * a[i];
+    p = fluid_.solve(g, s_.beam.spring * mean_eta);
+  }
+  p.resize(size_t(grid_.ny + 1) * nx);  // drop the ghost line
+  const std::vector<double> p_top(p.end() - nx, p.end());
+  beam_.step(p_top);
+  p_ = std::move(p);
+}
+
+void BeamChannelFsi::refresh_pressure() {
+  // The pressure that balances the current acceleration: p_y = -rho a on the interface.
+  const int nx = grid_.nx;
+  std::vector<double> g(nx);
+  double mean_eta = 0;
+  for (int i = 0; i < nx; ++i) {
+    g[i] = -s_.rho * beam_.acceleration()[i];
+    mean_eta += beam_.displacement()[i] / nx;
+  }
+  std::array<double, 5> neumann{0, 0, 1, 0, 0};
+  const channel::ChannelPressure neumann_fluid(grid_, 0.0, neumann);
+  p_ = neumann_fluid.solve(g, s_.beam.spring * mean_eta);
+  p_.resize(size_t(grid_.ny + 1) * nx);
+}
+
+double BeamChannelFsi::max_abs_eta() const {
+  double m = 0;
+  for (double x : beam_.displacement()) m = std::isfinite(x) ? std::max(m, std::abs(x)) : INFINITY;
+  return m;
+}
+
+bool BeamChannelFsi::blown_up() const { return !(max_abs_eta() <= s_.blowup_factor); }
+
+double BeamChannelFsi::eta_error() const {
+  double e = 0;
+  for (int i = 0; i < grid_.nx; ++i)
+    e = std::max(e, std::abs(beam_.displacement()[i] - exact_eta(i * grid_.hx(), time())));
+  return e;
+}
+
+double BeamChannelFsi::pressure_error() const {
+  double e = 0;
+  for (int j = 0; j <= grid_.ny; ++j)
+    for (int i = 0; i < grid_.nx; ++i)
+      e = std::max(e, std::abs(p_[size_t(j) * grid_.nx + i] -
+                               exact_pressure(i * grid_.hx(), -s_.depth + j * grid_.hy(), time())));
+  return e;
+}
+
+BeamChannelResult run_beam_channel(const BeamChannelSetup& s) {
+  BeamChannelFsi fsi(s);
+  BeamChannelResult r;
+  r.omega = fsi.omega();
+  const int steps = static_cast<int>(std::lround(s.end_time / s.dt));
+  for (int n = 0; n < steps; ++n) {
+    fsi.step();
     r.steps = n + 1;
-    r.time = solid.time();
-    double m = 0;
-    bool finite = true;
-    for (double x : solid.displacement()) {
-      m = std::max(m, std::abs(x));
-      finite = finite && std::isfinite(x);
-    }
+    r.time = fsi.time();
+    const double m = fsi.max_abs_eta();
     r.max_eta = std::max(r.max_eta, m);
-    if (!finite || m > s.blowup_factor) {
+    if (fsi.blown_up()) {
       r.stable = false;
       std::ostringstream msg;
       msg << to_string(s.scheme) << " beam coupling unstable: max |eta| = " << m << " > "
@@ -106,14 +158,8 @@ BeamChannelResult run_beam_channel(const BeamChannelSetup& s) {
       return r;
     }
   }
-  for (int i = 0; i < nx; ++i)
-    r.eta_error = std::max(r.eta_error, std::abs(solid.displacement()[i] - exact.eta(i * hx, r.time)));
-  // The pressure of the last solve belongs to the time of the last step.
-  for (int j = 0; j <= grid.ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      r.pressure_error =
-          std::max(r.pressure_error, std::abs(p[size_t(j) * nx + i] -
-                                              exact.pressure(i * hx, -s.depth + j * grid.hy(), r.time)));
+  r.eta_error = fsi.eta_error();
+  r.pressure_error = fsi.pressure_error();
   return r;
 }
 

@@ -51,6 +51,40 @@ struct BeamChannelResult {
   std::string message;      ///< where and when it blew up, if it did
 };
 
+/// The coupled system, stepped by one of the schemes, starting from the exact traveling wave.
+class BeamChannelFsi {
+ public:
+  explicit BeamChannelFsi(const BeamChannelSetup& s);
+  void step();
+  /// max |eta| over the beam exceeds blowup_factor (or is not finite).
+  bool blown_up() const;
+  double max_abs_eta() const;
+  double time() const { return beam_.time(); }
+  double omega() const { return omega_; }
+  const BeamChannelSetup& setup() const { return s_; }
+  const channel::ChannelGrid& fluid_grid() const { return grid_; }
+  const beam::EulerBernoulliBeam& beam() const { return beam_; }
+  beam::EulerBernoulliBeam& beam() { return beam_; }
+  /// The pressure of the last step's solve (at time()), rows 0..ny of the fluid grid.
+  const std::vector<double>& pressure() const { return p_; }
+  /// The exact wave at (x, y, t).
+  double exact_eta(double x, double t) const;
+  double exact_pressure(double x, double y, double t) const;
+  /// Max-norm errors of eta and p at time().
+  double eta_error() const;
+  double pressure_error() const;
+  /// Recomputes the pressure for the current state (after a restore).
+  void refresh_pressure();
+
+ private:
+  BeamChannelSetup s_;
+  channel::ChannelGrid grid_;
+  double k_, omega_;
+  beam::EulerBernoulliBeam beam_;
+  channel::ChannelPressure fluid_;
+  std::vector<double> p_;
+};
+
 /// Runs the scheme from the exact traveling wave to end_time (or to a detected blow-up).
 BeamChannelResult run_beam_channel(const BeamChannelSetup& s);
 

@@ -84,6 +84,16 @@ void EulerBernoulliBeam::set_state(double t, const std::vector<double>& eta,
   for (size_t i = 0; i < n; ++i) a_[i] = (f[i] - r[i]) / p_.rho_h;
 }
 
+void EulerBernoulliBeam::restore_state(double t, const std::vector<double>& eta,
+                                       const std::vector<double>& v, const std::vector<double>& a) {
+  const size_t n = p_.points;
+  require(eta.size() == n && v.size() == n && a.size() == n, "state arrays must have `points` entries");
+  t_ = t;
+  eta_ = eta;
+  v_ = v;
+  a_ = a;
+}
+
 void EulerBernoulliBeam::step(const std::vector<double>& f_next) {
   const int n = p_.points;
   require(int(f_next.size()) == n, "load must have `points` entries");

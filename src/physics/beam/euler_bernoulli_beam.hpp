@@ -41,6 +41,9 @@ class EulerBernoulliBeam {
   /// State at time t; the acceleration follows from the equation with load f.
   void set_state(double t, const std::vector<double>& eta, const std::vector<double>& v,
                  const std::vector<double>& f);
+  /// Restores a saved state (acceleration included) exactly, for a bit-for-bit restart.
+  void restore_state(double t, const std::vector<double>& eta, const std::vector<double>& v,
+                     const std::vector<double>& a);
   /// One Newmark step to t + dt with the load at the new time.
   void step(const std::vector<double>& f_next);
 
