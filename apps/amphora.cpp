@@ -12,7 +12,7 @@
 #include "io/scene.hpp"
 #include "mesh/box_decomposition.hpp"
 #include "mesh/environment.hpp"
-#include "physics/registry.hpp"
+#include "io/module_registry.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include "io/field_series.hpp"
 #include "io/hdf5_file.hpp"
 #include "io/progress.hpp"
-#include "physics/registry.hpp"
+#include "io/module_registry.hpp"
 
 namespace amphora {
 
@@ -169,7 +169,8 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
     t = double(step) * dt;  // not accumulated: lands on end_time and restarts identically
     if (auto bad = module->find_nonfinite()) {
       std::ostringstream m;
-      m << "run diverged: non-finite value in field '" << bad->field << "' of block '"
+      m << "run diverged: " << (bad->reason.empty() ? "non-finite value" : bad->reason)
+        << " in field '" << bad->field << "' of block '"
         << bad->block << "' at x = " << fmt(bad->x) << " (index " << bad->index << ") at step "
         << step << ", t = " << fmt(t) << " (dt = " << fmt(dt) << "); last good output: "
         << (series.last_file().empty() ? "none" : series.last_file() + " (step " +

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "physics/registry.hpp"
+#include "io/module_registry.hpp"
 
 namespace amphora {
 

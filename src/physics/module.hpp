@@ -32,12 +32,14 @@ struct StateBlock {
   std::vector<NamedArray> arrays;
 };
 
-/// Where a run first went non-finite.
+/// Where a run first went non-finite (or, with `reason`, where a module saw it fail otherwise,
+/// e.g. unbounded growth).
 struct NonFiniteReport {
   std::string field;
   std::string block;
   long long index = -1;
   double x = 0.0;
+  std::string reason;  ///< empty: "non-finite value"
 };
 
 using Diagnostics = std::vector<std::pair<std::string, double>>;

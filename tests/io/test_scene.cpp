@@ -4,7 +4,7 @@
 #include <fstream>
 
 #include "io/scene.hpp"
-#include "physics/registry.hpp"
+#include "io/module_registry.hpp"
 #include "test_backend.hpp"
 
 namespace amphora {

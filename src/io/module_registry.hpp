@@ -1,5 +1,6 @@
 #pragma once
-// The physics modules a scene can name, with their parameter tables and factories.
+// The modules a scene can name (physics modules and couplings), with their parameter tables
+// and factories.
 #include <functional>
 #include <memory>
 #include <string>

@@ -1,5 +1,6 @@
-#include "physics/registry.hpp"
+#include "io/module_registry.hpp"
 
+#include "coupling/fsi/beam_channel_module.hpp"
 #include "physics/advection_diffusion_1d/advection_diffusion_1d.hpp"
 #include "physics/dem/dem_module.hpp"
 #include "physics/poisson_fem/poisson_fem.hpp"
@@ -14,6 +15,7 @@ const std::vector<ModuleInfo>& module_registry() {
          return std::make_unique<
              advection_diffusion_1d::AdvectionDiffusion1D<DefaultExecSpace>>(p, c);
        }},
+      {"beam_channel", fsi::beam_channel_parameter_table, fsi::create_beam_channel},
       {"dem", dem::parameter_table,
        [](const Parameters& p, const Communicator& c) -> std::unique_ptr<Module> {
          return std::make_unique<dem::DemModule>(p, c);
