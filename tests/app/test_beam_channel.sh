@@ -41,7 +41,7 @@ same_h5 "$final" "split/$(basename "$final")"
 echo "beam_channel: restart bit for bit"
 
 scene bad.toml bad aitken
-expect_error 2 "beam_channel.*scheme.*one of: amp, tp" "$AMPHORA" run bad.toml
+expect_error 2 "beam_channel.*scheme.*one of: amp, tp, tp_aitken" "$AMPHORA" run bad.toml
 scene bad2.toml bad2 amp "mode = 40"
 expect_error 2 "mode = 40 is not resolved by points = 80" "$AMPHORA" run bad2.toml
 scene bad3.toml bad3 amp "rho_h = 0.0"

@@ -12,11 +12,15 @@ namespace amphora::fsi {
 
 BeamScheme parse_beam_scheme(const std::string& name) {
   if (name == "tp") return BeamScheme::traditional;
+  if (name == "tp_aitken") return BeamScheme::traditional_aitken;
   if (name == "amp") return BeamScheme::amp;
-  throw std::invalid_argument("unknown beam coupling scheme '" + name + "' (allowed: tp, amp)");
+  throw std::invalid_argument("unknown beam coupling scheme '" + name +
+                              "' (allowed: tp, tp_aitken, amp)");
 }
 
-const char* to_string(BeamScheme s) { return s == BeamScheme::amp ? "amp" : "tp"; }
+const char* to_string(BeamScheme s) {
+  return s == BeamScheme::amp ? "amp" : s == BeamScheme::traditional ? "tp" : "tp_aitken";
+}
 
 namespace {
 
@@ -76,25 +80,66 @@ double BeamChannelFsi::exact_pressure(double x, double y, double t) const {
 
 void BeamChannelFsi::step() {
   const int nx = grid_.nx;
-  const auto& e = beam_.displacement();
-  const auto& vel = beam_.velocity();
-  const auto& a = beam_.acceleration();
-  std::vector<double> g(nx), p;
-  if (s_.scheme == BeamScheme::amp) {
-    std::vector<double> predicted(nx);
-    for (int i = 0; i < nx; ++i) predicted[i] = e[i] + s_.dt * vel[i] + 0.25 * s_.dt * s_.dt * a[i];
-    p = fluid_.solve(beam_.restoring_force(predicted));
-  } else {
-    // Volume conservation fixes the constant: the mean of eta_tt vanishes, so the mean of p
-    // on the interface balances the spring's K mean(eta).
-    double mean_eta = 0;
-    for (int i = 0; i < nx; ++i) mean_eta += e[i] / nx;
+  const size_t top = size_t(grid_.ny) * nx;
+  double mean_eta = 0;
+  for (int i = 0; i < nx; ++i) mean_eta += beam_.displacement()[i] / nx;
+  // TP's fluid: p_y = -rho a on the interface; volume conservation fixes the constant (the
+  // mean of eta_tt vanishes, so the interface mean of p balances the spring's K mean(eta)).
+  auto tp_pressure = [&](const std::vector<double>& a) {
+    std::vector<double> g(nx);
     for (int i = 0; i < nx; ++i) g[i] = -s_.rho * a[i];
-    p = fluid_.solve(g, s_.beam.spring * mean_eta);
+    return fluid_.solve(g, s_.beam.spring * mean_eta);
+  };
+  auto interface = [&](const std::vector<double>& p) {
+    return std::vector<double>(p.begin() + top, p.begin() + top + nx);
+  };
+  std::vector<double> p;
+  subiterations_ = 1;
+  if (s_.scheme == BeamScheme::amp) {
+    p = fluid_.solve(beam_.restoring_force(beam_.predictor()));
+    beam_.step(interface(p));
+  } else if (s_.scheme == BeamScheme::traditional) {
+    p = tp_pressure(beam_.acceleration());
+    beam_.step(interface(p));
+  } else {
+    // Fixed point a -> beam(fluid(a)) with Aitken's relaxation, from the last acceleration.
+    std::vector<double> a = beam_.acceleration(), r_old;
+    double omega = s_.initial_relaxation;
+    for (subiterations_ = 1;; ++subiterations_) {
+      p = tp_pressure(a);
+      const std::vector<double> trial = beam_.acceleration_after(interface(p));
+      std::vector<double> r(nx);
+      double rr = 0, aa = 0;
+      for (int i = 0; i < nx; ++i) {
+        r[i] = trial[i] - a[i];
+        rr += r[i] * r[i];
+        aa += trial[i] * trial[i];
+      }
+      if (rr <= s_.subiteration_tolerance * s_.subiteration_tolerance * aa) {
+        a = trial;
+        break;
+      }
+      if (subiterations_ >= s_.max_subiterations || !std::isfinite(rr)) {
+        std::ostringstream m;
+        m << "tp_aitken: the sub-iterations did not converge in " << subiterations_
+          << " at t = " << time() << " (relative update " << std::sqrt(rr / aa) << ")";
+        throw std::runtime_error(m.str());
+      }
+      if (!r_old.empty()) {  // omega <- -omega (r_old . (r - r_old)) / |r - r_old|^2
+        double num = 0, den = 0;
+        for (int i = 0; i < nx; ++i) {
+          const double d = r[i] - r_old[i];
+          num += r_old[i] * d;
+          den += d * d;
+        }
+        omega = -omega * num / den;
+      }
+      for (int i = 0; i < nx; ++i) a[i] += omega * r[i];
+      r_old = std::move(r);
+    }
+    beam_.advance_with(a);
   }
-  p.resize(size_t(grid_.ny + 1) * nx);  // drop the ghost line
-  const std::vector<double> p_top(p.end() - nx, p.end());
-  beam_.step(p_top);
+  p.resize(top + nx);  // drop the ghost line
   p_ = std::move(p);
 }
 
@@ -142,8 +187,11 @@ BeamChannelResult run_beam_channel(const BeamChannelSetup& s) {
   BeamChannelResult r;
   r.omega = fsi.omega();
   const int steps = static_cast<int>(std::lround(s.end_time / s.dt));
+  long long subiterations = 0;
   for (int n = 0; n < steps; ++n) {
     fsi.step();
+    subiterations += fsi.last_subiterations();
+    r.mean_subiterations = double(subiterations) / (n + 1);
     r.steps = n + 1;
     r.time = fsi.time();
     const double m = fsi.max_abs_eta();

@@ -7,6 +7,9 @@
 // - TP (traditional partitioned): the fluid sees the beam's last acceleration,
 //   p_y = -rho a^n, then the beam is advanced with the new pressure. The fluid's added mass
 //   rho / (k tanh kH) enters explicitly, so the scheme fails once it outweighs rho_h.
+// - TP-Aitken: TP iterated to convergence within each step (fluid with p_y = -rho a^(k), beam
+//   trial acceleration, Aitken's dynamic relaxation; Kuettler & Wall, Comput. Mech. 2008).
+//   Stable where it converges, at the price of the sub-iterations.
 // - AMP (added-mass partitioned; Li, Henshaw, Banks, Schwendeman & Main, J. Comput. Phys.
 //   2016): eliminating eta_tt between the two interface equations gives the Robin condition
 //   p + (rho_h / rho) p_y = L eta. With the beam advanced by Newmark's implicit rule,
@@ -24,8 +27,8 @@
 
 namespace amphora::fsi {
 
-enum class BeamScheme { traditional, amp };
-BeamScheme parse_beam_scheme(const std::string& name);  ///< "tp" | "amp"
+enum class BeamScheme { traditional, traditional_aitken, amp };
+BeamScheme parse_beam_scheme(const std::string& name);  ///< "tp" | "tp_aitken" | "amp"
 const char* to_string(BeamScheme s);
 
 struct BeamChannelSetup {
@@ -38,6 +41,10 @@ struct BeamChannelSetup {
   BeamScheme scheme = BeamScheme::amp;
   /// Declared unstable when max |eta| exceeds this multiple of the wave's amplitude (1).
   double blowup_factor = 10.0;
+  /// TP-Aitken: relative tolerance on the acceleration update, iteration cap, first relaxation.
+  double subiteration_tolerance = 1e-10;
+  int max_subiterations = 500;
+  double initial_relaxation = 0.1;
 };
 
 struct BeamChannelResult {
@@ -49,6 +56,7 @@ struct BeamChannelResult {
   double pressure_error = 0;
   double max_eta = 0;       ///< largest |eta| seen
   std::string message;      ///< where and when it blew up, if it did
+  double mean_subiterations = 0;
 };
 
 /// The coupled system, stepped by one of the schemes, starting from the exact traveling wave.
@@ -73,6 +81,8 @@ class BeamChannelFsi {
   /// Max-norm errors of eta and p at time().
   double eta_error() const;
   double pressure_error() const;
+  /// Sub-iterations of the last step (1 for TP and AMP).
+  int last_subiterations() const { return subiterations_; }
   /// Recomputes the pressure for the current state (after a restore).
   void refresh_pressure();
 
@@ -83,6 +93,7 @@ class BeamChannelFsi {
   beam::EulerBernoulliBeam beam_;
   channel::ChannelPressure fluid_;
   std::vector<double> p_;
+  int subiterations_ = 0;
 };
 
 /// Runs the scheme from the exact traveling wave to end_time (or to a detected blow-up).

@@ -15,7 +15,7 @@ ParamTable beam_channel_parameter_table() {
   t.name = "beam_channel";
   t.doc = "a periodic Euler-Bernoulli beam over a channel of inviscid fluid, partitioned (tp | amp), "
           "from the exact traveling wave";
-  auto scheme = string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp"});
+  auto scheme = string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp", "tp_aitken"});
   auto rho_h = real_param("rho_h", 1.0, "kg/m^2", "beam mass per unit length (density x thickness)");
   greater_than(rho_h, 0.0);
   auto spring = real_param("spring", 0.5, "N/m^3", "K: restoring spring");
@@ -41,7 +41,15 @@ ParamTable beam_channel_parameter_table() {
   auto blowup = real_param("blowup_factor", 10.0, "1",
                            "stop as unstable when max |eta| exceeds this multiple of the amplitude");
   greater_than(blowup, 1.0);
-  t.specs = {scheme, rho_h, spring, tension, stiffness, length, depth, density, points, rows, mode, blowup};
+  auto tol = real_param("subiteration_tolerance", 1e-10, "1",
+                        "tp_aitken: relative change of the interface acceleration that ends a step");
+  greater_than(tol, 0.0);
+  auto max_it = int_param("max_subiterations", 500, "tp_aitken: sub-iterations allowed per step");
+  at_least(max_it, 1);
+  auto relax = real_param("initial_relaxation", 0.1, "1", "tp_aitken: first relaxation factor");
+  greater_than(relax, 0.0);
+  at_most(relax, 1.0);
+  t.specs = {scheme, rho_h, spring, tension, stiffness, length, depth, density, points, rows, mode, blowup, tol, max_it, relax};
   return t;
 }
 
@@ -65,6 +73,9 @@ class BeamChannelModule final : public Module {
     s_.fluid_rows = static_cast<int>(p.integer("fluid_rows"));
     s_.mode = static_cast<int>(p.integer("mode"));
     s_.blowup_factor = p.real("blowup_factor");
+    s_.subiteration_tolerance = p.real("subiteration_tolerance");
+    s_.max_subiterations = static_cast<int>(p.integer("max_subiterations"));
+    s_.initial_relaxation = p.real("initial_relaxation");
     if (2 * s_.mode >= s_.beam.points)
       throw std::invalid_argument("beam_channel.mode = " + std::to_string(s_.mode) +
                                   " is not resolved by points = " + std::to_string(s_.beam.points) +
@@ -126,7 +137,8 @@ class BeamChannelModule final : public Module {
             {"beam_energy", fsi_->beam().energy()},
             {"eta_error", fsi_->eta_error()},
             {"pressure_error", fsi_->pressure_error()},
-            {"omega", fsi_->omega()}};
+            {"omega", fsi_->omega()},
+            {"subiterations", double(fsi_->last_subiterations())}};
   }
   std::string error_diagnostic() const override { return "eta_error"; }
 

@@ -94,16 +94,30 @@ void EulerBernoulliBeam::restore_state(double t, const std::vector<double>& eta,
   a_ = a;
 }
 
-void EulerBernoulliBeam::step(const std::vector<double>& f_next) {
+std::vector<double> EulerBernoulliBeam::predictor() const {
+  std::vector<double> pred(p_.points);
+  for (int i = 0; i < p_.points; ++i) pred[i] = eta_[i] + dt_ * v_[i] + 0.25 * dt_ * dt_ * a_[i];
+  return pred;
+}
+
+std::vector<double> EulerBernoulliBeam::acceleration_after(const std::vector<double>& f_next) const {
   const int n = p_.points;
   require(int(f_next.size()) == n, "load must have `points` entries");
-  // Predictor eta* = eta + dt v + dt^2/4 a; then (rho_h + dt^2/4 A) a_new = f - A eta*.
-  std::vector<double> pred(n);
-  for (int i = 0; i < n; ++i) pred[i] = eta_[i] + dt_ * v_[i] + 0.25 * dt_ * dt_ * a_[i];
-  const auto r = restoring_force(pred);
+  // (rho_h + dt^2/4 A) a_new = f - A eta*, eta* the predictor.
+  const auto r = restoring_force(predictor());
   Eigen::VectorXd rhs(n);
   for (int i = 0; i < n; ++i) rhs[i] = f_next[i] - r[i];
   const Eigen::VectorXd a_new = factor_->ldlt.solve(rhs);
+  return std::vector<double>(a_new.data(), a_new.data() + n);
+}
+
+void EulerBernoulliBeam::step(const std::vector<double>& f_next) {
+  advance_with(acceleration_after(f_next));
+}
+
+void EulerBernoulliBeam::advance_with(const std::vector<double>& a_new) {
+  const int n = p_.points;
+  const auto pred = predictor();
   for (int i = 0; i < n; ++i) {
     eta_[i] = pred[i] + 0.25 * dt_ * dt_ * a_new[i];
     v_[i] += 0.5 * dt_ * (a_[i] + a_new[i]);

@@ -46,6 +46,12 @@ class EulerBernoulliBeam {
                      const std::vector<double>& a);
   /// One Newmark step to t + dt with the load at the new time.
   void step(const std::vector<double>& f_next);
+  /// The acceleration that step(f_next) would give, without stepping (sub-iterations).
+  std::vector<double> acceleration_after(const std::vector<double>& f_next) const;
+  /// The Newmark update to t + dt with a given new acceleration.
+  void advance_with(const std::vector<double>& a_new);
+  /// eta* = eta + dt v + dt^2/4 a: the displacement the step starts from.
+  std::vector<double> predictor() const;
 
   /// (A eta)_i = K eta_i - T (D+D- eta)_i + B (D+D-)^2 eta)_i: minus the elastic force.
   std::vector<double> restoring_force(const std::vector<double>& eta) const;
