@@ -44,6 +44,61 @@ TEST(MpveDispersion, ModeSolvesTheInterfaceSystem) {
   EXPECT_NEAR(std::abs(a * c[5] - Complex(0, check.k) * c[6] - 1.0), 0.0, 1e-12);
 }
 
+TEST(MpveDispersion, ExactFieldsSatisfyTheEquationsAndInterfaceConditions) {
+  // Checked independently of the derivation: the evaluated fields, differentiated by finite
+  // differences, satisfy the momentum equations, incompressibility, no slip at y = -H, the
+  // fixed solid at y = Hbar, and velocity and traction continuity at y = 0.
+  const Complex w = solve_mpve_dispersion(check, Complex(1.4, -0.4)).omega;
+  const auto c = mpve_mode(check, w);
+  const double x = 0.3, t = 0.7, h = 1e-4;
+  auto fl = [&](double xx, double yy, double tt) { return mpve_fluid(check, w, c, xx, yy, tt); };
+  auto so = [&](double xx, double yy, double tt) { return mpve_solid(check, w, c, xx, yy, tt); };
+  // Fluid at y = -0.4: rho u_t + p_x - mu lap u = 0 (and v), u_x + v_y = 0.
+  {
+    const double y = -0.4;
+    auto d = [&](auto g, double dx, double dy, double dt) {
+      return (g(x + dx, y + dy, t + dt) - g(x - dx, y - dy, t - dt)) / (2 * h);
+    };
+    auto lap = [&](auto g) {
+      return (g(x + h, y, t) + g(x - h, y, t) + g(x, y + h, t) + g(x, y - h, t) - 4 * g(x, y, t)) / (h * h);
+    };
+    auto U = [&](double a, double b, double s) { return fl(a, b, s).u; };
+    auto V = [&](double a, double b, double s) { return fl(a, b, s).v; };
+    auto P = [&](double a, double b, double s) { return fl(a, b, s).p; };
+    const double scale = std::abs(check.rho * d(U, 0, 0, h)) + std::abs(d(P, h, 0, 0)) + 1e-3;
+    EXPECT_NEAR(check.rho * d(U, 0, 0, h) + d(P, h, 0, 0) - check.mu * lap(U), 0.0, 1e-5 * scale);
+    EXPECT_NEAR(check.rho * d(V, 0, 0, h) + d(P, 0, h, 0) - check.mu * lap(V), 0.0, 1e-5 * scale);
+    EXPECT_NEAR(d(U, h, 0, 0) + d(V, 0, h, 0), 0.0, 1e-6 * scale);
+  }
+  // Solid at y = 0.2: rho_bar ubar_tt = div sigma_bar.
+  {
+    const double y = 0.2;
+    auto d = [&](auto g, double dx, double dy, double dt) {
+      return (g(x + dx, y + dy, t + dt) - g(x - dx, y - dy, t - dt)) / (2 * h);
+    };
+    auto UT = [&](double a, double b, double s) { return so(a, b, s).ubar_t; };
+    auto VT = [&](double a, double b, double s) { return so(a, b, s).vbar_t; };
+    auto SXX = [&](double a, double b, double s) { return so(a, b, s).sxx; };
+    auto SXY = [&](double a, double b, double s) { return so(a, b, s).sxy; };
+    auto SYY = [&](double a, double b, double s) { return so(a, b, s).syy; };
+    const double scale = std::abs(check.rho_bar * d(UT, 0, 0, h)) + std::abs(d(SXX, h, 0, 0)) + 1e-3;
+    EXPECT_NEAR(check.rho_bar * d(UT, 0, 0, h) - d(SXX, h, 0, 0) - d(SXY, 0, h, 0), 0.0, 1e-5 * scale);
+    EXPECT_NEAR(check.rho_bar * d(VT, 0, 0, h) - d(SXY, h, 0, 0) - d(SYY, 0, h, 0), 0.0, 1e-5 * scale);
+  }
+  const MpveFluidFields wall = fl(x, -check.H, t), f0 = fl(x, 0.0, t);
+  const MpveSolidFields fixed = so(x, check.Hbar, t), s0 = so(x, 0.0, t);
+  const double scale = std::abs(s0.vbar_t) + std::abs(s0.syy) + 1e-3;
+  EXPECT_NEAR(wall.u, 0.0, 1e-10 * scale);
+  EXPECT_NEAR(wall.v, 0.0, 1e-10 * scale);
+  EXPECT_NEAR(fixed.ubar, 0.0, 1e-10 * scale);
+  EXPECT_NEAR(fixed.vbar, 0.0, 1e-10 * scale);
+  EXPECT_NEAR(f0.u, s0.ubar_t, 1e-10 * scale);
+  EXPECT_NEAR(f0.v, s0.vbar_t, 1e-10 * scale);
+  EXPECT_NEAR(f0.sxy, s0.sxy, 1e-10 * scale);
+  EXPECT_NEAR(f0.syy, s0.syy, 1e-10 * scale);
+  EXPECT_GT(std::abs(s0.vbar_t), 0.1);  // a real wave, not the zero solution
+}
+
 TEST(MpveDispersion, ContinuationFollowsTheRootThereAndBack) {
   const Complex w0 = solve_mpve_dispersion(check, Complex(1.4, -0.4)).omega;
   MpveParameters heavy = check;

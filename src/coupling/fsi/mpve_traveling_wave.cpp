@@ -120,4 +120,51 @@ std::array<Complex, 8> mpve_mode(const MpveParameters& p, Complex omega) {
   return out;
 }
 
+MpveFluidFields mpve_fluid(const MpveParameters& p, Complex w, const std::array<Complex, 8>& c,
+                           double x, double y, double t) {
+  const double k = p.k;
+  const Complex q = std::sqrt(k * k - I * p.rho * w / p.mu), ik = I * k;
+  const Complex e = std::exp(I * (k * x - w * t));
+  // phi = A cosh ky + B sinh ky (harmonic), psi = C cosh qy + D sinh qy (psi'' = q^2 psi).
+  const Complex phi = c[0] * std::cosh(k * y) + c[1] * std::sinh(k * y);
+  const Complex dphi = k * (c[0] * std::sinh(k * y) + c[1] * std::cosh(k * y));
+  const Complex psi = c[2] * std::cosh(q * y) + c[3] * std::sinh(q * y);
+  const Complex dpsi = q * (c[2] * std::sinh(q * y) + c[3] * std::cosh(q * y));
+  const Complex u = ik * phi + dpsi, v = dphi - ik * psi;
+  const Complex u_y = ik * dphi + q * q * psi, v_y = k * k * phi - ik * dpsi;
+  const Complex pressure = I * w * p.rho * phi;
+  MpveFluidFields f;
+  f.u = (u * e).real();
+  f.v = (v * e).real();
+  f.p = (pressure * e).real();
+  f.sxy = (p.mu * (u_y + ik * v) * e).real();
+  f.syy = ((-pressure + 2 * p.mu * v_y) * e).real();
+  return f;
+}
+
+MpveSolidFields mpve_solid(const MpveParameters& p, Complex w, const std::array<Complex, 8>& c,
+                           double x, double y, double t) {
+  const double k = p.k;
+  const double cp2 = (p.lambda_bar + 2 * p.mu_bar) / p.rho_bar, cs2 = p.mu_bar / p.rho_bar;
+  const Complex a = std::sqrt(k * k - w * w / cp2), b = std::sqrt(k * k - w * w / cs2), ik = I * k;
+  const Complex e = std::exp(I * (k * x - w * t));
+  // Phi = E cosh ay + F sinh ay, Psi = G cosh by + H sinh by; ubar = ik Phi + Psi', vbar = Phi' - ik Psi.
+  const Complex Phi = c[4] * std::cosh(a * y) + c[5] * std::sinh(a * y);
+  const Complex dPhi = a * (c[4] * std::sinh(a * y) + c[5] * std::cosh(a * y));
+  const Complex Psi = c[6] * std::cosh(b * y) + c[7] * std::sinh(b * y);
+  const Complex dPsi = b * (c[6] * std::sinh(b * y) + c[7] * std::cosh(b * y));
+  const Complex ub = ik * Phi + dPsi, vb = dPhi - ik * Psi;
+  const Complex ub_y = ik * dPhi + b * b * Psi, vb_y = a * a * Phi - ik * dPsi;
+  const Complex div = ik * ub + vb_y;
+  MpveSolidFields s;
+  s.ubar = (ub * e).real();
+  s.vbar = (vb * e).real();
+  s.ubar_t = (-I * w * ub * e).real();
+  s.vbar_t = (-I * w * vb * e).real();
+  s.sxx = ((p.lambda_bar * div + 2 * p.mu_bar * ik * ub) * e).real();
+  s.sxy = (p.mu_bar * (ub_y + ik * vb) * e).real();
+  s.syy = ((p.lambda_bar * div + 2 * p.mu_bar * vb_y) * e).real();
+  return s;
+}
+
 }  // namespace amphora::fsi

@@ -53,4 +53,20 @@ DispersionRoot continue_mpve_dispersion(const MpveParameters& from, Complex omeg
 /// the interface displacement vbar(0) = 1.
 std::array<Complex, 8> mpve_mode(const MpveParameters& p, Complex omega);
 
+/// The exact fields (real parts) of a mode at (x, y, t): the fluid for -H <= y <= 0 ...
+struct MpveFluidFields {
+  double u, v, p;        ///< velocity and pressure
+  double sxy, syy;       ///< stress mu (u_y + v_x), -p + 2 mu v_y
+};
+MpveFluidFields mpve_fluid(const MpveParameters& p, Complex omega, const std::array<Complex, 8>& c,
+                           double x, double y, double t);
+
+/// ... and the solid for 0 <= y <= Hbar: displacement, velocity, stress.
+struct MpveSolidFields {
+  double ubar, vbar, ubar_t, vbar_t;
+  double sxx, sxy, syy;
+};
+MpveSolidFields mpve_solid(const MpveParameters& p, Complex omega, const std::array<Complex, 8>& c,
+                           double x, double y, double t);
+
 }  // namespace amphora::fsi
