@@ -18,12 +18,29 @@ using Exec = amphora::test::TestExecSpace;
 
 constexpr double kPi = 3.141592653589793;
 
-/// u1 = a sin(kx) cos(ly) cos(wt), u2 = b cos(kx) sin(ly) cos(wt).
+/// u1 = a sin(kx) cos(ly + s) cos(wt), u2 = b cos(kx) sin(ly + s) cos(wt).
 struct Manufactured {
-  double a = 1.0, b = 0.5, k = 2 * kPi, l = 3.0, w = 5.0;
+  double a = 1.0, b = 0.5, k = 2 * kPi, l = 3.0, s = 0.4, w = 5.0;
   KOKKOS_INLINE_FUNCTION double operator()(double x, double y, double t, int c) const {
-    return c == 0 ? a * amphora::math::sin(k * x) * amphora::math::cos(l * y) * amphora::math::cos(w * t)
-                  : b * amphora::math::cos(k * x) * amphora::math::sin(l * y) * amphora::math::cos(w * t);
+    return c == 0 ? a * amphora::math::sin(k * x) * amphora::math::cos(l * y + s) * amphora::math::cos(w * t)
+                  : b * amphora::math::cos(k * x) * amphora::math::sin(l * y + s) * amphora::math::cos(w * t);
+  }
+};
+
+/// Its traction on y = const: (sigma_xy, sigma_yy) = (mu (u1_y + u2_x), (lambda + 2 mu) u2_y + lambda u1_x).
+struct Traction {
+  Manufactured u;
+  ElasticMaterial m;
+  double y = 0.0;
+  KOKKOS_INLINE_FUNCTION double operator()(double x, double t, int c) const {
+    using amphora::math::cos;
+    using amphora::math::sin;
+    const double ct = cos(u.w * t), ly = u.l * y + u.s;
+    const double u1_y = -u.a * u.l * sin(u.k * x) * sin(ly) * ct;
+    const double u1_x = u.a * u.k * cos(u.k * x) * cos(ly) * ct;
+    const double u2_x = -u.b * u.k * sin(u.k * x) * sin(ly) * ct;
+    const double u2_y = u.b * u.l * cos(u.k * x) * cos(ly) * ct;
+    return c == 0 ? m.mu * (u1_y + u2_x) : (m.lambda + 2 * m.mu) * u2_y + m.lambda * u1_x;
   }
 };
 
@@ -35,11 +52,11 @@ struct Forcing {
     const double lm = m.lambda + m.mu, l2m = m.lambda + 2 * m.mu, ct = amphora::math::cos(u.w * t);
     if (c == 0) {
       const double u1 = u(x, y, t, 0);
-      const double u2_xy = -u.b * u.k * u.l * amphora::math::sin(u.k * x) * amphora::math::cos(u.l * y) * ct;
+      const double u2_xy = -u.b * u.k * u.l * amphora::math::sin(u.k * x) * amphora::math::cos(u.l * y + u.s) * ct;
       return -m.rho * u.w * u.w * u1 - (-l2m * u.k * u.k * u1 - m.mu * u.l * u.l * u1 + lm * u2_xy);
     }
     const double u2 = u(x, y, t, 1);
-    const double u1_xy = -u.a * u.k * u.l * amphora::math::cos(u.k * x) * amphora::math::sin(u.l * y) * ct;
+    const double u1_xy = -u.a * u.k * u.l * amphora::math::cos(u.k * x) * amphora::math::sin(u.l * y + u.s) * ct;
     return -m.rho * u.w * u.w * u2 - (-m.mu * u.k * u.k * u2 - l2m * u.l * u.l * u2 + lm * u1_xy);
   }
 };
@@ -52,8 +69,9 @@ ElasticMaterial material() {
   return m;
 }
 
-/// Max-norm displacement error at t = 0.5 on an n x n/2 grid of the unit-by-half box.
-double error_at(int n) {
+/// Max-norm displacement error at t = 0.5 on an n x n/2 grid of the unit-by-half box, the
+/// bottom row Dirichlet or (traction = true) driven by the exact traction.
+double error_at(int n, bool traction = false) {
   ElasticGrid g;
   g.nx = n;
   g.ny = n / 2;
@@ -68,24 +86,28 @@ double error_at(int n) {
   solid.set_state(0.0, exact);
   for (int s = 0; s < steps; ++s) {
     solid.set_forcing(force);
-    solid.step(exact);
+    if (traction) {
+      solid.step_with_bottom_traction(Traction{exact, m, 0.0}, exact);
+    } else {
+      solid.step(exact);
+    }
   }
   auto u = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solid.displacement());
   double e = 0;
   for (int j = 0; j <= g.ny; ++j)
     for (int i = 0; i < g.nx; ++i)
       for (int c = 0; c < 2; ++c)
-        e = std::max(e, std::abs(u(j, i, c) - exact(i * g.hx, j * g.hy, solid.time(), c)));
+        e = std::max(e, std::abs(u(j + 1, i, c) - exact(i * g.hx, j * g.hy, solid.time(), c)));
   return e;
 }
 
-TEST(LinearElasticSolid, ManufacturedSolutionConvergesAtSecondOrder) {
+void expect_second_order(bool traction) {
   double previous = 0;
   for (int n : {16, 32, 64, 128}) {
-    const double e = error_at(n);
+    const double e = error_at(n, traction);
     if (n > 16) {
       const double order = std::log2(previous / e);
-      std::printf("n %4d  max error %.3e  order %.3f\n", n, e, order);
+      std::printf("%s n %4d  max error %.3e  order %.3f\n", traction ? "traction" : "dirichlet", n, e, order);
       if (n >= 64) {
         EXPECT_NEAR(order, 2.0, 0.2) << "n = " << n;
       }
@@ -93,6 +115,10 @@ TEST(LinearElasticSolid, ManufacturedSolutionConvergesAtSecondOrder) {
     previous = e;
   }
 }
+
+TEST(LinearElasticSolid, ManufacturedSolutionConvergesAtSecondOrder) { expect_second_order(false); }
+
+TEST(LinearElasticSolid, TractionBoundaryConvergesAtSecondOrder) { expect_second_order(true); }
 
 /// The n = 32 run of error_at on execution space E, copied to the host.
 template <class E>

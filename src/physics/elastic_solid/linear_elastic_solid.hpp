@@ -4,7 +4,8 @@
 // second order in space and time (kernels/elastic/elastic_wave_step.hpp). Runs alone with
 // Dirichlet rows; the couplings will set the interface row from their own conditions.
 // Time levels rotate in place: after step(), displacement() is u at time(), previous() at
-// time() - dt.
+// time() - dt. Fields hold grid row j at storage row j + 1 (row 0: the ghost line below the
+// bottom boundary, used by the traction condition).
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -35,10 +36,10 @@ class LinearElasticSolid {
       s << "dt = " << dt << " outside (0, " << limit << "], the leapfrog stability limit";
       fail(s.str());
     }
-    u_old_ = Field("amphora::elastic::u_old", g.ny + 1, g.nx);
-    u_ = Field("amphora::elastic::u", g.ny + 1, g.nx);
-    u_new_ = Field("amphora::elastic::u_new", g.ny + 1, g.nx);
-    f_ = Field("amphora::elastic::f", g.ny + 1, g.nx);
+    u_old_ = Field("amphora::elastic::u_old", g.ny + 2, g.nx);
+    u_ = Field("amphora::elastic::u", g.ny + 2, g.nx);
+    u_new_ = Field("amphora::elastic::u_new", g.ny + 2, g.nx);
+    f_ = Field("amphora::elastic::f", g.ny + 2, g.nx);
   }
 
   const ElasticGrid& grid() const { return g_; }
@@ -67,23 +68,58 @@ class LinearElasticSolid {
   /// One leapfrog step; the boundary rows 0 and ny of the new level from boundary(x, y, t, c).
   template <class Boundary>
   void step(const Boundary& boundary) {
-    elastic_wave_step(exec_, g_, m_, dt_, u_old_, u_, f_, u_new_);
+    elastic_wave_step(exec_, g_, m_, dt_, u_old_, u_, f_, u_new_, 1);
+    set_rows(boundary, true);
+    rotate();
+  }
+
+  /// One leapfrog step with the traction (sigma_xy, sigma_yy) = traction(x, t, c) given on the
+  /// bottom boundary y = 0 (the fluid side in the FSI problems) and the top row from
+  /// boundary(x, y, t, c). The traction enters through the ghost line (centred differences:
+  /// mu (u_y + v_x) = sigma_xy, (lambda + 2 mu) v_y + lambda u_x = sigma_yy), second order.
+  template <class Traction, class Boundary>
+  void step_with_bottom_traction(const Traction& traction, const Boundary& boundary) {
+    const ElasticGrid g = g_;
+    const ElasticMaterial m = m_;
+    const double t = t_;
+    const Field u = u_;
+    Kokkos::parallel_for(
+        "amphora::elastic::traction_ghosts", RangePolicy<ExecSpace>(exec_, 0, g.nx),
+        KOKKOS_LAMBDA(int i) {
+          const int e = i + 1 < g.nx ? i + 1 : 0, w = i > 0 ? i - 1 : g.nx - 1;
+          const double ux = (u(1, e, 0) - u(1, w, 0)) / (2 * g.hx);
+          const double vx = (u(1, e, 1) - u(1, w, 1)) / (2 * g.hx);
+          const double x = i * g.hx;
+          u(0, i, 0) = u(2, i, 0) - 2 * g.hy * (traction(x, t, 0) / m.mu - vx);
+          u(0, i, 1) = u(2, i, 1) - 2 * g.hy * (traction(x, t, 1) - m.lambda * ux) / (m.lambda + 2 * m.mu);
+        });
+    elastic_wave_step(exec_, g_, m_, dt_, u_old_, u_, f_, u_new_, 0);
+    set_rows(boundary, false);
+    rotate();
+  }
+
+ private:
+  /// Rows ny (and 0 if `bottom`) of the new level from boundary(x, y, t + dt, c).
+  template <class Boundary>
+  void set_rows(const Boundary& boundary, bool bottom) {
     const ElasticGrid g = g_;
     const double t = t_ + dt_;
     const Field un = u_new_;
     Kokkos::parallel_for(
         "amphora::elastic::boundary_rows",
-        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>(exec_, {0, 0}, {2, g.nx}),
+        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>(exec_, {bottom ? 0 : 1, 0}, {2, g.nx}),
         KOKKOS_LAMBDA(int side, int i) {
           const int j = side == 0 ? 0 : g.ny;
-          for (int c = 0; c < 2; ++c) un(j, i, c) = boundary(i * g.hx, j * g.hy, t, c);
+          for (int c = 0; c < 2; ++c) un(j + 1, i, c) = boundary(i * g.hx, j * g.hy, t, c);
         });
-    std::swap(u_old_, u_);  // u_old <- u
-    std::swap(u_, u_new_);  // u <- u_new (the old u_old becomes scratch)
-    t_ = t;
   }
 
- private:
+  void rotate() {
+    std::swap(u_old_, u_);  // u_old <- u
+    std::swap(u_, u_new_);  // u <- u_new (the old u_old becomes scratch)
+    t_ += dt_;
+  }
+
   template <class Value>
   void fill(const Field& field, const Value& value, double t) const {
     const ElasticGrid g = g_;
@@ -91,7 +127,7 @@ class LinearElasticSolid {
         "amphora::elastic::fill",
         Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>(exec_, {0, 0}, {g.ny + 1, g.nx}),
         KOKKOS_LAMBDA(int j, int i) {
-          for (int c = 0; c < 2; ++c) field(j, i, c) = value(i * g.hx, j * g.hy, t, c);
+          for (int c = 0; c < 2; ++c) field(j + 1, i, c) = value(i * g.hx, j * g.hy, t, c);
         });
   }
 
