@@ -120,26 +120,40 @@ std::array<Complex, 8> mpve_mode(const MpveParameters& p, Complex omega) {
   return out;
 }
 
+namespace {
+
+/// A displacement or velocity field grad Phi + curl Psi with Phi = c0 cosh(a y) + c1 sinh(a y),
+/// Psi = c2 cosh(b y) + c3 sinh(b y) (so Phi'' = a^2 Phi, Psi'' = b^2 Psi): the shape of both
+/// the fluid's (a = k, b = q) and the solid's (a = alpha, b = beta) fields, times e^{i(kx - wt)}.
+struct PotentialField {
+  Complex phi, u, v, u_y, v_y;
+};
+
+PotentialField potential_field(double k, Complex a, Complex b, const Complex* c, double y) {
+  const Complex ik = I * k;
+  const Complex phi = c[0] * std::cosh(a * y) + c[1] * std::sinh(a * y);
+  const Complex dphi = a * (c[0] * std::sinh(a * y) + c[1] * std::cosh(a * y));
+  const Complex psi = c[2] * std::cosh(b * y) + c[3] * std::sinh(b * y);
+  const Complex dpsi = b * (c[2] * std::sinh(b * y) + c[3] * std::cosh(b * y));
+  return {phi, ik * phi + dpsi, dphi - ik * psi, ik * dphi + b * b * psi, a * a * phi - ik * dpsi};
+}
+
+}  // namespace
+
 MpveFluidFields mpve_fluid(const MpveParameters& p, Complex w, const std::array<Complex, 8>& c,
                            double x, double y, double t) {
   const double k = p.k;
   const Complex q = std::sqrt(k * k - I * p.rho * w / p.mu), ik = I * k;
   const Complex e = std::exp(I * (k * x - w * t));
-  // phi = A cosh ky + B sinh ky (harmonic), psi = C cosh qy + D sinh qy (psi'' = q^2 psi).
-  const Complex phi = c[0] * std::cosh(k * y) + c[1] * std::sinh(k * y);
-  const Complex dphi = k * (c[0] * std::sinh(k * y) + c[1] * std::cosh(k * y));
-  const Complex psi = c[2] * std::cosh(q * y) + c[3] * std::sinh(q * y);
-  const Complex dpsi = q * (c[2] * std::sinh(q * y) + c[3] * std::cosh(q * y));
-  const Complex u = ik * phi + dpsi, v = dphi - ik * psi;
-  const Complex u_y = ik * dphi + q * q * psi, v_y = k * k * phi - ik * dpsi;
-  const Complex pressure = I * w * p.rho * phi;
-  MpveFluidFields f;
-  f.u = (u * e).real();
-  f.v = (v * e).real();
-  f.p = (pressure * e).real();
-  f.sxy = (p.mu * (u_y + ik * v) * e).real();
-  f.syy = ((-pressure + 2 * p.mu * v_y) * e).real();
-  return f;
+  const PotentialField f = potential_field(k, k, q, c.data(), y);  // phi harmonic, psi'' = q^2 psi
+  const Complex pressure = I * w * p.rho * f.phi;
+  MpveFluidFields out;
+  out.u = (f.u * e).real();
+  out.v = (f.v * e).real();
+  out.p = (pressure * e).real();
+  out.sxy = (p.mu * (f.u_y + ik * f.v) * e).real();
+  out.syy = ((-pressure + 2 * p.mu * f.v_y) * e).real();
+  return out;
 }
 
 MpveSolidFields mpve_solid(const MpveParameters& p, Complex w, const std::array<Complex, 8>& c,
@@ -148,22 +162,16 @@ MpveSolidFields mpve_solid(const MpveParameters& p, Complex w, const std::array<
   const double cp2 = (p.lambda_bar + 2 * p.mu_bar) / p.rho_bar, cs2 = p.mu_bar / p.rho_bar;
   const Complex a = std::sqrt(k * k - w * w / cp2), b = std::sqrt(k * k - w * w / cs2), ik = I * k;
   const Complex e = std::exp(I * (k * x - w * t));
-  // Phi = E cosh ay + F sinh ay, Psi = G cosh by + H sinh by; ubar = ik Phi + Psi', vbar = Phi' - ik Psi.
-  const Complex Phi = c[4] * std::cosh(a * y) + c[5] * std::sinh(a * y);
-  const Complex dPhi = a * (c[4] * std::sinh(a * y) + c[5] * std::cosh(a * y));
-  const Complex Psi = c[6] * std::cosh(b * y) + c[7] * std::sinh(b * y);
-  const Complex dPsi = b * (c[6] * std::sinh(b * y) + c[7] * std::cosh(b * y));
-  const Complex ub = ik * Phi + dPsi, vb = dPhi - ik * Psi;
-  const Complex ub_y = ik * dPhi + b * b * Psi, vb_y = a * a * Phi - ik * dPsi;
-  const Complex div = ik * ub + vb_y;
+  const PotentialField f = potential_field(k, a, b, c.data() + 4, y);
+  const Complex div = ik * f.u + f.v_y;
   MpveSolidFields s;
-  s.ubar = (ub * e).real();
-  s.vbar = (vb * e).real();
-  s.ubar_t = (-I * w * ub * e).real();
-  s.vbar_t = (-I * w * vb * e).real();
-  s.sxx = ((p.lambda_bar * div + 2 * p.mu_bar * ik * ub) * e).real();
-  s.sxy = (p.mu_bar * (ub_y + ik * vb) * e).real();
-  s.syy = ((p.lambda_bar * div + 2 * p.mu_bar * vb_y) * e).real();
+  s.ubar = (f.u * e).real();
+  s.vbar = (f.v * e).real();
+  s.ubar_t = (-I * w * f.u * e).real();
+  s.vbar_t = (-I * w * f.v * e).real();
+  s.sxx = ((p.lambda_bar * div + 2 * p.mu_bar * ik * f.u) * e).real();
+  s.sxy = (p.mu_bar * (f.u_y + ik * f.v) * e).real();
+  s.syy = ((p.lambda_bar * div + 2 * p.mu_bar * f.v_y) * e).real();
   return s;
 }
 

@@ -75,13 +75,9 @@ std::vector<double> EulerBernoulliBeam::restoring_force(const std::vector<double
 
 void EulerBernoulliBeam::set_state(double t, const std::vector<double>& eta,
                                    const std::vector<double>& v, const std::vector<double>& f) {
-  const size_t n = p_.points;
-  require(eta.size() == n && v.size() == n && f.size() == n, "state arrays must have `points` entries");
-  t_ = t;
-  eta_ = eta;
-  v_ = v;
+  restore_state(t, eta, v, f);  // checks the sizes; the acceleration follows from the load
   const auto r = restoring_force(eta_);
-  for (size_t i = 0; i < n; ++i) a_[i] = (f[i] - r[i]) / p_.rho_h;
+  for (size_t i = 0; i < a_.size(); ++i) a_[i] = (f[i] - r[i]) / p_.rho_h;
 }
 
 void EulerBernoulliBeam::restore_state(double t, const std::vector<double>& eta,
