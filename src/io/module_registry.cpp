@@ -1,6 +1,7 @@
 #include "io/module_registry.hpp"
 
 #include "coupling/fsi/beam_channel_module.hpp"
+#include "coupling/fsi/mpve_module.hpp"
 #include "physics/advection_diffusion_1d/advection_diffusion_1d.hpp"
 #include "physics/dem/dem_module.hpp"
 #include "physics/poisson_fem/poisson_fem.hpp"
@@ -20,6 +21,7 @@ const std::vector<ModuleInfo>& module_registry() {
        [](const Parameters& p, const Communicator& c) -> std::unique_ptr<Module> {
          return std::make_unique<dem::DemModule>(p, c);
        }},
+      {"mpve", fsi::mpve_parameter_table, fsi::create_mpve},
       {"poisson_fem", poisson_fem::parameter_table, poisson_fem::create},
       {"water_mac", water_mac::parameter_table, water_mac::create},
   };

@@ -1,6 +1,8 @@
 #include "coupling/fsi/mpve_partitioned.hpp"
 
 #include <cmath>
+#include <map>
+#include <stdexcept>
 #include <sstream>
 
 #include "physics/channel_flow/channel_stokes.hpp"
@@ -161,10 +163,77 @@ MpvePartitioned::~MpvePartitioned() = default;
 void MpvePartitioned::step() { s_->step(); }
 double MpvePartitioned::time() const { return s_->fluid.time(); }
 
-bool MpvePartitioned::blown_up() const {
+double MpvePartitioned::max_fluid_speed() const {
   double m = 0;
   for (double x : s_->fluid.v()) m = std::isfinite(x) ? std::max(m, std::abs(x)) : INFINITY;
-  return !(m <= s_->s.blowup_factor * s_->v_scale);
+  return m;
+}
+
+bool MpvePartitioned::blown_up() const { return !(max_fluid_speed() <= s_->s.blowup_factor * s_->v_scale); }
+
+MpvePartitioned::Snapshot MpvePartitioned::snapshot() const {
+  const State& st = *s_;
+  const auto& P = st.s.physics;
+  const auto& f = st.fluid;
+  const int nx = st.fg.nx, ny = st.fg.ny;
+  const double t = time(), tp = t - 0.5 * st.s.dt;
+  Snapshot o;
+  for (int i = 0; i < nx; ++i) o.fluid_x.push_back(f.v_x(i));
+  for (int j = 0; j < ny; ++j) o.fluid_y.push_back(f.u_y(j));
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const size_t r = size_t(j) * nx + i;
+      o.u.push_back(0.5 * (f.u()[r] + f.u()[size_t(j) * nx + (i + 1) % nx]));
+      o.v.push_back(0.5 * (f.v()[r] + f.v()[r + nx]));
+      o.p.push_back(f.p()[r]);
+      const MpveFluidFields e = mpve_fluid(P, st.s.omega, st.mode, f.v_x(i), f.u_y(j), t);
+      o.u_exact.push_back(e.u);
+      o.v_exact.push_back(e.v);
+      o.p_exact.push_back(mpve_fluid(P, st.s.omega, st.mode, f.v_x(i), f.u_y(j), tp).p);
+    }
+  const auto d = st.solid.displacement();
+  for (int i = 0; i < nx; ++i) o.solid_x.push_back(i * st.sg.hx);
+  for (int j = 0; j <= st.sg.ny; ++j) o.solid_y.push_back(j * st.sg.hy);
+  for (int j = 0; j <= st.sg.ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      o.ubar.push_back(d(j + 1, i, 0));
+      o.vbar.push_back(d(j + 1, i, 1));
+      const MpveSolidFields e = mpve_solid(P, st.s.omega, st.mode, i * st.sg.hx, j * st.sg.hy, t);
+      o.ubar_exact.push_back(e.ubar);
+      o.vbar_exact.push_back(e.vbar);
+    }
+  return o;
+}
+
+std::vector<std::pair<std::string, std::vector<double>>> MpvePartitioned::save() const {
+  const State& st = *s_;
+  auto field = [](const Solid::Field& f) { return std::vector<double>(f.data(), f.data() + f.size()); };
+  return {{"time", {time()}},
+          {"u", st.fluid.u()},
+          {"v", st.fluid.v()},
+          {"p", st.fluid.p()},
+          {"p_prev", st.p_prev},
+          {"solid", field(st.solid.displacement())},
+          {"solid_prev", field(st.solid.previous())},
+          {"row_prev", st.row_prev},
+          {"row_now", st.row_now},
+          {"gu_now", st.gu_now},
+          {"gv_now", st.gv_now}};
+}
+
+void MpvePartitioned::restore(const std::vector<std::pair<std::string, std::vector<double>>>& arrays) {
+  State& st = *s_;
+  std::map<std::string, std::vector<double>> a(arrays.begin(), arrays.end());
+  for (const char* key : {"time", "u", "v", "p", "p_prev", "solid", "solid_prev", "row_prev", "row_now", "gu_now", "gv_now"})
+    if (!a.count(key)) throw std::runtime_error(std::string("mpve: checkpoint lacks '") + key + "'");
+  const double t = a["time"].at(0);
+  st.fluid.set_state(t, a["u"], a["v"], a["p"]);
+  st.p_prev = a["p_prev"];
+  st.solid.restore(t, a["solid"], a["solid_prev"]);
+  st.row_prev = a["row_prev"];
+  st.row_now = a["row_now"];
+  st.gu_now = a["gu_now"];
+  st.gv_now = a["gv_now"];
 }
 
 MpveErrors MpvePartitioned::errors() const {

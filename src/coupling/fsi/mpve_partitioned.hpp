@@ -8,6 +8,7 @@
 // pressure extrapolated in time from its half steps; the solid velocity from its displacement
 // levels (centred at t_n, one-sided at t_{n+1}).
 #include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,19 @@ class MpvePartitioned {
   bool blown_up() const;
   /// Max-norm errors against the exact wave at time() (pressure at time() - dt/2).
   MpveErrors errors() const;
+
+  /// Output: the fluid at cell centres (u, v averaged from the faces; p at time() - dt/2) and
+  /// the solid at its nodes, each with the exact values beside.
+  struct Snapshot {
+    std::vector<double> fluid_x, fluid_y, u, v, p, u_exact, v_exact, p_exact;
+    std::vector<double> solid_x, solid_y, ubar, vbar, ubar_exact, vbar_exact;
+  };
+  Snapshot snapshot() const;
+  /// Every array needed to continue bit for bit, and its restoration.
+  std::vector<std::pair<std::string, std::vector<double>>> save() const;
+  void restore(const std::vector<std::pair<std::string, std::vector<double>>>& arrays);
+  /// Interface kinetic energy proxy: max |v| over the fluid (the blow-up measure).
+  double max_fluid_speed() const;
 
  private:
   struct State;

@@ -7,6 +7,7 @@
 // time() - dt. Fields hold grid row j at storage row j + 1 (row 0: the ghost line below the
 // bottom boundary, used by the traction condition).
 #include <sstream>
+#include <vector>
 #include <stdexcept>
 #include <utility>
 
@@ -57,6 +58,21 @@ class LinearElasticSolid {
     t_ = t;
     fill(u_, value, t);
     fill(u_old_, value, t - dt_);
+  }
+
+  /// Restores u at t and t - dt from host copies of displacement() and previous().
+  void restore(double t, const std::vector<double>& u, const std::vector<double>& u_old) {
+    if (u.size() != u_.size() || u_old.size() != u_old_.size())
+      throw std::invalid_argument("elastic solid: restored fields have the wrong size");
+    auto hu = Kokkos::create_mirror_view(u_);
+    auto ho = Kokkos::create_mirror_view(u_old_);
+    for (size_t k = 0; k < u.size(); ++k) {
+      hu.data()[k] = u[k];
+      ho.data()[k] = u_old[k];
+    }
+    Kokkos::deep_copy(u_, hu);
+    Kokkos::deep_copy(u_old_, ho);
+    t_ = t;
   }
 
   /// Fills f from a device functor force(x, y, t, c) at time().

@@ -1,0 +1,122 @@
+#include "coupling/fsi/mpve_module.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "coupling/fsi/mpve_partitioned.hpp"
+#include "mesh/box_decomposition.hpp"
+
+namespace amphora::fsi {
+
+ParamTable mpve_parameter_table() {
+  ParamTable t;
+  t.name = "mpve";
+  t.doc = "MP-VE: viscous fluid (-H < y < 0) on an elastic solid (0 < y < Hbar), periodic in x, "
+          "traditional partitioned coupling, from the exact traveling wave";
+  auto rho_bar = real_param("rho_bar", 1000.0, "kg/m^3", "solid density (lambda_bar = mu_bar = rho_bar: cp = sqrt 3, cs = 1)");
+  greater_than(rho_bar, 0.0);
+  auto mu = real_param("viscosity", 0.02, "Pa s", "fluid viscosity mu (fluid density 1)");
+  greater_than(mu, 0.0);
+  auto cells = int_param("cells", 32, "cells per wavelength in x (h = 1 / cells; the wavelength is 1)");
+  at_least(cells, 8);
+  at_most(cells, 4096);
+  auto blowup = real_param("blowup_factor", 10.0, "1", "unstable once max |v| exceeds this multiple of its start");
+  greater_than(blowup, 1.0);
+  t.specs = {rho_bar, mu, cells, blowup};
+  return t;
+}
+
+namespace {
+
+class MpveModule final : public Module {
+ public:
+  MpveModule(const Parameters& p, const Communicator& comm) {
+    if (comm.size() > 1)
+      throw DecompositionError("more ranks (" + std::to_string(comm.size()) + ") than blocks (1): MP-VE runs on one rank");
+    // The check case (k = 2 pi, H = 1, Hbar = 0.5, rho = 1, mu = 0.01, rho_bar = 0.05),
+    // its root followed to the scene's solid density and viscosity.
+    const MpveParameters check{2 * M_PI, 1.0, 0.5, 1.0, 0.01, 0.05, 0.05, 0.05};
+    const Complex w0 = solve_mpve_dispersion(check, Complex(1.4, -0.4)).omega;
+    s_.physics = check;
+    s_.physics.mu = p.real("viscosity");
+    s_.physics.rho_bar = s_.physics.lambda_bar = s_.physics.mu_bar = p.real("rho_bar");
+    const DispersionRoot root = continue_mpve_dispersion(check, w0, s_.physics, 40);
+    if (!root.converged)
+      throw std::invalid_argument("mpve: the dispersion root could not be followed to rho_bar = " +
+                                  std::to_string(p.real("rho_bar")) + ", viscosity = " + std::to_string(p.real("viscosity")));
+    s_.omega = root.omega;
+    s_.nx = static_cast<int>(p.integer("cells"));
+    s_.blowup_factor = p.real("blowup_factor");
+    s_.dt = stable_dt();
+    run_ = std::make_unique<MpvePartitioned>(s_);
+  }
+
+  std::string name() const override { return "mpve"; }
+  /// The solid's leapfrog limit 1 / (cp sqrt(1/hx^2 + 1/hy^2)) with hx = hy = h (cp = sqrt 3).
+  double stable_dt() const override { return (1.0 / s_.nx) / (std::sqrt(3.0) * std::sqrt(2.0)); }
+  void set_time_step(double dt) override {
+    if (!(dt > 0) || dt > stable_dt() * (1 + 1e-12)) {
+      std::ostringstream m;
+      m << "mpve: dt = " << dt << " outside (0, " << stable_dt() << "], the solid's leapfrog limit";
+      throw std::invalid_argument(m.str());
+    }
+    s_.dt = dt;
+    run_ = std::make_unique<MpvePartitioned>(s_);
+  }
+  void advance(double, double) override { run_->step(); }
+  long long work_per_step() const override { return 3LL * s_.nx * s_.nx; }
+  std::string work_unit() const override { return "cell-steps"; }
+
+  std::vector<OutputBlock> output(double) const override {
+    const auto o = run_->snapshot();
+    OutputBlock f;
+    f.name = "fluid";
+    f.x = o.fluid_x;
+    f.y = o.fluid_y;
+    f.z = {0.0};
+    f.fields = {{"u", o.u}, {"v", o.v}, {"p", o.p}, {"u_exact", o.u_exact}, {"v_exact", o.v_exact}, {"p_exact", o.p_exact}};
+    OutputBlock s;
+    s.name = "solid";
+    s.x = o.solid_x;
+    s.y = o.solid_y;
+    s.z = {0.0};
+    s.fields = {{"ubar", o.ubar}, {"vbar", o.vbar}, {"ubar_exact", o.ubar_exact}, {"vbar_exact", o.vbar_exact}};
+    return {f, s};
+  }
+  Diagnostics diagnostics(double) const override {
+    const MpveErrors e = run_->errors();
+    return {{"max_v", run_->max_fluid_speed()}, {"u_error", e.u}, {"v_error", e.v}, {"p_error", e.p},
+            {"ubar_error", e.ubar}, {"vbar_error", e.vbar}, {"omega_re", s_.omega.real()}, {"omega_im", s_.omega.imag()}};
+  }
+  std::string error_diagnostic() const override { return "vbar_error"; }
+  std::optional<NonFiniteReport> find_nonfinite() const override {
+    if (!run_->blown_up()) return std::nullopt;
+    NonFiniteReport r;
+    std::ostringstream m;
+    m << "the tp coupling is unstable at rho_bar / rho = " << s_.physics.rho_bar / s_.physics.rho << " (max |v| = "
+      << run_->max_fluid_speed() << " > " << s_.blowup_factor << " x its start)";
+    r.reason = m.str();
+    r.field = "v";
+    r.block = "fluid";
+    return r;
+  }
+  std::vector<StateBlock> state() const override { return {{"mpve", run_->save()}}; }
+  void restore(const std::vector<StateBlock>& blocks) override {
+    for (const auto& b : blocks)
+      if (b.name == "mpve") run_->restore(b.arrays);
+  }
+  std::vector<std::string> owned_blocks() const override { return {"mpve"}; }
+
+ private:
+  MpveSetup s_;
+  std::unique_ptr<MpvePartitioned> run_;
+};
+
+}  // namespace
+
+std::unique_ptr<Module> create_mpve(const Parameters& p, const Communicator& comm) {
+  return std::make_unique<MpveModule>(p, comm);
+}
+
+}  // namespace amphora::fsi
