@@ -37,6 +37,7 @@ TEST(MpvePartitioned, TraditionalConvergesForAHeavySolid) {
     const MpveRun r = run_mpve(s);
     ASSERT_TRUE(r.stable) << r.message;
     const MpveErrors& e = r.errors;
+    if (n > 16) std::printf("n %3d  sigma_bar %.2e (%.2f)\n", n, e.sigma, std::log2(prev.sigma / e.sigma));
     if (n > 16)
       std::printf("n %3d omega %.5f%+.5fi  u %.2e (%.2f) v %.2e (%.2f) p %.2e (%.2f) ubar %.2e (%.2f) vbar %.2e (%.2f)\n", n,
                   s.omega.real(), s.omega.imag(), e.u, std::log2(prev.u / e.u), e.v, std::log2(prev.v / e.v), e.p,
@@ -45,6 +46,9 @@ TEST(MpvePartitioned, TraditionalConvergesForAHeavySolid) {
       EXPECT_NEAR(std::log2(prev.v / e.v), 2.0, 0.2);
       EXPECT_NEAR(std::log2(prev.ubar / e.ubar), 2.0, 0.2);
       EXPECT_NEAR(std::log2(prev.vbar / e.vbar), 2.0, 0.2);
+      // The solid stress (centred differences of the displacement) is not second order here:
+      // 1.99, 1.76, 1.58 at n = 32, 64, 128 - an interface-layer error of the TP transfers.
+      EXPECT_GT(std::log2(prev.sigma / e.sigma), 1.4);
       EXPECT_GT(std::log2(prev.u / e.u), 1.7);
     }
     prev = e;

@@ -87,7 +87,7 @@ class MpveModule final : public Module {
   Diagnostics diagnostics(double) const override {
     const MpveErrors e = run_->errors();
     return {{"max_v", run_->max_fluid_speed()}, {"u_error", e.u}, {"v_error", e.v}, {"p_error", e.p},
-            {"ubar_error", e.ubar}, {"vbar_error", e.vbar}, {"omega_re", s_.omega.real()}, {"omega_im", s_.omega.imag()}};
+            {"ubar_error", e.ubar}, {"vbar_error", e.vbar}, {"sigma_bar_error", e.sigma}, {"omega_re", s_.omega.real()}, {"omega_im", s_.omega.imag()}};
   }
   std::string error_diagnostic() const override { return "vbar_error"; }
   std::optional<NonFiniteReport> find_nonfinite() const override {

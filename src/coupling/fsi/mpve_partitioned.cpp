@@ -1,5 +1,6 @@
 #include "coupling/fsi/mpve_partitioned.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -251,11 +252,18 @@ MpveErrors MpvePartitioned::errors() const {
       e.p = std::max(e.p, std::abs(f.p()[size_t(j) * nx + i] - mpve_fluid(P, st.s.omega, st.mode, f.v_x(i), f.u_y(j), tp).p));
     }
   const auto d = st.solid.displacement();
+  const double hx = st.sg.hx, hy = st.sg.hy, lb = P.lambda_bar, mb = P.mu_bar;
   for (int j = 0; j <= st.sg.ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const MpveSolidFields ex = mpve_solid(P, st.s.omega, st.mode, i * st.sg.hx, j * st.sg.hy, t);
+      const MpveSolidFields ex = mpve_solid(P, st.s.omega, st.mode, i * hx, j * hy, t);
       e.ubar = std::max(e.ubar, std::abs(d(j + 1, i, 0) - ex.ubar));
       e.vbar = std::max(e.vbar, std::abs(d(j + 1, i, 1) - ex.vbar));
+      if (j == 0 || j == st.sg.ny) continue;
+      const int ie = (i + 1) % nx, iw = (i + nx - 1) % nx;
+      const double ux = (d(j + 1, ie, 0) - d(j + 1, iw, 0)) / (2 * hx), uy = (d(j + 2, i, 0) - d(j, i, 0)) / (2 * hy);
+      const double vx = (d(j + 1, ie, 1) - d(j + 1, iw, 1)) / (2 * hx), vy = (d(j + 2, i, 1) - d(j, i, 1)) / (2 * hy);
+      e.sigma = std::max({e.sigma, std::abs(lb * (ux + vy) + 2 * mb * ux - ex.sxx), std::abs(mb * (uy + vx) - ex.sxy),
+                          std::abs(lb * (ux + vy) + 2 * mb * vy - ex.syy)});
     }
   return e;
 }
