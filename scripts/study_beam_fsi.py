@@ -16,41 +16,26 @@ import argparse
 import csv
 import os
 import re
-import subprocess
 
-here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-amphora = os.path.join(here, "build", "release", "apps", "amphora")
+from scene_variant import here, run_variant
+
 out = os.path.join(here, "output", "study_beam_fsi")
 ratios = [100.0, 10.0, 1.0, 0.1, 0.01]
 grids = [20, 40, 80, 160, 320]
 
 
 def run(scheme, ratio, n, end_time):
-    name = f"{scheme}_r{ratio:g}_n{n}"
-    d = os.path.join(out, name)
-    text = open(os.path.join(here, "scenes", "beam_channel_amp.toml")).read()
-    text = re.sub(r'output_dir = ".*"', f'output_dir = "{d}"', text)
-    text = re.sub(r'scheme = ".*"', f'scheme = "{scheme}"', text)
-    text = re.sub(r"rho_h = .*", f"rho_h = {ratio}", text)
-    text = re.sub(r"points = \d+", f"points = {n}", text)
-    text = re.sub(r"fluid_rows = \d+", f"fluid_rows = {n // 2}", text)
-    text = re.sub(r"end_time = .*", f"end_time = {end_time}", text)
-    text = re.sub(r"output_every = \d+", "output_every = 100000", text)
-    scene = d + ".toml"
-    open(scene, "w").write(text)
-    env = dict(os.environ, OMP_NUM_THREADS="1", OMP_PROC_BIND="false")
-    p = subprocess.run([amphora, "run", scene], capture_output=True, text=True, env=env)
-    row = {"scheme": scheme, "rho_h_over_rho": ratio, "points": n, "stable": int(p.returncode == 0)}
-    if p.returncode not in (0, 3):
-        raise RuntimeError(f"{scene}: exit {p.returncode}\n{p.stderr}")
-    if p.returncode == 3:
-        m = re.search(r"at step (\d+), t = ([0-9.e+-]+)", p.stderr)
-        row.update(blowup_step=int(m.group(1)), blowup_time=float(m.group(2)))
+    d = os.path.join(out, f"{scheme}_r{ratio:g}_n{n}")
+    r = run_variant("beam_channel_amp.toml", d, {"scheme": f'"{scheme}"', "rho_h": ratio, "points": n,
+                                                 "fluid_rows": n // 2, "end_time": end_time})
+    row = {"scheme": scheme, "rho_h_over_rho": ratio, "points": n, "stable": r["stable"]}
+    if not r["stable"]:
+        row.update(blowup_step=r["blowup_step"], blowup_time=r["blowup_time"])
         return row
-    done = re.search(r"\[done\] (\d+) steps .* in ([0-9.e+-]+) s stepping", p.stdout)
+    done = re.search(r"\[done\] (\d+) steps .* in ([0-9.e+-]+) s stepping", r["stdout"])
     steps, seconds = int(done.group(1)), float(done.group(2))
     rows = list(csv.DictReader(open(os.path.join(d, "diagnostics.csv"))))
-    sub = [float(r["subiterations"]) for r in rows[1:]]
+    sub = [float(x["subiterations"]) for x in rows[1:]]
     row.update(steps=steps, seconds_per_step=seconds / steps, eta_error=float(rows[-1]["eta_error"]),
                mean_subiterations=sum(sub) / len(sub))
     return row

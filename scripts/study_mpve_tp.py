@@ -13,33 +13,19 @@ Writes output/study_mpve_tp/mpve_tp_stability.csv and mpve_tp_stability.png.
 import argparse
 import csv
 import os
-import re
-import subprocess
 
-here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-amphora = os.path.join(here, "build", "release", "apps", "amphora")
+from scene_variant import here, run_variant
+
 out = os.path.join(here, "output", "study_mpve_tp")
 ratios = [800.0, 400.0, 200.0, 100.0, 10.0, 1.0]
 
 
 def run(ratio, cells, end_time):
     d = os.path.join(out, f"r{ratio:g}_n{cells}")
-    text = open(os.path.join(here, "scenes", "mpve_tp.toml")).read()
-    text = re.sub(r'output_dir = ".*"', f'output_dir = "{d}"', text)
-    text = re.sub(r"rho_bar = .*", f"rho_bar = {ratio}", text)
-    text = re.sub(r"cells = \d+", f"cells = {cells}", text)
-    text = re.sub(r"end_time = .*", f"end_time = {end_time}", text)
-    text = re.sub(r"output_every = \d+", "output_every = 100000", text)
-    scene = d + ".toml"
-    open(scene, "w").write(text)
-    env = dict(os.environ, OMP_NUM_THREADS="1", OMP_PROC_BIND="false")
-    p = subprocess.run([amphora, "run", scene], capture_output=True, text=True, env=env)
-    row = {"rho_bar_over_rho": ratio, "dy": 1.0 / cells, "cells": cells, "stable": int(p.returncode == 0)}
-    if p.returncode not in (0, 3):
-        raise RuntimeError(f"{scene}: exit {p.returncode}\n{p.stderr}")
-    if p.returncode == 3:
-        m = re.search(r"at step (\d+), t = ([0-9.e+-]+)", p.stderr)
-        row.update(blowup_step=int(m.group(1)), blowup_time=float(m.group(2)))
+    r = run_variant("mpve_tp.toml", d, {"rho_bar": ratio, "cells": cells, "end_time": end_time})
+    row = {"rho_bar_over_rho": ratio, "dy": 1.0 / cells, "cells": cells, "stable": r["stable"]}
+    if not r["stable"]:
+        row.update(blowup_step=r["blowup_step"], blowup_time=r["blowup_time"])
     else:
         last = list(csv.DictReader(open(os.path.join(d, "diagnostics.csv"))))[-1]
         row.update(vbar_error=float(last["vbar_error"]), v_error=float(last["v_error"]))

@@ -48,8 +48,8 @@ class MpveModule final : public Module {
     s_.omega = root.omega;
     s_.nx = static_cast<int>(p.integer("cells"));
     s_.blowup_factor = p.real("blowup_factor");
-    s_.dt = stable_dt();
-    run_ = std::make_unique<MpvePartitioned>(s_);
+    // The coupled system (its factorisations depend on dt) is built by set_time_step, which
+    // the run driver calls before anything else.
   }
 
   std::string name() const override { return "mpve"; }

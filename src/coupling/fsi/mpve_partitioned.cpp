@@ -51,6 +51,7 @@ struct MpvePartitioned::State {
   std::vector<double> row_prev, row_now;      // solid interface displacement (u, v) at t - dt, t
   std::vector<double> gu_now, gv_now;         // the fluid's wall data at t (u at x_i, v at x_{i+1/2})
   double v_scale = 0;
+  Kokkos::View<double* [2], Kokkos::HostSpace> traction;  // the fluid's, on the solid's interface nodes
 
   static channel::ChannelGrid fluid_grid(const MpveSetup& s) {
     const double L = 2 * M_PI / s.physics.k, h = L / s.nx;
@@ -89,6 +90,7 @@ struct MpvePartitioned::State {
     row_prev = interface_row(solid.previous());
     gu_now.resize(nx);
     gv_now.resize(nx);
+    traction = Kokkos::View<double* [2], Kokkos::HostSpace>("amphora::mpve::traction", nx);
     for (int i = 0; i < nx; ++i) {
       gu_now[i] = F(fluid.u_x(i), 0.0, 0.0).u;
       gv_now[i] = F(fluid.v_x(i), 0.0, 0.0).v;
@@ -109,7 +111,7 @@ struct MpvePartitioned::State {
     const double mu = s.physics.mu, hx = fg.hx(), hy = fg.hy(), dt = s.dt;
     auto wrap = [nx](int i) { return (i % nx + nx) % nx; };
     // 1. The fluid's traction at t on the solid's interface nodes x_i.
-    Kokkos::View<double* [2], Kokkos::HostSpace> tr("amphora::mpve::traction", nx);
+    const auto& tr = traction;
     const auto& u = fluid.u();
     const auto& p = fluid.p();
     for (int i = 0; i < nx; ++i) {
