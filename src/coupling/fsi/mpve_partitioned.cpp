@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <sstream>
 
@@ -38,7 +39,15 @@ struct Fixed {
   double operator()(double, double, double, int) const { return 0.0; }
 };
 
+std::optional<channel::TopImpedance> fluid_top(const MpveSetup& s) {
+  if (s.scheme == MpveScheme::tp) return std::nullopt;
+  const auto& P = s.physics;
+  return channel::TopImpedance{std::sqrt(P.rho_bar * (P.lambda_bar + 2 * P.mu_bar)), std::sqrt(P.rho_bar * P.mu_bar)};
+}
+
 }  // namespace
+
+const char* to_string(MpveScheme s) { return s == MpveScheme::amp ? "amp" : "tp"; }
 
 struct MpvePartitioned::State {
   MpveSetup s;
@@ -49,7 +58,9 @@ struct MpvePartitioned::State {
   Solid solid;
   std::vector<double> p_prev;                 // fluid pressure at t - 3 dt / 2
   std::vector<double> row_prev, row_now;      // solid interface displacement (u, v) at t - dt, t
-  std::vector<double> gu_now, gv_now;         // the fluid's wall data at t (u at x_i, v at x_{i+1/2})
+  std::vector<double> gu_now, gv_now;         // the fluid's wall velocity at t (u at x_i, v at x_{i+1/2})
+  std::vector<double> gv_prev;                // AMP: the fluid's wall v at t - dt
+  std::vector<double> g_now;                  // AMP: the characteristics sent at t (x, y per node)
   double v_scale = 0;
   Kokkos::View<double* [2], Kokkos::HostSpace> traction;  // the fluid's, on the solid's interface nodes
 
@@ -68,7 +79,7 @@ struct MpvePartitioned::State {
         mode(mpve_mode(setup.physics, setup.omega)),
         fg(fluid_grid(setup)),
         sg(solid_grid(setup)),
-        fluid(fg, setup.physics.rho, setup.physics.mu, setup.dt),
+        fluid(fg, setup.physics.rho, setup.physics.mu, setup.dt, fluid_top(setup)),
         solid(sg, {setup.physics.rho_bar, setup.physics.lambda_bar, setup.physics.mu_bar}, setup.dt) {
     const int nx = fg.nx, ny = fg.ny;
     const auto& P = s.physics;
@@ -84,16 +95,26 @@ struct MpvePartitioned::State {
         p[size_t(j) * nx + i] = F(fluid.v_x(i), fluid.u_y(j), -0.5 * s.dt).p;
         p_prev[size_t(j) * nx + i] = F(fluid.v_x(i), fluid.u_y(j), -1.5 * s.dt).p;
       }
-    fluid.set_state(0.0, u, v, p);
-    solid.set_state(0.0, ExactDisplacement{P, s.omega, mode});
-    row_now = interface_row(solid.displacement());
-    row_prev = interface_row(solid.previous());
     gu_now.resize(nx);
     gv_now.resize(nx);
-    traction = Kokkos::View<double* [2], Kokkos::HostSpace>("amphora::mpve::traction", nx);
+    gv_prev.resize(nx);
     for (int i = 0; i < nx; ++i) {
       gu_now[i] = F(fluid.u_x(i), 0.0, 0.0).u;
       gv_now[i] = F(fluid.v_x(i), 0.0, 0.0).v;
+      gv_prev[i] = F(fluid.v_x(i), 0.0, -s.dt).v;
+    }
+    fluid.set_state(0.0, u, v, p, s.scheme == MpveScheme::amp ? gu_now : std::vector<double>{});
+    solid.set_state(0.0, ExactDisplacement{P, s.omega, mode});
+    row_now = interface_row(solid.displacement());
+    row_prev = interface_row(solid.previous());
+    traction = Kokkos::View<double* [2], Kokkos::HostSpace>("amphora::mpve::traction", nx);
+    if (s.scheme == MpveScheme::amp) {
+      const auto z = *fluid_top(s);
+      for (int i = 0; i < nx; ++i) {
+        const MpveSolidFields e = mpve_solid(P, s.omega, mode, i * sg.hx, 0.0, 0.0);
+        g_now.push_back(e.sxy + z.z_shear * e.ubar_t);
+        g_now.push_back(e.syy + z.z_normal * e.vbar_t);
+      }
     }
   }
 
@@ -126,9 +147,20 @@ struct MpvePartitioned::State {
       const double p0 = 0.5 * (3 * at_xi(p) - at_xi(p_prev));  // t - dt/2, t - 3dt/2 -> t
       tr(i, 0) = mu * (u_y + v_x);
       tr(i, 1) = -p0 + 2 * mu * v_y;
+      if (s.scheme == MpveScheme::amp) {
+        // AMP: the interface traction consistent with the characteristics sent at t and the
+        // interface velocity (the impedance-weighted traction with an incompressible fluid's
+        // infinite impedance): light solids must not see the fluid's own traction, whose
+        // errors their predictor divides by their density.
+        const auto z = *fluid_top(s);
+        tr(i, 0) = g_now[2 * i] - z.z_shear * gu_now[i];
+        tr(i, 1) = g_now[2 * i + 1] - z.z_normal * 0.5 * (gv_now[wrap(i - 1)] + gv_now[i]);
+      }
     }
-    // 2. The solid to t + dt.
+    // 2. The solid to t + dt (AMP: its predictor).
     solid.step_with_bottom_traction(NodeTraction{tr, sg.hx}, Fixed{});
+    Kokkos::fence();
+    if (s.scheme == MpveScheme::amp) return amp_fluid_and_corrector();
     const std::vector<double> row_next = interface_row(solid.displacement());
     // 3. The solid's interface velocity at t (centred) and t + dt (one-sided), as wall data.
     std::vector<double> gu0(nx), gv0(nx), gu1(nx), gv1(nx), vel0(2 * nx), vel1(2 * nx);
@@ -157,6 +189,63 @@ struct MpvePartitioned::State {
     row_prev = row_now;
     row_now = row_next;
     gu_now = gu1;
+    gv_now = gv1;
+  }
+
+  /// AMP after the solid's predictor: the fluid with the solid's outgoing characteristics at
+  /// t + dt as its impedance top, then the solid's interface row moved with the fluid.
+  void amp_fluid_and_corrector() {
+    const int nx = fg.nx;
+    const double dt = s.dt, hy = sg.hy, hx = sg.hx;
+    const auto& P = s.physics;
+    const double lb = P.lambda_bar, mb = P.mu_bar;
+    const channel::TopImpedance z = *fluid_top(s);
+    auto wrap = [nx](int i) { return (i % nx + nx) % nx; };
+    const auto d = solid.displacement();  // predicted; storage row 1 = the interface
+    const std::vector<double> row_pred = interface_row(d);
+    // The outgoing characteristics at the nodes: one-sided y derivatives, centred x ones,
+    // velocities by BDF2.
+    std::vector<double> gx(nx), gy_node(nx), gy(nx);
+    for (int i = 0; i < nx; ++i) {
+      const int e = wrap(i + 1), w = wrap(i - 1);
+      auto dy = [&](int c) { return (-3 * d(1, i, c) + 4 * d(2, i, c) - d(3, i, c)) / (2 * hy); };
+      auto dx = [&](int c) { return (d(1, e, c) - d(1, w, c)) / (2 * hx); };
+      auto vel = [&](int c) { return (3 * row_pred[2 * i + c] - 4 * row_now[2 * i + c] + row_prev[2 * i + c]) / (2 * dt); };
+      gx[i] = mb * (dy(0) + dx(1)) + z.z_shear * vel(0);
+      gy_node[i] = (lb + 2 * mb) * dy(1) + lb * dx(0) + z.z_normal * vel(1);
+    }
+    for (int i = 0; i < nx; ++i) {
+      gy[i] = 0.5 * (gy_node[i] + gy_node[wrap(i + 1)]);
+      g_now[2 * i] = gx[i];
+      g_now[2 * i + 1] = gy_node[i];
+    }
+    std::vector<double> v_guess(nx);  // the interface's normal velocity at t + dt, extrapolated
+    for (int i = 0; i < nx; ++i) v_guess[i] = 2 * gv_now[i] - gv_prev[i];
+    const double hf = fg.hx();
+    channel::StokesData data;
+    data.fx = data.fy = [](double, double, double) { return 0.0; };
+    data.u_bottom = data.v_bottom = [](double, double) { return 0.0; };
+    data.u_top = [](double, double) { return 0.0; };
+    data.v_top = [&](double x, double) { return v_guess[wrap(int(std::floor(x / hf)))]; };
+    data.g_top_x = [&](double x, double) { return gx[wrap(int(std::lround(x / hf)))]; };
+    data.g_top_y = [&](double x, double) { return gy[wrap(int(std::floor(x / hf)))]; };
+    p_prev = fluid.p();
+    fluid.step(data);
+    // The fluid's interface velocity at t + dt; the solid's interface row follows it.
+    const std::vector<double>& gu1 = fluid.top_state();
+    std::vector<double> gv1(fluid.v().end() - nx, fluid.v().end());
+    std::vector<double> row_next(2 * nx);
+    for (int i = 0; i < nx; ++i) {
+      const double v0 = 0.5 * (gv_now[wrap(i - 1)] + gv_now[i]), v1 = 0.5 * (gv1[wrap(i - 1)] + gv1[i]);
+      row_next[2 * i] = row_now[2 * i] + 0.5 * dt * (gu_now[i] + gu1[i]);
+      row_next[2 * i + 1] = row_now[2 * i + 1] + 0.5 * dt * (v0 + v1);
+      d(1, i, 0) = row_next[2 * i];
+      d(1, i, 1) = row_next[2 * i + 1];
+    }
+    row_prev = row_now;
+    row_now = row_next;
+    gu_now = gu1;
+    gv_prev = gv_now;
     gv_now = gv1;
   }
 };
@@ -221,22 +310,26 @@ std::vector<std::pair<std::string, std::vector<double>>> MpvePartitioned::save()
           {"row_prev", st.row_prev},
           {"row_now", st.row_now},
           {"gu_now", st.gu_now},
-          {"gv_now", st.gv_now}};
+          {"gv_now", st.gv_now},
+          {"gv_prev", st.gv_prev},
+          {"g_now", st.g_now}};
 }
 
 void MpvePartitioned::restore(const std::vector<std::pair<std::string, std::vector<double>>>& arrays) {
   State& st = *s_;
   std::map<std::string, std::vector<double>> a(arrays.begin(), arrays.end());
-  for (const char* key : {"time", "u", "v", "p", "p_prev", "solid", "solid_prev", "row_prev", "row_now", "gu_now", "gv_now"})
+  for (const char* key : {"time", "u", "v", "p", "p_prev", "solid", "solid_prev", "row_prev", "row_now", "gu_now", "gv_now", "gv_prev", "g_now"})
     if (!a.count(key)) throw std::runtime_error(std::string("mpve: checkpoint lacks '") + key + "'");
   const double t = a["time"].at(0);
-  st.fluid.set_state(t, a["u"], a["v"], a["p"]);
+  st.fluid.set_state(t, a["u"], a["v"], a["p"], st.s.scheme == MpveScheme::amp ? a["gu_now"] : std::vector<double>{});
   st.p_prev = a["p_prev"];
   st.solid.restore(t, a["solid"], a["solid_prev"]);
   st.row_prev = a["row_prev"];
   st.row_now = a["row_now"];
   st.gu_now = a["gu_now"];
   st.gv_now = a["gv_now"];
+  st.gv_prev = a["gv_prev"];
+  st.g_now = a["g_now"];
 }
 
 MpveErrors MpvePartitioned::errors() const {
@@ -281,7 +374,7 @@ MpveRun run_mpve(const MpveSetup& s) {
     if (m.blown_up()) {
       r.stable = false;
       std::ostringstream msg;
-      msg << "tp (MP-VE) unstable at step " << r.steps << ", t = " << r.time << " (rho_bar / rho = "
+      msg << to_string(s.scheme) << " (MP-VE) unstable at step " << r.steps << ", t = " << r.time << " (rho_bar / rho = "
           << s.physics.rho_bar / s.physics.rho << ")";
       r.message = msg.str();
       return r;

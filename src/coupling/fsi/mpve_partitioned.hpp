@@ -1,8 +1,15 @@
 #pragma once
 // The MP-VE model problem (viscous fluid -H < y < 0 on an elastic solid 0 < y < Hbar, periodic
-// in x) solved by the traditional partitioned scheme (TP): each step the solid (leapfrog,
-// physics/elastic_solid) takes the fluid's traction at t_n, then the fluid (Stokes,
-// physics/channel_flow) takes the solid's interface velocity at t_n and t_{n+1} as wall data.
+// in x) by a partitioned scheme. Each step the solid (leapfrog, physics/elastic_solid) takes
+// the fluid's traction at t_n; then
+//  - TP (traditional): the fluid (Stokes, physics/channel_flow) takes the solid's interface
+//    velocity at t_n and t_{n+1} as wall data;
+//  - AMP (added-mass partitioned; Banks, Henshaw & Schwendeman, J. Comput. Phys. 269, 2014):
+//    the solid's step is a predictor; its outgoing characteristics at the interface,
+//    sigma_yy + z_p v and sigma_xy + z_s u (z_p = rho_bar cp_bar, z_s = rho_bar cs_bar), are the
+//    fluid's impedance top (a Robin condition on the pressure with weight z_p dt / rho, one on
+//    the tangential velocity); then the solid's interface row is corrected to move with the
+//    fluid's interface velocity (trapezoidal rule in time). No sub-iterations, no parameters.
 // Starts from the exact traveling wave (mpve_traveling_wave.hpp), which is also the reference.
 // Second-order interface transfers: the fluid traction from one-sided differences and the
 // pressure extrapolated in time from its half steps; the solid velocity from its displacement
@@ -16,7 +23,11 @@
 
 namespace amphora::fsi {
 
+enum class MpveScheme { tp, amp };
+const char* to_string(MpveScheme s);
+
 struct MpveSetup {
+  MpveScheme scheme = MpveScheme::tp;
   MpveParameters physics;  ///< k, H, Hbar, rho, mu, rho_bar, lambda_bar, mu_bar
   Complex omega;           ///< a root of the dispersion relation for `physics`
   int nx = 32;             ///< cells per wavelength in x (the period is 2 pi / k)
