@@ -13,7 +13,8 @@ ParamTable mpve_parameter_table() {
   ParamTable t;
   t.name = "mpve";
   t.doc = "MP-VE: viscous fluid (-H < y < 0) on an elastic solid (0 < y < Hbar), periodic in x, "
-          "traditional partitioned coupling, from the exact traveling wave";
+          "partitioned coupling (traditional or added-mass partitioned), from the exact traveling wave";
+  auto scheme = string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp"});
   auto rho_bar = real_param("rho_bar", 1000.0, "kg/m^3", "solid density (lambda_bar = mu_bar = rho_bar: cp = sqrt 3, cs = 1)");
   greater_than(rho_bar, 0.0);
   auto mu = real_param("viscosity", 0.02, "Pa s", "fluid viscosity mu (fluid density 1)");
@@ -23,7 +24,7 @@ ParamTable mpve_parameter_table() {
   at_most(cells, 4096);
   auto blowup = real_param("blowup_factor", 10.0, "1", "unstable once max |v| exceeds this multiple of its start");
   greater_than(blowup, 1.0);
-  t.specs = {rho_bar, mu, cells, blowup};
+  t.specs = {scheme, rho_bar, mu, cells, blowup};
   return t;
 }
 
@@ -46,6 +47,7 @@ class MpveModule final : public Module {
       throw std::invalid_argument("mpve: the dispersion root could not be followed to rho_bar = " +
                                   std::to_string(p.real("rho_bar")) + ", viscosity = " + std::to_string(p.real("viscosity")));
     s_.omega = root.omega;
+    s_.scheme = p.string("scheme") == "tp" ? MpveScheme::tp : MpveScheme::amp;
     s_.nx = static_cast<int>(p.integer("cells"));
     s_.blowup_factor = p.real("blowup_factor");
     // The coupled system (its factorisations depend on dt) is built by set_time_step, which
@@ -94,7 +96,7 @@ class MpveModule final : public Module {
     if (!run_->blown_up()) return std::nullopt;
     NonFiniteReport r;
     std::ostringstream m;
-    m << "the tp coupling is unstable at rho_bar / rho = " << s_.physics.rho_bar / s_.physics.rho << " (max |v| = "
+    m << "the " << to_string(s_.scheme) << " coupling is unstable at rho_bar / rho = " << s_.physics.rho_bar / s_.physics.rho << " (max |v| = "
       << run_->max_fluid_speed() << " > " << s_.blowup_factor << " x its start)";
     r.reason = m.str();
     r.field = "v";
