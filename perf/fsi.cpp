@@ -1,0 +1,75 @@
+// Partitioned fluid–structure coupling (issue 5): the cost of one time step, AMP against the
+// traditional scheme (TP) and against TP with the Aitken sub-iterations it needs to stay stable.
+//
+// Beam/scheme/inv_ratio: the beam over an inviscid channel (160 points, 80 fluid rows, the
+// test's wave and dt) at rho_h / rho = 1 / inv_ratio; scheme 0 = TP, 1 = TP-Aitken, 2 = AMP.
+// TP runs at rho_h / rho = 100 only (it blows up below 0.1; its step costs the same at any
+// ratio). Counter: sub-iterations per step.
+// Mpve/scheme/n: MP-VE (viscous channel over an elastic solid) on n x n fluid cells, the heavy
+// solid (rho_bar / rho = 1000, mu = 0.02) where TP is stable up to n = 160; scheme 0 = TP, 2 = AMP.
+// Time per iteration = one step (set-up and factorisations outside the timing).
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+
+#include "coupling/fsi/beam_channel_fsi.hpp"
+#include "coupling/fsi/beam_channel_wave.hpp"
+#include "coupling/fsi/mpve_partitioned.hpp"
+
+namespace {
+
+using namespace amphora::fsi;
+
+BeamChannelSetup beam_setup(double rho_h, BeamScheme scheme) {
+  const int n = 160;
+  BeamChannelSetup s;
+  s.beam.length = 1.0;
+  s.beam.rho_h = rho_h;
+  s.beam.spring = 0.5;
+  s.beam.tension = 1.0;
+  s.beam.stiffness = 0.01;
+  s.beam.points = n;
+  s.depth = 0.5;
+  s.fluid_rows = n / 2;
+  s.scheme = scheme;
+  s.end_time = 1e9;
+  const double w = beam_channel_frequency(s.beam, 2 * M_PI, s.depth, s.rho);
+  s.dt = 0.5 / (std::max(1, static_cast<int>(std::ceil(0.5 * w / M_PI))) * n);
+  return s;
+}
+
+void Beam(benchmark::State& state) {
+  const auto scheme = static_cast<BeamScheme>(state.range(0));
+  const double rho_h = scheme == BeamScheme::traditional ? 100.0 : 1.0 / static_cast<double>(state.range(1));
+  BeamChannelFsi fsi(beam_setup(rho_h, scheme));
+  long long subiterations = 0, steps = 0;
+  for (auto _ : state) {
+    fsi.step();
+    subiterations += fsi.last_subiterations();
+    ++steps;
+  }
+  state.counters["subiterations_per_step"] = double(subiterations) / double(steps);
+  state.counters["rho_h_over_rho"] = rho_h;
+}
+BENCHMARK(Beam)->Args({0, 1})->Args({1, 100})->Args({1, 1000})->Args({2, 100})->Args({2, 1000})->Unit(benchmark::kMicrosecond);
+
+void Mpve(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(1));
+  const MpveParameters check{2 * M_PI, 1.0, 0.5, 1.0, 0.01, 0.05, 0.05, 0.05};
+  MpveParameters p = check;
+  p.mu = 0.02;
+  p.rho_bar = p.lambda_bar = p.mu_bar = 1000.0;
+  MpveSetup s;
+  s.scheme = state.range(0) == 2 ? MpveScheme::amp : MpveScheme::tp;
+  s.physics = p;
+  s.omega = continue_mpve_dispersion(check, solve_mpve_dispersion(check, Complex(1.4, -0.4)).omega, p, 40).omega;
+  s.nx = n;
+  s.dt = 0.3 / n;
+  MpvePartitioned fsi(s);
+  for (auto _ : state) fsi.step();
+  state.counters["cells"] = double(n) * n;
+}
+BENCHMARK(Mpve)->Args({0, 80})->Args({2, 80})->Args({0, 160})->Args({2, 160})->Unit(benchmark::kMillisecond);
+
+}  // namespace
