@@ -136,12 +136,13 @@ void expect_second_order(std::optional<TopImpedance> top, double mu) {
 TEST(ChannelStokes, ManufacturedFlowConvergesAtSecondOrder) { expect_second_order(std::nullopt, 0.1); }
 
 TEST(ChannelStokes, ImpedanceTopConvergesAtSecondOrderForEveryImpedance) {
-  // mu dt / (rho h^2) = 0.03 .. 0.25: the explicit normal viscous stress bounds it for light
-  // solids (at mu = 0.1 the light cases blow up from n = 64, 2.5; see the header).
-  for (double z : {1e3, 1.0, 1e-3}) {
-    std::printf("impedance top, z_p = %g, z_s = %g\n", z * std::sqrt(3.0), z);
-    expect_second_order(TopImpedance{z * std::sqrt(3.0), z}, 0.01);
-  }
+  // mu dt / (rho h^2) up to 0.25 (mu = 0.01) and 12 (mu = 0.5): the normal viscous stress's
+  // share of the pressure increment is implicit, so light solids set no viscous step limit.
+  for (double mu : {0.01, 0.5})
+    for (double z : {1e3, 1.0, 1e-3}) {
+      std::printf("impedance top, mu = %g, z_p = %g, z_s = %g\n", mu, z * std::sqrt(3.0), z);
+      expect_second_order(TopImpedance{z * std::sqrt(3.0), z}, mu);
+    }
 }
 
 TEST(ChannelStokes, RefusesBadParameters) {

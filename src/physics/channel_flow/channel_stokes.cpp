@@ -82,6 +82,18 @@ ChannelStokes::ChannelStokes(const ChannelGrid& g, double rho, double mu, double
   if (!top) {
     t.erase(std::remove_if(t.begin(), t.end(), [](const auto& e) { return e.row() == 0; }), t.end());
     t.emplace_back(0, 0, 1.0);
+  } else {
+    // The ghost's implicit viscous part eta L_x phi (header), in the top row's flux cy (a - b).
+    const double cy = 1 / (hy * hy), eta = phi_viscous(hy) / (hx * hx);
+    for (int i = 0; i < nx; ++i) {
+      const int r = (ny - 1) * nx + i;
+      for (auto [row, w] : {std::pair{ny - 1, 1.5}, std::pair{ny - 2, -0.5}}) {
+        const int c = row * nx;
+        t.emplace_back(r, c + wrap(i - 1, nx), cy * eta * w);
+        t.emplace_back(r, c + i, -2 * cy * eta * w);
+        t.emplace_back(r, c + wrap(i + 1, nx), cy * eta * w);
+      }
+    }
   }
   f_->mp.compute(build(nx * ny, t));
   if (f_->mp.info() != Eigen::Success) throw std::runtime_error("channel Stokes: factorisation failed");
@@ -98,6 +110,27 @@ double ChannelStokes::phi_ghost(double hy) const {
   // -(3/4)(a + b) - beta (a - b) = data, beta = z_p dt / (rho hy): a = phi_ghost b + data'.
   const double beta = top_->z_normal * dt_ / (rho_ * hy);
   return (beta - 0.75) / (beta + 0.75);
+}
+
+double ChannelStokes::phi_viscous(double hy) const {
+  // a = phi_ghost b + phi_viscous L_x phi + data: the 2 mu dt / rho of -2 mu u_x^{n+1}.
+  const double beta = top_->z_normal * dt_ / (rho_ * hy);
+  return 2 * mu_ * dt_ / rho_ / (beta + 0.75);
+}
+
+std::vector<double> ChannelStokes::viscous_part(const Eigen::VectorXd& phi) const {
+  // L_x phi on the wall: the second x difference of the two rows below, extrapolated.
+  const int nx = g_.nx, ny = g_.ny;
+  const double hx = g_.hx();
+  std::vector<double> l(nx);
+  for (int i = 0; i < nx; ++i) {
+    auto dxx = [&](int row) {
+      const size_t c = size_t(row) * nx;
+      return (phi[c + wrap(i - 1, nx)] - 2 * phi[c + i] + phi[c + wrap(i + 1, nx)]) / (hx * hx);
+    };
+    l[i] = 1.5 * dxx(ny - 1) - 0.5 * dxx(ny - 2);
+  }
+  return l;
 }
 
 void ChannelStokes::set_state(double t, std::vector<double> u, std::vector<double> v,
@@ -206,10 +239,11 @@ void ChannelStokes::step(const StokesData& d) {
       v_[r] = j == 0 ? vs[r] : vs[r] - dt_ / rho_ * (phi[j * nx + i] - phi[(j - 1) * nx + i]) / hy;
     }
   if (top_) {  // the interface moves with the projection: v = v* - dt/rho phi_y, u likewise
-    const double phi_c = phi_ghost(hy);
+    const double phi_c = phi_ghost(hy), phi_v = phi_viscous(hy);
+    const std::vector<double> l = viscous_part(phi);
     std::vector<double> phi_wall(nx);
     for (int i = 0; i < nx; ++i) {
-      const double ghost = phi_c * phi[last + i] + phi_ghost_data[i];
+      const double ghost = phi_c * phi[last + i] + phi_v * l[i] + phi_ghost_data[i];
       v_[top_row + i] = vs[top_row + i] - dt_ / rho_ * (ghost - phi[last + i]) / hy;
       phi_wall[i] = 0.5 * (ghost + phi[last + i]);
     }

@@ -19,18 +19,22 @@
 // the normal one, with sigma_yy = -p + 2 mu v_y, p^{n+1} = (3 p^{n+1/2} - p^{n-1/2}) / 2 and the
 // projected v = v_g - dt/rho phi_y, is a Robin condition on the pressure increment with weight
 // z_p dt / rho (the weight; the 3/2 puts it at t_{n+1}),
-//   -(3/2) phi - (z_p dt / rho) phi_y = g_y + p^{n-1/2} - (3 mu / 4) div v* - 2 mu v*_y - z_p v_g,
+//   -(3/2) phi - (z_p dt / rho) phi_y + (2 mu dt / rho) phi_xx
+//       = g_y + p^{n-1/2} - (3 mu / 4) div v* - 2 mu v*_y - z_p v_g,
 // which moves the interface's normal velocity: heavy solids (z_p large) fix v, light ones
-// (z_p small) fix p. v*_y = -u*_x comes from the two rows below the wall, not from the wall's u
-// (whose ghost carries the guessed v_x: an explicit feedback that made light solids blow up).
-// The normal viscous stress stays explicit, which bounds dt for light solids: mu dt/(rho h^2)
-// of 0.25 and 1.2 run, 2.5 blows up (tests/physics/test_channel_stokes.cpp; the "added damping"
-// that Serino, Banks, Henshaw & Schwendeman, J. Comput. Phys. 399, 2019, cure with a fluid
-// impedance). The MP-VE runs stay well inside.
+// (z_p small) fix p. v_y = -u_x is taken from the two rows below the wall (the wall's own u,
+// through the ghost, carries the guessed v_x), and at t_{n+1}: u^{n+1} = u* - dt/rho phi_x
+// puts the phi_xx term in the condition. Explicit, that normal viscous stress fed the wall
+// pressure back through the predictor's pressure gradient with a gain of about
+// 1/3 - (16/3) mu dt / (rho h^2): light solids blew up once mu dt / (rho h^2) passed ~1/4;
+// implicit, they run at 12 (tests/physics/test_channel_stokes.cpp). Cf. the "added damping"
+// of Serino, Banks, Henshaw & Schwendeman (J. Comput. Phys. 399, 2019).
 #include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "physics/channel_flow/channel_pressure.hpp"
 
@@ -91,7 +95,10 @@ class ChannelStokes {
   ChannelGrid g_;
   double rho_, mu_, dt_, t_ = 0;
   std::optional<TopImpedance> top_;
-  double phi_ghost(double hy) const;  // impedance top: phi ghost = this x the row below + data
+  // Impedance top: phi ghost = phi_ghost x the row below + phi_viscous x L_x phi + data.
+  double phi_ghost(double hy) const;
+  double phi_viscous(double hy) const;
+  std::vector<double> viscous_part(const Eigen::VectorXd& phi) const;
   std::vector<double> u_, v_, p_, top_state_;
   std::unique_ptr<Factors> f_;
 };
