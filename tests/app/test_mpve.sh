@@ -55,7 +55,7 @@ echo "mpve: restart bit for bit"
 scene bad.toml bad "rho_bar = 0.0"
 expect_error 2 "rho_bar" "$AMPHORA" run bad.toml
 scene bad3.toml bad3 'scheme = "aitken"'
-expect_error 2 "scheme.*amp.*tp" "$AMPHORA" run bad3.toml
+expect_error 2 "scheme.*amp.*tp.*tp_aitken" "$AMPHORA" run bad3.toml
 scene bad2.toml bad2
 sed -i 's|^cfl = .*|dt = 0.05|' bad2.toml  # above the solid's limit at h = 1/32
 expect_error 2 "outside \(0, [0-9.e-]+\], the solid's leapfrog limit" "$AMPHORA" run bad2.toml

@@ -13,8 +13,8 @@ ParamTable mpve_parameter_table() {
   ParamTable t;
   t.name = "mpve";
   t.doc = "MP-VE: viscous fluid (-H < y < 0) on an elastic solid (0 < y < Hbar), periodic in x, "
-          "partitioned coupling (traditional or added-mass partitioned), from the exact traveling wave";
-  auto scheme = string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp"});
+          "partitioned coupling (traditional, traditional with Aitken sub-iterations, or added-mass partitioned), from the exact traveling wave";
+  auto scheme = string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp", "tp_aitken"});
   auto rho_bar = real_param("rho_bar", 1000.0, "kg/m^3", "solid density (lambda_bar = mu_bar = rho_bar: cp = sqrt 3, cs = 1)");
   greater_than(rho_bar, 0.0);
   auto mu = real_param("viscosity", 0.02, "Pa s", "fluid viscosity mu (fluid density 1)");
@@ -47,7 +47,7 @@ class MpveModule final : public Module {
       throw std::invalid_argument("mpve: the dispersion root could not be followed to rho_bar = " +
                                   std::to_string(p.real("rho_bar")) + ", viscosity = " + std::to_string(p.real("viscosity")));
     s_.omega = root.omega;
-    s_.scheme = p.string("scheme") == "tp" ? MpveScheme::tp : MpveScheme::amp;
+    s_.scheme = parse_mpve_scheme(p.string("scheme"));
     s_.nx = static_cast<int>(p.integer("cells"));
     s_.blowup_factor = p.real("blowup_factor");
     // The coupled system (its factorisations depend on dt) is built by set_time_step, which
@@ -88,7 +88,7 @@ class MpveModule final : public Module {
   }
   Diagnostics diagnostics(double) const override {
     const MpveErrors e = run_->errors();
-    return {{"max_v", run_->max_fluid_speed()}, {"u_error", e.u}, {"v_error", e.v}, {"p_error", e.p},
+    return {{"max_v", run_->max_fluid_speed()}, {"subiterations", double(run_->last_subiterations())}, {"u_error", e.u}, {"v_error", e.v}, {"p_error", e.p},
             {"ubar_error", e.ubar}, {"vbar_error", e.vbar}, {"sigma_bar_error", e.sigma}, {"omega_re", s_.omega.real()}, {"omega_im", s_.omega.imag()}};
   }
   std::string error_diagnostic() const override { return "vbar_error"; }

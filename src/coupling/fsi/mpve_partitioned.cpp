@@ -40,14 +40,23 @@ struct Fixed {
 };
 
 std::optional<channel::TopImpedance> fluid_top(const MpveSetup& s) {
-  if (s.scheme == MpveScheme::tp) return std::nullopt;
+  if (s.scheme != MpveScheme::amp) return std::nullopt;
   const auto& P = s.physics;
   return channel::TopImpedance{std::sqrt(P.rho_bar * (P.lambda_bar + 2 * P.mu_bar)), std::sqrt(P.rho_bar * P.mu_bar)};
 }
 
 }  // namespace
 
-const char* to_string(MpveScheme s) { return s == MpveScheme::amp ? "amp" : "tp"; }
+const char* to_string(MpveScheme s) {
+  return s == MpveScheme::amp ? "amp" : s == MpveScheme::tp_aitken ? "tp_aitken" : "tp";
+}
+
+MpveScheme parse_mpve_scheme(const std::string& name) {
+  if (name == "amp") return MpveScheme::amp;
+  if (name == "tp") return MpveScheme::tp;
+  if (name == "tp_aitken") return MpveScheme::tp_aitken;
+  throw std::invalid_argument("mpve: scheme '" + name + "' is not one of amp, tp, tp_aitken");
+}
 
 struct MpvePartitioned::State {
   MpveSetup s;
@@ -61,6 +70,8 @@ struct MpvePartitioned::State {
   std::vector<double> gu_now, gv_now;         // the fluid's wall velocity at t (u at x_i, v at x_{i+1/2})
   std::vector<double> gv_prev;                // AMP: the fluid's wall v at t - dt
   std::vector<double> g_now;                  // AMP: the characteristics sent at t (x, y per node)
+  std::vector<double> traction_prev;          // TP-Aitken: the traction at t - dt (x, y per node)
+  int subiterations = 1;                      // of the last step
   double v_scale = 0;
   Kokkos::View<double* [2], Kokkos::HostSpace> traction;  // the fluid's, on the solid's interface nodes
 
@@ -108,6 +119,11 @@ struct MpvePartitioned::State {
     row_now = interface_row(solid.displacement());
     row_prev = interface_row(solid.previous());
     traction = Kokkos::View<double* [2], Kokkos::HostSpace>("amphora::mpve::traction", nx);
+    for (int i = 0; i < nx; ++i) {  // the exact interface traction at t - dt
+      const MpveSolidFields e = mpve_solid(P, s.omega, mode, i * sg.hx, 0.0, -s.dt);
+      traction_prev.push_back(e.sxy);
+      traction_prev.push_back(e.syy);
+    }
     if (s.scheme == MpveScheme::amp) {
       const auto z = *fluid_top(s);
       for (int i = 0; i < nx; ++i) {
@@ -128,11 +144,22 @@ struct MpvePartitioned::State {
   }
 
   void step() {
-    const int nx = fg.nx, ny = fg.ny;
-    const double mu = s.physics.mu, hx = fg.hx(), hy = fg.hy(), dt = s.dt;
-    auto wrap = [nx](int i) { return (i % nx + nx) % nx; };
     // 1. The fluid's traction at t on the solid's interface nodes x_i.
-    const auto& tr = traction;
+    fluid_traction(traction);
+    if (s.scheme == MpveScheme::tp_aitken) return aitken_step();
+    // 2. The solid to t + dt (AMP: its predictor).
+    solid.step_with_bottom_traction(NodeTraction{traction, sg.hx}, Fixed{});
+    Kokkos::fence();
+    if (s.scheme == MpveScheme::amp) return amp_fluid_and_corrector();
+    tp_fluid();
+  }
+
+  /// The traction the solid takes at t (x, y per node): the fluid's, one-sided differences of
+  /// its velocity and its pressure extrapolated from t - dt/2, t - 3dt/2 (AMP: see below).
+  void fluid_traction(const Kokkos::View<double* [2], Kokkos::HostSpace>& tr) const {
+    const int nx = fg.nx, ny = fg.ny;
+    const double mu = s.physics.mu, hx = fg.hx(), hy = fg.hy();
+    auto wrap = [nx](int i) { return (i % nx + nx) % nx; };
     const auto& u = fluid.u();
     const auto& p = fluid.p();
     for (int i = 0; i < nx; ++i) {
@@ -157,10 +184,14 @@ struct MpvePartitioned::State {
         tr(i, 1) = g_now[2 * i + 1] - z.z_normal * 0.5 * (gv_now[wrap(i - 1)] + gv_now[i]);
       }
     }
-    // 2. The solid to t + dt (AMP: its predictor).
-    solid.step_with_bottom_traction(NodeTraction{tr, sg.hx}, Fixed{});
-    Kokkos::fence();
-    if (s.scheme == MpveScheme::amp) return amp_fluid_and_corrector();
+  }
+
+  /// TP after the solid's step: the solid's interface velocity at t and t + dt as the fluid's
+  /// wall data, the fluid to t + dt.
+  void tp_fluid() {
+    const int nx = fg.nx;
+    const double hx = fg.hx(), dt = s.dt;
+    auto wrap = [nx](int i) { return (i % nx + nx) % nx; };
     const std::vector<double> row_next = interface_row(solid.displacement());
     // 3. The solid's interface velocity at t (centred) and t + dt (one-sided), as wall data.
     std::vector<double> gu0(nx), gv0(nx), gu1(nx), gv1(nx), vel0(2 * nx), vel1(2 * nx);
@@ -190,6 +221,62 @@ struct MpvePartitioned::State {
     row_now = row_next;
     gu_now = gu1;
     gv_now = gv1;
+  }
+
+  /// TP with sub-iterations (Kuettler & Wall 2008, Aitken's dynamic relaxation) on the traction
+  /// at t + dt: the solid's interface row takes (s_{n+1} + 2 s_n + s_{n-1}) / 4 (second order,
+  /// and implicit in s_{n+1} like Newmark's average acceleration, so the converged iteration
+  /// is stable for any density ratio); each sub-iteration redoes the solid's and the fluid's
+  /// step from the saved state until the fluid's traction at t + dt matches the guess.
+  void aitken_step() {
+    const int nx = fg.nx;
+    auto field = [](const Solid::Field& f) { return std::vector<double>(f.data(), f.data() + f.size()); };
+    const double t0 = fluid.time();
+    const std::vector<double> su = field(solid.displacement()), so = field(solid.previous());
+    const std::vector<double> fu = fluid.u(), fv = fluid.v(), fp = fluid.p(), pp = p_prev;
+    const std::vector<double> rp = row_prev, rn = row_now, gu = gu_now, gv = gv_now;
+    std::vector<double> s_now(2 * nx), guess(2 * nx), r(2 * nx), r_old(2 * nx);
+    for (int i = 0; i < nx; ++i)
+      for (int c = 0; c < 2; ++c) {
+        s_now[2 * i + c] = traction(i, c);
+        guess[2 * i + c] = 2 * s_now[2 * i + c] - traction_prev[2 * i + c];
+      }
+    double omega = s.initial_relaxation;
+    int k = 0;
+    for (;; ++k) {
+      if (k > 0) {
+        solid.restore(t0, su, so);
+        fluid.set_state(t0, fu, fv, fp);
+        p_prev = pp;
+        row_prev = rp;
+        row_now = rn;
+        gu_now = gu;
+        gv_now = gv;
+      }
+      for (int i = 0; i < nx; ++i)
+        for (int c = 0; c < 2; ++c)
+          traction(i, c) = 0.25 * (guess[2 * i + c] + 2 * s_now[2 * i + c] + traction_prev[2 * i + c]);
+      solid.step_with_bottom_traction(NodeTraction{traction, sg.hx}, Fixed{});
+      Kokkos::fence();
+      tp_fluid();
+      fluid_traction(traction);  // the fluid's at t + dt
+      double rr = 0, ss = 0, dr_r = 0, dr_dr = 0;
+      for (int j = 0; j < 2 * nx; ++j) {
+        r[j] = traction(j / 2, j % 2) - guess[j];
+        rr += r[j] * r[j];
+        ss += traction(j / 2, j % 2) * traction(j / 2, j % 2);
+        dr_r += r_old[j] * (r[j] - r_old[j]);
+        dr_dr += (r[j] - r_old[j]) * (r[j] - r_old[j]);
+      }
+      if (!std::isfinite(rr) || rr <= s.subiteration_tolerance * s.subiteration_tolerance * std::max(ss, 1e-300) ||
+          k + 1 >= s.max_subiterations)
+        break;
+      if (k > 0 && dr_dr > 0) omega = -omega * dr_r / dr_dr;
+      for (int j = 0; j < 2 * nx; ++j) guess[j] += omega * r[j];
+      r_old = r;
+    }
+    traction_prev = s_now;
+    subiterations = k + 1;
   }
 
   /// AMP after the solid's predictor: the fluid with the solid's outgoing characteristics at
@@ -312,13 +399,14 @@ std::vector<std::pair<std::string, std::vector<double>>> MpvePartitioned::save()
           {"gu_now", st.gu_now},
           {"gv_now", st.gv_now},
           {"gv_prev", st.gv_prev},
-          {"g_now", st.g_now}};
+          {"g_now", st.g_now},
+          {"traction_prev", st.traction_prev}};
 }
 
 void MpvePartitioned::restore(const std::vector<std::pair<std::string, std::vector<double>>>& arrays) {
   State& st = *s_;
   std::map<std::string, std::vector<double>> a(arrays.begin(), arrays.end());
-  for (const char* key : {"time", "u", "v", "p", "p_prev", "solid", "solid_prev", "row_prev", "row_now", "gu_now", "gv_now", "gv_prev", "g_now"})
+  for (const char* key : {"time", "u", "v", "p", "p_prev", "solid", "solid_prev", "row_prev", "row_now", "gu_now", "gv_now", "gv_prev", "g_now", "traction_prev"})
     if (!a.count(key)) throw std::runtime_error(std::string("mpve: checkpoint lacks '") + key + "'");
   const double t = a["time"].at(0);
   st.fluid.set_state(t, a["u"], a["v"], a["p"], st.s.scheme == MpveScheme::amp ? a["gu_now"] : std::vector<double>{});
@@ -330,7 +418,10 @@ void MpvePartitioned::restore(const std::vector<std::pair<std::string, std::vect
   st.gv_now = a["gv_now"];
   st.gv_prev = a["gv_prev"];
   st.g_now = a["g_now"];
+  st.traction_prev = a["traction_prev"];
 }
+
+int MpvePartitioned::last_subiterations() const { return s_->subiterations; }
 
 MpveErrors MpvePartitioned::errors() const {
   const State& st = *s_;
@@ -366,10 +457,13 @@ MpveErrors MpvePartitioned::errors() const {
 MpveRun run_mpve(const MpveSetup& s) {
   MpvePartitioned m(s);
   MpveRun r;
+  long long subiterations = 0;
   const int steps = static_cast<int>(std::lround(s.end_time / s.dt));
   for (int n = 0; n < steps; ++n) {
     m.step();
+    subiterations += m.last_subiterations();
     r.steps = n + 1;
+    r.mean_subiterations = double(subiterations) / r.steps;
     r.time = m.time();
     if (m.blown_up()) {
       r.stable = false;

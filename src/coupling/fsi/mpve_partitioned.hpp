@@ -10,6 +10,8 @@
 //    fluid's impedance top (a Robin condition on the pressure with weight z_p dt / rho, one on
 //    the tangential velocity); then the solid's interface row is corrected to move with the
 //    fluid's interface velocity (trapezoidal rule in time). No sub-iterations, no parameters.
+//  - TP-Aitken: TP made implicit in the traction at t_{n+1} and iterated to convergence each
+//    step with Aitken relaxation (see aitken_step in the source).
 // Starts from the exact traveling wave (mpve_traveling_wave.hpp), which is also the reference.
 // Second-order interface transfers: the fluid traction from one-sided differences and the
 // pressure extrapolated in time from its half steps; the solid velocity from its displacement
@@ -23,8 +25,9 @@
 
 namespace amphora::fsi {
 
-enum class MpveScheme { tp, amp };
+enum class MpveScheme { tp, tp_aitken, amp };
 const char* to_string(MpveScheme s);
+MpveScheme parse_mpve_scheme(const std::string& name);  ///< tp | tp_aitken | amp
 
 struct MpveSetup {
   MpveScheme scheme = MpveScheme::tp;
@@ -33,6 +36,10 @@ struct MpveSetup {
   int nx = 32;             ///< cells per wavelength in x (the period is 2 pi / k)
   double dt = 1e-3, end_time = 0.5;
   double blowup_factor = 10.0;  ///< unstable once max |v| exceeds this multiple of its start
+  /// TP-Aitken: relative tolerance on the traction update, iteration cap, first relaxation.
+  double subiteration_tolerance = 1e-8;
+  int max_subiterations = 500;
+  double initial_relaxation = 0.1;
 };
 
 struct MpveErrors {
@@ -61,6 +68,8 @@ class MpvePartitioned {
   /// Every array needed to continue bit for bit, and its restoration.
   std::vector<std::pair<std::string, std::vector<double>>> save() const;
   void restore(const std::vector<std::pair<std::string, std::vector<double>>>& arrays);
+  /// Sub-iterations of the last step (1 for TP and AMP).
+  int last_subiterations() const;
   /// Interface kinetic energy proxy: max |v| over the fluid (the blow-up measure).
   double max_fluid_speed() const;
 
@@ -75,6 +84,7 @@ struct MpveRun {
   double time = 0;
   MpveErrors errors;
   std::string message;
+  double mean_subiterations = 1;
 };
 MpveRun run_mpve(const MpveSetup& s);
 
