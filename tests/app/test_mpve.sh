@@ -54,6 +54,9 @@ echo "mpve: restart bit for bit"
 
 scene bad.toml bad "rho_bar = 0.0"
 expect_error 2 "rho_bar" "$AMPHORA" run bad.toml
+scene bad4.toml bad4
+sed -i 's|^rho_bar = .*|&\npoisson_ratio = 0.5|' bad4.toml
+expect_error 2 "poisson_ratio" "$AMPHORA" run bad4.toml
 scene bad3.toml bad3 'scheme = "aitken"'
 expect_error 2 "scheme.*amp.*tp.*tp_aitken" "$AMPHORA" run bad3.toml
 scene bad2.toml bad2

@@ -15,8 +15,11 @@ ParamTable mpve_parameter_table() {
   t.doc = "MP-VE: viscous fluid (-H < y < 0) on an elastic solid (0 < y < Hbar), periodic in x, "
           "partitioned coupling (traditional, traditional with Aitken sub-iterations, or added-mass partitioned), from the exact traveling wave";
   auto scheme = string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp", "tp_aitken"});
-  auto rho_bar = real_param("rho_bar", 1000.0, "kg/m^3", "solid density (lambda_bar = mu_bar = rho_bar: cp = sqrt 3, cs = 1)");
+  auto rho_bar = real_param("rho_bar", 1000.0, "kg/m^3", "solid density (mu_bar = rho_bar: cs = 1)");
   greater_than(rho_bar, 0.0);
+  auto poisson = real_param("poisson_ratio", 0.25, "1", "solid Poisson ratio nu (lambda_bar = 2 mu_bar nu / (1 - 2 nu); 0.25: cp = sqrt 3)");
+  greater_than(poisson, -1.0);
+  less_than(poisson, 0.5);
   auto mu = real_param("viscosity", 0.02, "Pa s", "fluid viscosity mu (fluid density 1)");
   greater_than(mu, 0.0);
   auto cells = int_param("cells", 32, "cells per wavelength in x (h = 1 / cells; the wavelength is 1)");
@@ -24,7 +27,7 @@ ParamTable mpve_parameter_table() {
   at_most(cells, 4096);
   auto blowup = real_param("blowup_factor", 10.0, "1", "unstable once max |v| exceeds this multiple of its start");
   greater_than(blowup, 1.0);
-  t.specs = {scheme, rho_bar, mu, cells, blowup};
+  t.specs = {scheme, rho_bar, poisson, mu, cells, blowup};
   return t;
 }
 
@@ -41,7 +44,9 @@ class MpveModule final : public Module {
     const Complex w0 = solve_mpve_dispersion(check, Complex(1.4, -0.4)).omega;
     s_.physics = check;
     s_.physics.mu = p.real("viscosity");
-    s_.physics.rho_bar = s_.physics.lambda_bar = s_.physics.mu_bar = p.real("rho_bar");
+    const double nu = p.real("poisson_ratio");
+    s_.physics.rho_bar = s_.physics.mu_bar = p.real("rho_bar");
+    s_.physics.lambda_bar = 2 * s_.physics.mu_bar * nu / (1 - 2 * nu);
     const DispersionRoot root = continue_mpve_dispersion(check, w0, s_.physics, 40);
     if (!root.converged)
       throw std::invalid_argument("mpve: the dispersion root could not be followed to rho_bar = " +
@@ -55,8 +60,11 @@ class MpveModule final : public Module {
   }
 
   std::string name() const override { return "mpve"; }
-  /// The solid's leapfrog limit 1 / (cp sqrt(1/hx^2 + 1/hy^2)) with hx = hy = h (cp = sqrt 3).
-  double stable_dt() const override { return (1.0 / s_.nx) / (std::sqrt(3.0) * std::sqrt(2.0)); }
+  /// The solid's leapfrog limit 1 / (cp sqrt(1/hx^2 + 1/hy^2)) with hx = hy = h.
+  double stable_dt() const override {
+    const auto& P = s_.physics;
+    return (1.0 / s_.nx) / (std::sqrt((P.lambda_bar + 2 * P.mu_bar) / P.rho_bar) * std::sqrt(2.0));
+  }
   void set_time_step(double dt) override {
     if (!(dt > 0) || dt > stable_dt() * (1 + 1e-12)) {
       std::ostringstream m;
