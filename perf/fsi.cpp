@@ -22,28 +22,12 @@ namespace {
 
 using namespace amphora::fsi;
 
-BeamChannelSetup beam_setup(double rho_h, BeamScheme scheme) {
-  const int n = 160;
-  BeamChannelSetup s;
-  s.beam.length = 1.0;
-  s.beam.rho_h = rho_h;
-  s.beam.spring = 0.5;
-  s.beam.tension = 1.0;
-  s.beam.stiffness = 0.01;
-  s.beam.points = n;
-  s.depth = 0.5;
-  s.fluid_rows = n / 2;
-  s.scheme = scheme;
-  s.end_time = 1e9;
-  const double w = beam_channel_frequency(s.beam, 2 * M_PI, s.depth, s.rho);
-  s.dt = 0.5 / (std::max(1, static_cast<int>(std::ceil(0.5 * w / M_PI))) * n);
-  return s;
-}
-
 void Beam(benchmark::State& state) {
   const auto scheme = static_cast<BeamScheme>(state.range(0));
   const double rho_h = scheme == BeamScheme::traditional ? 100.0 : 1.0 / static_cast<double>(state.range(1));
-  BeamChannelFsi fsi(beam_setup(rho_h, scheme));
+  BeamChannelSetup s = beam_channel_wave_case(rho_h, 160, scheme);
+  s.end_time = 1e9;  // the benchmark decides how many steps
+  BeamChannelFsi fsi(s);
   long long subiterations = 0, steps = 0;
   for (auto _ : state) {
     fsi.step();
@@ -58,14 +42,13 @@ BENCHMARK(Beam)->Args({0, 1})->Args({1, 100})->Args({1, 1000})->Args({2, 100})->
 void Mpve(benchmark::State& state) {
   const int n = static_cast<int>(state.range(1));
   const double rho_bar = state.range(2) == 0 ? 1000.0 : 1.0 / static_cast<double>(state.range(2));
-  const MpveParameters check{2 * M_PI, 1.0, 0.5, 1.0, 0.01, 0.05, 0.05, 0.05};
-  MpveParameters p = check;
+  MpveParameters p = mpve_check_case();
   p.mu = 0.02;
   p.rho_bar = p.lambda_bar = p.mu_bar = rho_bar;
   MpveSetup s;
   s.scheme = static_cast<MpveScheme>(state.range(0));
   s.physics = p;
-  s.omega = continue_mpve_dispersion(check, solve_mpve_dispersion(check, Complex(1.4, -0.4)).omega, p, 40).omega;
+  s.omega = mpve_root_from_check_case(p).omega;
   s.nx = n;
   s.dt = 0.3 / n;
   MpvePartitioned fsi(s);

@@ -15,25 +15,7 @@ namespace {
 
 using namespace amphora::fsi;
 
-BeamChannelSetup setup(double rho_h, int n, BeamScheme scheme) {
-  BeamChannelSetup s;
-  s.beam.length = 1.0;
-  s.beam.rho_h = rho_h;
-  s.beam.spring = 0.5;
-  s.beam.tension = 1.0;
-  s.beam.stiffness = 0.01;
-  s.beam.points = n;
-  s.depth = 0.5;
-  s.rho = 1.0;
-  s.fluid_rows = n / 2;
-  s.scheme = scheme;
-  s.end_time = 0.5;
-  // dt proportional to h (steps = m n, m fixed per case: at least n steps per half period).
-  const double k = 2 * 3.141592653589793, w = beam_channel_frequency(s.beam, k, s.depth, s.rho);
-  const int m = std::max(1, static_cast<int>(std::ceil(s.end_time * w / 3.141592653589793)));
-  s.dt = s.end_time / (m * n);
-  return s;
-}
+BeamChannelSetup setup(double rho_h, int n, BeamScheme scheme) { return beam_channel_wave_case(rho_h, n, scheme); }
 
 void expect_second_order(double rho_h) {
   double pe = 0, ee = 0;

@@ -16,12 +16,10 @@ using namespace amphora::fsi;
 
 MpveSetup setup(double rho_bar, double mu, int n, MpveScheme scheme = MpveScheme::tp) {
   // The check case, its root followed to the requested densities and viscosity.
-  const MpveParameters check{2 * M_PI, 1.0, 0.5, 1.0, 0.01, 0.05, 0.05, 0.05};
-  const Complex w0 = solve_mpve_dispersion(check, Complex(1.4, -0.4)).omega;
-  MpveParameters p = check;
+  MpveParameters p = mpve_check_case();
   p.mu = mu;
   p.rho_bar = p.lambda_bar = p.mu_bar = rho_bar;
-  const DispersionRoot root = continue_mpve_dispersion(check, w0, p, 40);
+  const DispersionRoot root = mpve_root_from_check_case(p);
   EXPECT_TRUE(root.converged);
   MpveSetup s;
   s.scheme = scheme;

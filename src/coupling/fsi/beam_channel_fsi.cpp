@@ -1,5 +1,6 @@
 #include "coupling/fsi/beam_channel_fsi.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -209,6 +210,25 @@ BeamChannelResult run_beam_channel(const BeamChannelSetup& s) {
   r.eta_error = fsi.eta_error();
   r.pressure_error = fsi.pressure_error();
   return r;
+}
+
+BeamChannelSetup beam_channel_wave_case(double rho_h, int points, BeamScheme scheme) {
+  BeamChannelSetup s;
+  s.beam.length = 1.0;
+  s.beam.rho_h = rho_h;
+  s.beam.spring = 0.5;
+  s.beam.tension = 1.0;
+  s.beam.stiffness = 0.01;
+  s.beam.points = points;
+  s.depth = 0.5;
+  s.rho = 1.0;
+  s.fluid_rows = points / 2;
+  s.scheme = scheme;
+  s.end_time = 0.5;
+  const double w = beam_channel_frequency(s.beam, 2 * M_PI, s.depth, s.rho);
+  const int m = std::max(1, static_cast<int>(std::ceil(s.end_time * w / M_PI)));
+  s.dt = s.end_time / (m * points);
+  return s;
 }
 
 }  // namespace amphora::fsi

@@ -59,6 +59,11 @@ struct BeamChannelResult {
   double mean_subiterations = 0;
 };
 
+/// The verification case: a beam of length 1 (K = 0.5, T = 1, B = 0.01, `points` nodes) over a
+/// channel of depth 0.5 (rho = 1, points / 2 rows), the k = 2 pi wave to t = 0.5, dt
+/// proportional to h (at least `points` steps per half period).
+BeamChannelSetup beam_channel_wave_case(double rho_h, int points, BeamScheme scheme);
+
 /// The coupled system, stepped by one of the schemes, starting from the exact traveling wave.
 class BeamChannelFsi {
  public:

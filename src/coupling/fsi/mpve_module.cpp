@@ -38,16 +38,13 @@ class MpveModule final : public Module {
   MpveModule(const Parameters& p, const Communicator& comm) {
     if (comm.size() > 1)
       throw DecompositionError("more ranks (" + std::to_string(comm.size()) + ") than blocks (1): MP-VE runs on one rank");
-    // The check case (k = 2 pi, H = 1, Hbar = 0.5, rho = 1, mu = 0.01, rho_bar = 0.05),
-    // its root followed to the scene's solid density and viscosity.
-    const MpveParameters check{2 * M_PI, 1.0, 0.5, 1.0, 0.01, 0.05, 0.05, 0.05};
-    const Complex w0 = solve_mpve_dispersion(check, Complex(1.4, -0.4)).omega;
-    s_.physics = check;
+    // The check case, its root followed to the scene's solid and viscosity.
+    s_.physics = mpve_check_case();
     s_.physics.mu = p.real("viscosity");
     const double nu = p.real("poisson_ratio");
     s_.physics.rho_bar = s_.physics.mu_bar = p.real("rho_bar");
     s_.physics.lambda_bar = 2 * s_.physics.mu_bar * nu / (1 - 2 * nu);
-    const DispersionRoot root = continue_mpve_dispersion(check, w0, s_.physics, 40);
+    const DispersionRoot root = mpve_root_from_check_case(s_.physics);
     if (!root.converged)
       throw std::invalid_argument("mpve: the dispersion root could not be followed to rho_bar = " +
                                   std::to_string(p.real("rho_bar")) + ", viscosity = " + std::to_string(p.real("viscosity")));

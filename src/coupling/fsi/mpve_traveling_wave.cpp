@@ -175,4 +175,13 @@ MpveSolidFields mpve_solid(const MpveParameters& p, Complex w, const std::array<
   return s;
 }
 
+MpveParameters mpve_check_case() { return {2 * M_PI, 1.0, 0.5, 1.0, 0.01, 0.05, 0.05, 0.05}; }
+
+DispersionRoot mpve_root_from_check_case(const MpveParameters& to, int steps) {
+  const MpveParameters check = mpve_check_case();
+  const DispersionRoot start = solve_mpve_dispersion(check, Complex(1.4, -0.4));
+  if (!start.converged) return start;
+  return continue_mpve_dispersion(check, start.omega, to, steps);
+}
+
 }  // namespace amphora::fsi

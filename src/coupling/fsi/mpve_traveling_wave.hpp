@@ -49,6 +49,13 @@ DispersionRoot solve_mpve_dispersion(const MpveParameters& p, Complex omega0, do
 DispersionRoot continue_mpve_dispersion(const MpveParameters& from, Complex omega_from, const MpveParameters& to,
                                         int steps);
 
+/// The check case: k = 2 pi, H = 1, Hbar = 0.5, rho = 1, mu = 0.01,
+/// rho_bar = lambda_bar = mu_bar = 0.05 (omega ~ 1.42227 - 0.37955 i).
+MpveParameters mpve_check_case();
+/// A root of the dispersion relation for `to`, followed by continuation from the check case's
+/// (`converged` false if it is lost on the way).
+DispersionRoot mpve_root_from_check_case(const MpveParameters& to, int steps = 40);
+
 /// The mode: coefficients c (A, B, C, D, E, F, G, H above) with M(omega) c = 0, scaled so that
 /// the interface displacement vbar(0) = 1.
 std::array<Complex, 8> mpve_mode(const MpveParameters& p, Complex omega);
