@@ -44,6 +44,19 @@ sed -i -e "s|^scheme = .*|scheme = \"amp\"|" -e "s|^output_dir = .*|output_dir =
 final=$(ls amp/fields_*.h5 | tail -1)
 same_h5 "$final" "amp_split/$(basename "$final")"
 echo "mpve: amp restart bit for bit"
+sed -i -e "s|^scheme = .*|scheme = \"tp_aitken\"|" -e "s|^rho_bar = .*|rho_bar = 0.1|" -e "s|^output_dir = .*|output_dir = \"tpa\"|" amp.toml
+"$AMPHORA" run amp.toml > /dev/null
+sed -i "s|^output_dir = .*|output_dir = \"tpa_split\"|" amp.toml
+"$AMPHORA" run amp.toml --max-steps 20 > /dev/null
+"$AMPHORA" run amp.toml --restart tpa_split/checkpoint.h5 > /dev/null
+final=$(ls tpa/fields_*.h5 | tail -1)
+same_h5 "$final" "tpa_split/$(basename "$final")"
+python3 - tpa/diagnostics.csv <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert all(float(r["subiterations"]) > 1 for r in rows[1:]), "tp_aitken should sub-iterate at rho_bar/rho = 0.1"
+print("mpve: tp_aitken stable at rho_bar/rho = 0.1 with", rows[-1]["subiterations"], "sub-iterations/step, restart bit for bit")
+PY
 
 scene split.toml split
 "$AMPHORA" run split.toml --max-steps 20 > /dev/null
