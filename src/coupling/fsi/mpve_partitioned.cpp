@@ -175,13 +175,19 @@ struct MpvePartitioned::State {
       tr(i, 0) = mu * (u_y + v_x);
       tr(i, 1) = -p0 + 2 * mu * v_y;
       if (s.scheme == MpveScheme::amp) {
-        // AMP: the interface traction consistent with the characteristics sent at t and the
-        // interface velocity (the impedance-weighted traction with an incompressible fluid's
-        // infinite impedance): light solids must not see the fluid's own traction, whose
-        // errors their predictor divides by their density.
+        // AMP: the impedance-weighted interface traction, between the fluid's own and the one
+        // consistent with the characteristics sent at t and the interface velocity (g - z v),
+        // weighted by the solid's impedance and the fluid's z_f = rho h / dt (the discrete
+        // fluid's pressure response to an interface velocity change). A light solid must not
+        // see the fluid's traction (its errors enter the predictor divided by rho_bar: blow-up
+        // at rho_bar/rho = 1e-3, h = 1/160); a heavy one must not see g - z v (errors in v enter
+        // multiplied by z: a slow instability, rho_bar/rho = 1e3 blew up at t = 2.1, h = 1/80).
         const auto z = *fluid_top(s);
-        tr(i, 0) = g_now[2 * i] - z.z_shear * gu_now[i];
-        tr(i, 1) = g_now[2 * i + 1] - z.z_normal * 0.5 * (gv_now[wrap(i - 1)] + gv_now[i]);
+        const double zf = s.physics.rho * hy / s.dt;
+        const double v_i = 0.5 * (gv_now[wrap(i - 1)] + gv_now[i]);
+        auto weigh = [zf](double fluid, double solid_side, double zs) { return (zs * fluid + zf * solid_side) / (zs + zf); };
+        tr(i, 0) = weigh(tr(i, 0), g_now[2 * i] - z.z_shear * gu_now[i], z.z_shear);
+        tr(i, 1) = weigh(tr(i, 1), g_now[2 * i + 1] - z.z_normal * v_i, z.z_normal);
       }
     }
   }

@@ -1,8 +1,8 @@
 #pragma once
 // The MP-VE model problem (viscous fluid -H < y < 0 on an elastic solid 0 < y < Hbar, periodic
 // in x) by a partitioned scheme. Each step the solid (leapfrog, physics/elastic_solid) takes
-// a traction at t_n (the fluid's; AMP: the one consistent with the characteristics it sent and
-// the interface velocity, g_n - z v_I); then
+// a traction at t_n (the fluid's; AMP: the impedance-weighted one between the fluid's and the one
+// consistent with the characteristics it sent and the interface velocity, g_n - z v_I); then
 //  - TP (traditional): the fluid (Stokes, physics/channel_flow) takes the solid's interface
 //    velocity at t_n and t_{n+1} as wall data;
 //  - AMP (added-mass partitioned; Banks, Henshaw & Schwendeman, J. Comput. Phys. 269, 2014):
