@@ -177,13 +177,15 @@ struct MpvePartitioned::State {
       if (s.scheme == MpveScheme::amp) {
         // AMP: the impedance-weighted interface traction, between the fluid's own and the one
         // consistent with the characteristics sent at t and the interface velocity (g - z v),
-        // weighted by the solid's impedance and the fluid's z_f = rho h / dt (the discrete
-        // fluid's pressure response to an interface velocity change). A light solid must not
-        // see the fluid's traction (its errors enter the predictor divided by rho_bar: blow-up
-        // at rho_bar/rho = 1e-3, h = 1/160); a heavy one must not see g - z v (errors in v enter
-        // multiplied by z: a slow instability, rho_bar/rho = 1e3 blew up at t = 2.1, h = 1/80).
+        // weighted by the solid's impedance and the discrete fluid's, z_f = rho h / dt + 2 mu / h
+        // (the first cell's pressure and normal viscous stress per unit change of the interface
+        // velocity in one step). A light solid must not see the fluid's traction (its errors
+        // enter the predictor divided by rho_bar: blow-up at rho_bar/rho = 1e-3, h = 1/160); a
+        // heavy one must not see g - z v (errors in v enter multiplied by z: rho_bar/rho = 1e3,
+        // h = 1/80 blew up at t = 2.1); without the viscous part rho_bar/rho = 10 and 1 blew up
+        // at h = 1/320, mu = 0.02.
         const auto z = *fluid_top(s);
-        const double zf = s.physics.rho * hy / s.dt;
+        const double zf = s.physics.rho * hy / s.dt + 2 * mu / hy;
         const double v_i = 0.5 * (gv_now[wrap(i - 1)] + gv_now[i]);
         auto weigh = [zf](double fluid, double solid_side, double zs) { return (zs * fluid + zf * solid_side) / (zs + zf); };
         tr(i, 0) = weigh(tr(i, 0), g_now[2 * i] - z.z_shear * gu_now[i], z.z_shear);
