@@ -5,6 +5,7 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 #include <sstream>
 
 #include "physics/channel_flow/channel_stokes.hpp"
@@ -71,6 +72,8 @@ struct MpvePartitioned::State {
   std::vector<double> gv_prev;                // AMP: the fluid's wall v at t - dt
   std::vector<double> g_now;                  // AMP: the characteristics sent at t (x, y per node)
   std::vector<double> traction_prev;          // TP-Aitken: the traction at t - dt (x, y per node)
+  channel::TopImpedance z;                    // AMP: the solid's impedances (z_p, z_s)
+  double z_fluid = 0;                         // AMP: the discrete fluid's impedance (fluid_traction)
   int subiterations = 1;                      // of the last step
   double v_scale = 0;
   Kokkos::View<double* [2], Kokkos::HostSpace> traction;  // the fluid's, on the solid's interface nodes
@@ -125,13 +128,24 @@ struct MpvePartitioned::State {
       traction_prev.push_back(e.syy);
     }
     if (s.scheme == MpveScheme::amp) {
-      const auto z = *fluid_top(s);
+      z = *fluid_top(s);
+      z_fluid = P.rho * fg.hy() / s.dt + 2 * P.mu / fg.hy();
       for (int i = 0; i < nx; ++i) {
         const MpveSolidFields e = mpve_solid(P, s.omega, mode, i * sg.hx, 0.0, 0.0);
         g_now.push_back(e.sxy + z.z_shear * e.ubar_t);
         g_now.push_back(e.syy + z.z_normal * e.vbar_t);
       }
     }
+  }
+
+  /// The coupling's own state arrays (beside the fluid's and the solid's fields), by checkpoint
+  /// name: save() and restore() both go through this one list.
+  template <class Self>
+  static auto coupling_arrays(Self& st) {
+    using Array = std::conditional_t<std::is_const_v<Self>, const std::vector<double>, std::vector<double>>;
+    return std::vector<std::pair<const char*, Array*>>{
+        {"p_prev", &st.p_prev}, {"row_prev", &st.row_prev}, {"row_now", &st.row_now}, {"gu_now", &st.gu_now},
+        {"gv_now", &st.gv_now}, {"gv_prev", &st.gv_prev},   {"g_now", &st.g_now},     {"traction_prev", &st.traction_prev}};
   }
 
   std::vector<double> interface_row(const Solid::Field& f) const {
@@ -184,10 +198,9 @@ struct MpvePartitioned::State {
         // heavy one must not see g - z v (errors in v enter multiplied by z: rho_bar/rho = 1e3,
         // h = 1/80 blew up at t = 2.1); without the viscous part rho_bar/rho = 10 and 1 blew up
         // at h = 1/320, mu = 0.02.
-        const auto z = *fluid_top(s);
-        const double zf = s.physics.rho * hy / s.dt + 2 * mu / hy;
+        const double zf = z_fluid;
         const double v_i = 0.5 * (gv_now[wrap(i - 1)] + gv_now[i]);
-        auto weigh = [zf](double fluid, double solid_side, double zs) { return (zs * fluid + zf * solid_side) / (zs + zf); };
+        auto weigh = [zf](double own, double solid_side, double zs) { return (zs * own + zf * solid_side) / (zs + zf); };
         tr(i, 0) = weigh(tr(i, 0), g_now[2 * i] - z.z_shear * gu_now[i], z.z_shear);
         tr(i, 1) = weigh(tr(i, 1), g_now[2 * i + 1] - z.z_normal * v_i, z.z_normal);
       }
@@ -294,7 +307,6 @@ struct MpvePartitioned::State {
     const double dt = s.dt, hy = sg.hy, hx = sg.hx;
     const auto& P = s.physics;
     const double lb = P.lambda_bar, mb = P.mu_bar;
-    const channel::TopImpedance z = *fluid_top(s);
     auto wrap = [nx](int i) { return (i % nx + nx) % nx; };
     const auto d = solid.displacement();  // predicted; storage row 1 = the interface
     const std::vector<double> row_pred = interface_row(d);
@@ -395,38 +407,27 @@ MpvePartitioned::Snapshot MpvePartitioned::snapshot() const {
 std::vector<std::pair<std::string, std::vector<double>>> MpvePartitioned::save() const {
   const State& st = *s_;
   auto field = [](const Solid::Field& f) { return std::vector<double>(f.data(), f.data() + f.size()); };
-  return {{"time", {time()}},
-          {"u", st.fluid.u()},
-          {"v", st.fluid.v()},
-          {"p", st.fluid.p()},
-          {"p_prev", st.p_prev},
-          {"solid", field(st.solid.displacement())},
-          {"solid_prev", field(st.solid.previous())},
-          {"row_prev", st.row_prev},
-          {"row_now", st.row_now},
-          {"gu_now", st.gu_now},
-          {"gv_now", st.gv_now},
-          {"gv_prev", st.gv_prev},
-          {"g_now", st.g_now},
-          {"traction_prev", st.traction_prev}};
+  std::vector<std::pair<std::string, std::vector<double>>> out = {{"time", {time()}},
+                                                                  {"u", st.fluid.u()},
+                                                                  {"v", st.fluid.v()},
+                                                                  {"p", st.fluid.p()},
+                                                                  {"solid", field(st.solid.displacement())},
+                                                                  {"solid_prev", field(st.solid.previous())}};
+  for (const auto& [name, array] : State::coupling_arrays(st)) out.emplace_back(name, *array);
+  return out;
 }
 
 void MpvePartitioned::restore(const std::vector<std::pair<std::string, std::vector<double>>>& arrays) {
   State& st = *s_;
   std::map<std::string, std::vector<double>> a(arrays.begin(), arrays.end());
-  for (const char* key : {"time", "u", "v", "p", "p_prev", "solid", "solid_prev", "row_prev", "row_now", "gu_now", "gv_now", "gv_prev", "g_now", "traction_prev"})
-    if (!a.count(key)) throw std::runtime_error(std::string("mpve: checkpoint lacks '") + key + "'");
-  const double t = a["time"].at(0);
-  st.fluid.set_state(t, a["u"], a["v"], a["p"], st.s.scheme == MpveScheme::amp ? a["gu_now"] : std::vector<double>{});
-  st.p_prev = a["p_prev"];
-  st.solid.restore(t, a["solid"], a["solid_prev"]);
-  st.row_prev = a["row_prev"];
-  st.row_now = a["row_now"];
-  st.gu_now = a["gu_now"];
-  st.gv_now = a["gv_now"];
-  st.gv_prev = a["gv_prev"];
-  st.g_now = a["g_now"];
-  st.traction_prev = a["traction_prev"];
+  auto need = [&a](const std::string& key) -> const std::vector<double>& {
+    if (!a.count(key)) throw std::runtime_error("mpve: checkpoint lacks '" + key + "'");
+    return a[key];
+  };
+  const double t = need("time").at(0);
+  for (const auto& [name, array] : State::coupling_arrays(st)) *array = need(name);
+  st.fluid.set_state(t, need("u"), need("v"), need("p"), st.s.scheme == MpveScheme::amp ? st.gu_now : std::vector<double>{});
+  st.solid.restore(t, need("solid"), need("solid_prev"));
 }
 
 int MpvePartitioned::last_subiterations() const { return s_->subiterations; }
