@@ -1,0 +1,155 @@
+#include "mesh/hex/distributed_qk_space.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "kernels/blas1.hpp"
+#include "kernels/spaces.hpp"
+
+namespace amphora::mesh {
+
+namespace {
+
+constexpr int kGhostTag = 7101, kCompressTag = 7102;
+
+/// Sends `count` doubles at `send` to `dest` and receives `count` into `recv` from `source`
+/// (either may be MPI_PROC_NULL), through host buffers when the memory space is a device's.
+template <class Send, class Recv>
+void exchange_layer(const Communicator& comm, const Send& send, int dest, const Recv& recv,
+                    int source, int tag) {
+  auto hs = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), send);
+  auto hr = Kokkos::create_mirror_view(Kokkos::HostSpace(), recv);
+  const int n = static_cast<int>(send.extent(0));
+  MPI_Sendrecv(hs.data(), dest == MPI_PROC_NULL ? 0 : n, MPI_DOUBLE, dest, tag, hr.data(),
+               source == MPI_PROC_NULL ? 0 : n, MPI_DOUBLE, source, tag, comm.get(),
+               MPI_STATUS_IGNORE);
+  if (source != MPI_PROC_NULL) Kokkos::deep_copy(recv, hr);
+}
+
+}  // namespace
+
+template <int dim, class ExecSpace>
+DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<dim>& global,
+                                                       int degree, const Communicator& comm)
+    : global_(global), comm_(comm) {
+  global.validate();
+  constexpr int s = dim - 1;  // the split direction
+  const int ranks = comm.size(), r = comm.rank(), n = global.cells[s];
+  if (n < ranks)
+    throw std::invalid_argument("DistributedQkSpace: " + std::to_string(n) + " cells along direction " +
+                                std::to_string(s) + " cannot be split over " + std::to_string(ranks) +
+                                " ranks (at least one cell per rank)");
+  first_cell_ = static_cast<int>(static_cast<long>(n) * r / ranks);
+  const int end_cell = static_cast<int>(static_cast<long>(n) * (r + 1) / ranks);
+
+  StructuredHexMesh<dim> slab = global;
+  if (ranks > 1) {
+    const double h = (global.upper[s] - global.lower[s]) / n;
+    slab.cells[s] = end_cell - first_cell_;
+    slab.lower[s] = global.lower[s] + h * first_cell_;
+    slab.upper[s] = end_cell == n ? global.upper[s] : global.lower[s] + h * end_cell;
+    // Faces between slabs are natural: each side adds its cells' share, compress_add sums them.
+    const bool periodic = global.periodic(s);
+    if (periodic || r > 0) slab.faces[2 * s] = FaceCondition::neumann;
+    if (periodic || r < ranks - 1) slab.faces[2 * s + 1] = FaceCondition::neumann;
+    prev_ = r > 0 ? r - 1 : (periodic ? ranks - 1 : MPI_PROC_NULL);
+    next_ = r < ranks - 1 ? r + 1 : (periodic ? 0 : MPI_PROC_NULL);
+  } else {
+    prev_ = next_ = MPI_PROC_NULL;
+  }
+  local_ = std::make_unique<Space>(slab, degree);
+
+  const auto& lat = local_->lattice();
+  layer_ = 1;
+  for (int d = 0; d < s; ++d) layer_ *= lat.dofs[d];
+  n_owned_ = local_->n_dofs() - (next_ != MPI_PROC_NULL ? layer_ : 0);
+
+  // Constrained DoFs of the bottom layer (Dirichlet faces of the other directions).
+  free_bottom_ = Vector("amphora::DistributedQkSpace::free_bottom", layer_);
+  auto fh = Kokkos::create_mirror_view(free_bottom_);
+  for (long i = 0; i < layer_; ++i) fh(i) = 1.0;
+  auto ch = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), local_->constrained_dofs());
+  for (std::size_t a = 0; a < ch.extent(0); ++a)
+    if (ch(a) < layer_) fh(ch(a)) = 0.0;
+  Kokkos::deep_copy(free_bottom_, fh);
+}
+
+template <int dim, class ExecSpace>
+long DistributedQkSpace<dim, ExecSpace>::n_global() const {
+  return comm_.sum(static_cast<long long>(n_owned_));
+}
+
+template <int dim, class ExecSpace>
+long DistributedQkSpace<dim, ExecSpace>::global_index(long i) const {
+  constexpr int s = dim - 1;
+  const auto& lat = local_->lattice();
+  const int k = lat.degree;
+  long rest = i;
+  long g = 0, stride = 1;
+  for (int d = 0; d < s; ++d) {
+    g += (rest % lat.dofs[d]) * stride;
+    stride *= lat.dofs[d];
+    rest /= lat.dofs[d];
+  }
+  long layer = rest + static_cast<long>(first_cell_) * k;
+  const long layers = static_cast<long>(global_.cells[s]) * k + (global_.periodic(s) ? 0 : 1);
+  if (layer >= layers) layer -= layers;  // the periodic wrap
+  return g + layer * stride;
+}
+
+template <int dim, class ExecSpace>
+void DistributedQkSpace<dim, ExecSpace>::update_ghosts(const ExecSpace& exec, const Vector& x,
+                                                       int components) const {
+  if (prev_ == MPI_PROC_NULL && next_ == MPI_PROC_NULL) return;
+  exec.fence();
+  const long n = n_local();
+  for (int c = 0; c < components; ++c) {
+    const long base = c * n;
+    const auto bottom = Kokkos::subview(x, Kokkos::make_pair(base, base + layer_));
+    const auto top = Kokkos::subview(x, Kokkos::make_pair(base + n - layer_, base + n));
+    exchange_layer(comm_, bottom, prev_, top, next_, kGhostTag + 16 * c);
+  }
+}
+
+template <int dim, class ExecSpace>
+void DistributedQkSpace<dim, ExecSpace>::compress_add(const ExecSpace& exec, const Vector& y,
+                                                      int components) const {
+  if (prev_ == MPI_PROC_NULL && next_ == MPI_PROC_NULL) return;
+  exec.fence();
+  const long n = n_local();
+  Vector received(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::DistributedQkSpace::received"),
+                  layer_);
+  const Vector free = free_bottom_;
+  for (int c = 0; c < components; ++c) {
+    const long base = c * n;
+    const auto top = Kokkos::subview(y, Kokkos::make_pair(base + n - layer_, base + n));
+    exchange_layer(comm_, top, next_, received, prev_, kCompressTag + 16 * c);
+    if (prev_ == MPI_PROC_NULL) continue;
+    Kokkos::parallel_for(
+        "amphora::DistributedQkSpace::compress_add", RangePolicy<ExecSpace>(exec, 0, layer_),
+        KOKKOS_LAMBDA(long i) { y(base + i) += free(i) * received(i); });
+  }
+  exec.fence();
+}
+
+template <int dim, class ExecSpace>
+double DistributedQkSpace<dim, ExecSpace>::dot(const ExecSpace& exec, const Vector& x,
+                                               const Vector& y, int components) const {
+  const long n = n_local();
+  double local = 0.0;
+  for (int c = 0; c < components; ++c) {
+    const auto range = Kokkos::make_pair(c * n, c * n + n_owned_);
+    local += blas1::dot(exec, Kokkos::subview(x, range), Kokkos::subview(y, range));
+  }
+  return comm_.sum(local);
+}
+
+#define AMPHORA_DISTRIBUTED_QK_SPACE(E) \
+  template class DistributedQkSpace<2, E>; \
+  template class DistributedQkSpace<3, E>;
+AMPHORA_IF_SERIAL(AMPHORA_DISTRIBUTED_QK_SPACE(Kokkos::Serial))
+AMPHORA_IF_OPENMP(AMPHORA_DISTRIBUTED_QK_SPACE(Kokkos::OpenMP))
+AMPHORA_IF_CUDA(AMPHORA_DISTRIBUTED_QK_SPACE(Kokkos::Cuda))
+
+}  // namespace amphora::mesh

@@ -1,0 +1,80 @@
+#pragma once
+// A Q_k space distributed over MPI ranks: the box's cells are split along the last direction
+// (z in 3D, y in 2D) into one slab per rank, and each rank holds a QkSpace on its slab. The node
+// layer two neighbouring slabs share is owned by the upper slab (in a periodic direction, rank 0
+// owns the layer the last rank wraps onto), so a rank's owned DoFs are the prefix
+// [0, n_owned()) of its local numbering (the lattice runs x fastest, the split direction
+// slowest) and the copy of the shared top layer is its ghost layer.
+//
+// A matrix-free operator applies on a rank's slab as it would on the whole box (interface
+// faces are natural, i.e. Neumann, so cells add their partial sums there); update_ghosts()
+// before and compress_add() after complete it, as deal.II's LinearAlgebra::distributed::Vector
+// does (update_ghost_values / compress(add)). Vectors with several components are blocked per
+// component (QkSpace's layout), each block distributed the same way.
+#include <memory>
+
+#include <Kokkos_Core.hpp>
+
+#include "mesh/environment.hpp"
+#include "mesh/hex/qk_space.hpp"
+
+namespace amphora::mesh {
+
+template <int dim, class ExecSpace>
+class DistributedQkSpace {
+ public:
+  using memory_space = typename ExecSpace::memory_space;
+  using Vector = Kokkos::View<double*, memory_space>;
+  using Space = QkSpace<dim, ExecSpace>;
+
+  /// Splits `global` over the ranks of `comm` (at least one cell per rank along the last
+  /// direction, else std::invalid_argument naming the counts). Collective.
+  DistributedQkSpace(const StructuredHexMesh<dim>& global, int degree, const Communicator& comm);
+
+  const Space& local() const { return *local_; }
+  const StructuredHexMesh<dim>& global_mesh() const { return global_; }
+  const Communicator& communicator() const { return comm_; }
+  int degree() const { return local_->degree(); }
+  /// First cell of this rank's slab along the last direction.
+  int first_cell() const { return first_cell_; }
+  /// DoFs of the local numbering (owned, then the ghost layer), per component.
+  long n_local() const { return local_->n_dofs(); }
+  /// DoFs this rank owns: the prefix [0, n_owned()) of the local numbering, per component.
+  long n_owned() const { return n_owned_; }
+  /// DoFs of the whole box, per component.
+  long n_global() const;
+  /// Global DoF number (of the undistributed QkSpace on the whole box) of local DoF i (host).
+  long global_index(long i) const;
+
+  /// Copies the owners' values into this rank's ghost layer of x. Collective.
+  void update_ghosts(const ExecSpace& exec, const Vector& x, int components = 1) const;
+  /// Adds this rank's partial sums on its ghost layer to the owner's entries (only where the
+  /// DoF is free: a constrained row is the identity on every rank holding it). The ghost layer
+  /// is left as it was. Collective.
+  void compress_add(const ExecSpace& exec, const Vector& y, int components = 1) const;
+  /// Sum over ranks of the owned entries' products. Collective.
+  double dot(const ExecSpace& exec, const Vector& x, const Vector& y, int components = 1) const;
+
+  /// The inner product the Krylov solvers take (conjugate_gradient's `Inner`).
+  struct InnerProduct {
+    const DistributedQkSpace* space;
+    int components = 1;
+    double operator()(const ExecSpace& exec, const Vector& x, const Vector& y) const {
+      return space->dot(exec, x, y, components);
+    }
+  };
+  InnerProduct inner_product(int components = 1) const { return InnerProduct{this, components}; }
+
+ private:
+  StructuredHexMesh<dim> global_;
+  Communicator comm_;
+  std::unique_ptr<Space> local_;
+  int first_cell_ = 0;
+  long layer_ = 0;    // DoFs per node layer of the last direction
+  long n_owned_ = 0;
+  int prev_ = -1;     // rank holding our bottom layer as its ghosts, or MPI_PROC_NULL
+  int next_ = -1;     // rank owning our top layer, or MPI_PROC_NULL (we own it)
+  Vector free_bottom_;  // 1 on free DoFs of the bottom layer, 0 on constrained ones
+};
+
+}  // namespace amphora::mesh

@@ -1,0 +1,43 @@
+#pragma once
+// A matrix-free operator on a DistributedQkSpace: the rank's slab operator between the ghost
+// update of x and the compression of y, so y = A x holds on every owned DoF as on one rank.
+// x's ghost layer is overwritten with the owners' values (x is otherwise unchanged); y's ghost
+// layer holds this rank's partial sums afterwards and is not meaningful.
+#include "mesh/hex/distributed_qk_space.hpp"
+#include "solvers/matrix_free/matrix_free_operator.hpp"
+
+namespace amphora::solvers {
+
+template <int dim, class ExecSpace>
+class DistributedOperator {
+ public:
+  using Space = mesh::DistributedQkSpace<dim, ExecSpace>;
+  using Local = MatrixFreeOperator<dim, ExecSpace>;
+  using Vector = typename Local::Vector;
+
+  DistributedOperator(const Space& space, const typename Local::Options& options)
+      : space_(&space), local_(space.local(), options) {}
+
+  void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {
+    space_->update_ghosts(exec, x, components());
+    local_.apply(exec, x, y);
+    space_->compress_add(exec, y, components());
+  }
+  /// The diagonal on owned DoFs (constrained rows: 1).
+  void compute_diagonal(const ExecSpace& exec, const Vector& diagonal) const {
+    local_.compute_diagonal(exec, diagonal);
+    space_->compress_add(exec, diagonal, components());
+  }
+
+  const Space& space() const { return *space_; }
+  const Local& local() const { return local_; }
+  int components() const { return local_.options().components; }
+  /// Entries of a rank's vectors (owned and ghost layer).
+  long size() const { return local_.size(); }
+
+ private:
+  const Space* space_;
+  Local local_;
+};
+
+}  // namespace amphora::solvers
