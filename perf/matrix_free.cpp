@@ -5,6 +5,10 @@
 // DoFs; one operator application per iteration. Bound: STREAM triad / 16 bytes per DoF
 // (read the source, write the destination once). vs_dealii_* divide by the anchor figures.
 //
+// LaplaceDealii, LaplaceLarge and BP run on any number of MPI ranks (the box split into slabs,
+// mesh::DistributedQkSpace; DoFs and the STREAM bound are totals over the ranks, STREAM measured
+// on all ranks at once); GeometryModes and PoissonSolve on one.
+//
 // LaplaceLarge/p: the same operator on ~40 million DoFs (vectors of 320 MB, beyond the 300 MiB
 // last-level cache): the memory-bound regime.
 //
@@ -34,6 +38,7 @@
 #include "solvers/conjugate_gradient.hpp"
 #include "solvers/hypre_boomeramg.hpp"
 #include "solvers/matrix_free/assembly.hpp"
+#include "solvers/matrix_free/distributed_operator.hpp"
 #include "solvers/matrix_free/load_vector.hpp"
 #include "solvers/matrix_free/multigrid.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
@@ -44,6 +49,8 @@ namespace {
 using Exec = amphora::DefaultExecSpace;
 using Op = amphora::solvers::MatrixFreeOperator<3, Exec>;
 using Vector = Op::Vector;
+using DistributedSpace = amphora::mesh::DistributedQkSpace<3, Exec>;
+using DistributedOp = amphora::solvers::DistributedOperator<3, Exec>;
 namespace mesh = amphora::mesh;
 
 /// Cells per direction giving 2–7 million Q_p DoFs (multiples of 8: full SIMD batches).
@@ -62,8 +69,16 @@ int dealii_cells(int p) {
 constexpr double dealii_1core[] = {0, 0, 69, 73, 88, 79, 83};
 constexpr double dealii_2ranks[] = {0, 0, 112, 136, 150, 160, 182};
 
+/// STREAM triad bandwidth summed over the ranks, measured on all of them at once.
+double total_stream_bandwidth() {
+  const amphora::Communicator comm;
+  comm.barrier();
+  return comm.sum(amphora::perf::stream_triad_bandwidth());
+}
+
 /// The timed loop: y = A x once to warm up, then once per iteration.
-void time_applications(benchmark::State& state, const Op& op, const Vector& x, const Vector& y) {
+template <class Operator>
+void time_applications(benchmark::State& state, const Operator& op, const Vector& x, const Vector& y) {
   const Exec exec;
   op.apply(exec, x, y);
   exec.fence();
@@ -74,7 +89,7 @@ void time_applications(benchmark::State& state, const Op& op, const Vector& x, c
 }
 
 void report(benchmark::State& state, double dofs, double bytes_per_dof) {
-  const double bw = amphora::perf::stream_triad_bandwidth();
+  const double bw = total_stream_bandwidth();
   state.counters["MDoF/s"] = benchmark::Counter(dofs * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["DoFs"] = dofs;
   state.counters["bound_MDoF/s"] = bw / bytes_per_dof * 1e-6;
@@ -84,17 +99,19 @@ void report(benchmark::State& state, double dofs, double bytes_per_dof) {
 void LaplaceDealii(benchmark::State& state) {
   const int p = static_cast<int>(state.range(0));
   const int n = p == 5 ? 32 : dealii_cells(p);
-  const mesh::QkSpace<3, Exec> space(mesh::unit_cube<3>(n), p);
+  const DistributedSpace space(mesh::unit_cube<3>(n), p, amphora::Communicator());
   Op::Options o;
   o.kind = amphora::solvers::OperatorKind::laplace;
   o.geometry = amphora::solvers::GeometryMode::cartesian;
-  const Op op(space, o);
-  Vector x("x", space.n_dofs()), y("y", space.n_dofs());
+  const DistributedOp op(space, o);
+  Vector x("x", op.size()), y("y", op.size());
   Kokkos::deep_copy(x, 1.0);
   time_applications(state, op, x, y);
-  report(state, static_cast<double>(space.n_dofs()), 16.0);
-  state.counters["vs_dealii_1core"] = benchmark::Counter(space.n_dofs() * 1e-6 / dealii_1core[p], benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["vs_dealii_2ranks"] = benchmark::Counter(space.n_dofs() * 1e-6 / dealii_2ranks[p], benchmark::Counter::kIsIterationInvariantRate);
+  const double dofs = static_cast<double>(space.n_global());
+  report(state, dofs, 16.0);
+  state.counters["ranks"] = space.communicator().size();
+  state.counters["vs_dealii_1core"] = benchmark::Counter(dofs * 1e-6 / dealii_1core[p], benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["vs_dealii_2ranks"] = benchmark::Counter(dofs * 1e-6 / dealii_2ranks[p], benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(LaplaceDealii)->DenseRange(2, 6)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -118,13 +135,14 @@ int cells_for(double target, int p) {
 void LaplaceLarge(benchmark::State& state) {
   const int p = static_cast<int>(state.range(0));
   const int n = cells_for(4e7, p);
-  const mesh::QkSpace<3, Exec> space(mesh::unit_cube<3>(n), p);
+  const DistributedSpace space(mesh::unit_cube<3>(n), p, amphora::Communicator());
   Op::Options o;
   o.geometry = amphora::solvers::GeometryMode::cartesian;
-  const Op op(space, o);
-  Vector x = random_vector(space.n_dofs(), 1), y("y", space.n_dofs());
+  const DistributedOp op(space, o);
+  Vector x = random_vector(op.size(), 1), y("y", op.size());
   time_applications(state, op, x, y);
-  report(state, static_cast<double>(space.n_dofs()), 16.0);
+  report(state, static_cast<double>(space.n_global()), 16.0);
+  state.counters["ranks"] = space.communicator().size();
 }
 BENCHMARK(LaplaceLarge)->DenseRange(2, 6)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -135,16 +153,16 @@ void BP(benchmark::State& state) {
   const int n = cells_for(target, p);
   const bool mass = bp <= 2;
   auto m = mesh::unit_cube<3>(n, mass ? mesh::FaceCondition::neumann : mesh::FaceCondition::dirichlet);
-  const mesh::QkSpace<3, Exec> space(m, p);
+  const DistributedSpace space(m, p, amphora::Communicator());
   Op::Options o;
   o.kind = mass ? OperatorKind::mass : OperatorKind::laplace;
   o.geometry = amphora::solvers::GeometryMode::cartesian;
   o.components = bp % 2 == 0 ? 3 : 1;
   o.n_q = bp >= 5 ? p + 1 : p + 2;
   o.quadrature = bp >= 5 ? amphora::sumfac::QuadratureKind::gauss_lobatto : amphora::sumfac::QuadratureKind::gauss;
-  const Op op(space, o);
-  const long N = op.size();
-  Vector b = random_vector(N, 7), x("x", N);
+  const DistributedOp op(space, o);
+  const long N = space.n_global() * o.components;
+  Vector b = random_vector(op.size(), 7), x("x", op.size());
   amphora::solvers::SolverControl control;
   control.max_iterations = 50;
   control.relative_tolerance = 0.0;
@@ -155,14 +173,18 @@ void BP(benchmark::State& state) {
     Kokkos::deep_copy(x, 0.0);
     exec.fence();
     state.ResumeTiming();
-    iterations = amphora::solvers::conjugate_gradient(exec, op, b, x, control).iterations;
+    iterations = amphora::solvers::conjugate_gradient(exec, op, b, x, control,
+                                                      amphora::solvers::IdentityPreconditioner(),
+                                                      space.inner_product(o.components))
+                     .iterations;
     exec.fence();
   }
   state.counters["MDoF/s"] = benchmark::Counter(N * iterations * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["DoFs"] = static_cast<double>(N);
   state.counters["iterations"] = iterations;
-  const double bw = amphora::perf::stream_triad_bandwidth();
+  const double bw = total_stream_bandwidth();
   state.counters["bound_MDoF/s"] = bw / 112.0 * 1e-6;
+  state.counters["ranks"] = space.communicator().size();
 }
 void bp_args(benchmark::internal::Benchmark* b) {
   for (int bp = 1; bp <= 6; ++bp)

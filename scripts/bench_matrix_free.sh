@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Matrix-free FEM benchmarks (perf/matrix_free.cpp), each suite at 1 and 2 threads, JSON in
+# Matrix-free FEM benchmarks (perf/matrix_free.cpp), each suite at 1 and 2 threads (and the
+# deal.II configuration also at 2 MPI ranks of 1 thread, the anchor's own setting), JSON in
 # output/bench/, then the charts:
 #   matrix_free_bp.png        CEED BP1-6 throughput against degree and problem size (2 threads)
 #   matrix_free_geometry.png  Laplace throughput against geometry bytes per DoF (the modes)
@@ -14,11 +15,17 @@ out=output/bench
 mkdir -p "$out"
 export OMP_PROC_BIND=spread OMP_PLACES=threads
 bench=build/release/perf/bench_matrix_free
-run() {  # name threads filter [extra args]
-  local name=$1 threads=$2 filter=$3; shift 3
-  echo "== $name, $threads thread(s)"
-  OMP_NUM_THREADS=$threads "$bench" --benchmark_filter="$filter" \
-    --benchmark_out="$out/matrix_free_${name}_${threads}threads.json" --benchmark_out_format=json "$@" \
+run() {  # name threads filter [extra args]; RANKS=n for an MPI run (one core per rank)
+  local name=$1 threads=$2 filter=$3 ranks=${RANKS:-1} launch=() tag; shift 3
+  tag=${threads}threads
+  if [ "$ranks" -gt 1 ]; then
+    launch=(mpiexec --bind-to core -n "$ranks")
+    tag=${ranks}ranks
+    export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+  fi
+  echo "== $name, $threads thread(s), $ranks rank(s)"
+  OMP_NUM_THREADS=$threads "${launch[@]}" "$bench" --benchmark_filter="$filter" \
+    --benchmark_out="$out/matrix_free_${name}_${tag}.json" --benchmark_out_format=json "$@" \
     | grep -E "^(LaplaceDealii|LaplaceLarge|BP|GeometryModes|PoissonSolve)" | grep -v "_mean\|_stddev\|_cv" || true
 }
 bp_filter='^BP/'
@@ -29,5 +36,6 @@ for t in 1 2; do
   run geometry $t '^GeometryModes' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
   [ "${1:-}" = quick ] || run poisson $t '^PoissonSolve'
 done
+RANKS=2 run dealii 1 '^LaplaceDealii' --benchmark_repetitions=5 --benchmark_min_time=2 --benchmark_report_aggregates_only=true
 run bp 2 "$bp_filter"
 /usr/bin/python3 scripts/plot_matrix_free.py "$out"

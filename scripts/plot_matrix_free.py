@@ -111,6 +111,9 @@ for t in (1, 2):
             lines.append(f"Poisson Q{k} {a['DoFs'] / 1e6:.2f}M DoFs, {t} thread(s): multigrid-CG {a['total_s']:.2f} s "
                          f"({a['iterations']:.0f} it, setup {a['setup_s']:.2f} s), BoomerAMG-CG {b['total_s']:.2f} s "
                          f"({b['iterations']:.0f} it; assembly {b['assembly_s']:.1f} s apart), ratio {b['total_s'] / a['total_s']:.1f}")
+for r in medians(load(f"{out}/matrix_free_dealii_2ranks.json")):
+    lines.append(f"LaplaceDealii p={args(r)[0]} 2 ranks x 1 thread: {r['MDoF/s']:.1f} MDoF/s, "
+                 f"x{r['vs_dealii_2ranks']:.2f} deal.II 2 ranks")
 with open(f"{out}/matrix_free_summary.txt", "w") as f:
     f.write("\n".join(lines) + "\n")
 print("\n".join(lines))
