@@ -9,6 +9,7 @@
 #include <Kokkos_Core.hpp>
 
 #include "kernels/blas1.hpp"
+#include "solvers/conjugate_gradient.hpp"
 #include "solvers/lanczos.hpp"
 
 namespace amphora::solvers {
@@ -19,15 +20,19 @@ struct ChebyshevOptions {
   int eigenvalue_iterations = 12;
 };
 
-template <class ExecSpace, class Operator, class Vector>
+/// `Inner` is the inner product of the eigenvalue estimate (conjugate_gradient's); `start`,
+/// if given, its start vector (a distributed operator passes one that depends on global DoF
+/// numbers only, so every rank count estimates the same lambda_max).
+template <class ExecSpace, class Operator, class Vector, class Inner = LocalInnerProduct>
 class ChebyshevSmoother {
  public:
   ChebyshevSmoother(const ExecSpace& exec, const Operator& A, const Vector& inverse_diagonal,
-                    const ChebyshevOptions& options = {})
+                    const ChebyshevOptions& options = {}, const Inner& inner = Inner(),
+                    const Vector& start = Vector())
       : A_(&A), inv_diag_(inverse_diagonal), options_(options),
         r_("amphora::chebyshev::r", inverse_diagonal.extent(0)),
         d_("amphora::chebyshev::d", inverse_diagonal.extent(0)) {
-    lambda_max_ = estimate_lambda_max(exec);
+    lambda_max_ = estimate_lambda_max(exec, inner, start);
   }
 
   double lambda_max() const { return lambda_max_; }
@@ -60,32 +65,33 @@ class ChebyshevSmoother {
   void apply(const ExecSpace& exec, const Vector& r, const Vector& z) const { smooth(exec, r, z, true); }
 
  private:
-  double estimate_lambda_max(const ExecSpace& exec) const {
+  double estimate_lambda_max(const ExecSpace& exec, const Inner& dot, const Vector& start) const {
     // Jacobi-preconditioned CG from a smooth-free start vector; alphas, betas -> Lanczos.
     const int n = static_cast<int>(inv_diag_.extent(0));
     Vector x("x", n), r("r", n), z("z", n), p("p", n), q("q", n);
     const Vector D = inv_diag_;
+    const bool given = start.extent(0) > 0;
     Kokkos::parallel_for("amphora::ChebyshevSmoother::start", RangePolicy<ExecSpace>(exec, 0, n),
                          KOKKOS_LAMBDA(int i) {
                            // deterministic, rich in every eigencomponent
                            const double h = static_cast<double>((i * 2654435761u) % 1000003u) / 1000003.0;
-                           r(i) = (h - 0.5) * (D(i) != 0.0 ? 1.0 : 0.0);
+                           r(i) = (given ? start(i) : h - 0.5) * (D(i) != 0.0 ? 1.0 : 0.0);
                          });
     std::vector<double> alphas, betas;
     Kokkos::parallel_for("amphora::ChebyshevSmoother::z", RangePolicy<ExecSpace>(exec, 0, n),
                          KOKKOS_LAMBDA(int i) { z(i) = D(i) * r(i); });
     blas1::copy(exec, z, p);
-    double rz = blas1::dot(exec, r, z);
+    double rz = dot(exec, r, z);
     for (int it = 0; it < options_.eigenvalue_iterations && rz > 0.0; ++it) {
       A_->apply(exec, p, q);
-      const double pq = blas1::dot(exec, p, q);
+      const double pq = dot(exec, p, q);
       if (!(pq > 0.0)) break;
       const double alpha = rz / pq;
       alphas.push_back(alpha);
       blas1::axpy(exec, -alpha, q, r);
       Kokkos::parallel_for("amphora::ChebyshevSmoother::z", RangePolicy<ExecSpace>(exec, 0, n),
                            KOKKOS_LAMBDA(int i) { z(i) = D(i) * r(i); });
-      const double rz_new = blas1::dot(exec, r, z);
+      const double rz_new = dot(exec, r, z);
       const double beta = rz_new / rz;
       betas.push_back(beta);
       blas1::axpby(exec, 1.0, z, beta, p);

@@ -41,6 +41,23 @@ scene d2.toml 5 6 multigrid 'dim = 2'
 e2=$(col d2/diagnostics.csv l2_error)
 "$AMPHORA_PYTHON" -c "import sys; sys.exit(0 if $e2 < 1e-7 else 1)" || fail "2D Q5 error $e2"
 
+# 2 ranks (slabs along z): the same error and iteration count as 1 rank, one curvilinear piece
+# per rank in the output; a checkpoint written on 2 ranks (the solution in global DoF order) is
+# read back by a 1-rank run
+scene m8.toml 3 8 multigrid 'deformation = 0.05'
+sed -i 's/^end_time = 1.0/end_time = 2.0\ncheckpoint_every = 1/' m8.toml
+"$MPIEXEC" -n 2 "$AMPHORA" run m8.toml > m8.log
+em=$(col m8/diagnostics.csv l2_error); im=$(col m8/diagnostics.csv iterations)
+"$AMPHORA_PYTHON" -c "import sys; sys.exit(0 if abs($em - $e8) <= 1e-9 * $e8 else 1)" || fail "2 ranks $em vs 1 rank $e8"
+[ "${im%.*}" = "${iters%.*}" ] || fail "2 ranks: $im multigrid-CG iterations, 1 rank $iters"
+grep -q 'Grid Name="solution_1"' m8/m8.xmf || fail "no rank-1 piece in m8.xmf"
+grep -q 'TopologyType="3DSMesh" Dimensions="13 25 25"' m8/m8.xmf || fail "rank pieces are not 12-cell slabs"
+"$AMPHORA" run m8.toml --restart m8/checkpoint.h5 > m8r.log 2>&1 || fail "1-rank restart of a 2-rank checkpoint: $(tail -3 m8r.log)"
+er=$(col m8/diagnostics.csv l2_error)
+"$AMPHORA_PYTHON" -c "import sys; sys.exit(0 if abs($er - $e8) <= 1e-9 * $e8 else 1)" || fail "restarted error $er"
+scene c2.toml 3 2 multigrid
+expect_error 2 "more ranks \(3\) than cells \(2\)" "$MPIEXEC" -n 3 "$AMPHORA" run c2.toml
+
 # bad input
 scene bad.toml 3 4 multigrid 'geometry = "cartesian"'
 expect_error 2 "cartesian.*deformation = 0" "$AMPHORA" run bad.toml

@@ -92,10 +92,11 @@ int mg_iterations(int k, int n) {
   const TestExecSpace exec;
   auto m = mesh::unit_cube<dim>(n);
   m.deformation = mesh::sinusoidal_deformation(dim, 0.05);
-  const mesh::QkSpace<dim, TestExecSpace> space(m, k);
+  const mesh::DistributedQkSpace<dim, TestExecSpace> distributed(m, k, Communicator(MPI_COMM_SELF));
+  const auto& space = distributed.local();
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
   o.kind = OperatorKind::laplace;
-  const MatrixFreeOperator<dim, TestExecSpace> A(space, o);
+  const DistributedOperator<dim, TestExecSpace> A(distributed, o);
   MultigridOptions mo;
   mo.max_coarse_dofs = 200;
   const MatrixFreeMultigrid<dim, TestExecSpace> mg(exec, A, mo);

@@ -17,6 +17,7 @@ struct QkLattice {
   int dofs[3] = {2, 2, 2};   ///< distinct DoFs per direction (nodes - 1 if periodic)
   bool periodic[3] = {false, false, false};
   int dirichlet_faces = 0;   ///< bit 2d: face x_d = lower; bit 2d+1: face x_d = upper
+  int shared_faces = 0;      ///< as dirichlet_faces: faces shared with another rank's lattice
   int width = 1;             ///< cells per batch
   int batches_x = 1;         ///< batches per row of cells along x
 
@@ -114,13 +115,15 @@ struct QkLattice {
       if (constrained_1d(d, node[d])) return true;
     return false;
   }
-  /// Number of cells sharing lattice node (i, j, k) (periodic wrap counted).
+  /// Number of cells sharing lattice node (i, j, k) (periodic wrap and cells of other ranks
+  /// across shared faces counted).
   KOKKOS_INLINE_FUNCTION int multiplicity(const int* node) const {
     int m = 1;
     for (int d = 0; d < dim; ++d) {
       const int i = node[d];
       const bool vertex_layer = i % degree == 0;
-      const bool boundary = !periodic[d] && (i == 0 || i == nodes[d] - 1);
+      const bool boundary = !periodic[d] && ((i == 0 && !(shared_faces >> (2 * d) & 1)) ||
+                                             (i == nodes[d] - 1 && !(shared_faces >> (2 * d + 1) & 1)));
       m *= (vertex_layer && !boundary) ? 2 : 1;
     }
     return m;

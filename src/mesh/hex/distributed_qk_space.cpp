@@ -29,30 +29,46 @@ void exchange_layer(const Communicator& comm, const Send& send, int dest, const 
 
 }  // namespace
 
+namespace {
+int default_first_cell(int cells, int rank, int ranks) {
+  if (cells < ranks)
+    throw std::invalid_argument("DistributedQkSpace: " + std::to_string(cells) +
+                                " cells along the last direction cannot be split over " +
+                                std::to_string(ranks) + " ranks (at least one cell per rank)");
+  return static_cast<int>(static_cast<long>(cells) * rank / ranks);
+}
+}  // namespace
+
 template <int dim, class ExecSpace>
 DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<dim>& global,
                                                        int degree, const Communicator& comm)
-    : global_(global), comm_(comm) {
+    : DistributedQkSpace(global, degree, comm,
+                         default_first_cell(global.cells[dim - 1], comm.rank(), comm.size()),
+                         default_first_cell(global.cells[dim - 1], comm.rank() + 1, comm.size())) {}
+
+template <int dim, class ExecSpace>
+DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<dim>& global,
+                                                       int degree, const Communicator& comm,
+                                                       int first_cell, int end_cell)
+    : global_(global), comm_(comm), first_cell_(first_cell), end_cell_(end_cell) {
   global.validate();
   constexpr int s = dim - 1;  // the split direction
   const int ranks = comm.size(), r = comm.rank(), n = global.cells[s];
-  if (n < ranks)
-    throw std::invalid_argument("DistributedQkSpace: " + std::to_string(n) + " cells along direction " +
-                                std::to_string(s) + " cannot be split over " + std::to_string(ranks) +
-                                " ranks (at least one cell per rank)");
-  first_cell_ = static_cast<int>(static_cast<long>(n) * r / ranks);
-  const int end_cell = static_cast<int>(static_cast<long>(n) * (r + 1) / ranks);
+  if (first_cell < 0 || end_cell <= first_cell || end_cell > n)
+    throw std::invalid_argument("DistributedQkSpace: slab [" + std::to_string(first_cell) + ", " +
+                                std::to_string(end_cell) + ") is not a non-empty range of the " +
+                                std::to_string(n) + " cells along the last direction");
 
   StructuredHexMesh<dim> slab = global;
   if (ranks > 1) {
     const double h = (global.upper[s] - global.lower[s]) / n;
     slab.cells[s] = end_cell - first_cell_;
-    slab.lower[s] = global.lower[s] + h * first_cell_;
+    slab.lower[s] = first_cell_ == 0 ? global.lower[s] : global.lower[s] + h * first_cell_;
     slab.upper[s] = end_cell == n ? global.upper[s] : global.lower[s] + h * end_cell;
     // Faces between slabs are natural: each side adds its cells' share, compress_add sums them.
     const bool periodic = global.periodic(s);
-    if (periodic || r > 0) slab.faces[2 * s] = FaceCondition::neumann;
-    if (periodic || r < ranks - 1) slab.faces[2 * s + 1] = FaceCondition::neumann;
+    if (periodic || r > 0) slab.faces[2 * s] = FaceCondition::interface;
+    if (periodic || r < ranks - 1) slab.faces[2 * s + 1] = FaceCondition::interface;
     prev_ = r > 0 ? r - 1 : (periodic ? ranks - 1 : MPI_PROC_NULL);
     next_ = r < ranks - 1 ? r + 1 : (periodic ? 0 : MPI_PROC_NULL);
   } else {
@@ -73,6 +89,39 @@ DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<d
   for (std::size_t a = 0; a < ch.extent(0); ++a)
     if (ch(a) < layer_) fh(ch(a)) = 0.0;
   Kokkos::deep_copy(free_bottom_, fh);
+}
+
+template <int dim, class ExecSpace>
+bool DistributedQkSpace<dim, ExecSpace>::can_coarsen() const {
+  bool even = first_cell_ % 2 == 0 && end_cell_ % 2 == 0;
+  for (int d = 0; d < dim; ++d) even = even && global_.cells[d] % 2 == 0;
+  return !comm_.any(!even);
+}
+
+template <int dim, class ExecSpace>
+std::unique_ptr<DistributedQkSpace<dim, ExecSpace>> DistributedQkSpace<dim, ExecSpace>::coarsened(
+    int degree) const {
+  if (first_cell_ % 2 != 0 || end_cell_ % 2 != 0)
+    throw std::invalid_argument("DistributedQkSpace: slab [" + std::to_string(first_cell_) + ", " +
+                                std::to_string(end_cell_) + ") has an odd boundary; cannot coarsen");
+  return std::make_unique<DistributedQkSpace>(global_.coarsened(), degree, comm_, first_cell_ / 2,
+                                              end_cell_ / 2);
+}
+
+template <int dim, class ExecSpace>
+std::unique_ptr<DistributedQkSpace<dim, ExecSpace>> DistributedQkSpace<dim, ExecSpace>::with_degree(
+    int degree) const {
+  return std::make_unique<DistributedQkSpace>(global_, degree, comm_, first_cell_, end_cell_);
+}
+
+template <int dim, class ExecSpace>
+Kokkos::View<long*, typename ExecSpace::memory_space> DistributedQkSpace<dim, ExecSpace>::global_indices()
+    const {
+  Kokkos::View<long*, memory_space> g("amphora::DistributedQkSpace::global_indices", n_local());
+  auto h = Kokkos::create_mirror_view(g);
+  for (long i = 0; i < n_local(); ++i) h(i) = global_index(i);
+  Kokkos::deep_copy(g, h);
+  return g;
 }
 
 template <int dim, class ExecSpace>

@@ -28,15 +28,29 @@ class DistributedQkSpace {
   using Space = QkSpace<dim, ExecSpace>;
 
   /// Splits `global` over the ranks of `comm` (at least one cell per rank along the last
-  /// direction, else std::invalid_argument naming the counts). Collective.
+  /// direction, else std::invalid_argument naming the counts), rank r taking cells
+  /// [N r / P, N (r + 1) / P).
   DistributedQkSpace(const StructuredHexMesh<dim>& global, int degree, const Communicator& comm);
+  /// This rank's slab given: cells [first_cell, end_cell) along the last direction (the slabs
+  /// of the ranks, in rank order, must tile the box).
+  DistributedQkSpace(const StructuredHexMesh<dim>& global, int degree, const Communicator& comm,
+                     int first_cell, int end_cell);
+
+  /// True on every rank if every cell count of the box and every slab boundary is even, so
+  /// coarsened() keeps each coarse cell on the rank of its children. Collective.
+  bool can_coarsen() const;
+  /// The same partition of the box with half the cells per direction (degree 1..8 as given).
+  std::unique_ptr<DistributedQkSpace> coarsened(int degree) const;
+  /// The same partition at another degree.
+  std::unique_ptr<DistributedQkSpace> with_degree(int degree) const;
 
   const Space& local() const { return *local_; }
   const StructuredHexMesh<dim>& global_mesh() const { return global_; }
   const Communicator& communicator() const { return comm_; }
   int degree() const { return local_->degree(); }
-  /// First cell of this rank's slab along the last direction.
+  /// This rank's slab along the last direction: cells [first_cell(), end_cell()).
   int first_cell() const { return first_cell_; }
+  int end_cell() const { return end_cell_; }
   /// DoFs of the local numbering (owned, then the ghost layer), per component.
   long n_local() const { return local_->n_dofs(); }
   /// DoFs this rank owns: the prefix [0, n_owned()) of the local numbering, per component.
@@ -45,6 +59,8 @@ class DistributedQkSpace {
   long n_global() const;
   /// Global DoF number (of the undistributed QkSpace on the whole box) of local DoF i (host).
   long global_index(long i) const;
+  /// global_index() of every local DoF (owned and ghost layer).
+  Kokkos::View<long*, memory_space> global_indices() const;
 
   /// Copies the owners' values into this rank's ghost layer of x. Collective.
   void update_ghosts(const ExecSpace& exec, const Vector& x, int components = 1) const;
@@ -69,7 +85,7 @@ class DistributedQkSpace {
   StructuredHexMesh<dim> global_;
   Communicator comm_;
   std::unique_ptr<Space> local_;
-  int first_cell_ = 0;
+  int first_cell_ = 0, end_cell_ = 0;
   long layer_ = 0;    // DoFs per node layer of the last direction
   long n_owned_ = 0;
   int prev_ = -1;     // rank holding our bottom layer as its ghosts, or MPI_PROC_NULL

@@ -19,6 +19,7 @@ QkSpace<dim, ExecSpace>::QkSpace(const StructuredHexMesh<dim>& mesh, int degree)
   lattice_ = sumfac::QkLattice<dim>::create(degree, mesh.cells.data(), periodic,
                                             mesh.dirichlet_faces(),
                                             sumfac::simd_width_v<ExecSpace>);
+  lattice_.shared_faces = mesh.interface_faces();
 
   // Node coordinates: Gauss–Lobatto points in each cell of the box, then the deformation.
   const std::vector<double> gl = sumfac::gauss_lobatto(degree + 1).points;

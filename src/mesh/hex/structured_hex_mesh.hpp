@@ -8,7 +8,9 @@
 
 namespace amphora::mesh {
 
-enum class FaceCondition { dirichlet, neumann, periodic };
+/// `interface`: a face this box shares with a neighbouring rank's box (DistributedQkSpace):
+/// natural for an operator, like Neumann, but its nodes belong to cells on both sides.
+enum class FaceCondition { dirichlet, neumann, periodic, interface };
 
 using Point3 = std::array<double, 3>;
 
@@ -34,6 +36,13 @@ struct StructuredHexMesh {
     long n = 1;
     for (int d = 0; d < dim; ++d) n *= cells[d];
     return n;
+  }
+  /// Bit 2d + side set where face (d, side) is shared with another rank's box.
+  int interface_faces() const {
+    int m = 0;
+    for (int f = 0; f < 2 * dim; ++f)
+      if (faces[f] == FaceCondition::interface) m |= 1 << f;
+    return m;
   }
   /// Bit 2d + side set where face (d, side) is Dirichlet.
   int dirichlet_faces() const {

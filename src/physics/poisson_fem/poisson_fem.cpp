@@ -23,14 +23,11 @@ template <int dim>
 class PoissonFem final : public Module {
  public:
   using Exec = DefaultExecSpace;
-  using Space = mesh::QkSpace<dim, Exec>;
-  using Operator = solvers::MatrixFreeOperator<dim, Exec>;
+  using Space = mesh::DistributedQkSpace<dim, Exec>;
+  using Operator = solvers::DistributedOperator<dim, Exec>;
   using Vector = typename Operator::Vector;
 
   PoissonFem(const Parameters& p, const Communicator& comm) : comm_(comm) {
-    if (comm.size() > 1)
-      throw DecompositionError("more ranks (" + std::to_string(comm.size()) +
-                               ") than blocks (1): the matrix-free FEM runs on one rank so far");
     auto m = mesh::unit_cube<dim>(static_cast<int>(p.integer("cells")));
     const double amplitude = p.real("deformation");
     if (amplitude > 0.0) m.deformation = mesh::sinusoidal_deformation(dim, amplitude);
@@ -38,8 +35,14 @@ class PoissonFem final : public Module {
     if (geometry == "cartesian" && amplitude > 0.0)
       throw std::invalid_argument("poisson_fem.geometry = \"cartesian\" needs deformation = 0 (allowed for curved "
                                   "cells: stored, on_the_fly)");
-    space_ = std::make_unique<Space>(m, static_cast<int>(p.integer("degree")));
-    typename Operator::Options o;
+    const int cells = static_cast<int>(p.integer("cells"));
+    if (cells < comm.size())
+      throw DecompositionError("more ranks (" + std::to_string(comm.size()) + ") than cells (" +
+                               std::to_string(cells) + ") along the last direction: each rank "
+                               "needs a slab of at least one cell");
+    space_ = std::make_unique<Space>(m, static_cast<int>(p.integer("degree")), comm);
+    n_global_ = space_->n_global();
+    typename Operator::Local::Options o;
     o.kind = solvers::OperatorKind::laplace;
     o.geometry = geometry == "cartesian"    ? solvers::GeometryMode::cartesian
                  : geometry == "on_the_fly" ? solvers::GeometryMode::on_the_fly
@@ -48,7 +51,7 @@ class PoissonFem final : public Module {
     multigrid_ = p.string("solver") == "multigrid";
     control_.relative_tolerance = p.real("tolerance");
     control_.max_iterations = static_cast<int>(p.integer("max_iterations"));
-    u_ = Vector("amphora::PoissonFem::u", space_->n_dofs());
+    u_ = Vector("amphora::PoissonFem::u", space_->n_local());
   }
 
   std::string name() const override { return "poisson_fem"; }
@@ -56,40 +59,48 @@ class PoissonFem final : public Module {
   void advance(double, double) override {
     if (solved_) return;
     const Exec exec;
-    const long n = space_->n_dofs();
+    const long n = space_->n_local();
+    const auto& local = space_->local();
     const SineSolution<dim> exact;
     const Vector f = to_view<typename Exec::memory_space>(
-        space_->interpolate([&](const mesh::Point3& x, int) { return exact.source(x); }));
-    const Vector b = solvers::load_vector(exec, *space_, f, A_->options().geometry, space_->degree() + 2);
+        local.interpolate([&](const mesh::Point3& x, int) { return exact.source(x); }));
+    const Vector b = solvers::load_vector(exec, local, f, A_->local().options().geometry, local.degree() + 2);
+    space_->compress_add(exec, b);
     blas1::fill(exec, u_, 0.0);
+    const auto dot = space_->inner_product();
     if (multigrid_) {
       const solvers::MatrixFreeMultigrid<dim, Exec> mg(exec, *A_);
-      result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_, mg);
+      result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_, mg, dot);
     } else {
       Vector d("d", n);
       A_->compute_diagonal(exec, d);
       Kokkos::parallel_for("amphora::PoissonFem::invert", RangePolicy<Exec>(exec, 0, static_cast<int>(n)),
                            KOKKOS_LAMBDA(int i) { d(i) = 1.0 / d(i); });
-      result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_, solvers::JacobiPreconditioner<Vector>{d});
+      result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_, solvers::JacobiPreconditioner<Vector>{d},
+                                            dot);
     }
     if (!result_.converged)
       throw std::runtime_error("poisson_fem: CG did not reach the tolerance " +
                                std::to_string(control_.relative_tolerance) + " in " +
                                std::to_string(result_.iterations) + " iterations (residual " +
                                std::to_string(result_.final_residual / result_.rhs_norm) + ")");
-    errors_ = solvers::error_norms(exec, *space_, u_, SineSolution<dim>{});
+    space_->update_ghosts(exec, u_);
+    // Each rank integrates over its own cells.
+    const solvers::ErrorNorms e = solvers::error_norms(exec, local, u_, SineSolution<dim>{});
+    errors_ = {std::sqrt(comm_.sum(e.l2 * e.l2)), std::sqrt(comm_.sum(e.h1semi * e.h1semi))};
     solved_ = true;
   }
-  long long work_per_step() const override { return space_->n_dofs(); }
+  long long work_per_step() const override { return n_global_; }
   std::string work_unit() const override { return "DoF-solves"; }
 
   std::vector<OutputBlock> output(double) const override {
-    const auto& lat = space_->lattice();
+    // One block per rank: its slab's nodes, the shared layer included so the pieces join.
+    const auto& lat = space_->local().lattice();
     const long n_nodes = lat.n_nodes();
-    auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space_->coordinates());
+    auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space_->local().coordinates());
     auto uh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), u_);
     OutputBlock b;
-    b.name = "solution";
+    b.name = comm_.size() > 1 ? "solution_" + std::to_string(comm_.rank()) : "solution";
     b.curvilinear = true;
     for (int d = 0; d < dim; ++d) b.nodes[d] = lat.nodes[d];
     b.x.resize(n_nodes);
@@ -115,7 +126,7 @@ class PoissonFem final : public Module {
   }
 
   Diagnostics diagnostics(double) const override {
-    return {{"dofs", static_cast<double>(space_->n_dofs())},
+    return {{"dofs", static_cast<double>(n_global_)},
             {"iterations", static_cast<double>(result_.iterations)},
             {"relative_residual", result_.rhs_norm > 0 ? result_.final_residual / result_.rhs_norm : 0.0},
             {"l2_error", errors_.l2},
@@ -127,10 +138,14 @@ class PoissonFem final : public Module {
     if (i < 0) return std::nullopt;
     return NonFiniteReport{"u", "solution", i, 0.0};
   }
+  // The checkpoint holds the whole solution in global DoF order (the owned parts in rank
+  // order are exactly that), written by rank 0: it restarts on any rank count.
   std::vector<StateBlock> state() const override {
     auto uh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), u_);
+    const std::vector<double> u = comm_.allgatherv(std::vector<double>(uh.data(), uh.data() + space_->n_owned()));
+    if (!comm_.is_root()) return {};
     return {{"solution",
-             {{"u", std::vector<double>(uh.data(), uh.data() + uh.extent(0))},
+             {{"u", u},
               {"solved", {solved_ ? 1.0 : 0.0}},
               {"errors", {errors_.l2, errors_.h1semi, double(result_.iterations), result_.final_residual, result_.rhs_norm}}}}};
   }
@@ -139,8 +154,11 @@ class PoissonFem final : public Module {
       if (b.name != "solution") continue;
       for (const auto& [key, v] : b.arrays) {
         if (key == "u") {
+          if (static_cast<long>(v.size()) != n_global_)
+            throw std::runtime_error("poisson_fem: checkpoint holds " + std::to_string(v.size()) +
+                                     " DoFs, the scene has " + std::to_string(n_global_));
           auto uh = Kokkos::create_mirror_view(u_);
-          for (std::size_t i = 0; i < v.size(); ++i) uh(i) = v[i];
+          for (long i = 0; i < space_->n_local(); ++i) uh(i) = v[space_->global_index(i)];
           Kokkos::deep_copy(u_, uh);
         } else if (key == "solved") {
           solved_ = v.at(0) != 0.0;
@@ -159,6 +177,7 @@ class PoissonFem final : public Module {
   Communicator comm_;
   std::unique_ptr<Space> space_;
   std::unique_ptr<Operator> A_;
+  long n_global_ = 0;
   bool multigrid_ = true;
   solvers::SolverControl control_;
   solvers::SolverResult result_;

@@ -13,26 +13,27 @@ struct MatrixFreeMultigrid<dim, ExecSpace>::Level {
   std::unique_ptr<Operator> owned;
   const Operator* op = nullptr;
   Vector inverse_diagonal, b, x, r;
-  std::unique_ptr<ChebyshevSmoother<ExecSpace, Operator, Vector>> smoother;
+  std::unique_ptr<ChebyshevSmoother<ExecSpace, Operator, Vector, typename Space::InnerProduct>> smoother;
 };
 
 template <int dim, class ExecSpace>
 MatrixFreeMultigrid<dim, ExecSpace>::MatrixFreeMultigrid(const ExecSpace& exec, const Operator& fine,
                                                          const MultigridOptions& options) {
-  const auto& fo = fine.options();
+  const auto& fo = fine.local().options();
   if (fo.kind != OperatorKind::laplace || fo.components != 1 || fo.field.extent(0) > 0)
     throw std::invalid_argument("MatrixFreeMultigrid: scalar constant-coefficient Laplace only");
   auto add_level = [&](std::unique_ptr<Space> space, const Operator* op) {
     auto L = std::make_unique<Level>();
     L->space = std::move(space);
     if (!op) {
-      typename Operator::Options o;
+      typename Operator::Local::Options o;
       o.kind = OperatorKind::laplace;
-      o.geometry = L->space->mesh().cartesian() ? GeometryMode::cartesian : GeometryMode::stored;
+      o.geometry = L->space->global_mesh().cartesian() ? GeometryMode::cartesian : GeometryMode::stored;
       L->owned = std::make_unique<Operator>(*L->space, o);
       op = L->owned.get();
     }
     L->op = op;
+    const Space& sp = op->space();
     const long n = op->size();
     L->inverse_diagonal = Vector("amphora::mg::inverse_diagonal", n);
     L->b = Vector("amphora::mg::b", n);
@@ -40,34 +41,50 @@ MatrixFreeMultigrid<dim, ExecSpace>::MatrixFreeMultigrid(const ExecSpace& exec, 
     L->r = Vector("amphora::mg::r", n);
     op->compute_diagonal(exec, L->inverse_diagonal);
     const Vector d = L->inverse_diagonal;
+    // The eigenvalue estimate starts from a vector of the global DoF numbers: the same
+    // lambda_max, so the same smoother, on any rank count.
+    const auto global = sp.global_indices();
+    const Vector start("amphora::mg::start", n);
     Kokkos::parallel_for("amphora::mg::invert_diagonal", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(n)),
-                         KOKKOS_LAMBDA(int i) { d(i) = 1.0 / d(i); });
-    L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Operator, Vector>>(exec, *op, d, options.smoother);
+                         KOKKOS_LAMBDA(int i) {
+                           d(i) = 1.0 / d(i);
+                           const unsigned g = static_cast<unsigned>(global(i));
+                           start(i) = static_cast<double>((g * 2654435761u) % 1000003u) / 1000003.0 - 0.5;
+                         });
+    L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Operator, Vector, typename Space::InnerProduct>>(
+        exec, *op, d, options.smoother, sp.inner_product(), start);
     levels_.push_back(std::move(L));
   };
   add_level(nullptr, &fine);
   // p-levels: halve the degree down to 1
-  auto mesh = fine.space().mesh();
   int degree = fine.space().degree();
   while (degree > 1) {
     degree /= 2;
-    add_level(std::make_unique<Space>(mesh, degree), nullptr);
+    add_level(levels_.back()->op->space().with_degree(degree), nullptr);
   }
-  // h-levels on Q1
+  // h-levels on Q1, while every slab keeps whole coarse cells
   for (;;) {
     const Space& current = levels_.back()->op->space();
-    if (current.n_dofs() <= options.max_coarse_dofs) break;
-    bool even = true;
-    for (int d = 0; d < dim; ++d) even = even && current.mesh().cells[d] % 2 == 0;
-    if (!even) break;
-    add_level(std::make_unique<Space>(current.mesh().coarsened(), 1), nullptr);
+    if (current.n_global() <= options.max_coarse_dofs || !current.can_coarsen()) break;
+    add_level(current.coarsened(1), nullptr);
   }
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l)
-    transfers_.emplace_back(levels_[l + 1]->op->space(), levels_[l]->op->space());
-  // coarse solver: BoomerAMG on the assembled coarsest operator
-  coarse_ = std::make_unique<BoomerAMG>(assemble(exec, *levels_.back()->op), options.coarse_amg);
-  coarse_b_.resize(levels_.back()->op->size());
-  coarse_x_.resize(levels_.back()->op->size());
+    transfers_.emplace_back(levels_[l + 1]->op->space().local(), levels_[l]->op->space().local());
+
+  // Coarse solver: BoomerAMG on the coarsest operator of the whole box, on every rank.
+  const Space& cs = levels_.back()->op->space();
+  const mesh::QkSpace<dim, ExecSpace> whole(cs.global_mesh(), 1);
+  const MatrixFreeOperator<dim, ExecSpace> whole_op(whole, levels_.back()->op->local().options());
+  coarse_ = std::make_unique<BoomerAMG>(assemble(exec, whole_op), options.coarse_amg);
+  coarse_b_.assign(whole.n_dofs(), 0.0);
+  coarse_x_.assign(whole.n_dofs(), 0.0);
+  std::vector<long> owned(cs.n_owned());
+  coarse_local_global_.resize(cs.n_local());
+  for (long i = 0; i < cs.n_local(); ++i) {
+    coarse_local_global_[i] = cs.global_index(i);
+    if (i < cs.n_owned()) owned[i] = coarse_local_global_[i];
+  }
+  coarse_owned_global_ = cs.communicator().allgatherv(owned);
 }
 
 template <int dim, class ExecSpace>
@@ -82,21 +99,30 @@ template <int dim, class ExecSpace>
 void MatrixFreeMultigrid<dim, ExecSpace>::vcycle(const ExecSpace& exec, std::size_t l, const Vector& b,
                                                  const Vector& x) const {
   const Level& L = *levels_[l];
+  const Space& fine = L.op->space();
   if (l + 1 == levels_.size()) {
     auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b);
-    coarse_->vcycle(bh.data(), coarse_x_.data());
+    const std::vector<double> mine(bh.data(), bh.data() + fine.n_owned());
+    const std::vector<double> all = fine.communicator().allgatherv(mine);
+    for (std::size_t k = 0; k < all.size(); ++k) coarse_b_[coarse_owned_global_[k]] = all[k];
+    coarse_->vcycle(coarse_b_.data(), coarse_x_.data());
     auto xh = Kokkos::create_mirror_view(x);
-    for (std::size_t i = 0; i < coarse_x_.size(); ++i) xh(i) = coarse_x_[i];
+    for (std::size_t i = 0; i < coarse_local_global_.size(); ++i) xh(i) = coarse_x_[coarse_local_global_[i]];
     Kokkos::deep_copy(x, xh);
     return;
   }
   const Level& C = *levels_[l + 1];
+  const Space& coarse = C.op->space();
   L.smoother->smooth(exec, b, x, true);
   L.op->apply(exec, x, L.r);
   blas1::axpby(exec, 1.0, b, -1.0, L.r);  // r = b - A x
+  fine.update_ghosts(exec, L.r);
   transfers_[l].restrict_to_coarse(exec, L.r, C.b);
+  coarse.compress_add(exec, C.b);
   vcycle(exec, l + 1, C.b, C.x);
+  coarse.update_ghosts(exec, C.x);
   transfers_[l].prolongate(exec, C.x, L.r);
+  fine.compress_add(exec, L.r);
   blas1::axpy(exec, 1.0, L.r, x);
   L.smoother->smooth(exec, b, x, false);
 }
@@ -107,9 +133,9 @@ std::string MatrixFreeMultigrid<dim, ExecSpace>::describe() const {
   for (std::size_t l = 0; l < levels_.size(); ++l) {
     const auto& sp = levels_[l]->op->space();
     s << (l ? " -> " : "") << "Q" << sp.degree() << " ";
-    for (int d = 0; d < dim; ++d) s << (d ? "x" : "") << sp.mesh().cells[d];
+    for (int d = 0; d < dim; ++d) s << (d ? "x" : "") << sp.global_mesh().cells[d];
   }
-  s << " | coarse: BoomerAMG V-cycle on " << levels_.back()->op->size() << " DoFs";
+  s << " | coarse: BoomerAMG V-cycle on " << coarse_x_.size() << " DoFs";
   return s.str();
 }
 

@@ -3,13 +3,17 @@
 // structured Q_k space: p-multigrid (degree halved down to 1, on the same cells), then
 // h-multigrid on Q1 (cells halved while even), Chebyshev–Jacobi smoothing on every level,
 // matrix-free transfers, and BoomerAMG on the assembled coarsest Q1 operator (one V-cycle).
+// Distributed over the ranks of the fine operator's DistributedQkSpace: every level keeps the
+// fine level's slabs (h-coarsening stops where a slab boundary would fall inside a coarse
+// cell), transfers update ghosts before and compress after, and the coarsest problem, small,
+// is gathered and solved on every rank alike. One rank: no communication at all.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "solvers/chebyshev.hpp"
 #include "solvers/hypre_boomeramg.hpp"
-#include "solvers/matrix_free/matrix_free_operator.hpp"
+#include "solvers/matrix_free/distributed_operator.hpp"
 #include "solvers/matrix_free/transfer.hpp"
 
 namespace amphora::solvers {
@@ -24,9 +28,9 @@ struct MultigridOptions {
 template <int dim, class ExecSpace>
 class MatrixFreeMultigrid {
  public:
-  using Operator = MatrixFreeOperator<dim, ExecSpace>;
+  using Operator = DistributedOperator<dim, ExecSpace>;
   using Vector = typename Operator::Vector;
-  using Space = mesh::QkSpace<dim, ExecSpace>;
+  using Space = mesh::DistributedQkSpace<dim, ExecSpace>;
 
   /// Levels below the (scalar, coefficient-free Laplace) operator `fine`, which must outlive this.
   MatrixFreeMultigrid(const ExecSpace& exec, const Operator& fine, const MultigridOptions& options = {});
@@ -44,7 +48,9 @@ class MatrixFreeMultigrid {
   void vcycle(const ExecSpace& exec, std::size_t l, const Vector& b, const Vector& x) const;
   std::vector<std::unique_ptr<Level>> levels_;  // 0: finest
   std::vector<MatrixFreeTransfer<dim, ExecSpace>> transfers_;  // l: between l+1 (coarse) and l
-  std::unique_ptr<BoomerAMG> coarse_;
+  std::unique_ptr<BoomerAMG> coarse_;  // on the whole coarsest box, on every rank
+  std::vector<long> coarse_owned_global_;  // global numbers of every rank's owned coarse DoFs, rank order
+  std::vector<long> coarse_local_global_;  // global number of each local coarse DoF
   mutable std::vector<double> coarse_b_, coarse_x_;
 };
 

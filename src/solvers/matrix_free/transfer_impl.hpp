@@ -148,6 +148,7 @@ MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, cons
     for (int d = 0; d < dim; ++d) periodic[d] = mc.periodic(d);
     impl->fine = sumfac::QkLattice<dim>::create(2, mc.cells.data(), periodic, mc.dirichlet_faces(),
                                                 impl->coarse.width);
+    impl->fine.shared_faces = impl->coarse.shared_faces;
     fine_degree = 2;
   } else {
     throw std::invalid_argument(
