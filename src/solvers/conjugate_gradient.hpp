@@ -11,10 +11,14 @@
 
 namespace amphora::solvers {
 
+/// An inner product with fused_update(exec, a, p, q, x, r) (x += a p, r -= a q, returning r.r
+/// summed over ranks) lets CG do the three in one pass.
+/// (It says so with a member `static constexpr bool fuses_cg_update = true`.)
 template <class Inner, class = void>
 struct has_fused_update : std::false_type {};
 template <class Inner>
-struct has_fused_update<Inner, std::void_t<decltype(std::declval<const Inner&>().reduce(0.0))>> : std::true_type {};
+struct has_fused_update<Inner, std::void_t<decltype(Inner::fuses_cg_update)>>
+    : std::bool_constant<Inner::fuses_cg_update> {};
 
 struct SolverControl {
   int max_iterations = 1000;
@@ -30,13 +34,17 @@ struct SolverResult {
   double rhs_norm = 0.0;
 };
 
-/// Rank-local Euclidean inner product. An inner product with reduce(local) (the sum over ranks of
-/// a rank's partial sum) lets CG fuse x += a p, r -= a q and r.r into one pass.
+/// Rank-local Euclidean inner product.
 struct LocalInnerProduct {
-  double reduce(double local) const { return local; }
+  static constexpr bool fuses_cg_update = true;
   template <class ExecSpace, class X, class Y>
   double operator()(const ExecSpace& exec, const X& x, const Y& y) const {
     return blas1::dot(exec, x, y);
+  }
+  template <class ExecSpace, class View>
+  double fused_update(const ExecSpace& exec, double alpha, const View& p, const View& q, const View& x,
+                      const View& r) const {
+    return blas1::cg_update(exec, alpha, p, q, x, r);
   }
 };
 
@@ -96,7 +104,7 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
     if (!(pq > 0.0)) break;  // not SPD (or breakdown): stop, not converged
     const double alpha = rz / pq;
     if constexpr (has_fused_update<Inner>::value) {
-      rr = dot.reduce(blas1::cg_update(exec, alpha, p, q, x, r));
+      rr = dot.fused_update(exec, alpha, p, q, x, r);
     } else {
       blas1::axpy(exec, alpha, p, x);
       blas1::axpy(exec, -alpha, q, r);

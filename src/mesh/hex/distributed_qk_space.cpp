@@ -194,6 +194,21 @@ double DistributedQkSpace<dim, ExecSpace>::dot(const ExecSpace& exec, const Vect
   return comm_.sum(local);
 }
 
+template <int dim, class ExecSpace>
+double DistributedQkSpace<dim, ExecSpace>::fused_cg_update(const ExecSpace& exec, double alpha,
+                                                           const Vector& p, const Vector& q,
+                                                           const Vector& x, const Vector& r,
+                                                           int components) const {
+  const long n = n_local();
+  double local = 0.0;
+  for (int c = 0; c < components; ++c) {
+    const auto range = Kokkos::make_pair(c * n, c * n + n_owned_);
+    local += blas1::cg_update(exec, alpha, Kokkos::subview(p, range), Kokkos::subview(q, range),
+                              Kokkos::subview(x, range), Kokkos::subview(r, range));
+  }
+  return comm_.sum(local);
+}
+
 #define AMPHORA_DISTRIBUTED_QK_SPACE(E) \
   template class DistributedQkSpace<2, E>; \
   template class DistributedQkSpace<3, E>;

@@ -70,6 +70,9 @@ class DistributedQkSpace {
   void compress_add(const ExecSpace& exec, const Vector& y, int components = 1) const;
   /// Sum over ranks of the owned entries' products. Collective.
   double dot(const ExecSpace& exec, const Vector& x, const Vector& y, int components = 1) const;
+  /// x += a p, r -= a q on owned entries; returns the sum over ranks of r.r there. Collective.
+  double fused_cg_update(const ExecSpace& exec, double alpha, const Vector& p, const Vector& q,
+                         const Vector& x, const Vector& r, int components = 1) const;
 
   /// The inner product the Krylov solvers take (conjugate_gradient's `Inner`).
   struct InnerProduct {
@@ -77,6 +80,13 @@ class DistributedQkSpace {
     int components = 1;
     double operator()(const ExecSpace& exec, const Vector& x, const Vector& y) const {
       return space->dot(exec, x, y, components);
+    }
+    static constexpr bool fuses_cg_update = true;
+    /// CG's x += a p, r -= a q on the owned entries in one pass; returns r.r over all ranks.
+    /// (Ghost layers are left stale: an operator application updates them first.)
+    template <class E, class V>
+    double fused_update(const E& exec, double alpha, const V& p, const V& q, const V& x, const V& r) const {
+      return space->fused_cg_update(exec, alpha, p, q, x, r, components);
     }
   };
   InnerProduct inner_product(int components = 1) const { return InnerProduct{this, components}; }
