@@ -136,6 +136,7 @@ void DemSystem<ExecSpace>::from_host(const HostArrays& h) {
 
 template <class ExecSpace>
 void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs) {
+  synchronize();
   std::vector<const ParticleSpec*> mine;
   for (const auto& s : specs) {
     if (!(s.radius > 0) || s.radius > config_.max_radius * (1 + 1e-12))
@@ -543,19 +544,35 @@ void DemSystem<ExecSpace>::rebuild() {
   records_to_history();
   {
     wall_mask_ = Kokkos::View<unsigned*, Mem>("amphora::dem::wall_mask", n);
+    wall_near_ = Kokkos::View<unsigned*, Mem>("amphora::dem::wall_near", n);
     row_mask_ = Kokkos::View<unsigned*, Mem>("amphora::dem::row_mask", n);
     const auto mask = wall_mask_;
+    const auto near = wall_near_;
     const auto rmask = row_mask_;
     const auto ws = wall_shear_;
     const auto sh = shear_;
     const auto off = list_.offsets;
+    const auto x = p_.x;
+    const auto rad = p_.radius;
+    const auto walls = walls_;
     const int nw = n_walls_;
+    const double t_now = time_, skin = config_.skin;
     Kokkos::parallel_for(
         "amphora::dem::history_masks", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
-          unsigned m = 0;
-          for (int w = 0; w < nw; ++w)
+          unsigned m = 0, w_near = 0;
+          const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
+          for (int w = 0; w < nw; ++w) {
             if (ws(i, w, 0) != 0.0 || ws(i, w, 1) != 0.0 || ws(i, w, 2) != 0.0) m |= 1u << w;
+            // Until the next rebuild a centre moves less than skin / 2, so a wall that stays
+            // put and lies farther than r + skin cannot be touched; moving walls always can.
+            const Wall& wall = walls(w);
+            const bool moves = wall.velocity[0] != 0.0 || wall.velocity[1] != 0.0 ||
+                               wall.velocity[2] != 0.0;
+            double nn[3], delta, vw[3];
+            if (moves || wall_contact(wall, t_now, xi, rad(i) + skin, nn, delta, vw)) w_near |= 1u << w;
+          }
           mask(i) = m;
+          near(i) = w_near | m;
           unsigned r = 0;
           for (int k = off(i); k < off(i + 1) && k - off(i) < 32; ++k)
             if (sh(k, 0) != 0.0 || sh(k, 1) != 0.0 || sh(k, 2) != 0.0) r |= 1u << (k - off(i));
@@ -575,6 +592,8 @@ double DemSystem<ExecSpace>::kick_drift() {
   const double dt = config_.dt;
   const auto x = p_.x, v = p_.v, om = p_.omega, f = p_.force, tq = p_.torque, xb = x_build_;
   const auto m = p_.mass, in = p_.inertia;
+  const bool pending = pending_kick_;  // the last step's second half kick
+  pending_kick_ = false;
   double max_d2 = 0.0;
   Kokkos::parallel_reduce(
       "amphora::dem::kick_drift", RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
@@ -582,6 +601,10 @@ double DemSystem<ExecSpace>::kick_drift() {
         const double hm = 0.5 * dt / m(i), hi = 0.5 * dt / in(i);
         double d2 = 0;
         for (int d = 0; d < 3; ++d) {
+          if (pending) {
+            v(i, d) += hm * f(i, d);
+            om(i, d) += hi * tq(i, d);
+          }
           v(i, d) += hm * f(i, d);
           om(i, d) += hi * tq(i, d);
           x(i, d) += dt * v(i, d);
@@ -595,7 +618,7 @@ double DemSystem<ExecSpace>::kick_drift() {
 }
 
 template <class ExecSpace>
-void DemSystem<ExecSpace>::kick() {
+void DemSystem<ExecSpace>::kick() const {
   const double dt = config_.dt;
   const auto v = p_.v, om = p_.omega, f = p_.force, tq = p_.torque;
   const auto m = p_.mass, in = p_.inertia;
@@ -627,6 +650,7 @@ void DemSystem<ExecSpace>::compute_forces() {
   const Kokkos::View<const Wall*, Mem, R> walls = walls_;
   const Kokkos::View<double** [3], Kokkos::LayoutRight, Mem, R> wshear = wall_shear_;
   const Kokkos::View<unsigned*, Mem, R> wmask = wall_mask_;
+  const Kokkos::View<const unsigned*, Mem, R> wnear = wall_near_;
   const Kokkos::View<unsigned*, Mem, R> rmask = row_mask_;
   const int nw = n_walls_;
   Kokkos::parallel_for(
@@ -680,7 +704,9 @@ void DemSystem<ExecSpace>::compute_forces() {
             T[d] += c.torque[d];
           }
         }
+        const unsigned near = wnear(i);
         for (int w = 0; w < nw; ++w) {
+          if (!(near & (1u << w))) continue;
           double n[3], delta, vw[3];
           const Wall& wall = walls(w);
           if (!wall_contact(wall, t, xi, ri, n, delta, vw)) {
@@ -748,9 +774,8 @@ void DemSystem<ExecSpace>::step() {
   }
   t = timer_mark(timers_.comm, t);
   compute_forces();
-  t = timer_mark(timers_.force, t);
-  kick();
-  timer_mark(timers_.integrate, t);
+  timer_mark(timers_.force, t);
+  pending_kick_ = true;
 }
 
 template <class ExecSpace>
@@ -775,6 +800,7 @@ std::vector<std::pair<std::int64_t, std::int64_t>> DemSystem<ExecSpace>::contact
 
 template <class ExecSpace>
 DemDiagnostics DemSystem<ExecSpace>::diagnostics() const {
+  synchronize();
   DemDiagnostics out;
   const int n = p_.n_owned;
   const auto x = p_.x, v = p_.v, om = p_.omega;
@@ -940,6 +966,7 @@ std::vector<int> DemSystem<ExecSpace>::contact_counts() const {
 
 template <class ExecSpace>
 std::int64_t DemSystem<ExecSpace>::first_nonfinite() const {
+  synchronize();
   const auto x = p_.x, v = p_.v;
   const auto gid = p_.gid;
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
@@ -958,6 +985,7 @@ std::int64_t DemSystem<ExecSpace>::first_nonfinite() const {
 
 template <class ExecSpace>
 typename DemSystem<ExecSpace>::HostState DemSystem<ExecSpace>::save() const {
+  synchronize();
   HostState s;
   auto* self = const_cast<DemSystem*>(this);
   self->history_to_records();
@@ -989,6 +1017,7 @@ typename DemSystem<ExecSpace>::HostState DemSystem<ExecSpace>::save() const {
 
 template <class ExecSpace>
 void DemSystem<ExecSpace>::load(const HostState& s) {
+  pending_kick_ = false;
   const int nw = int(wall_shear_.extent(1)), K = config_.max_contacts;
   const int total = static_cast<int>(s.radius.size());
   std::vector<int> mine;

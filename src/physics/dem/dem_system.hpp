@@ -79,8 +79,14 @@ class DemSystem {
   const DemConfig& config() const { return config_; }
   void set_dt(double dt) { config_.dt = dt; }
   const SpatialDecomposition& decomposition() const { return decomposition_; }
-  ParticleSet<Mem>& particles() { return p_; }
-  const ParticleSet<Mem>& particles() const { return p_; }
+  ParticleSet<Mem>& particles() {
+    synchronize();
+    return p_;
+  }
+  const ParticleSet<Mem>& particles() const {
+    synchronize();
+    return p_;
+  }
   const NeighborList<Mem>& neighbor_list() const { return list_; }
   long long global_count() const { return comm_.sum(static_cast<long long>(p_.n_owned)); }
 
@@ -133,7 +139,15 @@ class DemSystem {
   void forward_ghosts();
   void compute_forces();
   double kick_drift();
-  void kick();
+  // A step's second half kick is deferred to the next step's first (one pass over the
+  // particles instead of two; the same two additions, so the same bits): until then the
+  // velocities are half a step behind, and every reader of them calls synchronize() first.
+  void kick() const;
+  void synchronize() const {
+    if (!pending_kick_) return;
+    kick();
+    pending_kick_ = false;
+  }
   void resize_owned(int n);
   double timer_mark(double& slot, double since) const;
 
@@ -152,6 +166,8 @@ class DemSystem {
   // Bit w set: wall w's history of this particle may be non-zero. Derived from wall_shear_
   // at each rebuild, so the force loop reads a particle's wall histories only when it must.
   Kokkos::View<unsigned*, Mem> wall_mask_;
+  // Bit w set: wall w may touch the particle before the next rebuild (set at each rebuild).
+  Kokkos::View<unsigned*, Mem> wall_near_;
   // Bit b set: entry off(i) + b of row i may hold a non-zero spring (rows longer than 32 keep
   // their tail entries always "set"). Spares the force loop the history reads of the many
   // listed neighbours that do not touch.
@@ -174,6 +190,7 @@ class DemSystem {
   long long steps_ = 0;
   bool need_rebuild_ = true;
   bool forces_valid_ = false;
+  mutable bool pending_kick_ = false;
   bool profiling_ = false;
   DemTimers timers_;
 };
