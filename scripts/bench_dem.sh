@@ -33,7 +33,11 @@ liggghts_rate() {  # n ranks
 }
 
 amphora_rate() {  # n threads ranks (rank 0 alone prints, see perf/bench_main.cpp)
-  OMP_NUM_THREADS=$2 mpiexec --bind-to none -n "$3" build/release/perf/bench_dem \
+  # One rank: unbound, so its threads spread over the cores. Several ranks: one core each
+  # (unbound, every rank's single OpenMP thread would be pinned to the first core).
+  local bind=none
+  [ "$3" -gt 1 ] && bind=core
+  OMP_NUM_THREADS=$2 mpiexec --bind-to $bind -n "$3" build/release/perf/bench_dem \
       --benchmark_filter="^DenseBed/$1/" --benchmark_format=json 2> /dev/null |
     python3 -c "import sys,json; d=json.load(sys.stdin); print(d['benchmarks'][0]['particle_steps_per_s'])"
 }
