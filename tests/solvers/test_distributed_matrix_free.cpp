@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "deformed_box.hpp"
 #include "kernels/host_vector.hpp"
 #include "solvers/conjugate_gradient.hpp"
 #include "solvers/matrix_free/load_vector.hpp"
@@ -29,14 +30,7 @@ mesh::StructuredHexMesh<dim> box(int n, const std::string& shape, bool periodic_
              FaceCondition::periodic,  FaceCondition::dirichlet, FaceCondition::dirichlet};
   if (dim == 2) m.faces[2] = m.faces[3] = FaceCondition::dirichlet;
   if (periodic_split) m.faces[2 * (dim - 1)] = m.faces[2 * (dim - 1) + 1] = FaceCondition::periodic;
-  if (shape == "affine") {
-    m.deformation = [](const mesh::Point3& X) {
-      return mesh::Point3{X[0] + 0.2 * X[1] + 0.1 * X[2], 0.1 * X[0] + 1.1 * X[1], 0.3 * X[1] + 0.9 * X[2]};
-    };
-    m.affine_deformation = true;
-  } else if (shape == "curved") {
-    m.deformation = mesh::sinusoidal_deformation(dim, 0.05);
-  }
+  test::deform(m, shape);
   return m;
 }
 
@@ -259,6 +253,15 @@ TEST(DistributedMatrixFree, TooFewCellsForTheRanksAreRefused) {
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find("cannot be split over 2 ranks"), std::string::npos) << e.what();
     }
+  }
+  // Slabs given by hand that do not tile the box are refused on every rank (no rank is left
+  // waiting in a collective): here every rank claims the first cell of two.
+  m.cells[2] = 2;
+  try {
+    mesh::DistributedQkSpace<3, TestExecSpace> s(m, 2, comm, 0, 1);
+    FAIL() << "slabs [0, 1) on every rank accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("do not tile the 2 cells"), std::string::npos) << e.what();
   }
 }
 

@@ -8,6 +8,7 @@
 #include <random>
 #include <string>
 
+#include "deformed_box.hpp"
 #include "kernels/blas1.hpp"
 #include "kernels/host_vector.hpp"
 #include "reference_assembly.hpp"
@@ -27,14 +28,7 @@ mesh::StructuredHexMesh<dim> mixed_mesh(int nx, int ny, int nz, const std::strin
   m.cells = {nx, ny, nz};
   m.faces = {FaceCondition::periodic, FaceCondition::periodic, FaceCondition::dirichlet,
              FaceCondition::neumann,  FaceCondition::neumann,  FaceCondition::dirichlet};
-  if (shape == "affine") {
-    m.deformation = [](const mesh::Point3& X) {
-      return mesh::Point3{X[0] + 0.2 * X[1] + 0.1 * X[2], 0.1 * X[0] + 1.1 * X[1], 0.3 * X[1] + 0.9 * X[2]};
-    };
-    m.affine_deformation = true;
-  } else if (shape == "curved") {
-    m.deformation = mesh::sinusoidal_deformation(dim, 0.05);
-  }
+  test::deform(m, shape);
   return m;
 }
 

@@ -54,10 +54,16 @@ DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<d
   global.validate();
   constexpr int s = dim - 1;  // the split direction
   const int ranks = comm.size(), r = comm.rank(), n = global.cells[s];
-  if (first_cell < 0 || end_cell <= first_cell || end_cell > n)
-    throw std::invalid_argument("DistributedQkSpace: slab [" + std::to_string(first_cell) + ", " +
-                                std::to_string(end_cell) + ") is not a non-empty range of the " +
-                                std::to_string(n) + " cells along the last direction");
+  // Every rank checks every slab, so a bad partition throws on all ranks alike.
+  const std::vector<int> bounds = comm.allgatherv(std::vector<int>{first_cell, end_cell});
+  bool tiles = bounds.front() == 0 && bounds.back() == n;
+  for (int q = 0; q < ranks; ++q)
+    tiles = tiles && bounds[2 * q] < bounds[2 * q + 1] && (q == 0 || bounds[2 * q] == bounds[2 * q - 1]);
+  if (!tiles)
+    throw std::invalid_argument("DistributedQkSpace: the ranks' slabs (rank " + std::to_string(r) +
+                                ": cells [" + std::to_string(first_cell) + ", " + std::to_string(end_cell) +
+                                ")) do not tile the " + std::to_string(n) +
+                                " cells along the last direction in rank order, each non-empty");
 
   StructuredHexMesh<dim> slab = global;
   if (ranks > 1) {
@@ -89,6 +95,8 @@ DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<d
   for (std::size_t a = 0; a < ch.extent(0); ++a)
     if (ch(a) < layer_) fh(ch(a)) = 0.0;
   Kokkos::deep_copy(free_bottom_, fh);
+  received_ = Vector(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::DistributedQkSpace::received"),
+                     layer_);
 }
 
 template <int dim, class ExecSpace>
@@ -167,8 +175,7 @@ void DistributedQkSpace<dim, ExecSpace>::compress_add(const ExecSpace& exec, con
   if (prev_ == MPI_PROC_NULL && next_ == MPI_PROC_NULL) return;
   exec.fence();
   const long n = n_local();
-  Vector received(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::DistributedQkSpace::received"),
-                  layer_);
+  const Vector received = received_;
   const Vector free = free_bottom_;
   for (int c = 0; c < components; ++c) {
     const long base = c * n;

@@ -101,6 +101,7 @@ class DistributedQkSpace {
   int prev_ = -1;     // rank holding our bottom layer as its ghosts, or MPI_PROC_NULL
   int next_ = -1;     // rank owning our top layer, or MPI_PROC_NULL (we own it)
   Vector free_bottom_;  // 1 on free DoFs of the bottom layer, 0 on constrained ones
+  Vector received_;     // compress_add's receive buffer (one layer)
 };
 
 }  // namespace amphora::mesh
