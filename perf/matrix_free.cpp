@@ -24,6 +24,8 @@
 // cartesian, 1 affine, 2 stored at points, 3 on the fly; curved cells for 2 and 3):
 // throughput against geometry bytes per DoF, the memory-for-flops trade.
 //
+// GenericKernel/p/generic: the run-time-size fallback against the compiled kernel (below).
+//
 // PoissonSolve/k/solver: -lap u = f on ~2 million DoFs (Q_k, unit cube, Dirichlet) to a
 // relative residual of 1e-8, setup included: solver 0 = matrix-free multigrid-CG, 1 = hypre
 // BoomerAMG-CG on the assembled operator of the same problem (assembly time reported apart).
@@ -211,6 +213,24 @@ void GeometryModes(benchmark::State& state) {
   state.counters["geometry_B/DoF"] = op.geometry_bytes() / n;
 }
 BENCHMARK(GeometryModes)->ArgsProduct({{0, 1, 2, 3}, {2, 4, 6}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// GenericKernel/p/generic: the run-time-size fallback (1) against the compiled kernel (0) for
+// the same operator (Laplace, QGauss(p+1), curved cells, ~1e6 DoFs): what leaving the table
+// costs.
+void GenericKernel(benchmark::State& state) {
+  const int p = static_cast<int>(state.range(0));
+  auto m = mesh::unit_cube<3>(cells_for(1e6, p));
+  m.deformation = mesh::sinusoidal_deformation(3, 0.05);
+  const mesh::QkSpace<3, Exec> space(m, p);
+  Op::Options o;
+  o.geometry = amphora::solvers::GeometryMode::on_the_fly;
+  o.generic_kernel = state.range(1) == 1;
+  const Op op(space, o);
+  Vector x = random_vector(space.n_dofs(), 3), y("y", space.n_dofs());
+  time_applications(state, op, x, y);
+  report(state, static_cast<double>(space.n_dofs()), 16.0);
+}
+BENCHMARK(GenericKernel)->ArgsProduct({{2, 4, 6}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void PoissonSolve(benchmark::State& state) {
   using namespace amphora::solvers;

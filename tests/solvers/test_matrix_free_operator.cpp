@@ -44,6 +44,7 @@ struct Case {
   bool gauss_lobatto = false;
   bool with_field = false;
   int components = 1;
+  bool generic = false;  // force the run-time-size kernel
 };
 
 template <int dim>
@@ -70,6 +71,7 @@ void check(const Case& c, int nx, int ny, int nz) {
   o.n_q = c.degree + 1 + c.n_q_extra;
   o.quadrature = c.gauss_lobatto ? sumfac::QuadratureKind::gauss_lobatto : sumfac::QuadratureKind::gauss;
   o.components = c.components;
+  o.generic_kernel = c.generic;
   if (!field.empty()) o.field = to_device(field);
   const MatrixFreeOperator<dim, TestExecSpace> op(space, o);
   const auto A = test::assemble_reference<dim>(space, c.kind, o.n_q, c.gauss_lobatto, field);
@@ -130,6 +132,23 @@ TEST(MatrixFreeOperator, LaplaceAndMassMatchAssembledMatricesForDegrees1To6In3D)
   }
 }
 
+// The run-time-size fallback: pairs the compiled table lacks (degree + 3 and degree points per
+// direction) and, forced, pairs it has; 2D and 3D, curved, mass and Laplace, 3 components.
+TEST(MatrixFreeOperator, GenericKernelMatchesAssembledMatrices) {
+  for (int k : {1, 2, 4}) {
+    check<2>({K::laplace, G::on_the_fly, "curved", k, 2}, 5, 3, 1);
+    check<2>({K::mass, G::stored, "curved", k, 2}, 5, 3, 1);
+    check<3>({K::laplace, G::stored, "curved", k, 2}, 3, 2, 2);
+    check<3>({K::mass, G::on_the_fly, "curved", k, -1}, 3, 2, 2);
+  }
+  Case forced{K::laplace, G::stored, "curved", 3};
+  forced.generic = true;
+  check<3>(forced, 3, 2, 2);
+  forced.components = 3;
+  forced.kind = K::mass;
+  check<3>(forced, 3, 2, 2);
+}
+
 TEST(MatrixFreeOperator, CollocatedVectorVariableCoefficientAndConvectionOperatorsMatch) {
   for (int k : {2, 3}) {
     check<2>({K::laplace, G::stored, "curved", k, 0, true}, 9, 3, 1);   // collocation (BP5)
@@ -182,10 +201,15 @@ TEST(MatrixFreeOperator, BadOptionsAreRefusedWithAReason) {
   o.geometry = GeometryMode::cartesian;
   EXPECT_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)), std::invalid_argument);
   o.geometry = GeometryMode::stored;
-  o.n_q = 7;
+  o.n_q = 7;  // not compiled: the generic kernel takes it
+  EXPECT_NO_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)));
+  o.n_q = 13;  // beyond the generic kernel too
   EXPECT_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)), std::invalid_argument);
   o.n_q = 0;
   o.kind = OperatorKind::convection;
+  EXPECT_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)), std::invalid_argument);
+  o.n_q = 7;  // convection has no generic kernel
+  o.field = Vector("velocity", 2 * curved.n_dofs());
   EXPECT_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)), std::invalid_argument);
   EXPECT_THROW((mesh::QkSpace<2, TestExecSpace>(mixed_mesh<2>(4, 4, 1, ""), 9)), std::invalid_argument);
 }

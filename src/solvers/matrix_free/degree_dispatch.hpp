@@ -1,7 +1,8 @@
 #pragma once
 // The table of compiled kernels: (degree, quadrature points) -> a call of f with both as
 // compile-time constants. Degrees 1..AMPHORA_SUMFAC_MAX_DEGREE, n_q = degree + 1 (Gauss,
-// or Gauss–Lobatto collocation) and degree + 2 (the CEED BP3/BP4 rule).
+// or Gauss–Lobatto collocation) and degree + 2 (the CEED BP3/BP4 rule). MatrixFreeOperator
+// falls back to a run-time-size kernel (generic_cell_kernel.hpp) for other pairs.
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -13,6 +14,11 @@
 namespace amphora::solvers {
 
 inline constexpr int max_compiled_degree = AMPHORA_SUMFAC_MAX_DEGREE;
+
+/// True if the table holds a kernel for (degree, n_q).
+inline bool compiled_kernel(int degree, int n_q) {
+  return degree >= 1 && degree <= max_compiled_degree && (n_q == degree + 1 || n_q == degree + 2);
+}
 
 template <int k = 1, class F>
 void dispatch_degree(int degree, int n_q, F&& f) {

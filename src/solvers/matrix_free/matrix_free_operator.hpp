@@ -27,6 +27,9 @@ class MatrixFreeOperator {
     sumfac::QuadratureKind quadrature = sumfac::QuadratureKind::gauss;
     int n_q = 0;         ///< points per direction; 0: degree + 1
     int components = 1;  ///< 3 for the vector Laplace/mass of CEED BP2/4/6
+    /// Use the run-time-size kernel even where a compiled one exists (it serves the pairs the
+    /// table lacks on its own; mass and constant-coefficient Laplace).
+    bool generic_kernel = false;
     /// Laplace: coefficient a(x) as a Q_k field (n_dofs); convection: velocity (dim blocked).
     Vector field;
   };

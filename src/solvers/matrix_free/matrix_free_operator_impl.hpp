@@ -5,7 +5,10 @@
 #include <vector>
 
 #include "kernels/blas1.hpp"
+#include "kernels/host_vector.hpp"
+#include "kernels/sumfac/quadrature_1d.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"
+#include "solvers/matrix_free/generic_cell_kernel.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
 namespace amphora::solvers {
@@ -15,6 +18,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   using T = sumfac::Simd<sumfac::simd_width_v<ExecSpace>>;
   Kokkos::View<T*, memory_space> batch_coef, point_coef;
   std::shared_ptr<void> shape;  // ShapeData<n_p, n_q>
+  GenericCellKernel<dim, ExecSpace> generic;  // used when no compiled kernel fits
   void (*apply)(const MatrixFreeOperator&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
   void (*diagonal)(const MatrixFreeOperator&, const ExecSpace&, const Vector&) = nullptr;
   std::vector<double> (*elements)(const MatrixFreeOperator&, const ExecSpace&) = nullptr;
@@ -56,6 +60,81 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
                             KOKKOS_LAMBDA(int b) { k.template apply_batch<atomic>(src, dst, comps, b); });
     copy_constrained(op, exec, x, y);
+  }
+
+  // The generic fallback (generic_cell_kernel.hpp): one cell at a time. mode 0: y = A x;
+  // 1: y = diag(A); on host spaces cells of a batch share nodes, batches run coloured.
+  static void generic_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
+                           const Vector& y, int mode) {
+    using K = GenericCellKernel<dim, ExecSpace>;
+    const K k = op.impl_->generic;
+    const int comps = op.options_.components;
+    const long n = op.space_->n_dofs();
+    constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
+    blas1::fill(exec, y, 0.0);
+    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::generic", KOKKOS_LAMBDA(int) {},
+                            KOKKOS_LAMBDA(int b) {
+                              int c[3] = {0, 0, 0};
+                              k.lattice.batch_cell(b, c);
+                              const int lanes = k.lattice.active_lanes(b);
+                              double X[dim * K::max_cell_dofs], u[K::max_cell_dofs], yl[K::max_cell_dofs];
+                              double column[K::max_cell_dofs], s[K::scratch_size()];
+                              long dof[K::max_cell_dofs];
+                              for (int lane = 0; lane < lanes; ++lane) {
+                                const int cc[3] = {c[0] + lane, c[1], c[2]};
+                                const int nd = k.cell_setup(cc, X, dof);
+                                for (int comp = 0; comp < comps; ++comp) {
+                                  double* out = y.data() + comp * n;
+                                  if (mode == 0) {
+                                    for (int i = 0; i < nd; ++i) u[i] = dof[i] < 0 ? 0.0 : x(comp * n + dof[i]);
+                                    k.apply_cell(X, u, yl, s);
+                                  } else {
+                                    for (int j = 0; j < nd; ++j) {  // the diagonal: unit vectors
+                                      for (int i = 0; i < nd; ++i) u[i] = i == j ? 1.0 : 0.0;
+                                      k.apply_cell(X, u, column, s);
+                                      yl[j] = column[j];
+                                    }
+                                  }
+                                  for (int i = 0; i < nd; ++i) {
+                                    if (dof[i] < 0) continue;
+                                    if constexpr (atomic) Kokkos::atomic_add(out + dof[i], yl[i]);
+                                    else out[dof[i]] += yl[i];
+                                  }
+                                }
+                              }
+                            });
+    if (mode == 0) copy_constrained(op, exec, x, y);
+    else copy_constrained(op, exec, Vector(), y, 1.0);
+  }
+  static void generic_apply(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x, const Vector& y) {
+    generic_impl(op, exec, x, y, 0);
+  }
+  static void generic_diagonal(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& d) {
+    generic_impl(op, exec, Vector(), d, 1);
+  }
+  static std::vector<double> generic_elements(const MatrixFreeOperator& op, const ExecSpace& exec) {
+    using K = GenericCellKernel<dim, ExecSpace>;
+    const K k = op.impl_->generic;
+    int nd = 1, nc = 1;
+    for (int d = 0; d < dim; ++d) nd *= k.n_p, nc *= k.lattice.cells[d];
+    Kokkos::View<double*, memory_space> out("amphora::MatrixFreeOperator::generic_elements",
+                                            static_cast<std::size_t>(nc) * nd * nd);
+    Kokkos::parallel_for("amphora::MatrixFreeOperator::generic_elements", RangePolicy<ExecSpace>(exec, 0, nc),
+                         KOKKOS_LAMBDA(int cell) {
+                           int c[3] = {0, 0, 0};
+                           for (int d = 0, r = cell; d < dim; ++d) c[d] = r % k.lattice.cells[d], r /= k.lattice.cells[d];
+                           double X[dim * K::max_cell_dofs], u[K::max_cell_dofs], column[K::max_cell_dofs];
+                           double s[K::scratch_size()];
+                           long dof[K::max_cell_dofs];
+                           k.cell_setup(c, X, dof);
+                           for (int j = 0; j < nd; ++j) {
+                             for (int i = 0; i < nd; ++i) u[i] = i == j ? 1.0 : 0.0;
+                             k.apply_cell(X, u, column, s);
+                             for (int i = 0; i < nd; ++i) out((static_cast<std::size_t>(cell) * nd + j) * nd + i) = column[i];
+                           }
+                         });
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
+    return std::vector<double>(h.data(), h.data() + h.extent(0));
   }
 
   template <int n_p, int n_q>
@@ -179,6 +258,35 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
     fail("Gauss-Lobatto quadrature is supported with n_q = degree + 1 (collocation) only");
 
   auto impl = std::make_shared<Impl>();
+  if (options.generic_kernel || !compiled_kernel(k, n_q_)) {
+    // The run-time-size fallback: mass and constant-coefficient Laplace, geometry from the nodes.
+    using K = GenericCellKernel<dim, ExecSpace>;
+    if ((options.kind != OperatorKind::laplace && options.kind != OperatorKind::mass) || options.field.extent(0) > 0)
+      fail("no compiled kernel for degree " + std::to_string(k) + " with " + std::to_string(n_q_) +
+           " points per direction, and the generic one does mass and constant-coefficient Laplace only");
+    if (k + 1 > K::max_nodes_1d || n_q_ > K::max_points_1d)
+      fail("degree " + std::to_string(k) + " with " + std::to_string(n_q_) +
+           " points per direction exceeds the generic kernel's limits (degree <= " +
+           std::to_string(K::max_nodes_1d - 1) + ", points <= " + std::to_string(K::max_points_1d) + ")");
+    const auto nodes = sumfac::gauss_lobatto(k + 1).points;
+    const auto rule = options.quadrature == sumfac::QuadratureKind::gauss_lobatto ? sumfac::gauss_lobatto(n_q_)
+                                                                                  : sumfac::gauss(n_q_);
+    K g;
+    g.lattice = space.lattice();
+    g.kind = options.kind;
+    g.n_p = k + 1;
+    g.n_q = n_q_;
+    g.values = to_view<memory_space>(sumfac::lagrange_values(nodes, rule.points), "amphora::generic::values");
+    g.derivatives = to_view<memory_space>(sumfac::lagrange_derivatives(nodes, rule.points), "amphora::generic::derivatives");
+    g.weights = to_view<memory_space>(rule.weights, "amphora::generic::weights");
+    g.coordinates = space.coordinates();
+    impl->generic = g;
+    impl->apply = &Impl::generic_apply;
+    impl->diagonal = &Impl::generic_diagonal;
+    impl->elements = &Impl::generic_elements;
+    impl_ = impl;
+    return;
+  }
   dispatch_degree(k, n_q_, [&](auto np_c, auto nq_c) {
     constexpr int n_p = decltype(np_c)::value, n_q = decltype(nq_c)::value;
     impl->shape = std::make_shared<sumfac::ShapeData<n_p, n_q>>(
