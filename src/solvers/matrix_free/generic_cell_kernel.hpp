@@ -7,6 +7,7 @@
 // degree + 3 points. Sizes up to n_p <= max_nodes_1d, n_q <= max_points_1d.
 #include <Kokkos_Core.hpp>
 
+#include "kernels/sumfac/point_geometry.hpp"
 #include "kernels/sumfac/qk_lattice.hpp"
 #include "solvers/matrix_free/cell_operator_kernel.hpp"
 
@@ -83,26 +84,31 @@ struct GenericCellKernel {
     for (int i = 0; i < nd; ++i) y[i] = 0.0;
     for (int a = 0; a < dim; ++a)
       for (int b = 0; b < dim; ++b) evaluate(X + a * nd, b, geo + (a * dim + b) * max_points, tmp);
+    auto jacobian = [&](int q, double* J) {
+      for (int e = 0; e < dim * dim; ++e) J[e] = geo[e * max_points + q];
+    };
     if (kind == OperatorKind::mass) {
       evaluate(u, -1, grad, tmp);
-      for (int q = 0; q < nq; ++q) grad[q] *= point_weight(q) * det(geo, q);
+      for (int q = 0; q < nq; ++q) {
+        double J[dim * dim];
+        jacobian(q, J);
+        grad[q] *= point_weight(q) * sumfac::determinant<dim>(J);
+      }
       integrate_add(grad, -1, y, tmp);
       return;
     }
     for (int b = 0; b < dim; ++b) evaluate(u, b, grad + b * max_points, tmp);
     for (int q = 0; q < nq; ++q) {
-      double J[3][3] = {}, inv[3][3] = {};
-      for (int a = 0; a < dim; ++a)
-        for (int b = 0; b < dim; ++b) J[a][b] = geo[(a * dim + b) * max_points + q];
-      const double dj = invert(J, inv);
-      // physical gradient g = J^-T ghat; flux = det w J^-1 g
-      double g[3] = {}, f[3] = {};
-      for (int a = 0; a < dim; ++a)
-        for (int b = 0; b < dim; ++b) g[a] += inv[b][a] * grad[b * max_points + q];
-      const double w = point_weight(q) * dj;
-      for (int b = 0; b < dim; ++b)
-        for (int a = 0; a < dim; ++a) f[b] += inv[b][a] * g[a];
-      for (int b = 0; b < dim; ++b) grad[b * max_points + q] = w * f[b];
+      // reference flux G grad_xi u, G = w det J J^-1 J^-T (point_geometry.hpp)
+      double J[dim * dim], G[dim * (dim + 1) / 2], g[dim];
+      jacobian(q, J);
+      sumfac::laplace_metric<dim>(J, point_weight(q), G);
+      for (int b = 0; b < dim; ++b) g[b] = grad[b * max_points + q];
+      for (int a2 = 0; a2 < dim; ++a2) {
+        double f = 0.0;
+        for (int b = 0; b < dim; ++b) f += G[sumfac::sym_index<dim>(a2, b)] * g[b];
+        grad[a2 * max_points + q] = f;
+      }
     }
     for (int b = 0; b < dim; ++b) integrate_add(grad + b * max_points, b, y, tmp);
   }
@@ -113,38 +119,6 @@ struct GenericCellKernel {
     double w = 1.0;
     for (int d = 0; d < dim; ++d, q /= n_q) w *= weights(q % n_q);
     return w;
-  }
-  KOKKOS_INLINE_FUNCTION double det(const double* geo, int q) const {
-    double J[3][3] = {}, inv[3][3];
-    for (int a = 0; a < dim; ++a)
-      for (int b = 0; b < dim; ++b) J[a][b] = geo[(a * dim + b) * max_points + q];
-    return invert(J, inv);
-  }
-  /// inv = J^-1; returns det J.
-  KOKKOS_INLINE_FUNCTION static double invert(const double (&J)[3][3], double (&inv)[3][3]) {
-    if constexpr (dim == 2) {
-      const double d = J[0][0] * J[1][1] - J[0][1] * J[1][0];
-      inv[0][0] = J[1][1] / d;
-      inv[0][1] = -J[0][1] / d;
-      inv[1][0] = -J[1][0] / d;
-      inv[1][1] = J[0][0] / d;
-      return d;
-    } else {
-      const double c00 = J[1][1] * J[2][2] - J[1][2] * J[2][1];
-      const double c01 = J[1][2] * J[2][0] - J[1][0] * J[2][2];
-      const double c02 = J[1][0] * J[2][1] - J[1][1] * J[2][0];
-      const double d = J[0][0] * c00 + J[0][1] * c01 + J[0][2] * c02;
-      inv[0][0] = c00 / d;
-      inv[1][0] = c01 / d;
-      inv[2][0] = c02 / d;
-      inv[0][1] = (J[0][2] * J[2][1] - J[0][1] * J[2][2]) / d;
-      inv[1][1] = (J[0][0] * J[2][2] - J[0][2] * J[2][0]) / d;
-      inv[2][1] = (J[0][1] * J[2][0] - J[0][0] * J[2][1]) / d;
-      inv[0][2] = (J[0][1] * J[1][2] - J[0][2] * J[1][1]) / d;
-      inv[1][2] = (J[0][2] * J[1][0] - J[0][0] * J[1][2]) / d;
-      inv[2][2] = (J[0][0] * J[1][1] - J[0][1] * J[1][0]) / d;
-      return d;
-    }
   }
 
   static constexpr int max_cell_dofs = dim == 3 ? max_nodes_1d * max_nodes_1d * max_nodes_1d
