@@ -6,6 +6,7 @@
 
 #include "kernels/blas1.hpp"
 #include "kernels/spaces.hpp"
+#include "mesh/box_decomposition.hpp"
 
 namespace amphora::mesh {
 
@@ -30,21 +31,26 @@ void exchange_layer(const Communicator& comm, const Send& send, int dest, const 
 }  // namespace
 
 namespace {
-int default_first_cell(int cells, int rank, int ranks) {
-  if (cells < ranks)
-    throw std::invalid_argument("DistributedQkSpace: " + std::to_string(cells) +
-                                " cells along the last direction cannot be split over " +
-                                std::to_string(ranks) + " ranks (at least one cell per rank)");
-  return static_cast<int>(static_cast<long>(cells) * rank / ranks);
+/// This rank's cells along the last direction: the foundation's box decomposition, allowed to
+/// split that direction only (throws DecompositionError for more ranks than cells).
+template <int dim>
+Box slab_of(const StructuredHexMesh<dim>& m, const Communicator& comm) {
+  Index3 cells{1, 1, 1};
+  std::array<bool, 3> periodic{false, false, false}, split{false, false, false};
+  for (int d = 0; d < dim; ++d) {
+    cells[d] = m.cells[d];
+    periodic[d] = m.periodic(d);
+  }
+  split[dim - 1] = true;
+  return BoxDecomposition(cells, periodic, comm.size(), 1, split).box(comm.rank());
 }
 }  // namespace
 
 template <int dim, class ExecSpace>
 DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<dim>& global,
                                                        int degree, const Communicator& comm)
-    : DistributedQkSpace(global, degree, comm,
-                         default_first_cell(global.cells[dim - 1], comm.rank(), comm.size()),
-                         default_first_cell(global.cells[dim - 1], comm.rank() + 1, comm.size())) {}
+    : DistributedQkSpace(global, degree, comm, slab_of(global, comm).lo[dim - 1],
+                         slab_of(global, comm).hi[dim - 1]) {}
 
 template <int dim, class ExecSpace>
 DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<dim>& global,

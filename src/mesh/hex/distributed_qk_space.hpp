@@ -27,9 +27,8 @@ class DistributedQkSpace {
   using Vector = Kokkos::View<double*, memory_space>;
   using Space = QkSpace<dim, ExecSpace>;
 
-  /// Splits `global` over the ranks of `comm` (at least one cell per rank along the last
-  /// direction, else std::invalid_argument naming the counts), rank r taking cells
-  /// [N r / P, N (r + 1) / P).
+  /// Splits `global` over the ranks of `comm` by the foundation's BoxDecomposition, along the
+  /// last direction only (DecompositionError for more ranks than cells there).
   DistributedQkSpace(const StructuredHexMesh<dim>& global, int degree, const Communicator& comm);
   /// This rank's slab given: cells [first_cell, end_cell) along the last direction (the slabs
   /// of the ranks, in rank order, must tile the box).
