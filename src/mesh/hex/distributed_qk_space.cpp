@@ -49,8 +49,13 @@ Box slab_of(const StructuredHexMesh<dim>& m, const Communicator& comm) {
 template <int dim, class ExecSpace>
 DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<dim>& global,
                                                        int degree, const Communicator& comm)
-    : DistributedQkSpace(global, degree, comm, slab_of(global, comm).lo[dim - 1],
-                         slab_of(global, comm).hi[dim - 1]) {}
+    : DistributedQkSpace(global, degree, comm, slab_of(global, comm)) {}
+
+template <int dim, class ExecSpace>
+DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<dim>& global,
+                                                       int degree, const Communicator& comm,
+                                                       const Box& slab)
+    : DistributedQkSpace(global, degree, comm, slab.lo[dim - 1], slab.hi[dim - 1]) {}
 
 template <int dim, class ExecSpace>
 DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<dim>& global,
@@ -198,12 +203,9 @@ void DistributedQkSpace<dim, ExecSpace>::compress_add(const ExecSpace& exec, con
 template <int dim, class ExecSpace>
 double DistributedQkSpace<dim, ExecSpace>::dot(const ExecSpace& exec, const Vector& x,
                                                const Vector& y, int components) const {
-  const long n = n_local();
   double local = 0.0;
-  for (int c = 0; c < components; ++c) {
-    const auto range = Kokkos::make_pair(c * n, c * n + n_owned_);
-    local += blas1::dot(exec, Kokkos::subview(x, range), Kokkos::subview(y, range));
-  }
+  for (int c = 0; c < components; ++c)
+    local += blas1::dot(exec, Kokkos::subview(x, owned(c)), Kokkos::subview(y, owned(c)));
   return comm_.sum(local);
 }
 
@@ -212,12 +214,11 @@ double DistributedQkSpace<dim, ExecSpace>::fused_cg_update(const ExecSpace& exec
                                                            const Vector& p, const Vector& q,
                                                            const Vector& x, const Vector& r,
                                                            int components) const {
-  const long n = n_local();
   double local = 0.0;
   for (int c = 0; c < components; ++c) {
-    const auto range = Kokkos::make_pair(c * n, c * n + n_owned_);
-    local += blas1::cg_update(exec, alpha, Kokkos::subview(p, range), Kokkos::subview(q, range),
-                              Kokkos::subview(x, range), Kokkos::subview(r, range));
+    const auto o = owned(c);
+    local += blas1::cg_update(exec, alpha, Kokkos::subview(p, o), Kokkos::subview(q, o),
+                              Kokkos::subview(x, o), Kokkos::subview(r, o));
   }
   return comm_.sum(local);
 }

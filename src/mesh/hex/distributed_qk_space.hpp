@@ -15,6 +15,7 @@
 
 #include <Kokkos_Core.hpp>
 
+#include "mesh/box_decomposition.hpp"
 #include "mesh/environment.hpp"
 #include "mesh/hex/qk_space.hpp"
 
@@ -91,6 +92,11 @@ class DistributedQkSpace {
   InnerProduct inner_product(int components = 1) const { return InnerProduct{this, components}; }
 
  private:
+  DistributedQkSpace(const StructuredHexMesh<dim>& global, int degree, const Communicator& comm,
+                     const Box& slab);
+  /// Entries of component c this rank owns, in a blocked vector.
+  Kokkos::pair<long, long> owned(int c) const { return {c * n_local(), c * n_local() + n_owned_}; }
+
   StructuredHexMesh<dim> global_;
   Communicator comm_;
   std::unique_ptr<Space> local_;

@@ -142,7 +142,7 @@ class PoissonFem final : public Module {
   // order are exactly that), written by rank 0: it restarts on any rank count.
   std::vector<StateBlock> state() const override {
     auto uh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), u_);
-    const std::vector<double> u = comm_.allgatherv(std::vector<double>(uh.data(), uh.data() + space_->n_owned()));
+    const std::vector<double> u = comm_.gatherv(std::vector<double>(uh.data(), uh.data() + space_->n_owned()));
     if (!comm_.is_root()) return {};
     return {{"solution",
              {{"u", u},
