@@ -164,9 +164,10 @@ TEST(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock) {
   double d2 = 0;
   for (std::size_t c = 0; c < xh.size(); ++c) d2 = std::max(d2, std::abs(xh[c] - p[c]));
   EXPECT_LT(d2, 1e-12 * scale);
-  if (comm.size() > 1)
+  if (comm.size() > 1) {
     EXPECT_THROW(solvers::mac::make_pressure_solver(solvers::mac::PressureBackend::multigrid, Exec(), A, block),
                  std::invalid_argument);
+  }
 }
 
 }  // namespace

@@ -12,7 +12,7 @@ namespace detail {
 /// The departure point, in cell widths, of a sample at q (cell widths) traced back over dt with
 /// the midpoint rule.
 template <class U, class V, class W>
-KOKKOS_INLINE_FUNCTION void departure_point(const mesh::MacGrid& g, const U& u, const V& v, const W& w, double dt,
+KOKKOS_FORCEINLINE_FUNCTION void departure_point(const mesh::MacGrid& g, const U& u, const V& v, const W& w, double dt,
                                             const double q[3], double out[3]) {
   const double scale = dt / g.h;  // velocity x dt in cell widths
   double vel[3], mid[3];
@@ -23,6 +23,18 @@ KOKKOS_INLINE_FUNCTION void departure_point(const mesh::MacGrid& g, const U& u, 
 }
 }  // namespace detail
 
+/// The semi-Lagrangian value of sample (i, j, k) of q (staggering s) after dt.
+template <class Q, class U, class V, class W>
+KOKKOS_FORCEINLINE_FUNCTION double semi_lagrangian_sample(const mesh::MacGrid& g, Staggering s, int i, int j, int k, const Q& q,
+                                                     const U& u, const V& v, const W& w, double dt) {
+  // the sample's position in cell widths from the box corner
+  const double x[3] = {i + (s == Staggering::x ? 0.0 : 0.5), j + (s == Staggering::y ? 0.0 : 0.5),
+                       k + (s == Staggering::z ? 0.0 : 0.5)};
+  double back[3];
+  detail::departure_point(g, u, v, w, dt, x, back);
+  return interpolate_cells(g, q, s, back);
+}
+
 /// q_new = q(departure point) for every sample of staggering s: cells (0..n-1)^3, or faces
 /// (0..n along the staggered direction). q_new must not alias q.
 template <class ExecSpace, class Q, class QN, class U, class V, class W>
@@ -32,12 +44,7 @@ void advect(const ExecSpace& exec, const mesh::MacGrid& g, Staggering s, const Q
   Kokkos::parallel_for(
       "amphora::mac::advect", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
-        // the sample's position in cell widths from the box corner
-        const double x[3] = {i + (s == Staggering::x ? 0.0 : 0.5), j + (s == Staggering::y ? 0.0 : 0.5),
-                             k + (s == Staggering::z ? 0.0 : 0.5)};
-        double back[3];
-        detail::departure_point(g, u, v, w, dt, x, back);
-        q_new(g.index(i, j, k)) = interpolate_cells(g, q, s, back);
+        q_new(g.index(i, j, k)) = semi_lagrangian_sample(g, s, i, j, k, q, u, v, w, dt);
       });
 }
 

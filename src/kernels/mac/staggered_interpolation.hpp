@@ -14,7 +14,7 @@ enum class Staggering : int { centre = -1, x = 0, y = 1, z = 2 };
 /// Interpolates field f (padded lattice) of staggering s at q, a position in cell widths from
 /// the box's lower corner.
 template <class F>
-KOKKOS_INLINE_FUNCTION double interpolate_cells(const mesh::MacGrid& g, const F& f, Staggering s, const double q[3]) {
+KOKKOS_FORCEINLINE_FUNCTION double interpolate_cells(const mesh::MacGrid& g, const F& f, Staggering s, const double q[3]) {
   const int n[3] = {g.nx, g.ny, g.nz};
   int base[3];
   double w[3];
@@ -53,7 +53,7 @@ KOKKOS_INLINE_FUNCTION double interpolate(const mesh::MacGrid& g, const F& f, St
 
 /// The velocity at q (cell widths) from its three face components.
 template <class U, class V, class W>
-KOKKOS_INLINE_FUNCTION void velocity_at_cells(const mesh::MacGrid& g, const U& u, const V& v, const W& w,
+KOKKOS_FORCEINLINE_FUNCTION void velocity_at_cells(const mesh::MacGrid& g, const U& u, const V& v, const W& w,
                                               const double q[3], double vel[3]) {
   vel[0] = interpolate_cells(g, u, Staggering::x, q);
   vel[1] = interpolate_cells(g, v, Staggering::y, q);

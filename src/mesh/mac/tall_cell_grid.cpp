@@ -15,13 +15,8 @@ TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, 
   for (int k = 0; k < g.nz; ++k)
     for (int i = 0; i < g.nx; ++i) {
       TallCellColumn& col = columns_[i + g.nx * k];
-      int j0 = 0;
-      while (j0 < g.ny && d(g.index(i, j0, k)) == 0.0) ++j0;  // terrain: the lowest fluid row
-      int j1 = j0;
-      while (j1 < g.ny && d(g.index(i, j1, k)) != 0.0) ++j1;  // the lowest non-fluid row above
-      col.terrain = j0;
-      col.band = j1 - optical_depth;
-      if (col.band - j0 < 2) col.band = j0;  // a tall cell needs two rows for its two samples
+      // a fluid cell is one with a diagonal
+      tall_cell_rows(g.ny, optical_depth, [&](int j) { return d(g.index(i, j, k)) != 0.0; }, col.terrain, col.band);
       col.first_unknown = static_cast<int>(next);
       if (col.has_tall_cell()) {
         next += 2;

@@ -12,6 +12,7 @@
 
 #include "kernels/host_vector.hpp"
 #include "kernels/mac/poisson_stencil.hpp"
+#include "mesh/mac/tall_cell_columns.hpp"
 
 namespace amphora::mesh {
 

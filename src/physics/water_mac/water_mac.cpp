@@ -11,7 +11,7 @@
 #include "kernels/host_vector.hpp"
 #include "kernels/mac/level_set.hpp"
 #include "kernels/mac/projection.hpp"
-#include "kernels/mac/semi_lagrangian.hpp"
+#include "kernels/mac/tall_cell_advection.hpp"
 #include "kernels/mac/tall_cell_transfer.hpp"
 #include "kernels/reductions.hpp"
 #include "mesh/box_decomposition.hpp"
@@ -147,6 +147,11 @@ class WaterMac final : public Module {
       const double now = max_speed();
       const double speed = now + gravity_ * std::min(dt - done, grid_.h / std::max(now, 1e-3));
       double sub = std::min(dt - done, cfl_ * grid_.h / std::max(speed, 1e-12));
+      if (optical_depth_ > 0) {
+        // the explicit upwind step in the tall cells needs a Courant sum below one there
+        const double tall = kernels::mac::tall_cell_speed(Exec(), tall_, u_, v_, w_) + gravity_ * sub;
+        sub = std::min(sub, grid_.h / std::max(tall, 1e-12));
+      }
       if (dt - done - sub < 1e-3 * sub) sub = dt - done;
       substep(sub);
       done += sub;
@@ -210,7 +215,7 @@ class WaterMac final : public Module {
       if (bad >= 0 && bad < static_cast<int>(f.extent(0))) {
         int i, j, k;
         grid_.ijk(bad, i, j, k);
-        return NonFiniteReport{name, "water", bad, grid_.origin[0] + (i + 0.5) * grid_.h};
+        return NonFiniteReport{name, "water", bad, grid_.origin[0] + (i + 0.5) * grid_.h, {}};
       }
     }
     return std::nullopt;
@@ -247,6 +252,7 @@ class WaterMac final : public Module {
     p_ = Vector("amphora::water::p", n);
     b_ = Vector("amphora::water::b", n);
     type_ = Types("amphora::water::type", n);
+    tall_ = mesh::TallCellColumns<Mem>(grid_);
     solid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::solid", n);
     valid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::valid", n);
   }
@@ -301,27 +307,42 @@ class WaterMac final : public Module {
     extrapolate_velocity();
   }
 
-  void classify() { kernels::mac::classify_cells(Exec(), grid_, solid_, phi_, type_); }
+  /// Cell types from the level set, and the tall-cell columns that follow them.
+  void classify() {
+    kernels::mac::classify_cells(Exec(), grid_, solid_, phi_, type_);
+    mesh::find_tall_cell_columns(Exec(), type_, optical_depth_, tall_);
+  }
 
   void substep(double dt) {
     const Exec exec;
     const mesh::MacGrid& g = grid_;
-    // 1. advection of the level set and the velocity (all from the old velocity)
-    kernels::mac::advect(exec, g, Staggering::centre, phi_, phi_tmp_, u_, v_, w_, dt);
-    kernels::mac::advect(exec, g, Staggering::x, u_, u_tmp_, u_, v_, w_, dt);
-    kernels::mac::advect(exec, g, Staggering::y, v_, v_tmp_, u_, v_, w_, dt);
-    kernels::mac::advect(exec, g, Staggering::z, w_, w_tmp_, u_, v_, w_, dt);
+    // 1. advection of the level set and the velocity (all from the old velocity; on the
+    //    tall-cell grid of the last sub-step, uniform everywhere without tall cells)
+    //    velocity only where the water can be after the step: the surface moves at most
+    //    sqrt(3) cfl cells (a trace), plus one for the interpolation, with margin
+    const double reach = (2 * std::ceil(cfl_) + 3) * g.h;
+    kernels::mac::advect(exec, tall_, Staggering::centre, phi_, phi_tmp_, u_, v_, w_, dt, phi_, reach);
+    kernels::mac::advect(exec, tall_, Staggering::x, u_, u_tmp_, u_, v_, w_, dt, phi_, reach);
+    kernels::mac::advect(exec, tall_, Staggering::y, v_, v_tmp_, u_, v_, w_, dt, phi_, reach);
+    kernels::mac::advect(exec, tall_, Staggering::z, w_, w_tmp_, u_, v_, w_, dt, phi_, reach);
     std::swap(phi_, phi_tmp_);
     std::swap(u_, u_tmp_), std::swap(v_, v_tmp_), std::swap(w_, w_tmp_);
     // 2. reinitialisation towards a signed distance
     if (reinit_ > 0) {
       Kokkos::deep_copy(exec, phi0_, phi_);
       for (int it = 0; it < reinit_; ++it) {
-        kernels::mac::reinitialise_step(exec, g, phi0_, phi_, phi_tmp_);
+        kernels::mac::reinitialise_step(exec, tall_, phi0_, phi_, phi_tmp_);
         std::swap(phi_, phi_tmp_);
       }
     }
     classify();
+    // the grid rebuilt to follow the surface: the velocity in its tall cells becomes linear in
+    // height, keeping each column's momentum
+    if (optical_depth_ > 0) {
+      kernels::mac::fit_linear_in_tall_cells(exec, tall_, 0, u_);
+      kernels::mac::fit_linear_in_tall_cells(exec, tall_, 1, v_);
+      kernels::mac::fit_linear_in_tall_cells(exec, tall_, 2, w_);
+    }
     // 3. gravity, on the y faces inside the box
     const double dv = gravity_ * dt;
     const auto v = v_;
@@ -485,6 +506,7 @@ class WaterMac final : public Module {
   int reinit_ = 2, optical_depth_ = 0, extrapolation_layers_ = 3;
   Vector phi_, phi_tmp_, phi0_, u_, v_, w_, u_tmp_, v_tmp_, w_tmp_, p_, b_;
   Types type_;
+  mesh::TallCellColumns<Mem> tall_;
   Kokkos::View<std::uint8_t*, Mem> solid_, valid_;
   long substeps_ = 0;
   int last_iterations_ = 0;

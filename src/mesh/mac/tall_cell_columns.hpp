@@ -1,0 +1,85 @@
+#pragma once
+// The column structure of a tall-cell grid (Irving, Guendelman, Losasso & Fedkiw 2006, sec. 3)
+// in a memory space: per (x, z) column the lowest fluid row (the terrain) and the lowest uniform
+// row (the band); rows [terrain, band) form the column's tall cell. Built on the device from the
+// cell types every sub-step, so the grid follows the surface; mesh::TallCellGrid uses the same
+// rule (tall_cell_rows) for the pressure unknowns.
+//
+// A tall cell carries every field as a linear function of height through two samples (bottom
+// and top). The water module stores the fields expanded on the lattice; tall_rows() names the
+// lattice samples of a field that lie inside tall cells, where the tall-cell schemes apply.
+#include "mesh/mac/mac_grid.hpp"
+
+namespace amphora::mesh {
+
+/// Rows of one column from its fluid cells: terrain = the lowest fluid row, band = the lowest
+/// uniform row, optical_depth uniform rows below the lowest non-fluid row above the terrain; a
+/// tall cell needs at least two rows for its two samples, else band = terrain (no tall cell).
+template <class IsFluid>
+KOKKOS_INLINE_FUNCTION void tall_cell_rows(int ny, int optical_depth, const IsFluid& fluid, int& terrain, int& band) {
+  int j0 = 0;
+  while (j0 < ny && !fluid(j0)) ++j0;
+  int j1 = j0;
+  while (j1 < ny && fluid(j1)) ++j1;
+  terrain = j0;
+  band = j1 - optical_depth;
+  if (band - j0 < 2) band = j0;
+}
+
+template <class MemSpace>
+struct TallCellColumns {
+  MacGrid grid;
+  Kokkos::View<int*, MemSpace> terrain, band;  ///< per column, x fastest
+
+  TallCellColumns() = default;
+  explicit TallCellColumns(const MacGrid& g)
+      : grid(g),
+        terrain("amphora::tall::terrain", static_cast<std::size_t>(g.nx) * g.nz),
+        band("amphora::tall::band", static_cast<std::size_t>(g.nx) * g.nz) {}
+
+  /// Rows [lo, hi) of the samples in tall cells of the field with staggering d (-1: cell
+  /// centres, 0/1/2: faces normal to x/y/z) in sample column (i, k): the tall cell's rows for
+  /// cells, its inner faces for v, and for u and w the rows where the tall cells on both sides
+  /// of the face overlap (none at the box faces).
+  KOKKOS_INLINE_FUNCTION void tall_rows(int d, int i, int k, int& lo, int& hi) const {
+    lo = hi = 0;
+    if (d == -1 || d == 1) {
+      const int col = i + grid.nx * k;
+      const int t = terrain(col), b = band(col);
+      if (b > t) lo = d == -1 ? t : t + 1, hi = b;
+      return;
+    }
+    const int n = d == 0 ? grid.nx : grid.nz, m = d == 0 ? i : k;
+    if (m == 0 || m == n) return;
+    const int a = d == 0 ? (i - 1) + grid.nx * k : i + grid.nx * (k - 1), c = i + grid.nx * k;
+    const int ta = terrain(a), ba = band(a), tc = terrain(c), bc = band(c);
+    if (ba > ta && bc > tc) {
+      lo = math::max(ta, tc);
+      hi = math::max(lo, math::min(ba, bc));
+    }
+  }
+  KOKKOS_INLINE_FUNCTION bool in_tall_cell(int d, int i, int j, int k) const {
+    int lo, hi;
+    tall_rows(d, i, k, lo, hi);
+    return j >= lo && j < hi;
+  }
+};
+
+/// The columns of the fluid cells of `type` (every column uniform if optical_depth == 0).
+template <class ExecSpace, class MemSpace, class Types>
+void find_tall_cell_columns(const ExecSpace& exec, const Types& type, int optical_depth,
+                            const TallCellColumns<MemSpace>& columns) {
+  const MacGrid g = columns.grid;
+  const auto terrain = columns.terrain, band = columns.band;
+  Kokkos::parallel_for(
+      "amphora::mac::find_tall_cell_columns", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz), KOKKOS_LAMBDA(int col) {
+        const int i = col % g.nx, k = col / g.nx;
+        const auto fluid = [&](int j) { return type(g.index(i, j, k)) == MacCellType::fluid; };
+        int t, b;
+        tall_cell_rows(g.ny, optical_depth > 0 ? optical_depth : g.ny, fluid, t, b);
+        terrain(col) = t;
+        band(col) = b;
+      });
+}
+
+}  // namespace amphora::mesh
