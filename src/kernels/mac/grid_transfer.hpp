@@ -19,13 +19,15 @@ namespace amphora::kernels::mac {
 
 namespace detail {
 /// Weights of fine cells 2I-1 .. 2I+2 towards coarse cell I under P^T along one direction: 1/4,
-/// 3/4, 3/4, 1/4, where a box face (clamped prolongation) moves the outer 1/4 onto the inner cell.
-/// (Fine cells beyond the box are ghosts holding zero; their weight does not matter.)
+/// 3/4, 3/4, 1/4, where a box face (an edge: clamped prolongation) moves the outer 1/4 onto the
+/// inner cell. (Fine cells beyond an edge are ghosts holding zero; their weight does not matter.
+/// Beyond another block's face they hold that block's values.)
 template <class S>
-KOKKOS_INLINE_FUNCTION void restriction_weights(int I, int n_c, bool wall_below, bool wall_above, S w[4]) {
+KOKKOS_INLINE_FUNCTION void restriction_weights(int I, int n_c, bool edge_below, bool edge_above, bool wall_below,
+                                                bool wall_above, S w[4]) {
   w[0] = S(0.25);
-  w[1] = I == 0 ? (wall_below ? S(1) : S(0.5)) : S(0.75);
-  w[2] = I == n_c - 1 ? (wall_above ? S(1) : S(0.5)) : S(0.75);
+  w[1] = I == 0 && edge_below ? (wall_below ? S(1) : S(0.5)) : S(0.75);
+  w[2] = I == n_c - 1 && edge_above ? (wall_above ? S(1) : S(0.5)) : S(0.75);
   w[3] = S(0.25);
 }
 
@@ -46,6 +48,7 @@ void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
   const auto solid = coarse_A.solid;
   const int sy = gf.stride_y(), sz = gf.stride_z();
   const auto wall = coarse_A.walls();
+  const auto edge = coarse_A.edges();
   Kokkos::parallel_for(
       "amphora::mac::restrict_to_coarse",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gc.nz, gc.ny, gc.nx}),
@@ -56,9 +59,9 @@ void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
           return;
         }
         S wx[4], wy[4], wz[4];
-        detail::restriction_weights(I, gc.nx, wall[0], wall[1], wx);
-        detail::restriction_weights(J, gc.ny, wall[2], wall[3], wy);
-        detail::restriction_weights(K, gc.nz, wall[4], wall[5], wz);
+        detail::restriction_weights(I, gc.nx, edge[0], edge[1], wall[0], wall[1], wx);
+        detail::restriction_weights(J, gc.ny, edge[2], edge[3], wall[2], wall[3], wy);
+        detail::restriction_weights(K, gc.nz, edge[4], edge[5], wall[4], wall[5], wz);
         // Fine cells 2I-1 .. 2I+2 lie in the padded lattice; the ghost ones hold zeros.
         const int corner = gf.index(2 * I - 1, 2 * J - 1, 2 * K - 1);
         S sum = 0;
@@ -84,14 +87,17 @@ void prolongate_add(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& co
   const auto active = fine_A.inverse_diag;
   const int fsy = gf.stride_y(), fsz = gf.stride_z();
   const auto wall = coarse_A.walls();
+  const auto edge = coarse_A.edges();
   Kokkos::parallel_for(
       "amphora::mac::prolongate_add",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gc.nz, gc.ny, gc.nx}),
       KOKKOS_LAMBDA(int K, int J, int I) {
         const S q = 0.25, t3 = 0.75;
-        // beyond the box, the neighbour is the cell itself with weight +-1/4 (see above)
-        const bool outside_x[2] = {I == 0, I == gc.nx - 1}, outside_y[2] = {J == 0, J == gc.ny - 1},
-                   outside_z[2] = {K == 0, K == gc.nz - 1};
+        // beyond an edge of the grid, the neighbour is the cell itself with weight +-1/4 (see
+        // above); beyond another block's face, the ghost cell holds it
+        const bool outside_x[2] = {I == 0 && edge[0], I == gc.nx - 1 && edge[1]},
+                   outside_y[2] = {J == 0 && edge[2], J == gc.ny - 1 && edge[3]},
+                   outside_z[2] = {K == 0 && edge[4], K == gc.nz - 1 && edge[5]};
         const int xs[3] = {outside_x[0] ? I : I - 1, I, outside_x[1] ? I : I + 1};
         const int ys[3] = {outside_y[0] ? J : J - 1, J, outside_y[1] ? J : J + 1};
         const int zs[3] = {outside_z[0] ? K : K - 1, K, outside_z[1] ? K : K + 1};
@@ -160,12 +166,13 @@ void extend_into_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
 }
 
 /// E^T, then zero on every non-fluid cell: each fluid cell adds the share it gave to each solid
-/// neighbour.
+/// neighbour (ghost solid cells: their owners' values and shares).
 template <class ExecSpace, class MemSpace, class S, class V>
 void gather_from_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const V& v) {
   const mesh::MacGrid g = A.grid;
   const auto active = A.inverse_diag;
   const auto solid = A.solid;
+  const auto share = A.solid_share;
   const int sy = g.stride_y(), sz = g.stride_z();
   const int first = g.first_plane_index(), end = g.end_plane_index();
   Kokkos::parallel_for(
@@ -175,9 +182,7 @@ void gather_from_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
         typename V::non_const_value_type add = 0;
         for (int f = 0; f < 6; ++f) {
           const int s = c + offsets[f];
-          if (!solid(s)) continue;
-          int nbr[6];
-          add += v(s) / detail::fluid_neighbours(active, s, sy, sz, nbr);  // >= 1: c is one
+          if (solid(s)) add += v(s) * static_cast<typename V::non_const_value_type>(share(s));
         }
         v(c) += add;
       });
@@ -203,34 +208,15 @@ void prolongate_correction(const ExecSpace& exec, const PoissonStencil<MemSpace,
   prolongate_add(exec, coarse_A, fine_A, coarse, fine);
 }
 
-/// The coarse matrix of a fine one (grid dimensions even): see the header comment.
+/// Pass 2 of coarsen_stencil: diagonal = half the children's free-surface terms + the coarse
+/// conductances (again after a block's ghost conductances arrive).
 template <class ExecSpace, class MemSpace>
-PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A) {
-  const mesh::MacGrid gf = fine_A.grid, gc = gf.coarsened();
-  PoissonStencil<MemSpace> coarse_A(gc);
-  coarse_A.box = fine_A.box;
+void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A, const PoissonStencil<MemSpace>& coarse_A) {
+  const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto fd = fine_A.diag, fcx = fine_A.cx, fcy = fine_A.cy, fcz = fine_A.cz;
   const auto cd = coarse_A.diag, cinv = coarse_A.inverse_diag, ccx = coarse_A.cx, ccy = coarse_A.cy, ccz = coarse_A.cz;
   const auto fsolid = fine_A.solid, csolid = coarse_A.solid;
   const int sy = gf.stride_y(), sz = gf.stride_z();
-  // Pass 1: conductances of the + faces of every coarse cell.
-  Kokkos::parallel_for(
-      "amphora::mac::coarsen_stencil::faces",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gc.nz, gc.ny, gc.nx}),
-      KOKKOS_LAMBDA(int K, int J, int I) {
-        float sx = 0, sy_ = 0, sz_ = 0;
-        for (int b = 0; b < 2; ++b)
-          for (int a = 0; a < 2; ++a) {
-            sx += fcx(gf.index(2 * I + 1, 2 * J + a, 2 * K + b));
-            sy_ += fcy(gf.index(2 * I + a, 2 * J + 1, 2 * K + b));
-            sz_ += fcz(gf.index(2 * I + a, 2 * J + b, 2 * K + 1));
-          }
-        const int c = gc.index(I, J, K);
-        ccx(c) = 0.5f * sx;
-        ccy(c) = 0.5f * sy_;
-        ccz(c) = 0.5f * sz_;
-      });
-  // Pass 2: diagonal = half the children's free-surface terms + the coarse conductances.
   const int csy = gc.stride_y(), csz = gc.stride_z();
   Kokkos::parallel_for(
       "amphora::mac::coarsen_stencil::diagonal",
@@ -256,7 +242,36 @@ PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonSte
         cinv(c) = diag > 0.0 ? 1.0 / diag : 0.0;
         csolid(c) = all_solid;
       });
+}
+
+/// The coarse matrix of a fine one (grid dimensions even): see the header comment.
+template <class ExecSpace, class MemSpace>
+PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A) {
+  const mesh::MacGrid gf = fine_A.grid, gc = gf.coarsened();
+  PoissonStencil<MemSpace> coarse_A(gc);
+  coarse_A.box = fine_A.box;
+  const auto fcx = fine_A.cx, fcy = fine_A.cy, fcz = fine_A.cz;
+  const auto ccx = coarse_A.cx, ccy = coarse_A.cy, ccz = coarse_A.cz;
+  // Pass 1: conductances of the + faces of every coarse cell.
+  Kokkos::parallel_for(
+      "amphora::mac::coarsen_stencil::faces",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gc.nz, gc.ny, gc.nx}),
+      KOKKOS_LAMBDA(int K, int J, int I) {
+        float sx = 0, sy_ = 0, sz_ = 0;
+        for (int b = 0; b < 2; ++b)
+          for (int a = 0; a < 2; ++a) {
+            sx += fcx(gf.index(2 * I + 1, 2 * J + a, 2 * K + b));
+            sy_ += fcy(gf.index(2 * I + a, 2 * J + 1, 2 * K + b));
+            sz_ += fcz(gf.index(2 * I + a, 2 * J + b, 2 * K + 1));
+          }
+        const int c = gc.index(I, J, K);
+        ccx(c) = 0.5f * sx;
+        ccy(c) = 0.5f * sy_;
+        ccz(c) = 0.5f * sz_;
+      });
+  coarse_diagonal(exec, fine_A, coarse_A);
   coarse_A.any_solid = fine_A.any_solid && count_solid(exec, coarse_A) > 0;
+  compute_solid_shares(exec, coarse_A);
   return coarse_A;
 }
 

@@ -39,6 +39,9 @@ struct PoissonStencil {
   /// 1 on solid cells inside the box (terrain, obstacles): multigrid extends a correction into
   /// them as across a wall, where air cells take zero.
   Kokkos::View<std::uint8_t*, MemSpace> solid;
+  /// 1 / (fluid face neighbours) of a solid cell, zero elsewhere: the weight of the extension
+  /// into solids (grid_transfer.hpp); stored so a ghost solid cell carries its owner's value.
+  Kokkos::View<double*, MemSpace> solid_share;
   bool any_solid = false;  ///< some cell is solid (else the multigrid skips the extension)
 
   /// sum_j c_ij x_j over the six neighbours of cell c (x zero where a cell is not fluid).
@@ -55,6 +58,12 @@ struct PoissonStencil {
     for (int f = 0; f < 6; ++f) w[f] = box[f] == mesh::MacBoundary::wall;
     return w;
   }
+  /// Which box faces end the grid (wall or open, not another block's face).
+  Kokkos::Array<bool, 6> edges() const {
+    Kokkos::Array<bool, 6> e;
+    for (int f = 0; f < 6; ++f) e[f] = box[f] != mesh::MacBoundary::neighbour;
+    return e;
+  }
 
   PoissonStencil() = default;
   explicit PoissonStencil(const mesh::MacGrid& g)
@@ -64,7 +73,8 @@ struct PoissonStencil {
         cx("amphora::mac::cx", g.padded_size()),
         cy("amphora::mac::cy", g.padded_size()),
         cz("amphora::mac::cz", g.padded_size()),
-        solid("amphora::mac::solid", g.padded_size()) {}
+        solid("amphora::mac::solid", g.padded_size()),
+        solid_share("amphora::mac::solid_share", g.padded_size()) {}
 };
 
 /// v = 0 on the ghost planes k = -1 and k = nz, which the flat stencil loops do not visit (the
@@ -79,7 +89,20 @@ void zero_ghost_planes(const ExecSpace& exec, const mesh::MacGrid& g, const V& v
       });
 }
 
-/// y = A x on every interior cell; every ghost entry of y is zero.
+/// v = 0 on every ghost cell beyond the x and z faces (the y ghosts of the planes are zero
+/// after apply/residual, whose coefficients there are).
+template <class ExecSpace, class V>
+void zero_ghost_cells(const ExecSpace& exec, const mesh::MacGrid& g, const V& v) {
+  zero_ghost_planes(exec, g, v);
+  Kokkos::parallel_for(
+      "amphora::mac::zero_ghost_columns", RangePolicy<ExecSpace>(exec, 0, (g.ny + 2) * g.nz), KOKKOS_LAMBDA(int row) {
+        const int j = row % (g.ny + 2) - 1, k = row / (g.ny + 2);
+        v(g.index(-1, j, k)) = 0.0;
+        v(g.index(g.nx, j, k)) = 0.0;
+      });
+}
+
+/// y = A x on every interior cell; every ghost entry of y is zero (on one block).
 template <class ExecSpace, class MemSpace, class S, class X, class Y>
 void apply(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const X& x, const Y& y) {
   const PoissonStencil<MemSpace, S> a = A;
@@ -157,6 +180,30 @@ int count_solid(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
   return n;
 }
 
+/// solid_share = 1 / (fluid face neighbours) on the interior solid cells (zero without any),
+/// from the ghost layer as it is (zero diagonals beyond a box face, the owners' across a block
+/// face once exchanged).
+template <class ExecSpace, class MemSpace, class S>
+void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
+  const mesh::MacGrid g = A.grid;
+  const auto active = A.inverse_diag;
+  const auto solid = A.solid;
+  const auto share = A.solid_share;
+  const int sy = g.stride_y(), sz = g.stride_z();
+  Kokkos::parallel_for(
+      "amphora::mac::compute_solid_shares",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
+      KOKKOS_LAMBDA(int k, int j, int i) {
+        const int c = g.index(i, j, k);
+        int n = 0;
+        if (solid(c)) {
+          const int offsets[6] = {-1, 1, -sy, sy, -sz, sz};
+          for (int f = 0; f < 6; ++f) n += active(c + offsets[f]) != 0;
+        }
+        share(c) = n > 0 ? 1.0 / n : 0.0;
+      });
+}
+
 /// The matrix of a grid's fluid cells: conductance 1 between fluid cells, 1/theta towards air
 /// (phi from the level set; an empty phi puts the interface at the air cell's centre, theta =
 /// 1), Dirichlet p = 0 on open box faces (theta = 1/2), nothing at walls and solids. Across a
@@ -211,6 +258,7 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
         inv(c) = diag > 0.0 ? 1.0 / diag : 0.0;
       });
   A.any_solid = count_solid(exec, A) > 0;
+  compute_solid_shares(exec, A);
   return A;
 }
 
@@ -231,6 +279,7 @@ PoissonStencil<DstMemSpace, S> copy_stencil(const PoissonStencil<MemSpace, S>& A
   B.diag = copy(A.diag), B.inverse_diag = copy(A.inverse_diag);
   B.cx = copy(A.cx), B.cy = copy(A.cy), B.cz = copy(A.cz);
   B.solid = copy(A.solid);
+  B.solid_share = copy(A.solid_share);
   return B;
 }
 
@@ -242,6 +291,7 @@ PoissonStencil<MemSpace, Scalar> convert_stencil(const ExecSpace& exec, const Po
   B.box = A.box;
   B.cx = A.cx, B.cy = A.cy, B.cz = A.cz;  // float already: shared
   B.solid = A.solid;
+  B.solid_share = A.solid_share;
   B.any_solid = A.any_solid;
   B.diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::diag", A.diag.extent(0));
   B.inverse_diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::inverse_diag", A.diag.extent(0));

@@ -1,6 +1,10 @@
 #include "solvers/mac/mac_multigrid.hpp"
 
+#include <mpi.h>
+
+#include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
 namespace amphora::solvers::mac {
 
@@ -10,6 +14,12 @@ int halvings(int n) {
   int l = 0;
   while (n > 0 && n % 2 == 0) n /= 2, ++l;
   return l;
+}
+
+bool all_ranks(MPI_Comm comm, bool local) {
+  int in = local ? 1 : 0, out = 0;
+  MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_MIN, comm);
+  return out == 1;
 }
 }  // namespace
 
@@ -35,6 +45,214 @@ std::string multigrid_size_error(const mesh::MacGrid& g, long max_coarse_cells) 
     << " can be halved " << halvings(n) << " times; valid sizes are m * 2^L with small m, e.g. "
     << names[worst] << " = " << below << " or " << above;
   return s.str();
+}
+
+template <class ExecSpace>
+MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A, const MacMultigridOptions& options,
+                                      const mesh::MacBlock& block)
+    : options_(options), halo_(block) {
+  const MPI_Comm comm = block.comm;
+  // every rank decides together, so none is left waiting in an exchange
+  const std::string error = multigrid_size_error(A.grid, options.max_coarse_cells);
+  if (!all_ranks(comm, error.empty()))
+    throw std::invalid_argument(error.empty() ? "multigrid: another rank's block cannot be coarsened" : error);
+  fine_ = A;
+  // Down to blocks of at most 64 cells, or as far as the dimensions stay even (coarsened in
+  // double, then stored in single precision); a block's first cell stays on the coarse grid.
+  Stencil level = A;
+  complete_ghosts(exec, nullptr, level);
+  levels_.push_back(kernels::mac::convert_stencil<float>(exec, level));
+  const auto& lower = block.global_lower;
+  parity_.push_back((lower[0] + lower[2]) & 1);
+  for (int shift = 1;; ++shift) {
+    const mesh::MacGrid& g = level.grid;
+    const bool local = g.nx % 2 == 0 && g.ny % 2 == 0 && g.nz % 2 == 0 && g.cells() > 64 &&
+                       lower[0] % (1 << shift) == 0 && lower[2] % (1 << shift) == 0;
+    if (!all_ranks(comm, local)) break;
+    Stencil coarse = kernels::mac::coarsen_stencil(exec, level);
+    complete_ghosts(exec, &level, coarse);
+    level = coarse;
+    levels_.push_back(kernels::mac::convert_stencil<float>(exec, level));
+    parity_.push_back(((lower[0] >> shift) + (lower[2] >> shift)) & 1);
+  }
+  for (const LevelStencil& S : levels_) {
+    const long n = S.grid.padded_size();
+    x_.emplace_back("amphora::mac_mg::x", n);  // zero, ghost entries stay zero on one block
+    b_.emplace_back("amphora::mac_mg::b", n);
+    r_.emplace_back("amphora::mac_mg::r", n);
+  }
+  exec.fence();
+  setup_coarse_solve(level);
+}
+
+template <class ExecSpace>
+void MacMultigrid<ExecSpace>::complete_ghosts(const ExecSpace& exec, const Stencil* fine, Stencil& level) const {
+  const MPI_Comm comm = halo_.block().comm;
+  int any = level.any_solid ? 1 : 0, global_any = 0;
+  MPI_Allreduce(&any, &global_any, 1, MPI_INT, MPI_MAX, comm);
+  if (!halo_.block().split()) return;  // one block: the coefficients are complete
+  const mesh::MacGrid& g = level.grid;
+  // the ghost cells' + faces are this block's - faces; then the diagonal at the block faces
+  halo_.exchange(exec, g, level.cx);
+  halo_.exchange(exec, g, level.cz);
+  if (fine) kernels::mac::coarse_diagonal(exec, *fine, level);
+  halo_.exchange(exec, g, level.diag);
+  halo_.exchange(exec, g, level.inverse_diag);
+  halo_.exchange(exec, g, level.solid);
+  // the extension into solids must run on every rank when it runs on one (it exchanges)
+  level.any_solid = global_any != 0;
+  kernels::mac::compute_solid_shares(exec, level);
+  halo_.exchange(exec, g, level.solid_share);
+}
+
+template <class ExecSpace>
+void MacMultigrid<ExecSpace>::setup_coarse_solve(const Stencil& coarsest) {
+  const mesh::MacBlock& block = halo_.block();
+  const MPI_Comm comm = block.comm;
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &ranks);
+  const mesh::MacGrid g = coarsest.grid;
+  const int shift = levels() - 1;
+  // the blocks of the coarsest grid: lower corner and extents
+  const int mine[6] = {block.global_lower[0] >> shift, 0, block.global_lower[2] >> shift, g.nx, g.ny, g.nz};
+  std::vector<int> boxes(6 * ranks);
+  MPI_Allgather(mine, 6, MPI_INT, boxes.data(), 6, MPI_INT, comm);
+  mesh::MacGrid whole{0, 0, 0, g.h, g.origin};
+  counts_.assign(ranks, 0);
+  displacements_.assign(ranks, 0);
+  for (int r = 0; r < ranks; ++r) {
+    const int* b = &boxes[6 * r];
+    whole.nx = std::max(whole.nx, b[0] + b[3]);
+    whole.ny = std::max(whole.ny, b[1] + b[4]);
+    whole.nz = std::max(whole.nz, b[2] + b[5]);
+    counts_[r] = b[3] * b[4] * b[5];
+    if (r > 0) displacements_[r] = displacements_[r - 1] + counts_[r - 1];
+  }
+  my_offset_ = displacements_[rank];
+  const int total = displacements_[ranks - 1] + counts_[ranks - 1];
+  gathered_index_.resize(total);
+  for (int r = 0; r < ranks; ++r) {
+    const int* b = &boxes[6 * r];
+    int m = displacements_[r];
+    for (int k = 0; k < b[5]; ++k)
+      for (int j = 0; j < b[4]; ++j)
+        for (int i = 0; i < b[3]; ++i) gathered_index_[m++] = whole.index(b[0] + i, b[1] + j, b[2] + k);
+  }
+  // this block's cells, and its rows of the matrix, gathered into the whole coarsest grid
+  std::vector<int> cells;
+  cells.reserve(counts_[rank]);
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) cells.push_back(g.index(i, j, k));
+  coarse_cells_ = to_view<MemSpace>(cells, "amphora::mac_mg::coarse_cells");
+  const auto d = Kokkos::create_mirror_view_and_copy(HostMemSpace(), coarsest.diag);
+  const auto cx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), coarsest.cx);
+  const auto cy = Kokkos::create_mirror_view_and_copy(HostMemSpace(), coarsest.cy);
+  const auto cz = Kokkos::create_mirror_view_and_copy(HostMemSpace(), coarsest.cz);
+  std::vector<double> rows;
+  rows.reserve(4 * cells.size());
+  for (const int c : cells) rows.insert(rows.end(), {d(c), double(cx(c)), double(cy(c)), double(cz(c))});
+  std::vector<int> counts4(ranks), displacements4(ranks);
+  for (int r = 0; r < ranks; ++r) counts4[r] = 4 * counts_[r], displacements4[r] = 4 * displacements_[r];
+  std::vector<double> all_rows(4 * static_cast<std::size_t>(total));
+  MPI_Allgatherv(rows.data(), counts4[rank], MPI_DOUBLE, all_rows.data(), counts4.data(), displacements4.data(),
+                 MPI_DOUBLE, comm);
+  std::vector<double> wd(whole.padded_size(), 0.0);
+  std::vector<float> wx(whole.padded_size(), 0.0f), wy(whole.padded_size(), 0.0f), wz(whole.padded_size(), 0.0f);
+  for (int m = 0; m < total; ++m) {
+    const int c = gathered_index_[m];
+    wd[c] = all_rows[4 * m], wx[c] = float(all_rows[4 * m + 1]), wy[c] = float(all_rows[4 * m + 2]),
+    wz[c] = float(all_rows[4 * m + 3]);
+  }
+  coarse_ = std::make_unique<CoarseCholesky>(stencil_to_csr(whole, wd.data(), wx.data(), wy.data(), wz.data(),
+                                                            coarse_numbering_));
+  coarse_local_ = Kokkos::View<float*, MemSpace>("amphora::mac_mg::coarse_local", cells.size());
+  coarse_send_.resize(cells.size());
+  coarse_gathered_.resize(total);
+  coarse_lattice_.assign(whole.padded_size(), 0.0);
+  coarse_rhs_.resize(coarse_numbering_.size());
+}
+
+template <class ExecSpace>
+void MacMultigrid<ExecSpace>::apply(const ExecSpace& exec, const Vector& r, const Vector& z) const {
+  const LevelVector b = b_[0], x = x_[0];
+  Kokkos::parallel_for(
+      "amphora::mac_mg::to_single", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(r.extent(0))),
+      KOKKOS_LAMBDA(int c) { b(c) = static_cast<float>(r(c)); });
+  vcycle(exec, 0);
+  Kokkos::parallel_for(
+      "amphora::mac_mg::to_double", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(z.extent(0))),
+      KOKKOS_LAMBDA(int c) { z(c) = x(c); });
+}
+
+template <class ExecSpace>
+void MacMultigrid<ExecSpace>::coarse_solve(const ExecSpace& exec) const {
+  // gather the right-hand side of every block, solve the whole coarsest grid, keep this block's
+  const int l = levels() - 1;
+  const LevelVector b = b_[l], x = x_[l];
+  const auto cells = coarse_cells_;
+  const auto local = coarse_local_;
+  const int n = static_cast<int>(cells.extent(0));
+  Kokkos::parallel_for(
+      "amphora::mac_mg::coarse_pack", RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int m) { local(m) = b(cells(m)); });
+  Kokkos::View<float*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> host(coarse_send_.data(), n);
+  Kokkos::deep_copy(exec, host, local);
+  exec.fence();
+  MPI_Allgatherv(coarse_send_.data(), n, MPI_FLOAT, coarse_gathered_.data(), counts_.data(), displacements_.data(),
+                 MPI_FLOAT, halo_.block().comm);
+  for (std::size_t m = 0; m < gathered_index_.size(); ++m) coarse_lattice_[gathered_index_[m]] = coarse_gathered_[m];
+  const auto& fluid = coarse_numbering_.cell;
+  for (std::size_t u = 0; u < fluid.size(); ++u) coarse_rhs_[u] = coarse_lattice_[fluid[u]];
+  coarse_->solve(coarse_rhs_.data(), coarse_rhs_.data());
+  std::fill(coarse_lattice_.begin(), coarse_lattice_.end(), 0.0);
+  for (std::size_t u = 0; u < fluid.size(); ++u) coarse_lattice_[fluid[u]] = coarse_rhs_[u];
+  for (int m = 0; m < n; ++m) coarse_send_[m] = static_cast<float>(coarse_lattice_[gathered_index_[my_offset_ + m]]);
+  Kokkos::deep_copy(exec, local, host);
+  blas1::fill(exec, x, 0.0f);
+  Kokkos::parallel_for(
+      "amphora::mac_mg::coarse_unpack", RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int m) { x(cells(m)) = local(m); });
+}
+
+template <class ExecSpace>
+void MacMultigrid<ExecSpace>::smooth(const ExecSpace& exec, int l, int first_colour) const {
+  const LevelStencil& A = levels_[l];
+  for (int half = 0; half < 2; ++half) {
+    sync(exec, l, x_[l]);
+    const int colour = half == 0 ? first_colour : 1 - first_colour;
+    kernels::mac::red_black_gauss_seidel(exec, A, b_[l], x_[l], colour ^ parity_[l]);
+  }
+}
+
+template <class ExecSpace>
+void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
+  if (l + 1 == levels()) {
+    coarse_solve(exec);
+    return;
+  }
+  const LevelStencil &A = levels_[l], &C = levels_[l + 1];
+  const LevelVector x = x_[l];
+  const int nu = options_.smoothing_steps << l;
+  blas1::fill(exec, x, 0.0f);
+  for (int s = 0; s < nu; ++s) smooth(exec, l, 0);
+  // restriction R = E^T P^T: the fine residual's ghosts feed P^T, the coarse ghosts E^T
+  sync(exec, l, x);
+  kernels::mac::residual(exec, A, b_[l], x, r_[l]);
+  sync(exec, l, r_[l]);
+  kernels::mac::restrict_to_coarse(exec, A, C, r_[l], b_[l + 1]);
+  if (C.any_solid) {
+    sync(exec, l + 1, b_[l + 1]);
+    kernels::mac::gather_from_solids(exec, C, b_[l + 1]);
+  }
+  vcycle(exec, l + 1);
+  // prolongation P E
+  sync(exec, l + 1, x_[l + 1]);
+  if (C.any_solid) {
+    kernels::mac::extend_into_solids(exec, C, x_[l + 1]);
+    sync(exec, l + 1, x_[l + 1]);
+  }
+  kernels::mac::prolongate_add(exec, C, A, x_[l + 1], x);
+  for (int s = 0; s < nu; ++s) smooth(exec, l, 1);
 }
 
 template class MacMultigrid<DefaultExecSpace>;

@@ -6,12 +6,19 @@
 // by re-discretisation (kernels/mac/grid_transfer.hpp), and an exact sparse Cholesky solve on the
 // coarsest grid. The preconditioner works in single precision (matrices and vectors): on these
 // memory-bound sweeps that halves the time, and CG, in double, is unaffected at 1e-8.
+//
+// On a grid split horizontally over ranks (mesh::MacBlock) every level keeps the blocks (halved),
+// ghost layers are exchanged before each half-sweep, residual and transfer, the red-black colour
+// follows the global cell index, the coarsest grid is gathered on every rank and solved there,
+// and CG's inner products are summed over the ranks: the V-cycle is the single-block one, so
+// the iterations do not depend on the rank count.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "kernels/host_vector.hpp"
 #include "kernels/mac/grid_transfer.hpp"
+#include "mesh/mac/lattice_halo.hpp"
 #include "solvers/conjugate_gradient.hpp"
 #include "solvers/mac/coarse_cholesky.hpp"
 #include "solvers/mac/stencil_csr.hpp"
@@ -27,6 +34,27 @@ struct MacMultigridOptions {
 /// naming the dimension at fault and the nearest sizes that work.
 std::string multigrid_size_error(const mesh::MacGrid& g, long max_coarse_cells);
 
+/// CG's inner products over the blocks of a split grid: local sums (ghost entries of one factor
+/// are zero in every product CG forms) added over the ranks.
+struct BlockInnerProduct {
+  MPI_Comm comm = MPI_COMM_SELF;
+  static constexpr bool fuses_cg_update = true;
+  template <class ExecSpace, class X, class Y>
+  double operator()(const ExecSpace& exec, const X& x, const Y& y) const {
+    return sum(blas1::dot(exec, x, y));
+  }
+  template <class ExecSpace, class View>
+  double fused_update(const ExecSpace& exec, double alpha, const View& p, const View& q, const View& x,
+                      const View& r) const {
+    return sum(blas1::cg_update(exec, alpha, p, q, x, r));
+  }
+  double sum(double local) const {
+    double global = local;
+    MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_SUM, comm);
+    return global;
+  }
+};
+
 template <class ExecSpace>
 class MacMultigrid {
  public:
@@ -36,22 +64,28 @@ class MacMultigrid {
   using Vector = Kokkos::View<double*, MemSpace>;
   using LevelVector = Kokkos::View<float*, MemSpace>;
 
-  /// Throws std::invalid_argument (multigrid_size_error) for grids it cannot coarsen.
-  MacMultigrid(const ExecSpace& exec, const Stencil& A, const MacMultigridOptions& options = {});
+  /// Throws std::invalid_argument (multigrid_size_error) for grids it cannot coarsen. A is this
+  /// block's matrix, its ghost conductances exchanged (see build_poisson_stencil).
+  MacMultigrid(const ExecSpace& exec, const Stencil& A, const MacMultigridOptions& options = {},
+               const mesh::MacBlock& block = {});
 
   /// z = one V-cycle applied to r (the preconditioner of CG).
   void apply(const ExecSpace& exec, const Vector& r, const Vector& z) const;
-  /// y = A x on the finest level (the operator of CG).
+  /// y = A x on the finest level (the operator of CG): x's ghosts exchanged first, y zero on
+  /// every ghost cell.
   struct FineOperator {
     Stencil A;
+    const mesh::LatticeGhostExchange* halo;
     void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {
+      halo->exchange(exec, A.grid, x);
       kernels::mac::apply(exec, A, x, y);
+      if (halo->block().split()) kernels::mac::zero_ghost_cells(exec, A.grid, y);
     }
   };
-  FineOperator fine_operator() const { return FineOperator{fine_}; }
-  /// Multigrid-preconditioned CG from the guess in x; b must vanish on non-fluid cells.
+  FineOperator fine_operator() const { return FineOperator{fine_, &halo_}; }
+  /// Multigrid-preconditioned CG from the guess in x; b must vanish on non-fluid and ghost cells.
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& control) const {
-    return conjugate_gradient(exec, fine_operator(), b, x, control, *this);
+    return conjugate_gradient(exec, fine_operator(), b, x, control, *this, BlockInnerProduct{halo_.block().comm});
   }
 
   int levels() const { return static_cast<int>(levels_.size()); }
@@ -59,96 +93,34 @@ class MacMultigrid {
 
  private:
   void vcycle(const ExecSpace& exec, int l) const;
+  void coarse_solve(const ExecSpace& exec) const;
+  void smooth(const ExecSpace& exec, int l, int first_colour) const;
+  /// Ghost exchange of level l's block (nothing on one block).
+  template <class View>
+  void sync(const ExecSpace& exec, int l, const View& v) const {
+    halo_.exchange(exec, levels_[l].grid, v);
+  }
+  /// Exchanges a level's ghost coefficients and makes the ones that depend on them consistent.
+  void complete_ghosts(const ExecSpace& exec, const Stencil* fine, Stencil& level) const;
+  void setup_coarse_solve(const Stencil& coarsest);
 
   MacMultigridOptions options_;
+  mesh::LatticeGhostExchange halo_;
   Stencil fine_;
   std::vector<LevelStencil> levels_;
+  std::vector<int> parity_;             // per level: (global i + k of the block's first cell) % 2
   std::vector<LevelVector> x_, b_, r_;  // per level
+  // the coarsest grid gathered from every block: this block's interior cells (k, j, i order),
+  // where the gathered values go in the whole coarsest grid, and its fluid cells' numbering
+  Kokkos::View<int*, MemSpace> coarse_cells_;
+  std::vector<int> gathered_index_, counts_, displacements_;
+  int my_offset_ = 0;
   CompactNumbering coarse_numbering_;
   std::unique_ptr<CoarseCholesky> coarse_;
-  Kokkos::View<int*, MemSpace> coarse_cells_;
-  mutable Kokkos::View<double*, MemSpace> coarse_compact_;
-  mutable std::vector<double> coarse_host_;
+  mutable Kokkos::View<float*, MemSpace> coarse_local_;
+  mutable std::vector<float> coarse_send_, coarse_gathered_;
+  mutable std::vector<double> coarse_lattice_, coarse_rhs_;
 };
-
-template <class ExecSpace>
-MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A, const MacMultigridOptions& options)
-    : options_(options) {
-  const std::string error = multigrid_size_error(A.grid, options.max_coarse_cells);
-  if (!error.empty()) throw std::invalid_argument(error);
-  fine_ = A;
-  // Down to a grid of at most 64 cells, or as far as the dimensions stay even (coarsened in
-  // double, then stored in single precision).
-  Stencil level = A;
-  levels_.push_back(kernels::mac::convert_stencil<float>(exec, level));
-  for (mesh::MacGrid g = A.grid; g.nx % 2 == 0 && g.ny % 2 == 0 && g.nz % 2 == 0 && g.cells() > 64;
-       g = g.coarsened()) {
-    level = kernels::mac::coarsen_stencil(exec, level);
-    levels_.push_back(kernels::mac::convert_stencil<float>(exec, level));
-  }
-  for (const LevelStencil& S : levels_) {
-    const long n = S.grid.padded_size();
-    x_.emplace_back("amphora::mac_mg::x", n);  // zero, ghost entries stay zero
-    b_.emplace_back("amphora::mac_mg::b", n);
-    r_.emplace_back("amphora::mac_mg::r", n);
-  }
-  exec.fence();
-  coarse_ = std::make_unique<CoarseCholesky>(stencil_to_csr(level, coarse_numbering_));
-  coarse_cells_ = to_view<MemSpace>(coarse_numbering_.cell, "amphora::mac_mg::coarse_cells");
-  coarse_compact_ = Vector("amphora::mac_mg::coarse_compact", coarse_numbering_.size());
-  coarse_host_.resize(coarse_numbering_.size());
-}
-
-template <class ExecSpace>
-void MacMultigrid<ExecSpace>::apply(const ExecSpace& exec, const Vector& r, const Vector& z) const {
-  const LevelVector b = b_[0], x = x_[0];
-  Kokkos::parallel_for(
-      "amphora::mac_mg::to_single", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(r.extent(0))),
-      KOKKOS_LAMBDA(int c) { b(c) = static_cast<float>(r(c)); });
-  vcycle(exec, 0);
-  Kokkos::parallel_for(
-      "amphora::mac_mg::to_double", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(z.extent(0))),
-      KOKKOS_LAMBDA(int c) { z(c) = x(c); });
-}
-
-template <class ExecSpace>
-void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
-  const LevelStencil& A = levels_[l];
-  const LevelVector b = b_[l], x = x_[l];
-  if (l + 1 == levels()) {
-    // Exact solve: gather the fluid cells, factorised solve on the host, scatter back.
-    const auto cells = coarse_cells_;
-    const auto compact = coarse_compact_;
-    const int n = static_cast<int>(cells.extent(0));
-    Kokkos::parallel_for(
-        "amphora::mac_mg::coarse_gather", RangePolicy<ExecSpace>(exec, 0, n),
-        KOKKOS_LAMBDA(int u) { compact(u) = b(cells(u)); });
-    Kokkos::View<double*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> host(coarse_host_.data(), n);
-    Kokkos::deep_copy(exec, host, compact);
-    exec.fence();
-    coarse_->solve(coarse_host_.data(), coarse_host_.data());
-    Kokkos::deep_copy(exec, compact, host);
-    blas1::fill(exec, x, 0.0f);
-    Kokkos::parallel_for(
-        "amphora::mac_mg::coarse_scatter", RangePolicy<ExecSpace>(exec, 0, n),
-        KOKKOS_LAMBDA(int u) { x(cells(u)) = compact(u); });
-    return;
-  }
-  const int nu = options_.smoothing_steps << l;
-  blas1::fill(exec, x, 0.0f);
-  for (int s = 0; s < nu; ++s) {
-    kernels::mac::red_black_gauss_seidel(exec, A, b, x, 0);
-    kernels::mac::red_black_gauss_seidel(exec, A, b, x, 1);
-  }
-  kernels::mac::residual(exec, A, b, x, r_[l]);
-  kernels::mac::restrict_residual(exec, A, levels_[l + 1], r_[l], b_[l + 1]);
-  vcycle(exec, l + 1);
-  kernels::mac::prolongate_correction(exec, levels_[l + 1], A, x_[l + 1], x);
-  for (int s = 0; s < nu; ++s) {
-    kernels::mac::red_black_gauss_seidel(exec, A, b, x, 1);
-    kernels::mac::red_black_gauss_seidel(exec, A, b, x, 0);
-  }
-}
 
 extern template class MacMultigrid<DefaultExecSpace>;
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)

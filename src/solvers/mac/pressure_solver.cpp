@@ -195,12 +195,15 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
     const MacBlock& block) {
   bool split = false;
   for (const auto f : A.box) split = split || f == mesh::MacBoundary::neighbour;
-  if (split && backend != PressureBackend::hypre)
+  if (split && backend == PressureBackend::mic0)
     throw std::invalid_argument(std::string("pressure back end '") + to_string(backend) +
-                                "' solves a grid on one rank; for a grid split over ranks use 'hypre'");
+                                "' solves a grid on one rank; for a grid split over ranks use 'multigrid' or 'hypre'");
+  if (split != block.split())
+    throw std::invalid_argument("make_pressure_solver: the stencil's neighbour faces and the block's neighbours differ");
   switch (backend) {
     case PressureBackend::multigrid:
-      return std::make_unique<MultigridPressureSolver<ExecSpace, MacMultigrid<ExecSpace>>>(exec, A);
+      return std::make_unique<MultigridPressureSolver<ExecSpace, MacMultigrid<ExecSpace>>>(
+          exec, A, MacMultigridOptions{}, block);
     case PressureBackend::hypre: return std::make_unique<PfmgPressureSolver<ExecSpace>>(A, block);
     case PressureBackend::mic0: return std::make_unique<Mic0PressureSolver<ExecSpace>>(A);
   }

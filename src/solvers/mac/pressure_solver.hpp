@@ -15,6 +15,7 @@
 #include <string>
 
 #include "kernels/mac/poisson_stencil.hpp"
+#include "mesh/mac/lattice_halo.hpp"
 #include "mesh/mac/tall_cell_grid.hpp"
 #include "solvers/conjugate_gradient.hpp"
 #include "solvers/csr_matrix.hpp"
@@ -38,13 +39,10 @@ class PressureSolver {
   virtual PressureBackend backend() const = 0;
 };
 
-/// The block this rank holds of a grid split over the ranks of `comm` (see
-/// tests/mesh/test_mac_decomposition.cpp): `global_lower` is its first cell in global indices.
-/// Only the hypre back end solves a split grid; the others refuse a stencil with neighbour faces.
-struct MacBlock {
-  MPI_Comm comm = MPI_COMM_SELF;
-  std::array<int, 3> global_lower{0, 0, 0};
-};
+/// A grid split over ranks: `block` says where this rank's part lies (mesh::MacBlock; its
+/// stencil's ghost conductances exchanged). The multigrid and hypre back ends solve a split
+/// grid; MIC(0), sequential by nature, refuses one.
+using mesh::MacBlock;
 
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
