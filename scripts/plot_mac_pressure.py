@@ -37,6 +37,7 @@ runs = {}
 for t in (1, 2):
     runs[f"{t}t"] = {**load(f"mac_pressure_uniform_{t}t1r.json"), **load(f"mac_pressure_tall_{t}t1r.json")}
 runs["pfmg2r"] = load("mac_pressure_pfmg_1t2r.json")
+runs["mg2r"] = load("mac_pressure_mg_1t2r.json")
 names = {("Uniform", 0): "multigrid-CG", ("Uniform", 1): "PFMG-CG", ("Uniform", 2): "MIC(0)-CG",
          ("TallCells", 0): "tall multigrid-CG", ("TallCells", 1): "tall BoomerAMG-CG", ("TallCells", 2): "tall IC(0)-CG"}
 sizes = sorted({k[2] for r in runs.values() for k in r})
@@ -54,6 +55,9 @@ for ax, kind in zip(axes, ("Uniform", "TallCells")):
         xs = [n for n in sizes if ("Uniform", 1, n) in runs["pfmg2r"]]
         ax.plot(xs, [seconds(runs["pfmg2r"][("Uniform", 1, n)]) for n in xs], ":", marker="s", color="C1",
                 label="PFMG-CG, 2 ranks")
+        xs = [n for n in sizes if ("Uniform", 0, n) in runs["mg2r"]]
+        ax.plot(xs, [seconds(runs["mg2r"][("Uniform", 0, n)]) for n in xs], ":", marker="s", color="C0",
+                label="multigrid-CG, 2 ranks")
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     ax.set_xlabel("n (n^3 footprint)")
@@ -75,6 +79,11 @@ for n in sizes:
             s += f"; PFMG-CG 2 ranks {seconds(pf):.3f} s ({int(pf['iterations'])} its) -> x{seconds(pf) / seconds(mg):.2f}"
         if mic:
             s += f"; MIC(0)-CG {seconds(mic):.3f} s ({int(mic['iterations'])} its) -> x{seconds(mic) / seconds(mg):.2f}"
+        mg2 = runs["mg2r"].get(("Uniform", 0, n))
+        if mg2:
+            s += f"; multigrid-CG 2 ranks {seconds(mg2):.3f} s ({int(mg2['iterations'])} its)"
+            if pf:
+                s += f" -> x{seconds(pf) / seconds(mg2):.2f} PFMG 2 ranks"
         lines.append(s)
 lines.append("")
 for n in sizes:
