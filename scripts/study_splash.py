@@ -6,7 +6,7 @@ the uniform run at the end (max over the columns of |eta - eta_uniform|, relativ
 surface displacement of the uniform run). Writes output/study_splash/splash_study.csv and
 splash_study.png (error against time per step).
 
-    /usr/bin/python3 scripts/study_splash.py [--depths 0,24,16,8,4] [--threads 2]
+    /usr/bin/python3 scripts/study_splash.py [--depths 0,24,16,8,4] [--threads 2] [--scene FILE]
 """
 import argparse
 import csv
@@ -62,9 +62,10 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--depths", default="0,24,16,8,4")
     ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--scene", default=os.path.join(here, "scenes", "water_splash.toml"))
     args = ap.parse_args()
     os.makedirs(out, exist_ok=True)
-    base = open(os.path.join(here, "scenes", "water_splash.toml")).read()
+    base = open(args.scene).read()
     pool = float(re.search(r"pool_depth = (\S+)", base).group(1))
     depths = [int(v) for v in args.depths.split(",")]
     if depths[0] != 0:
