@@ -75,14 +75,14 @@ class MacMultigrid {
   /// every ghost cell.
   struct FineOperator {
     Stencil A;
-    const mesh::LatticeGhostExchange* halo;
+    mesh::LatticeGhostExchange halo;
     void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {
-      halo->exchange(exec, A.grid, x);
+      halo.exchange(exec, A.grid, x);
       kernels::mac::apply(exec, A, x, y);
-      if (halo->block().split()) kernels::mac::zero_ghost_cells(exec, A.grid, y);
+      if (halo.block().split()) kernels::mac::zero_ghost_cells(exec, A.grid, y);
     }
   };
-  FineOperator fine_operator() const { return FineOperator{fine_, &halo_}; }
+  FineOperator fine_operator() const { return FineOperator{fine_, halo_}; }
   /// Multigrid-preconditioned CG from the guess in x; b must vanish on non-fluid and ghost cells.
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& control) const {
     return conjugate_gradient(exec, fine_operator(), b, x, control, *this, BlockInnerProduct{halo_.block().comm});
