@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "kernels/host_vector.hpp"
+#include "kernels/mac/tall_cell_transfer.hpp"
 #include "solvers/hypre_boomeramg.hpp"
 #include "solvers/mac/pressure_solver.hpp"
 #include "solvers/mac/stencil_csr.hpp"
@@ -149,6 +150,25 @@ double hydrostatic_error(const Basin& b, int depth) {
 TEST(TallCellMatrix, HydrostaticPressureIsExactWithAndWithoutTallCells) {
   const Basin b(16, 32, 0.77);
   for (int depth : {32, 6, 3}) EXPECT_LT(hydrostatic_error(b, depth), 1e-9) << "optical depth " << depth;
+}
+
+TEST(TallCellTransfer, GramSolveInvertsPtP) {
+  // (P^T P)^-1 P^T P y = y for the linear-in-height prolongation, tall cells of 2 to ~25 rows
+  const Basin b(16, 32, 0.83);
+  const mesh::TallCellGrid T(b.A, 3);
+  ASSERT_GT(T.tall_cells(), 100);
+  using test::TestMemSpace;
+  const test::TestExecSpace exec;
+  const auto layout = mesh::make_layout<TestMemSpace>(T);
+  std::vector<double> y(T.unknowns());
+  for (std::size_t u = 0; u < y.size(); ++u) y[u] = std::sin(0.37 * u) + 0.1 * (u % 7);
+  const auto yv = to_view<TestMemSpace>(y);
+  Kokkos::View<double*, TestMemSpace> lattice("lattice", b.grid.padded_size()), z("z", T.unknowns());
+  kernels::mac::tall_cell_prolongate(exec, layout, yv, lattice);
+  kernels::mac::tall_cell_restrict(exec, layout, lattice, z);
+  kernels::mac::tall_cell_gram_solve(exec, layout, z);
+  const auto zh = to_std_vector(z);
+  for (std::size_t u = 0; u < y.size(); ++u) EXPECT_NEAR(zh[u], y[u], 1e-12) << "unknown " << u;
 }
 
 /// Solves A_t y = P^T (h^2 f) with a back end; returns the iterations and P y.

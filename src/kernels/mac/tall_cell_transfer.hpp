@@ -44,7 +44,7 @@ void tall_cell_restrict(const ExecSpace& exec, const mesh::TallCellLayout<MemSpa
 }
 
 /// y = (P^T P)^-1 y: for a tall cell of L rows, P^T P = sum_j [(1-t)^2, t(1-t); t(1-t), t^2],
-/// t = j/(L-1) (summed in the kernel: a tall cell is a few hundred rows at most).
+/// t = j/(L-1), in closed form: sum t^2 = sum (1-t)^2 = L(2L-1) / (6(L-1)), sum t = L/2.
 template <class ExecSpace, class MemSpace, class Y>
 void tall_cell_gram_solve(const ExecSpace& exec, const mesh::TallCellLayout<MemSpace>& T, const Y& y) {
   const mesh::MacGrid g = T.grid;
@@ -52,18 +52,11 @@ void tall_cell_gram_solve(const ExecSpace& exec, const mesh::TallCellLayout<MemS
       "amphora::mac::tall_cell_gram_solve", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz), KOKKOS_LAMBDA(int col) {
         const int j0 = T.terrain(col), jb = T.band(col);
         if (jb <= j0) return;
-        double a = 0.0, b = 0.0, c = 0.0;
-        const double dt = 1.0 / double(jb - 1 - j0);
-        for (int j = j0; j < jb; ++j) {
-          const double t = (j - j0) * dt;
-          a += (1.0 - t) * (1.0 - t);
-          b += t * (1.0 - t);
-          c += t * t;
-        }
+        const double L = jb - j0, square = L * (2 * L - 1) / (6 * (L - 1)), cross = 0.5 * L - square;
         const int u = T.first_unknown(col);
-        const double det = a * c - b * b, y0 = y(u), y1 = y(u + 1);
-        y(u) = (c * y0 - b * y1) / det;
-        y(u + 1) = (a * y1 - b * y0) / det;
+        const double det = square * square - cross * cross, y0 = y(u), y1 = y(u + 1);
+        y(u) = (square * y0 - cross * y1) / det;
+        y(u + 1) = (square * y1 - cross * y0) / det;
       });
 }
 
