@@ -8,9 +8,11 @@
 namespace amphora::kernels::mac {
 
 /// The value of cell (i, j, k) after one pseudo-time step of reinitialisation, dtau = 0.5 h;
-/// phi0 is the level set before reinitialisation (its sign is kept).
+/// phi0 is the level set before reinitialisation (its sign is kept). Across a box face that is
+/// not an edge (another block's side) the ghost cell is read.
 template <class P0, class P>
-KOKKOS_INLINE_FUNCTION double reinitialised_value(const mesh::MacGrid& g, const P0& phi0, const P& phi, int i, int j, int k) {
+KOKKOS_INLINE_FUNCTION double reinitialised_value(const mesh::MacGrid& g, const mesh::MacEdges& edges, const P0& phi0,
+                                                  const P& phi, int i, int j, int k) {
   const int c = g.index(i, j, k);
   const double p = phi(c), s0 = phi0(c);
   const double sign = s0 / math::sqrt(s0 * s0 + g.h * g.h);
@@ -18,8 +20,8 @@ KOKKOS_INLINE_FUNCTION double reinitialised_value(const mesh::MacGrid& g, const 
   double grad2 = 0.0;
   for (int d = 0; d < 3; ++d) {
     // one-sided differences; at the box the missing side copies the cell (zero slope)
-    const double minus = idx[d] > 0 ? (p - phi(c - stride[d])) / g.h : 0.0;
-    const double plus = idx[d] < n[d] - 1 ? (phi(c + stride[d]) - p) / g.h : 0.0;
+    const double minus = idx[d] > 0 || !edges[2 * d] ? (p - phi(c - stride[d])) / g.h : 0.0;
+    const double plus = idx[d] < n[d] - 1 || !edges[2 * d + 1] ? (phi(c + stride[d]) - p) / g.h : 0.0;
     if (sign > 0) {
       const double a = math::max(minus, 0.0), b = math::min(plus, 0.0);
       grad2 += math::max(a * a, b * b);
@@ -33,11 +35,14 @@ KOKKOS_INLINE_FUNCTION double reinitialised_value(const mesh::MacGrid& g, const 
 
 /// One pseudo-time step of reinitialisation, phi -> phi_new.
 template <class ExecSpace, class P0, class P, class PN>
-void reinitialise_step(const ExecSpace& exec, const mesh::MacGrid& g, const P0& phi0, const P& phi, const PN& phi_new) {
+void reinitialise_step(const ExecSpace& exec, const mesh::MacGrid& g, const P0& phi0, const P& phi, const PN& phi_new,
+                       const mesh::MacEdges& edges = mesh::box_edges()) {
   Kokkos::parallel_for(
       "amphora::mac::reinitialise_step",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
-      KOKKOS_LAMBDA(int k, int j, int i) { phi_new(g.index(i, j, k)) = reinitialised_value(g, phi0, phi, i, j, k); });
+      KOKKOS_LAMBDA(int k, int j, int i) {
+        phi_new(g.index(i, j, k)) = reinitialised_value(g, edges, phi0, phi, i, j, k);
+      });
 }
 
 /// type = solid where solid(c), else fluid where phi < 0, else air.

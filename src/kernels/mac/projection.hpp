@@ -11,21 +11,26 @@
 
 namespace amphora::kernels::mac {
 
+// On a block of a grid split over ranks, `edges` says which box faces end the domain: a face on
+// another block's side is an inner face, its outer cell a ghost (exchanged by the caller).
+
 namespace detail {
-/// The two cells of face c of component d: L = c - stride, R = c; false if the face is on the
-/// box boundary (i == 0 or i == n along d).
-KOKKOS_INLINE_FUNCTION bool face_cells(const mesh::MacGrid& g, int d, int i, int j, int k, int& L, int& R) {
+/// The two cells of face c of component d: L = c - stride, R = c; false if the face is on an
+/// edge of the domain (i == 0 or i == n along d, on a face that is an edge).
+KOKKOS_INLINE_FUNCTION bool face_cells(const mesh::MacGrid& g, const mesh::MacEdges& edges, int d, int i, int j, int k,
+                                       int& L, int& R) {
   const int idx[3] = {i, j, k}, n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
   R = g.index(i, j, k);
   L = R - stride[d];
-  return idx[d] > 0 && idx[d] < n[d];
+  return (idx[d] > 0 || !edges[2 * d]) && (idx[d] < n[d] || !edges[2 * d + 1]);
 }
 }  // namespace detail
 
 /// Faces of component d that touch a solid cell or the box take the solid's (zero) normal
 /// velocity: before the divergence is taken, so the right-hand side sees the walls.
 template <class ExecSpace, class T, class F>
-void enforce_solid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const F& face) {
+void enforce_solid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const F& face,
+                         const mesh::MacEdges& edges = mesh::box_edges()) {
   using mesh::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   Kokkos::parallel_for(
@@ -33,7 +38,7 @@ void enforce_solid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, c
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         int L, R;
-        if (!detail::face_cells(g, d, i, j, k, L, R) || type(L) == MacCellType::solid ||
+        if (!detail::face_cells(g, edges, d, i, j, k, L, R) || type(L) == MacCellType::solid ||
             type(R) == MacCellType::solid)
           face(g.index(i, j, k)) = 0.0;
       });
@@ -62,7 +67,8 @@ void pressure_rhs(const ExecSpace& exec, const mesh::MacGrid& g, const T& type, 
 /// zero on faces touching a solid or the box.
 template <class ExecSpace, class T, class Phi, class P, class F>
 void subtract_pressure_gradient(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const Phi& phi,
-                                const P& p, double rho, double dt, const F& face) {
+                                const P& p, double rho, double dt, const F& face,
+                                const mesh::MacEdges& edges = mesh::box_edges()) {
   using mesh::MacCellType;
   const double scale = dt / (rho * g.h);
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
@@ -71,7 +77,7 @@ void subtract_pressure_gradient(const ExecSpace& exec, const mesh::MacGrid& g, i
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         int L, R;
-        if (!detail::face_cells(g, d, i, j, k, L, R)) {
+        if (!detail::face_cells(g, edges, d, i, j, k, L, R)) {
           face(g.index(i, j, k)) = 0.0;
           return;
         }
@@ -91,7 +97,8 @@ void subtract_pressure_gradient(const ExecSpace& exec, const mesh::MacGrid& g, i
 /// valid(face) = 1 where the face of component d touches fluid and no solid (its velocity is
 /// known after the projection), else 0.
 template <class ExecSpace, class T, class M>
-void mark_fluid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const M& valid) {
+void mark_fluid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const M& valid,
+                      const mesh::MacEdges& edges = mesh::box_edges()) {
   using mesh::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   Kokkos::parallel_for(
@@ -99,7 +106,7 @@ void mark_fluid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, cons
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         int L, R;
-        const bool inside = detail::face_cells(g, d, i, j, k, L, R);
+        const bool inside = detail::face_cells(g, edges, d, i, j, k, L, R);
         const bool solid = !inside || type(L) == MacCellType::solid || type(R) == MacCellType::solid;
         valid(R) = !solid && (type(L) == MacCellType::fluid || type(R) == MacCellType::fluid);
       });
@@ -112,7 +119,7 @@ void mark_fluid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, cons
 /// second buffer. Marks: 1 = known (next to fluid), 0 = unknown.
 template <class ExecSpace, class T, class F, class M>
 void extrapolate_layer(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const F& face,
-                       const M& mark, int layer) {
+                       const M& mark, int layer, const mesh::MacEdges& edges = mesh::box_edges()) {
   using mesh::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   const int sy = g.stride_y(), sz = g.stride_z();
@@ -121,14 +128,18 @@ void extrapolate_layer(const ExecSpace& exec, const mesh::MacGrid& g, int d, con
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         int L, R;
-        const bool inside = detail::face_cells(g, d, i, j, k, L, R);
+        const bool inside = detail::face_cells(g, edges, d, i, j, k, L, R);
         if (mark(R) || !inside || type(L) == MacCellType::solid || type(R) == MacCellType::solid) return;
         const int idx[3] = {i, j, k}, ext[3] = {ex, ey, ez}, stride[3] = {1, sy, sz};
+        // the last face before another block is that block's first: it computes it (its
+        // neighbours beyond lie outside this block's lattice) and the exchange brings it
+        if (idx[d] + 1 == ext[d] && !edges[2 * d + 1]) return;
         double sum = 0.0;
         int n = 0;
         for (int e = 0; e < 3; ++e) {
           for (int side = -1; side <= 1; side += 2) {
-            if ((side < 0 && idx[e] == 0) || (side > 0 && idx[e] + 1 >= ext[e])) continue;
+            if ((side < 0 && idx[e] == 0 && edges[2 * e]) || (side > 0 && idx[e] + 1 >= ext[e] && edges[2 * e + 1]))
+              continue;
             const int nb = R + side * stride[e];
             const int m = mark(nb);
             if (m >= 1 && m < layer) sum += face(nb), ++n;

@@ -52,38 +52,51 @@ KOKKOS_INLINE_FUNCTION double conservative_upwind_sample(const mesh::MacGrid& g,
 /// in dt plus the cells the next classification looks at, such a face lies in the air after the
 /// step, where the caller discards the velocity (it is extrapolated afresh). q_new must not
 /// alias q.
+///
+/// q, u, v, w, phi and T live on T.grid; q_new on `out`, whose sample (i, j, k) is T.grid's
+/// (i + out_offset[0], j, k + out_offset[2]) (a block inside its widened grid: the traces near
+/// the block's faces read the neighbours' cells).
 template <class ExecSpace, class MemSpace, class Q, class QN, class U, class V, class W, class P>
 void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Staggering s, const Q& q, const QN& q_new,
-            const U& u, const V& v, const W& w, double dt, const P& phi, double reach) {
-  const mesh::MacGrid g = T.grid;
-  const int d = static_cast<int>(s);
-  const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
+            const U& u, const V& v, const W& w, double dt, const P& phi, double reach, const mesh::MacGrid& out,
+            const int out_offset[3]) {
+  const mesh::MacGrid g = T.grid, go = out;
+  const int d = static_cast<int>(s), oi = out_offset[0], ok = out_offset[2];
+  const int ex = go.nx + (d == 0), ey = go.ny + (d == 1), ez = go.nz + (d == 2);
   const int below = d == 0 ? 1 : d == 1 ? g.stride_y() : d == 2 ? g.stride_z() : 0;
   Kokkos::parallel_for(
       "amphora::mac::advect_tall_cells",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
-        const int c = g.index(i, j, k);
+        const int I = i + oi, K = k + ok, c = g.index(I, j, K), o = go.index(i, j, k);
         if (d >= 0 && math::min(phi(c), phi(c - below)) >= reach)
-          q_new(c) = q(c);
-        else if (!T.in_tall_cell(d, i, j, k))
-          q_new(c) = semi_lagrangian_sample(g, s, i, j, k, q, u, v, w, dt);
+          q_new(o) = q(c);
+        else if (!T.in_tall_cell(d, I, j, K))
+          q_new(o) = semi_lagrangian_sample(g, s, I, j, K, q, u, v, w, dt);
         else
-          q_new(c) = d < 0 ? double(q(c)) : conservative_upwind_sample(g, d, c, q, u, v, w, dt);
+          q_new(o) = d < 0 ? double(q(c)) : conservative_upwind_sample(g, d, c, q, u, v, w, dt);
       });
+}
+
+/// The same on T.grid itself.
+template <class ExecSpace, class MemSpace, class Q, class QN, class U, class V, class W, class P>
+void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Staggering s, const Q& q, const QN& q_new,
+            const U& u, const V& v, const W& w, double dt, const P& phi, double reach) {
+  const int none[3] = {0, 0, 0};
+  advect(exec, T, s, q, q_new, u, v, w, dt, phi, reach, T.grid, none);
 }
 
 /// One pseudo-time step of reinitialisation in the uniform cells (tall cells keep phi).
 template <class ExecSpace, class MemSpace, class P0, class P, class PN>
 void reinitialise_step(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, const P0& phi0, const P& phi,
-                       const PN& phi_new) {
+                       const PN& phi_new, const mesh::MacEdges& edges = mesh::box_edges()) {
   const mesh::MacGrid g = T.grid;
   Kokkos::parallel_for(
       "amphora::mac::reinitialise_step_tall_cells",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         const int c = g.index(i, j, k);
-        phi_new(c) = T.in_tall_cell(-1, i, j, k) ? double(phi(c)) : reinitialised_value(g, phi0, phi, i, j, k);
+        phi_new(c) = T.in_tall_cell(-1, i, j, k) ? double(phi(c)) : reinitialised_value(g, edges, phi0, phi, i, j, k);
       });
 }
 

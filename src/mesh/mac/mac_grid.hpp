@@ -56,4 +56,13 @@ struct MacGrid {
 enum class MacBoundary : std::uint8_t { wall = 0, open = 1, neighbour = 2 };
 using MacBoxBoundaries = std::array<MacBoundary, 6>;
 
+/// Which faces of a grid's box end the domain (true) rather than meet another block (false), as
+/// a device-copyable array: kernels stop at the former and read the ghost layer across the latter.
+using MacEdges = Kokkos::Array<bool, 6>;
+inline MacEdges box_edges() {
+  MacEdges e;
+  for (int f = 0; f < 6; ++f) e[f] = true;
+  return e;
+}
+
 }  // namespace amphora::mesh

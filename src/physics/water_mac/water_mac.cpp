@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,7 @@
 #include "kernels/mac/tall_cell_transfer.hpp"
 #include "kernels/reductions.hpp"
 #include "mesh/box_decomposition.hpp"
+#include "mesh/mac/lattice_halo.hpp"
 #include "mesh/mac/tall_cell_grid.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
@@ -99,16 +101,26 @@ using kernels::mac::Staggering;
 class WaterMac final : public Module {
  public:
   WaterMac(const Parameters& p, const Communicator& comm) : comm_(comm) {
-    if (comm.size() > 1)
-      throw DecompositionError("more ranks (" + std::to_string(comm.size()) +
-                               ") than blocks (1): water_mac runs on one rank so far");
     scene_ = p.string("scene");
     const int nx = static_cast<int>(p.integer("cells_x")), ny = static_cast<int>(p.integer("cells_y")),
               nz = static_cast<int>(p.integer("cells_z"));
-    grid_ = mesh::MacGrid{nx, ny, nz, p.real("length_x") / nx, {0.0, 0.0, 0.0}};
+    global_ = mesh::MacGrid{nx, ny, nz, p.real("length_x") / nx, {0.0, 0.0, 0.0}};
+    cfl_ = p.real("cfl");
+    // Blocks split horizontally (columns whole), each at least as wide as a trace reaches into
+    // its neighbours: sqrt(3) cfl cells (the speed against its largest component) plus the
+    // interpolation's cell and one to spare.
+    trace_reach_ = static_cast<int>(std::ceil(std::sqrt(3.0) * cfl_)) + 2;
+    decomposition_ = std::make_unique<BoxDecomposition>(Index3{nx, ny, nz}, std::array<bool, 3>{false, false, false},
+                                                        comm.size(), comm.size() > 1 ? trace_reach_ : 1,
+                                                        std::array<bool, 3>{true, false, true});
+    block_ = mesh::MacBlock::of(*decomposition_, comm.get(), comm.rank());
+    const Box box = decomposition_->box(comm.rank());
+    const double h = global_.h;
+    grid_ = mesh::MacGrid{box.extent(0), ny, box.extent(2), h, {box.lo[0] * h, 0.0, box.lo[2] * h}};
+    halo_ = mesh::LatticeGhostExchange(block_);
+    edges_ = block_.edges();
     gravity_ = p.real("gravity");
     rho_ = p.real("density");
-    cfl_ = p.real("cfl");
     backend_ = solvers::mac::parse_pressure_backend(p.string("solver"));
     control_.relative_tolerance = p.real("tolerance");
     control_.max_iterations = static_cast<int>(p.integer("max_iterations"));
@@ -125,9 +137,15 @@ class WaterMac final : public Module {
       throw std::invalid_argument(m.str());
     }
     if (backend_ == solvers::mac::PressureBackend::multigrid) {
-      const std::string e = solvers::mac::multigrid_size_error(grid_, solvers::mac::MacMultigridOptions{}.max_coarse_cells);
+      const std::string e = solvers::mac::multigrid_size_error(global_, solvers::mac::MacMultigridOptions{}.max_coarse_cells);
       if (!e.empty()) throw std::invalid_argument("water_mac (solver = \"multigrid\"): " + e);
     }
+    if (block_.split() && optical_depth_ > 0)
+      throw std::invalid_argument("water_mac.optical_depth = " + std::to_string(optical_depth_) +
+                                  ": tall cells run on one rank so far (run on 1 rank, or set optical_depth = 0)");
+    if (block_.split() && backend_ == solvers::mac::PressureBackend::mic0)
+      throw std::invalid_argument("water_mac.solver = \"mic0\" runs on one rank (on " + std::to_string(comm.size()) +
+                                  " ranks use \"multigrid\" or \"hypre\")");
     extrapolation_layers_ = band;
     allocate();
     initialise(p);
@@ -158,13 +176,13 @@ class WaterMac final : public Module {
     }
   }
 
-  long long work_per_step() const override { return grid_.cells(); }
+  long long work_per_step() const override { return global_.cells(); }
   std::string work_unit() const override { return "cell-steps"; }
 
   std::vector<OutputBlock> output(double) const override {
     const mesh::MacGrid& g = grid_;
     OutputBlock b;
-    b.name = "water";
+    b.name = comm_.size() > 1 ? "water_" + std::to_string(comm_.rank()) : "water";  // one piece per block
     for (int i = 0; i < g.nx; ++i) b.x.push_back(g.origin[0] + (i + 0.5) * g.h);
     for (int j = 0; j < g.ny; ++j) b.y.push_back(g.origin[1] + (j + 0.5) * g.h);
     for (int k = 0; k < g.nz; ++k) b.z.push_back(g.origin[2] + (k + 0.5) * g.h);
@@ -210,23 +228,38 @@ class WaterMac final : public Module {
 
   std::optional<NonFiniteReport> find_nonfinite() const override {
     const Exec exec;
-    for (const auto& [name, f] : {std::pair<const char*, Vector>{"phi", phi_}, {"u", u_}, {"v", v_}, {"w", w_}, {"pressure", p_}}) {
-      const int bad = reduce::first_nonfinite(exec, f);
-      if (bad >= 0 && bad < static_cast<int>(f.extent(0))) {
+    const Vector fields[5] = {phi_, u_, v_, w_, p_};
+    const char* names[5] = {"phi", "u", "v", "w", "pressure"};
+    // this block's first non-finite entry (field, padded index, x), then the lowest rank's
+    double found[3] = {-1.0, 0.0, 0.0};
+    for (int f = 0; f < 5 && found[0] < 0; ++f) {
+      const int bad = reduce::first_nonfinite(exec, fields[f]);
+      if (bad >= 0 && bad < static_cast<int>(fields[f].extent(0))) {
         int i, j, k;
         grid_.ijk(bad, i, j, k);
-        return NonFiniteReport{name, "water", bad, grid_.origin[0] + (i + 0.5) * grid_.h, {}};
+        found[0] = f, found[1] = bad, found[2] = grid_.origin[0] + (i + 0.5) * grid_.h;
       }
     }
-    return std::nullopt;
+    const int first = static_cast<int>(comm_.min(found[0] >= 0 ? double(comm_.rank()) : double(comm_.size())));
+    if (first >= comm_.size()) return std::nullopt;
+    MPI_Bcast(found, 3, MPI_DOUBLE, first, comm_.get());
+    return NonFiniteReport{names[static_cast<int>(found[0])], comm_.size() > 1 ? "water_" + std::to_string(first) : "water",
+                           static_cast<long long>(found[1]), found[2], {}};
   }
 
+  // The checkpoint holds the fields on the whole grid's padded lattice (each block's share,
+  // the box's ghost layer from the blocks at the box faces), written by rank 0: a run restarts
+  // on any number of ranks.
   std::vector<StateBlock> state() const override {
     StateBlock b;
     b.name = "water";
-    b.arrays = {{"phi", to_std_vector(phi_)}, {"u", to_std_vector(u_)}, {"v", to_std_vector(v_)},
-                {"w", to_std_vector(w_)}, {"pressure", to_std_vector(p_)},
-                {"substeps", {double(substeps_)}}};
+    const std::pair<const char*, Vector> fields[5] = {{"phi", phi_}, {"u", u_}, {"v", v_}, {"w", w_}, {"pressure", p_}};
+    for (const auto& [name, f] : fields) {
+      const std::vector<double> whole = to_global(to_std_vector(f));
+      if (comm_.is_root()) b.arrays.push_back({name, whole});
+    }
+    if (!comm_.is_root()) return {};
+    b.arrays.push_back({"substeps", {double(substeps_)}});
     return {b};
   }
   void restore(const std::vector<StateBlock>& blocks) override {
@@ -234,13 +267,57 @@ class WaterMac final : public Module {
       for (const auto& [name, a] : b.arrays) {
         if (name == "substeps") substeps_ = static_cast<long>(a.at(0));
         Vector target = name == "phi" ? phi_ : name == "u" ? u_ : name == "v" ? v_ : name == "w" ? w_ : name == "pressure" ? p_ : Vector();
-        if (target.extent(0) == a.size()) Kokkos::deep_copy(target, to_view<Mem>(a));
+        if (target.extent(0) > 0 && static_cast<long>(a.size()) == global_.padded_size())
+          Kokkos::deep_copy(target, to_view<Mem>(from_global(a)));
       }
     classify();
   }
   std::vector<std::string> owned_blocks() const override { return {"water"}; }
 
  private:
+  /// The padded-lattice range of the whole grid this rank's block holds in the checkpoint:
+  /// its cells, and the ghost layer where it meets the box faces ([lo, hi] inclusive).
+  void owned_range(int rank, int lo[3], int hi[3]) const {
+    const Box box = decomposition_->box(rank);
+    const int n[3] = {global_.nx, global_.ny, global_.nz};
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = box.lo[d] == 0 ? -1 : box.lo[d];
+      hi[d] = box.lo[d] + box.extent(d) == n[d] ? n[d] : box.lo[d] + box.extent(d) - 1;
+    }
+  }
+  /// This block's padded lattice -> the whole grid's, on rank 0 (empty elsewhere).
+  std::vector<double> to_global(const std::vector<double>& local) const {
+    if (comm_.size() == 1) return local;
+    int lo[3], hi[3];
+    owned_range(comm_.rank(), lo, hi);
+    const int* o = block_.global_lower.data();
+    std::vector<double> mine;
+    for (int k = lo[2]; k <= hi[2]; ++k)
+      for (int j = lo[1]; j <= hi[1]; ++j)
+        for (int i = lo[0]; i <= hi[0]; ++i) mine.push_back(local[grid_.index(i - o[0], j, k - o[2])]);
+    const std::vector<double> all = comm_.gatherv(mine);
+    if (!comm_.is_root()) return {};
+    std::vector<double> whole(global_.padded_size(), 0.0);
+    std::size_t m = 0;
+    for (int r = 0; r < comm_.size(); ++r) {
+      owned_range(r, lo, hi);
+      for (int k = lo[2]; k <= hi[2]; ++k)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+          for (int i = lo[0]; i <= hi[0]; ++i) whole[global_.index(i, j, k)] = all[m++];
+    }
+    return whole;
+  }
+  /// The whole grid's padded lattice -> this block's (its ghost layer included).
+  std::vector<double> from_global(const std::vector<double>& whole) const {
+    if (comm_.size() == 1) return whole;
+    std::vector<double> local(grid_.padded_size(), 0.0);
+    const int* o = block_.global_lower.data();
+    for (int k = -1; k <= grid_.nz; ++k)
+      for (int j = -1; j <= grid_.ny; ++j)
+        for (int i = -1; i <= grid_.nx; ++i) local[grid_.index(i, j, k)] = whole[global_.index(i + o[0], j, k + o[2])];
+    return local;
+  }
+
   void allocate() {
     const long n = grid_.padded_size();
     phi_ = Vector("amphora::water::phi", n);
@@ -255,6 +332,14 @@ class WaterMac final : public Module {
     tall_ = mesh::TallCellColumns<Mem>(grid_);
     solid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::solid", n);
     valid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::valid", n);
+    if (block_.split()) {
+      // the advection's copies of the fields on the block widened into its neighbours (no tall
+      // cells there: tall cells run on one rank)
+      wide_ = halo_.widened(grid_, trace_reach_);
+      const long nw = wide_.grid.padded_size();
+      for (Vector* f : {&wide_phi_, &wide_u_, &wide_v_, &wide_w_}) *f = Vector("amphora::water::wide", nw);
+      wide_tall_ = mesh::TallCellColumns<Mem>(wide_.grid);
+    }
   }
 
   /// Signed distances of the initial water and the solid floor, on the host.
@@ -263,7 +348,7 @@ class WaterMac final : public Module {
     // ghost entries are never read; zero in every buffer, so a restart restores them exactly
     std::vector<double> phi(g.padded_size(), 0.0), v(g.padded_size(), 0.0);
     std::vector<std::uint8_t> solid(g.padded_size(), 0);
-    const double lx = g.nx * g.h, ly = g.ny * g.h, lz = g.nz * g.h;
+    const double lx = global_.nx * g.h, ly = global_.ny * g.h, lz = global_.nz * g.h;
     const double amp = p.real("terrain_amplitude"), base = p.real("terrain_base");
     auto floor = [&](double x, double z) {
       return base + amp * std::sin(2 * math::pi * x / lx) * std::cos(2 * math::pi * z / lz + 0.3);
@@ -296,6 +381,7 @@ class WaterMac final : public Module {
           }
           phi[c] = d;
         }
+    water_above_terrain = comm_.any(water_above_terrain);
     if (scene_ != "dam_break" && !water_above_terrain)
       throw std::invalid_argument("water_mac: the terrain (terrain_base = " + std::to_string(base) +
                                   " m, amplitude " + std::to_string(amp) + " m) is above the water (pool_depth = " +
@@ -303,13 +389,17 @@ class WaterMac final : public Module {
     Kokkos::deep_copy(phi_, to_view<Mem>(phi));
     Kokkos::deep_copy(v_, to_view<Mem>(v));
     Kokkos::deep_copy(solid_, to_view<Mem>(solid));
+    halo_.exchange(Exec(), grid_, solid_);
     classify();
     extrapolate_velocity();
   }
 
-  /// Cell types from the level set, and the tall-cell columns that follow them.
+  /// Cell types from the level set (the level set's and the types' ghost cells from the
+  /// neighbouring blocks), and the tall-cell columns that follow them.
   void classify() {
     kernels::mac::classify_cells(Exec(), grid_, solid_, phi_, type_);
+    halo_.exchange(Exec(), grid_, phi_);
+    halo_.exchange(Exec(), grid_, type_);
     mesh::find_tall_cell_columns(Exec(), type_, optical_depth_, tall_);
   }
 
@@ -321,17 +411,32 @@ class WaterMac final : public Module {
     //    velocity only where the water can be after the step: the surface moves at most
     //    sqrt(3) cfl cells (a trace), plus one for the interpolation, with margin
     const double reach = (2 * std::ceil(cfl_) + 3) * g.h;
-    kernels::mac::advect(exec, tall_, Staggering::centre, phi_, phi_tmp_, u_, v_, w_, dt, phi_, reach);
-    kernels::mac::advect(exec, tall_, Staggering::x, u_, u_tmp_, u_, v_, w_, dt, phi_, reach);
-    kernels::mac::advect(exec, tall_, Staggering::y, v_, v_tmp_, u_, v_, w_, dt, phi_, reach);
-    kernels::mac::advect(exec, tall_, Staggering::z, w_, w_tmp_, u_, v_, w_, dt, phi_, reach);
+    if (!block_.split()) {
+      kernels::mac::advect(exec, tall_, Staggering::centre, phi_, phi_tmp_, u_, v_, w_, dt, phi_, reach);
+      kernels::mac::advect(exec, tall_, Staggering::x, u_, u_tmp_, u_, v_, w_, dt, phi_, reach);
+      kernels::mac::advect(exec, tall_, Staggering::y, v_, v_tmp_, u_, v_, w_, dt, phi_, reach);
+      kernels::mac::advect(exec, tall_, Staggering::z, w_, w_tmp_, u_, v_, w_, dt, phi_, reach);
+    } else {
+      // on a block: trace through the fields widened into the neighbouring blocks
+      halo_.fill_widened(exec, g, phi_, wide_, wide_phi_);
+      halo_.fill_widened(exec, g, u_, wide_, wide_u_);
+      halo_.fill_widened(exec, g, v_, wide_, wide_v_);
+      halo_.fill_widened(exec, g, w_, wide_, wide_w_);
+      const auto& T = wide_tall_;
+      const int* o = wide_.offset;
+      kernels::mac::advect(exec, T, Staggering::centre, wide_phi_, phi_tmp_, wide_u_, wide_v_, wide_w_, dt, wide_phi_, reach, g, o);
+      kernels::mac::advect(exec, T, Staggering::x, wide_u_, u_tmp_, wide_u_, wide_v_, wide_w_, dt, wide_phi_, reach, g, o);
+      kernels::mac::advect(exec, T, Staggering::y, wide_v_, v_tmp_, wide_u_, wide_v_, wide_w_, dt, wide_phi_, reach, g, o);
+      kernels::mac::advect(exec, T, Staggering::z, wide_w_, w_tmp_, wide_u_, wide_v_, wide_w_, dt, wide_phi_, reach, g, o);
+    }
     std::swap(phi_, phi_tmp_);
     std::swap(u_, u_tmp_), std::swap(v_, v_tmp_), std::swap(w_, w_tmp_);
     // 2. reinitialisation towards a signed distance
     if (reinit_ > 0) {
       Kokkos::deep_copy(exec, phi0_, phi_);
       for (int it = 0; it < reinit_; ++it) {
-        kernels::mac::reinitialise_step(exec, tall_, phi0_, phi_, phi_tmp_);
+        halo_.exchange(exec, g, phi_);
+        kernels::mac::reinitialise_step(exec, tall_, phi0_, phi_, phi_tmp_, edges_);
         std::swap(phi_, phi_tmp_);
       }
     }
@@ -363,14 +468,16 @@ class WaterMac final : public Module {
     mesh::MacBoxBoundaries box;
     box.fill(mesh::MacBoundary::wall);
     box[3] = mesh::MacBoundary::open;
-    const Stencil A = kernels::mac::build_poisson_stencil<Exec, Mem>(exec, g, type_, phi_, box);
-    kernels::mac::enforce_solid_faces(exec, g, 0, type_, u_);
-    kernels::mac::enforce_solid_faces(exec, g, 1, type_, v_);
-    kernels::mac::enforce_solid_faces(exec, g, 2, type_, w_);
+    const Stencil A = kernels::mac::build_poisson_stencil<Exec, Mem>(exec, g, type_, phi_, block_.faces(box));
+    halo_.exchange(exec, g, A.cx);  // the ghost cells' + faces: this block's - faces
+    halo_.exchange(exec, g, A.cz);
+    kernels::mac::enforce_solid_faces(exec, g, 0, type_, u_, edges_);
+    kernels::mac::enforce_solid_faces(exec, g, 1, type_, v_, edges_);
+    kernels::mac::enforce_solid_faces(exec, g, 2, type_, w_, edges_);
     kernels::mac::pressure_rhs(exec, g, type_, u_, v_, w_, rho_, dt, b_);
     solvers::SolverResult r;
     if (optical_depth_ == 0) {
-      auto solver = solvers::mac::make_pressure_solver(backend_, exec, A);
+      auto solver = solvers::mac::make_pressure_solver(backend_, exec, A, block_);
       r = solver->solve(exec, b_, p_, control_);
       last_unknowns_ = count_fluid();
     } else {
@@ -392,9 +499,10 @@ class WaterMac final : public Module {
                                std::to_string(control_.relative_tolerance) + " in " + std::to_string(r.iterations) +
                                " iterations (reached " + std::to_string(r.final_residual / std::max(r.rhs_norm, 1e-300)) +
                                ") at sub-step " + std::to_string(substeps_));
-    kernels::mac::subtract_pressure_gradient(exec, g, 0, type_, phi_, p_, rho_, dt, u_);
-    kernels::mac::subtract_pressure_gradient(exec, g, 1, type_, phi_, p_, rho_, dt, v_);
-    kernels::mac::subtract_pressure_gradient(exec, g, 2, type_, phi_, p_, rho_, dt, w_);
+    halo_.exchange(exec, g, p_);
+    kernels::mac::subtract_pressure_gradient(exec, g, 0, type_, phi_, p_, rho_, dt, u_, edges_);
+    kernels::mac::subtract_pressure_gradient(exec, g, 1, type_, phi_, p_, rho_, dt, v_, edges_);
+    kernels::mac::subtract_pressure_gradient(exec, g, 2, type_, phi_, p_, rho_, dt, w_, edges_);
   }
 
   void extrapolate_velocity() {
@@ -404,7 +512,7 @@ class WaterMac final : public Module {
     for (int d = 0; d < 3; ++d) {
       // faces next to fluid keep their values; solid and box faces are zero (the projection
       // set them), the rest are filled layer by layer from known neighbours
-      kernels::mac::mark_fluid_faces(exec, g, d, type_, valid_);
+      kernels::mac::mark_fluid_faces(exec, g, d, type_, valid_, edges_);
       const auto f = faces[d];
       const auto valid = valid_;
       const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
@@ -415,30 +523,44 @@ class WaterMac final : public Module {
             const int c = g.index(i, j, k);
             if (!valid(c)) f(c) = 0.0;
           });
-      for (int layer = 2; layer < 2 + extrapolation_layers_; ++layer)
-        kernels::mac::extrapolate_layer(exec, g, d, type_, faces[d], valid_, layer);
+      // each layer reads the last across the blocks' faces
+      halo_.exchange(exec, g, faces[d]);
+      halo_.exchange(exec, g, valid_);
+      for (int layer = 2; layer < 2 + extrapolation_layers_; ++layer) {
+        kernels::mac::extrapolate_layer(exec, g, d, type_, faces[d], valid_, layer, edges_);
+        halo_.exchange(exec, g, faces[d]);
+        halo_.exchange(exec, g, valid_);
+      }
     }
   }
 
-  int count_fluid() const {
+  /// Fluid cells (pressure unknowns) over all blocks.
+  long count_fluid() const {
     const auto type = type_;
-    int n = 0;
+    const mesh::MacGrid g = grid_;
+    long n = 0;
     Kokkos::parallel_reduce(
-        "amphora::water::count_fluid", RangePolicy<Exec>(0, static_cast<int>(grid_.padded_size())),
-        KOKKOS_LAMBDA(int c, int& acc) { acc += type(c) == mesh::MacCellType::fluid; }, n);
-    return n;
+        "amphora::water::count_fluid", Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz, g.ny, g.nx}),
+        KOKKOS_LAMBDA(int k, int j, int i, long& acc) { acc += type(g.index(i, j, k)) == mesh::MacCellType::fluid; }, n);
+    return static_cast<long>(comm_.sum(static_cast<long long>(n)));
   }
 
+  /// The largest velocity component over every block's faces (not its ghost layer).
   double max_speed() const {
     const auto u = u_, v = v_, w = w_;
+    const mesh::MacGrid g = grid_;
     double m = 0.0;
     Kokkos::parallel_reduce(
-        "amphora::water::max_speed", RangePolicy<Exec>(0, static_cast<int>(grid_.padded_size())),
-        KOKKOS_LAMBDA(int c, double& acc) {
-          acc = math::max(acc, math::max(math::abs(u(c)), math::max(math::abs(v(c)), math::abs(w(c)))));
+        "amphora::water::max_speed", Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz + 1, g.ny + 1, g.nx + 1}),
+        KOKKOS_LAMBDA(int k, int j, int i, double& acc) {
+          const int c = g.index(i, j, k);
+          const bool in_x = i < g.nx, in_y = j < g.ny, in_z = k < g.nz;
+          if (in_y && in_z) acc = math::max(acc, math::abs(u(c)));
+          if (in_x && in_z) acc = math::max(acc, math::abs(v(c)));
+          if (in_x && in_y) acc = math::max(acc, math::abs(w(c)));
         },
         Kokkos::Max<double>(m));
-    return m;
+    return comm_.max(m);
   }
 
   /// Water volume: the cells' water fractions from the level set (smeared over one cell).
@@ -454,30 +576,33 @@ class WaterMac final : public Module {
           if (!solid(c)) acc += math::clamp(0.5 - phi(c) / g.h, 0.0, 1.0);
         },
         vol);
-    return vol * g.h * g.h * g.h;
+    return comm_.sum(vol) * g.h * g.h * g.h;
   }
 
   /// The dam-break front: the largest x where the bottom row's level set crosses zero
   /// (linear between cell centres), averaged over z.
   double front() const {
-    const auto phi = to_std_vector(phi_);
+    const auto phi = to_std_vector(phi_);  // its ghost cells hold the neighbours' (classify)
     const mesh::MacGrid& g = grid_;
-    double sum = 0.0;
+    // per z row of the whole grid, the front of this block's part (0 if none), then the largest
+    std::vector<double> x(global_.nz, 0.0);
     for (int k = 0; k < g.nz; ++k) {
-      double x = 0.0;
+      double& xk = x[block_.global_lower[2] + k];
       for (int i = 0; i < g.nx; ++i) {
         const double p0 = phi[g.index(i, 0, k)];
         if (p0 >= 0) continue;
-        if (i + 1 == g.nx) {
-          x = g.nx * g.h;
+        if (i + 1 == g.nx && edges_[1]) {
+          xk = g.origin[0] + g.nx * g.h;
           continue;
         }
         const double p1 = phi[g.index(i + 1, 0, k)];
-        x = (i + 0.5) * g.h + (p1 > 0 ? g.h * p0 / (p0 - p1) : g.h);
+        xk = g.origin[0] + (i + 0.5) * g.h + (p1 > 0 ? g.h * p0 / (p0 - p1) : g.h);
       }
-      sum += x;
     }
-    return sum / g.nz;
+    MPI_Allreduce(MPI_IN_PLACE, x.data(), global_.nz, MPI_DOUBLE, MPI_MAX, comm_.get());
+    double sum = 0.0;
+    for (const double xk : x) sum += xk;
+    return sum / global_.nz;
   }
 
   /// Mean height of the highest zero crossing of the level set over the columns.
@@ -494,12 +619,21 @@ class WaterMac final : public Module {
         }
         sum += y;
       }
-    return sum / (double(g.nx) * g.nz);
+    return comm_.sum(sum) / (double(global_.nx) * global_.nz);
   }
 
   Communicator comm_;
   std::string scene_;
-  mesh::MacGrid grid_;
+  mesh::MacGrid global_;  ///< the whole grid
+  mesh::MacGrid grid_;    ///< this rank's block of it
+  std::unique_ptr<BoxDecomposition> decomposition_;
+  mesh::MacBlock block_;
+  mesh::LatticeGhostExchange halo_;
+  mesh::MacEdges edges_ = mesh::box_edges();
+  int trace_reach_ = 3;
+  mesh::WideGrid wide_;
+  Vector wide_phi_, wide_u_, wide_v_, wide_w_;
+  mesh::TallCellColumns<Mem> wide_tall_;
   double gravity_ = 9.81, rho_ = 1000.0, cfl_ = 1.0, column_width_ = 0.05;
   solvers::mac::PressureBackend backend_ = solvers::mac::PressureBackend::multigrid;
   solvers::SolverControl control_;
