@@ -9,14 +9,14 @@
 namespace amphora::kernels::mac {
 
 namespace detail {
-/// The departure point, in cell widths, of a sample at q (cell widths) traced back over dt with
-/// the midpoint rule.
+/// The departure point, in cell widths, of sample (i, j, k) of staggering s at q (cell widths)
+/// traced back over dt with the midpoint rule.
 template <class U, class V, class W>
-KOKKOS_FORCEINLINE_FUNCTION void departure_point(const mesh::MacGrid& g, const U& u, const V& v, const W& w, double dt,
-                                            const double q[3], double out[3]) {
+KOKKOS_FORCEINLINE_FUNCTION void departure_point(const mesh::MacGrid& g, Staggering s, int i, int j, int k, const U& u,
+                                                 const V& v, const W& w, double dt, const double q[3], double out[3]) {
   const double scale = dt / g.h;  // velocity x dt in cell widths
   double vel[3], mid[3];
-  velocity_at_cells(g, u, v, w, q, vel);
+  velocity_at_sample(g, s, i, j, k, u, v, w, vel);
   for (int d = 0; d < 3; ++d) mid[d] = q[d] - 0.5 * scale * vel[d];
   velocity_at_cells(g, u, v, w, mid, vel);
   for (int d = 0; d < 3; ++d) out[d] = q[d] - scale * vel[d];
@@ -31,7 +31,7 @@ KOKKOS_FORCEINLINE_FUNCTION double semi_lagrangian_sample(const mesh::MacGrid& g
   const double x[3] = {i + (s == Staggering::x ? 0.0 : 0.5), j + (s == Staggering::y ? 0.0 : 0.5),
                        k + (s == Staggering::z ? 0.0 : 0.5)};
   double back[3];
-  detail::departure_point(g, u, v, w, dt, x, back);
+  detail::departure_point(g, s, i, j, k, u, v, w, dt, x, back);
   return interpolate_cells(g, q, s, back);
 }
 

@@ -60,6 +60,48 @@ KOKKOS_FORCEINLINE_FUNCTION void velocity_at_cells(const mesh::MacGrid& g, const
   vel[2] = interpolate_cells(g, w, Staggering::z, q);
 }
 
+/// The velocity at sample (i, j, k) of staggering s: velocity_at_cells at that sample's position,
+/// bit for bit, from the two or four samples of each component around it (the trilinear weights
+/// there are 0, 1/2 or 1, so the other loads are skipped). The first step of every trace.
+template <class U, class V, class W>
+KOKKOS_FORCEINLINE_FUNCTION void velocity_at_sample(const mesh::MacGrid& g, Staggering s, int i, int j, int k,
+                                                    const U& u, const V& v, const W& w, double vel[3]) {
+  const int idx[3] = {i, j, k}, n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
+  const int sd = static_cast<int>(s);
+  for (int e = 0; e < 3; ++e) {
+    // per direction: the first sample of component e and whether the next one counts half
+    int base = 0;
+    bool half[3];
+    for (int d = 0; d < 3; ++d) {
+      int lo = idx[d];
+      if (d == e) {
+        half[d] = sd != d;  // between faces idx and idx + 1 unless on a face of e itself
+      } else if (sd == d) {  // between cells idx - 1 and idx, clamped to the box as interpolate_cells does
+        half[d] = idx[d] > 0 && idx[d] < n[d];
+        lo = idx[d] == 0 ? 0 : idx[d] >= n[d] ? n[d] - 1 : idx[d] - 1;
+      } else {
+        half[d] = false;
+      }
+      base += (lo + 1) * stride[d];
+    }
+    const auto f = [&](int c) { return e == 0 ? double(u(c)) : e == 1 ? double(v(c)) : double(w(c)); };
+    // x, then y, then z, as interpolate_cells combines them
+    double plane[2][2];
+    for (int c = 0; c < (half[2] ? 2 : 1); ++c)
+      for (int b = 0; b < (half[1] ? 2 : 1); ++b) {
+        const int at = base + b * stride[1] + c * stride[2];
+        plane[c][b] = half[0] ? 0.5 * f(at) + 0.5 * f(at + 1) : f(at);
+      }
+    const double lo_z = half[1] ? 0.5 * plane[0][0] + 0.5 * plane[0][1] : plane[0][0];
+    if (!half[2]) {
+      vel[e] = lo_z;
+    } else {
+      const double hi_z = half[1] ? 0.5 * plane[1][0] + 0.5 * plane[1][1] : plane[1][0];
+      vel[e] = 0.5 * lo_z + 0.5 * hi_z;
+    }
+  }
+}
+
 /// The velocity at point p from its three face components.
 template <class U, class V, class W>
 KOKKOS_INLINE_FUNCTION void velocity_at(const mesh::MacGrid& g, const U& u, const V& v, const W& w, const double p[3],
