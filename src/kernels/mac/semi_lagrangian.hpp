@@ -35,17 +35,4 @@ KOKKOS_FORCEINLINE_FUNCTION double semi_lagrangian_sample(const mesh::MacGrid& g
   return interpolate_cells(g, q, s, back);
 }
 
-/// q_new = q(departure point) for every sample of staggering s: cells (0..n-1)^3, or faces
-/// (0..n along the staggered direction). q_new must not alias q.
-template <class ExecSpace, class Q, class QN, class U, class V, class W>
-void advect(const ExecSpace& exec, const mesh::MacGrid& g, Staggering s, const Q& q, const QN& q_new, const U& u,
-            const V& v, const W& w, double dt) {
-  const int ex = g.nx + (s == Staggering::x), ey = g.ny + (s == Staggering::y), ez = g.nz + (s == Staggering::z);
-  Kokkos::parallel_for(
-      "amphora::mac::advect", Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
-      KOKKOS_LAMBDA(int k, int j, int i) {
-        q_new(g.index(i, j, k)) = semi_lagrangian_sample(g, s, i, j, k, q, u, v, w, dt);
-      });
-}
-
 }  // namespace amphora::kernels::mac

@@ -211,7 +211,10 @@ class WaterMac final : public Module {
     d.emplace_back("volume", volume());
     d.emplace_back("max_speed", max_speed());
     d.emplace_back("pressure_iterations", last_iterations_);
-    d.emplace_back("pressure_unknowns", double(last_unknowns_));
+    // uniform cells: the fluid cells of the last projection (the types have not changed since),
+    // counted here rather than every sub-step
+    const long unknowns = optical_depth_ > 0 ? last_unknowns_ : substeps_ > 0 ? count_fluid() : 0;
+    d.emplace_back("pressure_unknowns", double(unknowns));
     d.emplace_back("substeps", double(substeps_));
     if (scene_ == "dam_break") {
       const double a = column_width_, Z = front() / a, T = t * std::sqrt(2.0 * gravity_ / a);
@@ -400,7 +403,8 @@ class WaterMac final : public Module {
     kernels::mac::classify_cells(Exec(), grid_, solid_, phi_, type_);
     halo_.exchange(Exec(), grid_, phi_);
     halo_.exchange(Exec(), grid_, type_);
-    mesh::find_tall_cell_columns(Exec(), type_, optical_depth_, tall_);
+    // without tall cells the columns stay as allocated: terrain = band = 0, no tall rows
+    if (optical_depth_ > 0) mesh::find_tall_cell_columns(Exec(), type_, optical_depth_, tall_);
   }
 
   void substep(double dt) {
@@ -411,24 +415,23 @@ class WaterMac final : public Module {
     //    velocity only where the water can be after the step: the surface moves at most
     //    sqrt(3) cfl cells (a trace), plus one for the interpolation, with margin
     const double reach = (2 * std::ceil(cfl_) + 3) * g.h;
-    if (!block_.split()) {
-      kernels::mac::advect(exec, tall_, Staggering::centre, phi_, phi_tmp_, u_, v_, w_, dt, phi_, reach);
-      kernels::mac::advect(exec, tall_, Staggering::x, u_, u_tmp_, u_, v_, w_, dt, phi_, reach);
-      kernels::mac::advect(exec, tall_, Staggering::y, v_, v_tmp_, u_, v_, w_, dt, phi_, reach);
-      kernels::mac::advect(exec, tall_, Staggering::z, w_, w_tmp_, u_, v_, w_, dt, phi_, reach);
-    } else {
-      // on a block: trace through the fields widened into the neighbouring blocks
+    // on a block the traces read the fields widened into the neighbouring blocks; on one
+    // block the fields themselves (offset zero)
+    const bool split = block_.split();
+    if (split) {
       halo_.fill_widened(exec, g, phi_, wide_, wide_phi_);
       halo_.fill_widened(exec, g, u_, wide_, wide_u_);
       halo_.fill_widened(exec, g, v_, wide_, wide_v_);
       halo_.fill_widened(exec, g, w_, wide_, wide_w_);
-      const auto& T = wide_tall_;
-      const int* o = wide_.offset;
-      kernels::mac::advect(exec, T, Staggering::centre, wide_phi_, phi_tmp_, wide_u_, wide_v_, wide_w_, dt, wide_phi_, reach, g, o);
-      kernels::mac::advect(exec, T, Staggering::x, wide_u_, u_tmp_, wide_u_, wide_v_, wide_w_, dt, wide_phi_, reach, g, o);
-      kernels::mac::advect(exec, T, Staggering::y, wide_v_, v_tmp_, wide_u_, wide_v_, wide_w_, dt, wide_phi_, reach, g, o);
-      kernels::mac::advect(exec, T, Staggering::z, wide_w_, w_tmp_, wide_u_, wide_v_, wide_w_, dt, wide_phi_, reach, g, o);
     }
+    const auto& T = split ? wide_tall_ : tall_;
+    const Vector P = split ? wide_phi_ : phi_, U = split ? wide_u_ : u_, V = split ? wide_v_ : v_,
+                 W = split ? wide_w_ : w_;
+    const int* o = wide_.offset;
+    kernels::mac::advect(exec, T, Staggering::centre, P, phi_tmp_, U, V, W, dt, P, reach, g, o);
+    kernels::mac::advect(exec, T, Staggering::x, U, u_tmp_, U, V, W, dt, P, reach, g, o);
+    kernels::mac::advect(exec, T, Staggering::y, V, v_tmp_, U, V, W, dt, P, reach, g, o);
+    kernels::mac::advect(exec, T, Staggering::z, W, w_tmp_, U, V, W, dt, P, reach, g, o);
     std::swap(phi_, phi_tmp_);
     std::swap(u_, u_tmp_), std::swap(v_, v_tmp_), std::swap(w_, w_tmp_);
     // 2. reinitialisation towards a signed distance
@@ -479,7 +482,6 @@ class WaterMac final : public Module {
     if (optical_depth_ == 0) {
       auto solver = solvers::mac::make_pressure_solver(backend_, exec, A, block_);
       r = solver->solve(exec, b_, p_, control_);
-      last_unknowns_ = count_fluid();
     } else {
       // tall cells: solve P^T A P y = P^T b, then p = P y on the lattice
       const auto H = kernels::mac::copy_stencil<HostMemSpace>(A);
@@ -491,7 +493,7 @@ class WaterMac final : public Module {
       auto solver = solvers::mac::make_tall_cell_pressure_solver(backend_, exec, T, M, A);
       r = solver->solve(exec, bt, y, control_);
       kernels::mac::tall_cell_prolongate(exec, layout, y, p_);
-      last_unknowns_ = T.unknowns();
+      last_unknowns_ = T.unknowns();  // tall cells: the unknowns of the last solve
     }
     last_iterations_ = r.iterations;
     if (!r.converged)
