@@ -92,10 +92,13 @@ void MacMultigrid<ExecSpace>::complete_ghosts(const ExecSpace& exec, const Stenc
   MPI_Allreduce(&any, &global_any, 1, MPI_INT, MPI_MAX, comm);
   if (!halo_.block().split()) return;  // one block: the coefficients are complete
   const mesh::MacGrid& g = level.grid;
-  // the ghost cells' + faces are this block's - faces; then the diagonal at the block faces
-  halo_.exchange(exec, g, level.cx);
-  halo_.exchange(exec, g, level.cz);
-  if (fine) kernels::mac::coarse_diagonal(exec, *fine, level);
+  // a coarse level: the ghost cells' + faces are this block's - faces, then the diagonal at
+  // the block faces (the caller exchanged the finest level's conductances)
+  if (fine) {
+    halo_.exchange(exec, g, level.cx);
+    halo_.exchange(exec, g, level.cz);
+    kernels::mac::coarse_diagonal(exec, *fine, level);
+  }
   halo_.exchange(exec, g, level.diag);
   halo_.exchange(exec, g, level.inverse_diag);
   halo_.exchange(exec, g, level.solid);
