@@ -18,6 +18,7 @@ struct BoomerAMG::Impl {
   HYPRE_IJVector bij = nullptr, xij = nullptr;
   HYPRE_ParVector b = nullptr, x = nullptr;
   HYPRE_Solver amg = nullptr;
+  MPI_Comm comm = MPI_COMM_SELF;
   HYPRE_BigInt n = 0;
   std::vector<HYPRE_BigInt> index;
   std::vector<double> zero;  // n zeros: the initial guess of a V-cycle
@@ -54,29 +55,36 @@ void ensure_hypre_initialised() {
 }
 }  // namespace
 
-BoomerAMG::BoomerAMG(const CsrMatrix& M, const BoomerAMGOptions& options) : impl_(std::make_unique<Impl>()) {
+BoomerAMG::BoomerAMG(const CsrMatrix& M, const BoomerAMGOptions& options)
+    : BoomerAMG(MPI_COMM_SELF, 0, M, options) {}
+
+BoomerAMG::BoomerAMG(MPI_Comm comm, long first_row, const CsrMatrix& M, const BoomerAMGOptions& options)
+    : impl_(std::make_unique<Impl>()) {
   ensure_hypre_initialised();
   auto& s = *impl_;
   s.options = options;
+  s.comm = comm;
   s.n = static_cast<HYPRE_BigInt>(M.n);
-  if (M.n <= 0) throw std::invalid_argument("BoomerAMG: empty matrix");
-  const MPI_Comm comm = MPI_COMM_SELF;  // rank-local systems
-  HYPRE_IJMatrixCreate(comm, 0, s.n - 1, 0, s.n - 1, &s.ij);
+  long total = M.n;
+  MPI_Allreduce(&M.n, &total, 1, MPI_LONG, MPI_SUM, comm);
+  if (total <= 0) throw std::invalid_argument("BoomerAMG: empty matrix");
+  const HYPRE_BigInt lo = static_cast<HYPRE_BigInt>(first_row), hi = lo + s.n - 1;
+  HYPRE_IJMatrixCreate(comm, lo, hi, lo, hi, &s.ij);
   HYPRE_IJMatrixSetObjectType(s.ij, HYPRE_PARCSR);
   std::vector<HYPRE_Int> row_sizes(M.n);
   for (long i = 0; i < M.n; ++i) row_sizes[i] = static_cast<HYPRE_Int>(M.row_ptr[i + 1] - M.row_ptr[i]);
   HYPRE_IJMatrixSetRowSizes(s.ij, row_sizes.data());
   HYPRE_IJMatrixInitialize(s.ij);
   s.index.resize(M.n);
-  for (long i = 0; i < M.n; ++i) s.index[i] = static_cast<HYPRE_BigInt>(i);
+  for (long i = 0; i < M.n; ++i) s.index[i] = lo + static_cast<HYPRE_BigInt>(i);
   std::vector<HYPRE_BigInt> cols(M.cols.begin(), M.cols.end());
   HYPRE_IJMatrixSetValues(s.ij, static_cast<HYPRE_Int>(M.n), row_sizes.data(), s.index.data(), cols.data(),
                           M.values.data());
   HYPRE_IJMatrixAssemble(s.ij);
   HYPRE_IJMatrixGetObject(s.ij, reinterpret_cast<void**>(&s.A));
-  HYPRE_IJVectorCreate(comm, 0, s.n - 1, &s.bij);
+  HYPRE_IJVectorCreate(comm, lo, hi, &s.bij);
   HYPRE_IJVectorSetObjectType(s.bij, HYPRE_PARCSR);
-  HYPRE_IJVectorCreate(comm, 0, s.n - 1, &s.xij);
+  HYPRE_IJVectorCreate(comm, lo, hi, &s.xij);
   HYPRE_IJVectorSetObjectType(s.xij, HYPRE_PARCSR);
   s.zero.assign(M.n, 0.0);
   s.set_vectors(s.zero.data(), s.zero.data());
@@ -108,7 +116,7 @@ HypreSolveResult BoomerAMG::pcg(const double* b, double* x, double relative_tole
   auto& s = *impl_;
   s.set_vectors(b, x);
   HYPRE_Solver pcg = nullptr, amg = nullptr;
-  HYPRE_ParCSRPCGCreate(MPI_COMM_SELF, &pcg);
+  HYPRE_ParCSRPCGCreate(s.comm, &pcg);
   HYPRE_PCGSetTol(pcg, relative_tolerance);
   HYPRE_PCGSetMaxIter(pcg, max_iterations);
   HYPRE_PCGSetTwoNorm(pcg, 1);

@@ -1,8 +1,12 @@
 #pragma once
-// hypre's BoomerAMG on an assembled (rank-local) CSR matrix: one V-cycle as a coarse-grid
-// solver or preconditioner, or BoomerAMG-preconditioned CG (hypre's own PCG) for comparisons.
+// hypre's BoomerAMG on an assembled CSR matrix: one V-cycle as a coarse-grid solver or
+// preconditioner, or BoomerAMG-preconditioned CG (hypre's own PCG) for comparisons. The matrix
+// is rank-local, or the rows first_row.. of a matrix distributed over a communicator (column
+// numbers global).
 // Defaults are the best setting measured for 3D Poisson here (one level of aggressive
 // coarsening, HMIS, extended+i interpolation, l1 symmetric hybrid Gauss–Seidel).
+#include <mpi.h>
+
 #include <memory>
 
 #include "solvers/csr_matrix.hpp"
@@ -26,6 +30,9 @@ struct HypreSolveResult {
 class BoomerAMG {
  public:
   BoomerAMG(const CsrMatrix& A, const BoomerAMGOptions& options = {});
+  /// This rank's rows [first_row, first_row + A.n) of a matrix distributed over comm
+  /// (collective; vectors are this rank's n entries).
+  BoomerAMG(MPI_Comm comm, long first_row, const CsrMatrix& A, const BoomerAMGOptions& options = {});
   ~BoomerAMG();
   BoomerAMG(const BoomerAMG&) = delete;
   BoomerAMG& operator=(const BoomerAMG&) = delete;

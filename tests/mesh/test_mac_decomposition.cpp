@@ -3,10 +3,12 @@
 // single-block matrix for its cells exactly, hypre PFMG-CG on the distributed system gives the
 // single-block pressure to the solver tolerance, and the own multigrid on the blocks is the
 // single block's (one V-cycle equal, CG in as many iterations to the same pressure), at 1 and 2
-// ranks.
+// ranks; and the tall-cell system likewise (rows of P^T A P, BoomerAMG-CG on the blocks).
 #include <mpi.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <vector>
 
@@ -18,6 +20,7 @@
 #include "solvers/hypre_struct_pfmg.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
+#include "solvers/mac/tall_cell_matrix.hpp"
 #include "test_backend.hpp"
 
 namespace amphora {
@@ -103,25 +106,39 @@ std::vector<double> solve(MPI_Comm comm, const Block& B, const Index3& lower) {
   return x;
 }
 
-TEST(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock) {
-  Communicator comm;
+/// The scene split horizontally over the ranks of comm (this rank's block) and whole.
+struct SplitScene {
+  Box box;
+  mesh::MacBlock block;
+  Block local, whole;
+};
+SplitScene split_scene(const Communicator& comm) {
+  SplitScene S;
   const Index3 global{N, N, N};
   // horizontal only: the vertical (y) is never split
   const BoxDecomposition dec(global, {false, false, false}, comm.size(), 4, {true, false, true});
-  ASSERT_EQ(dec.blocks()[1], 1);
-  const Box box = dec.box(comm.rank());
+  EXPECT_EQ(dec.blocks()[1], 1);
+  S.box = dec.box(comm.rank());
   mesh::MacBoxBoundaries faces;
   for (int d = 0; d < 3; ++d)
     for (int side = 0; side < 2; ++side)
       faces[2 * d + side] = dec.neighbor(comm.rank(), d, side) >= 0 ? mesh::MacBoundary::neighbour
                                                                      : mesh::MacBoundary::wall;
-  const mesh::MacBlock block = mesh::MacBlock::of(dec, comm.get(), comm.rank());
-  const mesh::LatticeGhostExchange halo(block);
-  const Block local = make_block(box, faces, &halo);
-
+  S.block = mesh::MacBlock::of(dec, comm.get(), comm.rank());
+  const mesh::LatticeGhostExchange halo(S.block);
+  S.local = make_block(S.box, faces, &halo);
   mesh::MacBoxBoundaries walls;
   walls.fill(mesh::MacBoundary::wall);
-  const Block whole = make_block(Box{{0, 0, 0}, global}, walls, nullptr);
+  S.whole = make_block(Box{{0, 0, 0}, global}, walls, nullptr);
+  return S;
+}
+
+TEST(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock) {
+  Communicator comm;
+  const SplitScene S = split_scene(comm);
+  const Box& box = S.box;
+  const mesh::MacBlock& block = S.block;
+  const Block &local = S.local, &whole = S.whole;
 
   // every coefficient of this block's cells equals the single block's
   long compared = 0, differ = 0;
@@ -219,6 +236,92 @@ TEST(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock) {
   if (comm.rank() == 0)
     std::printf("multigrid-CG: %d iterations on %d rank(s), %d on one block; max difference %.3g of %.3g\n",
                 split_iterations, comm.size(), whole_iterations, d3, scale);
+}
+
+// The tall-cell system on the blocks: each block's rows of P^T A P equal the single block's
+// rows for the same unknowns (to round-off: the face terms are summed in another order), and
+// BoomerAMG-CG on the distributed rows gives the single block's lattice pressure.
+TEST(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
+  Communicator comm;
+  const SplitScene S = split_scene(comm);
+  const Box& box = S.box;
+  const Block &local = S.local, &whole = S.whole;
+  const int depth = 4;
+  const mesh::TallCellGrid T(local.A, depth, S.block), W(whole.A, depth);
+  ASSERT_GT(W.tall_cells(), 0);
+  EXPECT_EQ(comm.sum(static_cast<long long>(T.unknowns())), static_cast<long long>(W.unknowns()));
+  EXPECT_EQ(T.global_unknowns(), W.unknowns());
+  // the single block's number of each of this block's unknowns, then of every block's
+  std::vector<std::int64_t> mine(T.unknowns());
+  for (int k = 0; k < local.grid.nz; ++k)
+    for (int i = 0; i < local.grid.nx; ++i) {
+      const mesh::TallCellColumn& c = T.column(i, k);
+      const mesh::TallCellColumn& w = W.column(box.lo[0] + i, box.lo[2] + k);
+      ASSERT_EQ(c.terrain, w.terrain);
+      ASSERT_EQ(c.band, w.band);
+      if (c.has_tall_cell()) mine[c.first_unknown] = w.first_unknown, mine[c.first_unknown + 1] = w.first_unknown + 1;
+      for (int j = c.band; j < local.grid.ny; ++j) {
+        const int u = T.cell_unknown()[local.grid.index(i, j, k)];
+        if (u >= 0) mine[u] = W.cell_unknown()[whole.grid.index(box.lo[0] + i, j, box.lo[2] + k)];
+      }
+    }
+  const std::vector<std::int64_t> to_whole = comm.allgatherv(mine);
+  const solvers::CsrMatrix M = solvers::mac::assemble_tall_cell_matrix(T, local.A);
+  const solvers::CsrMatrix Mw = solvers::mac::assemble_tall_cell_matrix(W, whole.A);
+  ASSERT_EQ(M.n, T.unknowns());
+  long rows_compared = 0, differ = 0;
+  for (long r = 0; r < M.n; ++r) {
+    const long wr = mine[r];
+    std::vector<std::pair<long, double>> a, e;
+    for (long m = M.row_ptr[r]; m < M.row_ptr[r + 1]; ++m) a.emplace_back(to_whole.at(M.cols[m]), M.values[m]);
+    for (long m = Mw.row_ptr[wr]; m < Mw.row_ptr[wr + 1]; ++m) e.emplace_back(Mw.cols[m], Mw.values[m]);
+    std::sort(a.begin(), a.end());
+    double diagonal = 0;
+    for (const auto& [c, v] : e) diagonal = c == wr ? v : diagonal;
+    bool same = a.size() == e.size();
+    for (std::size_t m = 0; same && m < a.size(); ++m)
+      same = a[m].first == e[m].first && std::abs(a[m].second - e[m].second) <= 1e-12 * diagonal;
+    differ += !same;
+    ++rows_compared;
+  }
+  EXPECT_EQ(differ, 0) << "of " << rows_compared << " rows on rank " << comm.rank();
+
+  // BoomerAMG-CG on the blocks' rows: the single block's lattice pressure
+  solvers::SolverControl control;
+  control.relative_tolerance = 1e-11;
+  const auto solve_tall = [&](const mesh::TallCellGrid& grid, const Block& B, const solvers::CsrMatrix& A_t) {
+    std::vector<double> bt(grid.unknowns()), lattice(B.grid.padded_size());
+    grid.restrict_to_unknowns(B.b.data(), bt.data());
+    auto amg = solvers::mac::make_tall_cell_pressure_solver(solvers::mac::PressureBackend::hypre, Exec(), grid, A_t,
+                                                            kernels::mac::copy_stencil<Mem>(B.A));
+    Kokkos::View<double*, Mem> y("y", grid.unknowns());
+    const auto r = amg->solve(Exec(), to_view<Mem>(bt), y, control);
+    EXPECT_TRUE(r.converged);
+    grid.prolongate(to_std_vector(y).data(), lattice.data());
+    return lattice;
+  };
+  const std::vector<double> p = solve_tall(T, local, M), q = solve_tall(W, whole, Mw);
+  double diff = 0, scale = 0;
+  for (int k = 0; k < local.grid.nz; ++k)
+    for (int j = 0; j < local.grid.ny; ++j)
+      for (int i = 0; i < local.grid.nx; ++i) {
+        const double qv = q[whole.grid.index(box.lo[0] + i, box.lo[1] + j, box.lo[2] + k)];
+        diff = std::max(diff, std::abs(p[local.grid.index(i, j, k)] - qv));
+        scale = std::max(scale, std::abs(qv));
+      }
+  MPI_Allreduce(MPI_IN_PLACE, &diff, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+  MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+  EXPECT_GT(scale, 0.0);
+  EXPECT_LT(diff, 1e-8 * scale) << "ranks " << comm.size();
+  if (comm.size() > 1) {  // the own tall-cell multigrid and MIC(0) solve one block only
+    for (const auto b : {solvers::mac::PressureBackend::multigrid, solvers::mac::PressureBackend::mic0})
+      EXPECT_THROW(solvers::mac::make_tall_cell_pressure_solver(b, Exec(), T, M, kernels::mac::copy_stencil<Mem>(local.A)),
+                   std::invalid_argument);
+  }
+  if (comm.rank() == 0)
+    std::printf("tall cells (depth %d): %ld unknowns, %ld rows compared on rank 0; BoomerAMG-CG on %d rank(s): "
+                "max difference %.3g of %.3g\n",
+                depth, W.unknowns(), rows_compared, comm.size(), diff, scale);
 }
 
 }  // namespace

@@ -1,11 +1,14 @@
 #include "mesh/mac/tall_cell_grid.hpp"
 
+#include <mpi.h>
+
 #include <stdexcept>
 
 namespace amphora::mesh {
 
-TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth)
-    : grid_(A.grid), optical_depth_(optical_depth) {
+TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth,
+                           const MacBlock& block)
+    : grid_(A.grid), block_(block), optical_depth_(optical_depth) {
   if (optical_depth < 1) throw std::invalid_argument("tall cells: the optical depth must be at least one cell");
   const MacGrid& g = grid_;
   const auto& d = A.diag;
@@ -26,19 +29,71 @@ TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, 
         if (d(g.index(i, j, k)) != 0.0) cell_unknown_[g.index(i, j, k)] = static_cast<int>(next++);
     }
   unknowns_ = next;
+  global_unknowns_ = unknowns_;
+  if (block_.split()) {
+    MPI_Exscan(&unknowns_, &first_unknown_, 1, MPI_LONG, MPI_SUM, block_.comm);
+    int rank = 0;
+    MPI_Comm_rank(block_.comm, &rank);
+    if (rank == 0) first_unknown_ = 0;  // MPI_Exscan leaves rank 0's result undefined
+    MPI_Allreduce(&unknowns_, &global_unknowns_, 1, MPI_LONG, MPI_SUM, block_.comm);
+    learn_ghost_ring();
+  }
+}
+
+// Each block writes, per padded lattice cell of its own, the global unknown of a uniform fluid
+// cell (>= 0), -(first unknown + 2) for a cell of a tall cell, -1 elsewhere; after the ghost
+// exchange the ring's columns are read back from their cells.
+void TallCellGrid::learn_ghost_ring() {
+  const MacGrid& g = grid_;
+  Kokkos::View<long*, HostMemSpace> code("amphora::tall::ring_code", g.padded_size());
+  Kokkos::deep_copy(code, -1L);
+  for (int k = 0; k < g.nz; ++k)
+    for (int i = 0; i < g.nx; ++i) {
+      const TallCellColumn& col = columns_[i + g.nx * k];
+      for (int j = col.terrain; j < g.ny; ++j) {
+        const int c = g.index(i, j, k);
+        if (j < col.band)
+          code(c) = -(first_unknown_ + col.first_unknown + 2);
+        else if (cell_unknown_[c] >= 0)
+          code(c) = first_unknown_ + cell_unknown_[c];
+      }
+    }
+  LatticeGhostExchange(block_).exchange(HostExecSpace(), g, code);
+  ring_columns_.assign(static_cast<std::size_t>(g.nx + 2) * (g.nz + 2), TallCellColumn{g.ny, g.ny, -1});
+  ring_unknown_.assign(static_cast<std::size_t>(g.padded_size()), -1);
+  for (int k = -1; k <= g.nz; ++k)
+    for (int i = -1; i <= g.nx; ++i) {
+      if (i >= 0 && i < g.nx && k >= 0 && k < g.nz) continue;
+      TallCellColumn& col = ring_columns_[(i + 1) + (g.nx + 2) * (k + 1)];
+      int j = 0;
+      while (j < g.ny && code(g.index(i, j, k)) == -1) ++j;
+      col.terrain = col.band = j;
+      if (j < g.ny && code(g.index(i, j, k)) < -1) {
+        col.first_unknown = static_cast<int>(-code(g.index(i, j, k)) - 2);
+        while (col.band < g.ny && code(g.index(i, col.band, k)) < -1) ++col.band;
+      }
+      for (int jj = col.band; jj < g.ny; ++jj) ring_unknown_[g.index(i, jj, k)] = static_cast<int>(code(g.index(i, jj, k)));
+    }
+}
+
+const TallCellColumn& TallCellGrid::column(int i, int k) const {
+  if (i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz) return columns_[i + grid_.nx * k];
+  return ring_columns_.at((i + 1) + (grid_.nx + 2) * (k + 1));
 }
 
 int TallCellGrid::weights(int i, int j, int k, int u[2], double w[2]) const {
-  const TallCellColumn& col = columns_[i + grid_.nx * k];
+  const bool own = i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz;
+  const TallCellColumn& col = column(i, k);
+  const long base = own ? first_unknown_ : 0;  // the ring's numbers are global already
   if (j >= col.terrain && j < col.band) {
     const double t = double(j - col.terrain) / double(col.band - 1 - col.terrain);
-    u[0] = col.first_unknown, w[0] = 1.0 - t;
-    u[1] = col.first_unknown + 1, w[1] = t;
+    u[0] = static_cast<int>(base + col.first_unknown), w[0] = 1.0 - t;
+    u[1] = static_cast<int>(base + col.first_unknown + 1), w[1] = t;
     return 2;
   }
-  const int unknown = cell_unknown_[grid_.index(i, j, k)];
+  const int unknown = own ? cell_unknown_[grid_.index(i, j, k)] : ring_unknown_.at(grid_.index(i, j, k));
   if (unknown < 0) return 0;
-  u[0] = unknown, w[0] = 1.0;
+  u[0] = static_cast<int>(base + unknown), w[0] = 1.0;
   return 1;
 }
 
@@ -52,7 +107,7 @@ void TallCellGrid::prolongate(const double* y, double* lattice) const {
         double w[2];
         const int n = weights(i, j, k, u, w);
         double v = 0.0;
-        for (int m = 0; m < n; ++m) v += w[m] * y[u[m]];
+        for (int m = 0; m < n; ++m) v += w[m] * y[u[m] - first_unknown_];
         lattice[g.index(i, j, k)] = v;
       }
 }
@@ -66,7 +121,7 @@ void TallCellGrid::restrict_to_unknowns(const double* lattice, double* y) const 
         int u[2];
         double w[2];
         const int n = weights(i, j, k, u, w);
-        for (int m = 0; m < n; ++m) y[u[m]] += w[m] * lattice[g.index(i, j, k)];
+        for (int m = 0; m < n; ++m) y[u[m] - first_unknown_] += w[m] * lattice[g.index(i, j, k)];
       }
 }
 

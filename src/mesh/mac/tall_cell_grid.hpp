@@ -8,10 +8,16 @@
 // prolongation); the tall-cell matrix P^T A P is assembled in solvers/mac/tall_cell_matrix.
 // Unknowns are numbered column by column (x fastest over columns): the tall
 // cell's bottom and top samples, then the column's fluid cells upwards.
+//
+// On a grid split over ranks (mesh::MacBlock) each block numbers its own columns, after the
+// blocks of lower ranks (global number = local + first_unknown()), and learns the columns of
+// its ghost ring (their rows and global unknowns) from the neighbouring blocks, so the matrix
+// rows of its unknowns can be assembled with their couplings across the block faces.
 #include <vector>
 
 #include "kernels/host_vector.hpp"
 #include "kernels/mac/poisson_stencil.hpp"
+#include "mesh/mac/lattice_halo.hpp"
 #include "mesh/mac/tall_cell_columns.hpp"
 
 namespace amphora::mesh {
@@ -29,18 +35,33 @@ class TallCellGrid {
  public:
   /// The columns of A's fluid cells with uniform rows within optical_depth cells of the lowest
   /// non-fluid row above the terrain; a tall cell needs at least two rows (else the column stays
-  /// uniform). A is on the host.
-  TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth);
+  /// uniform). A is on the host. On a split grid (block.split()) every rank of block.comm
+  /// constructs its block's grid together (collective).
+  TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth, const MacBlock& block = {});
 
   const MacGrid& grid() const { return grid_; }
+  const MacBlock& block() const { return block_; }
+  /// This block's unknowns (all of them on one block).
   long unknowns() const { return unknowns_; }
+  /// Global number of this block's first unknown (0 on one block), and of all blocks together.
+  long first_unknown() const { return first_unknown_; }
+  long global_unknowns() const { return global_unknowns_; }
   int optical_depth() const { return optical_depth_; }
   long tall_cells() const { return tall_cells_; }
   const std::vector<TallCellColumn>& columns() const { return columns_; }
-  /// Unknown of a uniform fluid cell (padded index), -1 elsewhere.
+  /// Unknown of a uniform fluid cell (padded index), -1 elsewhere (this block's numbering).
   const std::vector<int>& cell_unknown() const { return cell_unknown_; }
+  /// Column (i, k) of the block or of its ghost ring (i = -1..nx, k = -1..nz; the ring's
+  /// first_unknown in the global numbering; outside the global box: no fluid).
+  const TallCellColumn& column(int i, int k) const;
+  /// Global number of the first unknown of column (i, k) (block or ghost ring).
+  long global_first_unknown(int i, int k) const {
+    const bool own = i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz;
+    return (own ? first_unknown_ : 0) + column(i, k).first_unknown;
+  }
 
-  /// The (at most two) unknowns and weights of lattice cell (i, j, k): p = sum w u.
+  /// The (at most two) global unknowns and weights of lattice cell (i, j, k) of the block or of
+  /// its ghost ring: p = sum w u.
   int weights(int i, int j, int k, int u[2], double w[2]) const;
   /// Lattice values P y (host, padded lattice; zero off the fluid).
   void prolongate(const double* y, double* lattice) const;
@@ -48,11 +69,18 @@ class TallCellGrid {
   void restrict_to_unknowns(const double* lattice, double* y) const;
 
  private:
+  void learn_ghost_ring();
+
   MacGrid grid_;
+  MacBlock block_;
   int optical_depth_ = 0;
-  long unknowns_ = 0, tall_cells_ = 0;
+  long unknowns_ = 0, tall_cells_ = 0, first_unknown_ = 0, global_unknowns_ = 0;
   std::vector<TallCellColumn> columns_;
   std::vector<int> cell_unknown_;
+  // the ghost ring: columns (nx + 2) x (nz + 2) padded (own ones unused), global unknowns of
+  // its uniform cells per padded lattice index (-1: none)
+  std::vector<TallCellColumn> ring_columns_;
+  std::vector<int> ring_unknown_;
 };
 
 }  // namespace amphora::mesh

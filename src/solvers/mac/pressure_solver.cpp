@@ -34,14 +34,16 @@ const char* to_string(PressureBackend backend) {
 
 namespace {
 
-/// A hypre result in the terms of CG: hypre reports the relative residual.
+/// A hypre result in the terms of CG: hypre reports the relative residual (b: this rank's part
+/// of the right-hand side of a system distributed over comm).
 template <class B>
-SolverResult from_hypre(const HypreSolveResult& h, const B& b, double relative_tolerance) {
+SolverResult from_hypre(const HypreSolveResult& h, const B& b, double relative_tolerance, MPI_Comm comm) {
   SolverResult r;
   r.iterations = h.iterations;
   r.converged = h.final_relative_residual <= relative_tolerance;
-  double bb = 0.0;
-  for (std::size_t i = 0; i < b.extent(0); ++i) bb += b(i) * b(i);
+  double local = 0.0, bb = 0.0;
+  for (std::size_t i = 0; i < b.extent(0); ++i) local += b(i) * b(i);
+  MPI_Allreduce(&local, &bb, 1, MPI_DOUBLE, MPI_SUM, comm);
   r.rhs_norm = std::sqrt(bb);
   r.final_residual = h.final_relative_residual * r.rhs_norm;
   return r;
@@ -84,19 +86,21 @@ class PfmgPressureSolver final : public PressureSolver<ExecSpace> {
     const auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cx);
     const auto y = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cy);
     const auto z = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cz);
+    comm_ = block.comm;
     pfmg_ = std::make_unique<StructPfmgCG>(block.comm, A.grid, block.global_lower, d.data(), x.data(), y.data(),
                                            z.data());
   }
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
       return from_hypre(pfmg_->solve(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations), bh,
-                        c.relative_tolerance);
+                        c.relative_tolerance, comm_);
     });
   }
   PressureBackend backend() const override { return PressureBackend::hypre; }
 
  private:
   std::unique_ptr<StructPfmgCG> pfmg_;
+  MPI_Comm comm_ = MPI_COMM_SELF;
 };
 
 /// CG with MIC(0) on the stencil, host, sequential.
@@ -136,17 +140,22 @@ template <class ExecSpace>
 class BoomerAMGPressureSolver final : public PressureSolver<ExecSpace> {
  public:
   using typename PressureSolver<ExecSpace>::Vector;
-  explicit BoomerAMGPressureSolver(const CsrMatrix& A_t) : A_(A_t) {}
+  /// Rows first_row.. of A_t, distributed over comm (one rank: MPI_COMM_SELF, 0).
+  BoomerAMGPressureSolver(const CsrMatrix& A_t, MPI_Comm comm, long first_row)
+      : A_(A_t), comm_(comm), first_row_(first_row) {}
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
-      const BoomerAMG amg(A_);
-      return from_hypre(amg.pcg(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations), bh, c.relative_tolerance);
+      const BoomerAMG amg(comm_, first_row_, A_);
+      return from_hypre(amg.pcg(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations), bh, c.relative_tolerance,
+                        comm_);
     });
   }
   PressureBackend backend() const override { return PressureBackend::hypre; }
 
  private:
   CsrMatrix A_;
+  MPI_Comm comm_;
+  long first_row_;
 };
 
 template <class ExecSpace>
@@ -180,10 +189,15 @@ template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
     PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
+  if (T.block().split() && backend != PressureBackend::hypre)
+    throw std::invalid_argument(std::string("pressure back end '") + to_string(backend) +
+                                "' solves tall cells on one rank; for tall cells split over ranks use 'hypre' "
+                                "(BoomerAMG)");
   switch (backend) {
     case PressureBackend::multigrid:
       return std::make_unique<MultigridPressureSolver<ExecSpace, TallCellMultigrid<ExecSpace>>>(exec, T, A_t, A);
-    case PressureBackend::hypre: return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(A_t);
+    case PressureBackend::hypre:
+      return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(A_t, T.block().comm, T.first_unknown());
     case PressureBackend::mic0: return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(A_t);
   }
   throw std::invalid_argument("make_tall_cell_pressure_solver: unknown back end");

@@ -14,8 +14,11 @@ namespace {
 /// per row: assembly runs every sub-step.
 class RowAccumulator {
  public:
-  explicit RowAccumulator(long n) : count_(n, 0), cols_(n * K), values_(n * K), overflow_(n) {}
-  void add(int r, int c, double v) {
+  /// Rows first .. first + n - 1 of the global matrix (the others are dropped).
+  RowAccumulator(long n, long first) : first_(first), count_(n, 0), cols_(n * K), values_(n * K), overflow_(n) {}
+  void add(long global_row, int c, double v) {
+    const long r = global_row - first_;
+    if (r < 0 || r >= static_cast<long>(count_.size())) return;  // another block's row
     int* cols = cols_.data() + static_cast<long>(r) * K;
     double* values = values_.data() + static_cast<long>(r) * K;
     const int m = count_[r];
@@ -68,6 +71,7 @@ class RowAccumulator {
 
  private:
   static constexpr int K = 8;
+  long first_ = 0;
   std::vector<int> count_;
   std::vector<int> cols_;
   std::vector<double> values_;
@@ -79,7 +83,7 @@ class RowAccumulator {
 CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A) {
   const mesh::MacGrid& g = T.grid();
   const int sy = g.stride_y(), sz = g.stride_z();
-  RowAccumulator rows(T.unknowns());
+  RowAccumulator rows(T.unknowns(), T.first_unknown());
   // c (p_P - p_Q)^2 for lattice cells P and Q, whatever they map to
   auto add_face = [&](int iP, int jP, int kP, int iQ, int jQ, int kQ, double c) {
     int ids[4];
@@ -91,13 +95,16 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
     for (int m = 0; m < nQ; ++m) v[n + m] = -w[m];
     rows.add_outer(ids, v, n + nQ, c);
   };
+  auto tall_step = [](const mesh::TallCellColumn& c) {
+    return c.has_tall_cell() ? 1.0 / (c.band - 1 - c.terrain) : 0.0;
+  };
   const auto& d = A.diag;
   const auto &cx = A.cx, &cy = A.cy, &cz = A.cz;
   for (int k = 0; k < g.nz; ++k)
     for (int i = 0; i < g.nx; ++i) {
-      const mesh::TallCellColumn& col = T.columns()[i + g.nx * k];
-      const double dt = col.has_tall_cell() ? 1.0 / (col.band - 1 - col.terrain) : 0.0;
-      const int bot = col.first_unknown;
+      const mesh::TallCellColumn& col = T.column(i, k);
+      const double dt = tall_step(col);
+      const int bot = static_cast<int>(T.global_first_unknown(i, k));
       // free-surface / open-face terms D p^2
       for (int j = col.terrain; j < g.ny; ++j) {
         const int c = g.index(i, j, k);
@@ -125,20 +132,27 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
         const double v[2] = {dt, -dt};
         rows.add_outer(ids, v, 2, inside);
       }
-      // horizontal faces to the +x and +z neighbours
-      for (int dir = 0; dir < 2; ++dir) {
+    }
+  // horizontal faces between a column and its +x / +z neighbour, where either is this block's
+  // (on a split grid the faces to the ghost ring too: their terms in this block's rows)
+  const auto& nb = T.block().neighbours;
+  for (int dir = 0; dir < 2; ++dir) {
+    const int i_lo = dir == 0 && nb[0] >= 0 ? -1 : 0, k_lo = dir == 1 && nb[4] >= 0 ? -1 : 0;
+    const int i_hi = dir == 0 ? (nb[1] >= 0 ? g.nx : g.nx - 1) : g.nx;  // lower column's range
+    const int k_hi = dir == 1 ? (nb[5] >= 0 ? g.nz : g.nz - 1) : g.nz;
+    const auto& cond = dir == 0 ? cx : cz;
+    for (int k = k_lo; k < k_hi; ++k)
+      for (int i = i_lo; i < i_hi; ++i) {
         const int in = i + (dir == 0), kn = k + (dir == 1);
-        if (in >= g.nx || kn >= g.nz) continue;
-        const auto& cond = dir == 0 ? cx : cz;
-        const mesh::TallCellColumn& nb = T.columns()[in + g.nx * kn];
-        const double dn = nb.has_tall_cell() ? 1.0 / (nb.band - 1 - nb.terrain) : 0.0;
+        const mesh::TallCellColumn &col = T.column(i, k), &next = T.column(in, kn);
+        const double dc = tall_step(col), dn = tall_step(next);
         double block[4][4] = {};
         bool any_block = false;
-        for (int j = std::max(col.terrain, nb.terrain); j < g.ny; ++j) {
+        for (int j = std::max(col.terrain, next.terrain); j < g.ny; ++j) {
           const double c = cond(g.index(i, j, k));
           if (c == 0.0) continue;
-          if (j < col.band && j < nb.band) {  // tall against tall: a 4x4 block
-            const double t = (j - col.terrain) * dt, s = (j - nb.terrain) * dn;
+          if (j < col.band && j < next.band) {  // tall against tall: a 4x4 block
+            const double t = (j - col.terrain) * dc, s = (j - next.terrain) * dn;
             const double v[4] = {1.0 - t, t, -(1.0 - s), -s};
             for (int a = 0; a < 4; ++a)
               for (int b = 0; b < 4; ++b) block[a][b] += c * v[a] * v[b];
@@ -148,12 +162,14 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
           }
         }
         if (any_block) {
-          const int ids[4] = {bot, bot + 1, nb.first_unknown, nb.first_unknown + 1};
+          const int bot = static_cast<int>(T.global_first_unknown(i, k));
+          const int nbot = static_cast<int>(T.global_first_unknown(in, kn));
+          const int ids[4] = {bot, bot + 1, nbot, nbot + 1};
           for (int a = 0; a < 4; ++a)
             for (int b = 0; b < 4; ++b) rows.add(ids[a], ids[b], block[a][b]);
         }
       }
-    }
+  }
   return rows.to_csr();
 }
 

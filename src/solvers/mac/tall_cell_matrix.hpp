@@ -3,7 +3,9 @@
 // Laplacian from the linear-in-height pressure), assembled face by face from the quadratic form
 //   p^T A p = sum_faces c_f (p_i - p_j)^2 + sum_cells D_i p_i^2,  p = P y,
 // with the faces inside a tall cell and between two tall cells summed in closed blocks, so the
-// cost follows the uniform cells plus one pass over the tall rows. Host.
+// cost follows the uniform cells plus one pass over the tall rows. Host. On a split grid: the
+// rows of this block's unknowns (global column numbers), its ghost ring supplying the
+// neighbours across the block faces.
 #include "mesh/mac/tall_cell_grid.hpp"
 #include "solvers/csr_matrix.hpp"
 
