@@ -36,10 +36,12 @@ expect_error 2 "multigrid cannot coarsen the 98x64x64 grid: .* nx = 98 can be ha
 water_scene solver.toml 'solver = "amg"'
 expect_error 2 "key 'water_mac.solver' = \"amg\" is not an allowed value; allowed: one of: multigrid, hypre, mic0" \
   "$AMPHORA" run solver.toml; no_output solver
-# On several ranks: tall cells and MIC(0) are refused (each runs on one rank), and blocks
-# narrower than a semi-Lagrangian trace reaches are a decomposition error.
+# On several ranks: MIC(0), and tall cells with any back end but BoomerAMG, are refused (they
+# solve on one rank), and blocks narrower than a semi-Lagrangian trace reaches are a
+# decomposition error.
 water_scene tall2.toml 'optical_depth = 4'
-expect_error 2 "optical_depth = 4: tall cells run on one rank so far" "$MPIEXEC" -n 2 "$AMPHORA" run tall2.toml
+expect_error 2 "solver = \"multigrid\" solves tall cells on one rank .* use solver = \"hypre\"" \
+  "$MPIEXEC" -n 2 "$AMPHORA" run tall2.toml
 no_output tall2
 water_scene mic2.toml 'solver = "mic0"'
 expect_error 2 "solver = \"mic0\" runs on one rank" "$MPIEXEC" -n 2 "$AMPHORA" run mic2.toml; no_output mic2
@@ -49,14 +51,16 @@ expect_error 2 "more ranks \(2\) than blocks" "$MPIEXEC" -n 2 "$AMPHORA" run nar
 
 # A run split over 2 ranks is the 1-rank run to round-off (the CG sums in another order):
 # the dam break (split along x) and the splash (terrain, a falling ball), each back end.
-same_csv() {  # a.csv b.csv tolerance
+same_csv() {  # a.csv b.csv tolerance [iterations apart, default 1]
   /usr/bin/python3 - "$@" <<'PY'
 import csv, sys
 a, b = (list(csv.DictReader(open(f))) for f in sys.argv[1:3])
 assert len(a) == len(b) > 3, (len(a), len(b))
-# CG may stop one iteration apart when the residual lands on the tolerance
+# CG may stop one iteration apart when the residual lands on the tolerance (BoomerAMG's
+# coarsening depends on the partition: a few more)
+allowed = float(sys.argv[4]) if len(sys.argv) > 4 else 1
 its = max(abs(float(r["pressure_iterations"]) - float(q["pressure_iterations"])) for r, q in zip(a, b))
-assert its <= 1, f"{sys.argv[1]} vs {sys.argv[2]}: pressure iterations {its} apart"
+assert its <= allowed, f"{sys.argv[1]} vs {sys.argv[2]}: pressure iterations {its} apart"
 worst = max(abs(float(r[k]) - float(q[k])) / max(abs(float(r[k])), abs(float(q[k])), 1e-300)
             for r, q in zip(a, b) for k in r if k != "pressure_iterations")
 assert worst <= float(sys.argv[3]), f"{sys.argv[1]} vs {sys.argv[2]}: {worst:.3g}"
@@ -73,6 +77,16 @@ for solver in multigrid hypre; do
   same_csv s1/diagnostics.csv s2/diagnostics.csv 1e-8
   rm -rf s1 s2
 done
+# tall cells split over 2 ranks (the blocks' tall-cell rows, BoomerAMG-CG over both ranks)
+# against 1 rank; with the ghost ring's tall cells ignored at the block faces the difference is
+# 8e-8 (32^3), with them ~1e-11
+water_scene t1.toml 'solver = "hypre"' 'optical_depth = 4' 'terrain_base = 0.05' 'terrain_amplitude = 0.04' \
+  'drop_height = 0.75' 'tolerance = 1e-10'
+sed -i 's/^end_time = 0.01/end_time = 0.06\ndiagnostics_every = 1/; s|output_dir = "out"|output_dir = "t1"|; s/^scene = "still"/scene = "splash"/; s/^cells_\([xyz]\) = 16/cells_\1 = 32/' t1.toml
+sed 's|output_dir = "t1"|output_dir = "t2"|' t1.toml > t2.toml
+"$AMPHORA" run t1.toml > /dev/null
+OMP_NUM_THREADS=1 "$MPIEXEC" -n 2 "$AMPHORA" run t2.toml > /dev/null
+same_csv t1/diagnostics.csv t2/diagnostics.csv 1e-9 3
 # a checkpoint written on 2 ranks holds the whole grid: the run continues on 1 rank
 sed 's|output_dir = "s1"|output_dir = "rs"|; s/^diagnostics_every = 1/diagnostics_every = 1\ncheckpoint_every = 4/' s1.toml > rs.toml
 OMP_NUM_THREADS=1 "$MPIEXEC" -n 2 "$AMPHORA" run rs.toml --max-steps 4 > /dev/null

@@ -20,8 +20,14 @@ using mesh::MacGrid;
 template <class M = Mem>
 mesh::TallCellColumns<M> columns(const MacGrid& g, const std::vector<int>& terrain, const std::vector<int>& band) {
   mesh::TallCellColumns<M> T(g);
-  Kokkos::deep_copy(T.terrain, to_view<M>(terrain));
-  Kokkos::deep_copy(T.band, to_view<M>(band));
+  std::vector<int> t(T.terrain.extent(0), 0), b(T.band.extent(0), 0);  // the ghost ring: no tall cells
+  for (int k = 0; k < g.nz; ++k)
+    for (int i = 0; i < g.nx; ++i) {
+      t[T.column(i, k)] = terrain[i + g.nx * k];
+      b[T.column(i, k)] = band[i + g.nx * k];
+    }
+  Kokkos::deep_copy(T.terrain, to_view<M>(t));
+  Kokkos::deep_copy(T.band, to_view<M>(b));
   return T;
 }
 

@@ -127,8 +127,9 @@ void fit_linear_in_tall_cells(const ExecSpace& exec, const mesh::TallCellColumns
       });
 }
 
-/// The largest |u| + |v| + |w| (each the larger of a cell's two faces) over the tall cells:
-/// the upwind step there is stable for dt <= h / tall_cell_speed.
+/// The largest |u| + |v| + |w| (each the larger of a cell's two faces) over the tall cells of
+/// the block: the upwind step there is stable for dt <= h / tall_cell_speed (on a split grid the
+/// caller takes the largest over the blocks).
 template <class ExecSpace, class MemSpace, class U, class V, class W>
 double tall_cell_speed(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, const U& u, const V& v,
                        const W& w) {
@@ -137,8 +138,8 @@ double tall_cell_speed(const ExecSpace& exec, const mesh::TallCellColumns<MemSpa
   double speed = 0.0;
   Kokkos::parallel_reduce(
       "amphora::mac::tall_cell_speed", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz),
-      KOKKOS_LAMBDA(int col, double& acc) {
-        const int i = col % g.nx, k = col / g.nx;
+      KOKKOS_LAMBDA(int m, double& acc) {
+        const int i = m % g.nx, k = m / g.nx, col = T.column(i, k);
         for (int j = T.terrain(col); j < T.band(col); ++j) {
           const int c = g.index(i, j, k);
           const double s = math::max(math::abs(u(c)), math::abs(u(c + 1))) +

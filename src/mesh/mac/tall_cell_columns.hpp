@@ -5,6 +5,11 @@
 // cell types every sub-step, so the grid follows the surface; mesh::TallCellGrid uses the same
 // rule (tall_cell_rows) for the pressure unknowns.
 //
+// On a block of a grid split over ranks the columns of the ghost ring (i = -1 or nx, k = -1 or
+// nz, from the exchanged cell types) are known too, so the face samples on the block's faces
+// see the tall cells on both sides, as on one block; `edges` marks the faces of the global box,
+// where face samples are never in tall cells.
+//
 // A tall cell carries every field as a linear function of height through two samples (bottom
 // and top). The water module stores the fields expanded on the lattice; tall_rows() names the
 // lattice samples of a field that lie inside tall cells, where the tall-cell schemes apply.
@@ -29,13 +34,19 @@ KOKKOS_INLINE_FUNCTION void tall_cell_rows(int ny, int optical_depth, const IsFl
 template <class MemSpace>
 struct TallCellColumns {
   MacGrid grid;
-  Kokkos::View<int*, MemSpace> terrain, band;  ///< per column, x fastest
+  MacEdges edges = box_edges();
+  /// per column of the block and its ghost ring, at column(i, k)
+  Kokkos::View<int*, MemSpace> terrain, band;
 
   TallCellColumns() = default;
-  explicit TallCellColumns(const MacGrid& g)
+  explicit TallCellColumns(const MacGrid& g, const MacEdges& box_faces = box_edges())
       : grid(g),
-        terrain("amphora::tall::terrain", static_cast<std::size_t>(g.nx) * g.nz),
-        band("amphora::tall::band", static_cast<std::size_t>(g.nx) * g.nz) {}
+        edges(box_faces),
+        terrain("amphora::tall::terrain", static_cast<std::size_t>(g.nx + 2) * (g.nz + 2)),
+        band("amphora::tall::band", static_cast<std::size_t>(g.nx + 2) * (g.nz + 2)) {}
+
+  /// Index of column (i, k), i = -1..nx, k = -1..nz.
+  KOKKOS_INLINE_FUNCTION int column(int i, int k) const { return (i + 1) + (grid.nx + 2) * (k + 1); }
 
   /// Rows [lo, hi) of the samples in tall cells of the field with staggering d (-1: cell
   /// centres, 0/1/2: faces normal to x/y/z) in sample column (i, k): the tall cell's rows for
@@ -44,14 +55,14 @@ struct TallCellColumns {
   KOKKOS_INLINE_FUNCTION void tall_rows(int d, int i, int k, int& lo, int& hi) const {
     lo = hi = 0;
     if (d == -1 || d == 1) {
-      const int col = i + grid.nx * k;
+      const int col = column(i, k);
       const int t = terrain(col), b = band(col);
       if (b > t) lo = d == -1 ? t : t + 1, hi = b;
       return;
     }
     const int n = d == 0 ? grid.nx : grid.nz, m = d == 0 ? i : k;
-    if (m == 0 || m == n) return;
-    const int a = d == 0 ? (i - 1) + grid.nx * k : i + grid.nx * (k - 1), c = i + grid.nx * k;
+    if ((m == 0 && edges[2 * d]) || (m == n && edges[2 * d + 1])) return;
+    const int a = d == 0 ? column(i - 1, k) : column(i, k - 1), c = column(i, k);
     const int ta = terrain(a), ba = band(a), tc = terrain(c), bc = band(c);
     if (ba > ta && bc > tc) {
       lo = math::max(ta, tc);
@@ -65,15 +76,17 @@ struct TallCellColumns {
   }
 };
 
-/// The columns of the fluid cells of `type` (every column uniform if optical_depth == 0).
+/// The columns of the fluid cells of `type` (every column uniform if optical_depth == 0), the
+/// ghost ring's from type's ghost cells.
 template <class ExecSpace, class MemSpace, class Types>
 void find_tall_cell_columns(const ExecSpace& exec, const Types& type, int optical_depth,
                             const TallCellColumns<MemSpace>& columns) {
   const MacGrid g = columns.grid;
   const auto terrain = columns.terrain, band = columns.band;
+  const int nx2 = g.nx + 2;
   Kokkos::parallel_for(
-      "amphora::mac::find_tall_cell_columns", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz), KOKKOS_LAMBDA(int col) {
-        const int i = col % g.nx, k = col / g.nx;
+      "amphora::mac::find_tall_cell_columns", RangePolicy<ExecSpace>(exec, 0, nx2 * (g.nz + 2)), KOKKOS_LAMBDA(int col) {
+        const int i = col % nx2 - 1, k = col / nx2 - 1;
         const auto fluid = [&](int j) { return type(g.index(i, j, k)) == MacCellType::fluid; };
         int t, b;
         tall_cell_rows(g.ny, optical_depth > 0 ? optical_depth : g.ny, fluid, t, b);

@@ -140,9 +140,10 @@ class WaterMac final : public Module {
       const std::string e = solvers::mac::multigrid_size_error(global_, solvers::mac::MacMultigridOptions{}.max_coarse_cells);
       if (!e.empty()) throw std::invalid_argument("water_mac (solver = \"multigrid\"): " + e);
     }
-    if (block_.split() && optical_depth_ > 0)
-      throw std::invalid_argument("water_mac.optical_depth = " + std::to_string(optical_depth_) +
-                                  ": tall cells run on one rank so far (run on 1 rank, or set optical_depth = 0)");
+    if (block_.split() && optical_depth_ > 0 && backend_ != solvers::mac::PressureBackend::hypre)
+      throw std::invalid_argument("water_mac.solver = \"" + std::string(solvers::mac::to_string(backend_)) +
+                                  "\" solves tall cells on one rank (optical_depth = " + std::to_string(optical_depth_) +
+                                  " on " + std::to_string(comm.size()) + " ranks: use solver = \"hypre\", BoomerAMG)");
     if (block_.split() && backend_ == solvers::mac::PressureBackend::mic0)
       throw std::invalid_argument("water_mac.solver = \"mic0\" runs on one rank (on " + std::to_string(comm.size()) +
                                   " ranks use \"multigrid\" or \"hypre\")");
@@ -167,7 +168,7 @@ class WaterMac final : public Module {
       double sub = std::min(dt - done, cfl_ * grid_.h / std::max(speed, 1e-12));
       if (optical_depth_ > 0) {
         // the explicit upwind step in the tall cells needs a Courant sum below one there
-        const double tall = kernels::mac::tall_cell_speed(Exec(), tall_, u_, v_, w_) + gravity_ * sub;
+        const double tall = comm_.max(kernels::mac::tall_cell_speed(Exec(), tall_, u_, v_, w_)) + gravity_ * sub;
         sub = std::min(sub, grid_.h / std::max(tall, 1e-12));
       }
       if (dt - done - sub < 1e-3 * sub) sub = dt - done;
@@ -332,16 +333,17 @@ class WaterMac final : public Module {
     p_ = Vector("amphora::water::p", n);
     b_ = Vector("amphora::water::b", n);
     type_ = Types("amphora::water::type", n);
-    tall_ = mesh::TallCellColumns<Mem>(grid_);
+    tall_ = mesh::TallCellColumns<Mem>(grid_, block_.edges());
     solid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::solid", n);
     valid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::valid", n);
     if (block_.split()) {
-      // the advection's copies of the fields on the block widened into its neighbours (no tall
-      // cells there: tall cells run on one rank)
+      // the advection's copies of the fields on the block widened into its neighbours, and the
+      // tall cells there (from the widened cell types)
       wide_ = halo_.widened(grid_, trace_reach_);
       const long nw = wide_.grid.padded_size();
       for (Vector* f : {&wide_phi_, &wide_u_, &wide_v_, &wide_w_}) *f = Vector("amphora::water::wide", nw);
       wide_tall_ = mesh::TallCellColumns<Mem>(wide_.grid);
+      if (optical_depth_ > 0) wide_type_ = Types("amphora::water::wide_type", nw);
     }
   }
 
@@ -404,7 +406,13 @@ class WaterMac final : public Module {
     halo_.exchange(Exec(), grid_, phi_);
     halo_.exchange(Exec(), grid_, type_);
     // without tall cells the columns stay as allocated: terrain = band = 0, no tall rows
-    if (optical_depth_ > 0) mesh::find_tall_cell_columns(Exec(), type_, optical_depth_, tall_);
+    if (optical_depth_ > 0) {
+      mesh::find_tall_cell_columns(Exec(), type_, optical_depth_, tall_);
+      if (block_.split()) {
+        halo_.fill_widened(Exec(), grid_, type_, wide_, wide_type_);
+        mesh::find_tall_cell_columns(Exec(), wide_type_, optical_depth_, wide_tall_);
+      }
+    }
   }
 
   void substep(double dt) {
@@ -485,7 +493,7 @@ class WaterMac final : public Module {
     } else {
       // tall cells: solve P^T A P y = P^T b, then p = P y on the lattice
       const auto H = kernels::mac::copy_stencil<HostMemSpace>(A);
-      const mesh::TallCellGrid T(H, optical_depth_);
+      const mesh::TallCellGrid T(H, optical_depth_, block_);
       const solvers::CsrMatrix M = solvers::mac::assemble_tall_cell_matrix(T, H);
       const auto layout = mesh::make_layout<Mem>(T);
       Vector bt("amphora::water::b_tall", T.unknowns()), y("amphora::water::p_tall", T.unknowns());
@@ -498,7 +506,7 @@ class WaterMac final : public Module {
       auto solver = solvers::mac::make_tall_cell_pressure_solver(backend_, exec, T, M, A);
       r = solver->solve(exec, bt, y, control_);
       kernels::mac::tall_cell_prolongate(exec, layout, y, p_);
-      last_unknowns_ = T.unknowns();  // tall cells: the unknowns of the last solve
+      last_unknowns_ = T.global_unknowns();  // tall cells: the unknowns of the last solve
     }
     last_iterations_ = r.iterations;
     if (!r.converged)
@@ -641,6 +649,7 @@ class WaterMac final : public Module {
   mesh::WideGrid wide_;
   Vector wide_phi_, wide_u_, wide_v_, wide_w_;
   mesh::TallCellColumns<Mem> wide_tall_;
+  Types wide_type_;
   double gravity_ = 9.81, rho_ = 1000.0, cfl_ = 1.0, column_width_ = 0.05;
   solvers::mac::PressureBackend backend_ = solvers::mac::PressureBackend::multigrid;
   solvers::SolverControl control_;
