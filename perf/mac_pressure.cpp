@@ -8,8 +8,9 @@
 //
 // TallCells/backend/n: the same footprint as deep water: an n^3 box with walls and an open top,
 // water to 0.9 n over an undulating floor (0.1 +- 0.05), tall cells below an optical depth of
-// n/8 cells; backend 0 = tall-cell multigrid-CG, 1 = BoomerAMG-CG, 2 = IC(0)-CG. Setup includes
-// building the tall-cell grid and assembling P^T A P. Counters as above, plus the uniform
+// n/8 cells; backend 0 = tall-cell multigrid-CG, 1 = BoomerAMG-CG, 2 = IC(0)-CG (BoomerAMG
+// also on the ranks of mpiexec, z slabs). Setup includes building the tall-cell grid and
+// assembling P^T A P. Counters as above, plus the uniform
 // unknowns of the same water and their ratio to the tall-cell ones.
 //
 // Anchors (issue 4, same machine kind, 128^3): PFMG-CG 1.9 s on 1 rank, 0.95 s on 2 (12
@@ -143,12 +144,23 @@ BENCHMARK(Uniform)
     ->UseManualTime()
     ->Iterations(1);
 
-/// Deep water over an undulating floor, on the host (the tall-cell grid is built there).
-kernels_mac_host_stencil_t deep_water(int n) {
-  const mesh::MacGrid g{n, n, n, 1.0 / n, {0, 0, 0}};
+/// Deep water over an undulating floor, on the host (the tall-cell grid is built there): this
+/// rank's z slab, its ghost cells (the neighbouring slabs' cells) from the same formulas.
+struct DeepWater {
+  mesh::MacBlock block;
+  kernels_mac_host_stencil_t A;
+  long fluid_cells = 0;  ///< over all ranks: the uniform grid's unknowns
+};
+DeepWater deep_water(int n, int rank, int ranks) {
+  DeepWater w;
+  const amphora::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1, {false, false, true});
+  const amphora::Box box = dec.box(rank);
+  w.block = mesh::MacBlock::of(dec, MPI_COMM_WORLD, rank);
+  const mesh::MacGrid g{n, n, box.extent(2), 1.0 / n, {0, 0, box.lo[2] / double(n)}};
   std::vector<mesh::MacCellType> type(g.padded_size(), mesh::MacCellType::solid);
   std::vector<double> phi(g.padded_size(), 1.0);
-  for (int k = 0; k < n; ++k)
+  const int k_lo = w.block.neighbours[4] >= 0 ? -1 : 0, k_hi = g.nz + (w.block.neighbours[5] >= 0 ? 1 : 0);
+  for (int k = k_lo; k < k_hi; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
         const auto x = g.cell_centre(i, j, k);
@@ -156,18 +168,32 @@ kernels_mac_host_stencil_t deep_water(int n) {
         phi[c] = x[1] - 0.9;
         const double floor = 0.1 + 0.05 * std::sin(6 * x[0]) * std::cos(4 * x[2]);
         type[c] = x[1] < floor ? mesh::MacCellType::solid : (phi[c] < 0 ? mesh::MacCellType::fluid : mesh::MacCellType::air);
+        if (k >= 0 && k < g.nz) w.fluid_cells += type[c] == mesh::MacCellType::fluid;
       }
+  long total = 0;
+  MPI_Allreduce(&w.fluid_cells, &total, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  w.fluid_cells = total;
   mesh::MacBoxBoundaries faces;
   faces.fill(mesh::MacBoundary::wall);
   faces[3] = mesh::MacBoundary::open;
-  return amphora::kernels::mac::build_poisson_stencil<amphora::HostExecSpace, amphora::HostMemSpace>(
+  w.A = amphora::kernels::mac::build_poisson_stencil<amphora::HostExecSpace, amphora::HostMemSpace>(
       amphora::HostExecSpace(), g, amphora::to_view<amphora::HostMemSpace>(type),
-      amphora::to_view<amphora::HostMemSpace>(phi), faces);
+      amphora::to_view<amphora::HostMemSpace>(phi), w.block.faces(faces));
+  mesh::LatticeGhostExchange(w.block).exchange(amphora::HostExecSpace(), g, w.A.cz);  // the ghost cells' + faces
+  return w;
 }
 
 void TallCells(benchmark::State& state) {
   const int backend = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
-  const auto host_A = deep_water(n);
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
+  if (ranks > 1 && backend != 1) {
+    state.SkipWithError("on several ranks only BoomerAMG solves tall cells");
+    return;
+  }
+  const DeepWater water = deep_water(n, rank, ranks);
+  const auto& host_A = water.A;
   // the same stencil in the execution space's memory
   const Stencil A = amphora::kernels::mac::copy_stencil<Mem>(host_A);
   const Exec exec;
@@ -176,18 +202,18 @@ void TallCells(benchmark::State& state) {
   control.max_iterations = 3000;
   int iterations = 0;
   double setup = 0.0, rel = 0.0;
-  long unknowns = 0, uniform = 0;
+  long unknowns = 0;
   const mesh::MacGrid g = host_A.grid;
-  for (long c = 0; c < g.padded_size(); ++c) uniform += host_A.diag(c) > 0.0;
   for (auto _ : state) {
     exec.fence();
+    MPI_Barrier(MPI_COMM_WORLD);
     const auto t0 = Clock::now();
-    const mesh::TallCellGrid T(host_A, n / 8);
+    const mesh::TallCellGrid T(host_A, n / 8, water.block);
     const amphora::solvers::CsrMatrix M = mac::assemble_tall_cell_matrix(T, host_A);
-    unknowns = T.unknowns();
+    unknowns = T.global_unknowns();
     // right-hand side: P^T (h^2 f) for a smooth f
-    std::vector<double> f(g.padded_size(), 0.0), bt(unknowns);
-    for (int k = 0; k < n; ++k)
+    std::vector<double> f(g.padded_size(), 0.0), bt(T.unknowns());
+    for (int k = 0; k < g.nz; ++k)
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
           const auto x = g.cell_centre(i, j, k);
@@ -195,7 +221,7 @@ void TallCells(benchmark::State& state) {
         }
     T.restrict_to_unknowns(f.data(), bt.data());
     const Vector b = amphora::to_view<Mem>(bt, "b");
-    Vector x("x", unknowns);
+    Vector x("x", T.unknowns());
     static const mac::PressureBackend backends[] = {mac::PressureBackend::multigrid, mac::PressureBackend::hypre,
                                                     mac::PressureBackend::mic0};
     auto solver = mac::make_tall_cell_pressure_solver(backends[backend], exec, T, M, A);
@@ -203,14 +229,15 @@ void TallCells(benchmark::State& state) {
     setup = seconds_since(t0);
     const auto r = solver->solve(exec, b, x, control);
     exec.fence();
+    MPI_Barrier(MPI_COMM_WORLD);
     iterations = r.iterations;
     rel = r.final_residual / r.rhs_norm;
     state.SetIterationTime(seconds_since(t0));
   }
   state.counters["iterations"] = iterations;
   state.counters["unknowns"] = double(unknowns);
-  state.counters["uniform_unknowns"] = double(uniform);
-  state.counters["reduction"] = double(uniform) / double(unknowns);
+  state.counters["uniform_unknowns"] = double(water.fluid_cells);
+  state.counters["reduction"] = double(water.fluid_cells) / double(unknowns);
   state.counters["setup_s"] = setup;
   state.counters["relative_residual"] = rel;
   state.counters["unknowns_per_s"] =

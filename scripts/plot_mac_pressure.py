@@ -38,6 +38,7 @@ for t in (1, 2):
     runs[f"{t}t"] = {**load(f"mac_pressure_uniform_{t}t1r.json"), **load(f"mac_pressure_tall_{t}t1r.json")}
 runs["pfmg2r"] = load("mac_pressure_pfmg_1t2r.json")
 runs["mg2r"] = load("mac_pressure_mg_1t2r.json")
+runs["tall2r"] = load("mac_pressure_tall_1t2r.json")
 names = {("Uniform", 0): "multigrid-CG", ("Uniform", 1): "PFMG-CG", ("Uniform", 2): "MIC(0)-CG",
          ("TallCells", 0): "tall multigrid-CG", ("TallCells", 1): "tall BoomerAMG-CG", ("TallCells", 2): "tall IC(0)-CG"}
 sizes = sorted({k[2] for r in runs.values() for k in r})
@@ -58,6 +59,10 @@ for ax, kind in zip(axes, ("Uniform", "TallCells")):
         xs = [n for n in sizes if ("Uniform", 0, n) in runs["mg2r"]]
         ax.plot(xs, [seconds(runs["mg2r"][("Uniform", 0, n)]) for n in xs], ":", marker="s", color="C0",
                 label="multigrid-CG, 2 ranks")
+    else:
+        xs = [n for n in sizes if ("TallCells", 1, n) in runs["tall2r"]]
+        ax.plot(xs, [seconds(runs["tall2r"][("TallCells", 1, n)]) for n in xs], ":", marker="s", color="C1",
+                label="tall BoomerAMG-CG, 2 ranks")
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     ax.set_xlabel("n (n^3 footprint)")
@@ -93,6 +98,9 @@ for n in sizes:
         if r:
             row.append(f"{names[('TallCells', b)]} {seconds(r):.3f} s ({int(r['iterations'])} its, "
                        f"{r['unknowns'] / 1e3:.0f}k unknowns = uniform / {r['reduction']:.2f})")
+    r = runs["tall2r"].get(("TallCells", 1, n))
+    if r:
+        row.append(f"BoomerAMG-CG 2 ranks {seconds(r):.3f} s ({int(r['iterations'])} its)")
     if len(row) > 1:
         lines.append(" ".join(row))
 open(os.path.join(out, "mac_pressure_summary.txt"), "w").write("\n".join(lines) + "\n")
