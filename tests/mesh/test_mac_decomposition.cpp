@@ -3,7 +3,8 @@
 // single-block matrix for its cells exactly, hypre PFMG-CG on the distributed system gives the
 // single-block pressure to the solver tolerance, and the own multigrid on the blocks is the
 // single block's (one V-cycle equal, CG in as many iterations to the same pressure), at 1 and 2
-// ranks; and the tall-cell system likewise (rows of P^T A P, BoomerAMG-CG on the blocks).
+// ranks; and the tall-cell system likewise (rows of P^T A P; BoomerAMG-CG and the tall-cell
+// multigrid-CG on the blocks).
 #include <mpi.h>
 
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
 #include "solvers/mac/tall_cell_matrix.hpp"
+#include "solvers/mac/tall_cell_multigrid.hpp"
 #include "test_backend.hpp"
 
 namespace amphora {
@@ -289,39 +291,79 @@ TEST(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   // BoomerAMG-CG on the blocks' rows: the single block's lattice pressure
   solvers::SolverControl control;
   control.relative_tolerance = 1e-11;
-  const auto solve_tall = [&](const mesh::TallCellGrid& grid, const Block& B, const solvers::CsrMatrix& A_t) {
+  using solvers::mac::PressureBackend;
+  int iterations[2] = {0, 0};
+  const auto solve_tall = [&](PressureBackend backend, const mesh::TallCellGrid& grid, const Block& B,
+                              const solvers::CsrMatrix& A_t, int& its) {
     std::vector<double> bt(grid.unknowns()), lattice(B.grid.padded_size());
     grid.restrict_to_unknowns(B.b.data(), bt.data());
-    auto amg = solvers::mac::make_tall_cell_pressure_solver(solvers::mac::PressureBackend::hypre, Exec(), grid, A_t,
-                                                            kernels::mac::copy_stencil<Mem>(B.A));
+    auto solver = solvers::mac::make_tall_cell_pressure_solver(backend, Exec(), grid, A_t,
+                                                               kernels::mac::copy_stencil<Mem>(B.A));
     Kokkos::View<double*, Mem> y("y", grid.unknowns());
-    const auto r = amg->solve(Exec(), to_view<Mem>(bt), y, control);
+    const auto r = solver->solve(Exec(), to_view<Mem>(bt), y, control);
     EXPECT_TRUE(r.converged);
+    its = r.iterations;
     grid.prolongate(to_std_vector(y).data(), lattice.data());
     return lattice;
   };
-  const std::vector<double> p = solve_tall(T, local, M), q = solve_tall(W, whole, Mw);
-  double diff = 0, scale = 0;
+  // BoomerAMG-CG and the own tall-cell multigrid-CG on the blocks: the single block's pressure
+  for (const auto backend : {PressureBackend::hypre, PressureBackend::multigrid}) {
+    const std::vector<double> p = solve_tall(backend, T, local, M, iterations[0]);
+    const std::vector<double> q = solve_tall(backend, W, whole, Mw, iterations[1]);
+    double diff = 0, scale = 0;
+    for (int k = 0; k < local.grid.nz; ++k)
+      for (int j = 0; j < local.grid.ny; ++j)
+        for (int i = 0; i < local.grid.nx; ++i) {
+          const double qv = q[whole.grid.index(box.lo[0] + i, box.lo[1] + j, box.lo[2] + k)];
+          diff = std::max(diff, std::abs(p[local.grid.index(i, j, k)] - qv));
+          scale = std::max(scale, std::abs(qv));
+        }
+    MPI_Allreduce(MPI_IN_PLACE, &diff, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+    MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+    EXPECT_GT(scale, 0.0);
+    EXPECT_LT(diff, 1e-8 * scale) << solvers::mac::to_string(backend) << " on " << comm.size() << " ranks";
+    // the V-cycle on the blocks is the single block's up to the eigenvalue estimates' start
+    // vectors: as many iterations within 2
+    EXPECT_LE(std::abs(iterations[0] - iterations[1]), 2) << solvers::mac::to_string(backend);
+    if (comm.rank() == 0)
+      std::printf("tall cells (depth %d): %ld unknowns, %ld rows compared on rank 0; %s-CG on %d rank(s): %d "
+                  "iterations (%d on one block), max difference %.3g of %.3g\n",
+                  depth, W.unknowns(), rows_compared, solvers::mac::to_string(backend), comm.size(), iterations[0],
+                  iterations[1], diff, scale);
+  }
+  // one V-cycle of the tall-cell multigrid on the blocks is the single block's, to round-off
+  using TallMG = solvers::mac::TallCellMultigrid<Exec>;
+  solvers::mac::TallCellMultigridOptions deep;
+  deep.max_coarse_cells = 64;  // down to 4^3: every transfer crosses the block faces
+  const TallMG split_mg(Exec(), T, M, kernels::mac::copy_stencil<Mem>(local.A), deep);
+  const TallMG whole_mg(Exec(), W, Mw, kernels::mac::copy_stencil<Mem>(whole.A), deep);
+  EXPECT_EQ(split_mg.levels(), whole_mg.levels());
+  const auto vcycle = [&](const TallMG& mg, const mesh::TallCellGrid& grid, const Block& B) {
+    std::vector<double> bt(grid.unknowns()), lattice(B.grid.padded_size());
+    grid.restrict_to_unknowns(B.b.data(), bt.data());
+    Kokkos::View<double*, Mem> z("z", grid.unknowns());
+    mg.apply(Exec(), to_view<Mem>(bt), z);
+    grid.prolongate(to_std_vector(z).data(), lattice.data());
+    return lattice;
+  };
+  const std::vector<double> zs = vcycle(split_mg, T, local), zw = vcycle(whole_mg, W, whole);
+  double dz = 0, zmax = 0;
   for (int k = 0; k < local.grid.nz; ++k)
     for (int j = 0; j < local.grid.ny; ++j)
       for (int i = 0; i < local.grid.nx; ++i) {
-        const double qv = q[whole.grid.index(box.lo[0] + i, box.lo[1] + j, box.lo[2] + k)];
-        diff = std::max(diff, std::abs(p[local.grid.index(i, j, k)] - qv));
-        scale = std::max(scale, std::abs(qv));
+        const double w = zw[whole.grid.index(box.lo[0] + i, box.lo[1] + j, box.lo[2] + k)];
+        dz = std::max(dz, std::abs(zs[local.grid.index(i, j, k)] - w));
+        zmax = std::max(zmax, std::abs(w));
       }
-  MPI_Allreduce(MPI_IN_PLACE, &diff, 1, MPI_DOUBLE, MPI_MAX, comm.get());
-  MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPI_DOUBLE, MPI_MAX, comm.get());
-  EXPECT_GT(scale, 0.0);
-  EXPECT_LT(diff, 1e-8 * scale) << "ranks " << comm.size();
-  if (comm.size() > 1) {  // the own tall-cell multigrid and MIC(0) solve one block only
-    for (const auto b : {solvers::mac::PressureBackend::multigrid, solvers::mac::PressureBackend::mic0})
-      EXPECT_THROW(solvers::mac::make_tall_cell_pressure_solver(b, Exec(), T, M, kernels::mac::copy_stencil<Mem>(local.A)),
-                   std::invalid_argument);
-  }
+  MPI_Allreduce(MPI_IN_PLACE, &dz, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+  MPI_Allreduce(MPI_IN_PLACE, &zmax, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+  EXPECT_LT(dz, 1e-10 * zmax) << "tall-cell V-cycle on " << comm.size() << " ranks";
   if (comm.rank() == 0)
-    std::printf("tall cells (depth %d): %ld unknowns, %ld rows compared on rank 0; BoomerAMG-CG on %d rank(s): "
-                "max difference %.3g of %.3g\n",
-                depth, W.unknowns(), rows_compared, comm.size(), diff, scale);
+    std::printf("tall-cell V-cycle (%d levels): max difference %.3g of %.3g\n", split_mg.levels(), dz, zmax);
+  if (comm.size() > 1)  // MIC(0) solves one block only
+    EXPECT_THROW(solvers::mac::make_tall_cell_pressure_solver(PressureBackend::mic0, Exec(), T, M,
+                                                              kernels::mac::copy_stencil<Mem>(local.A)),
+                 std::invalid_argument);
 }
 
 }  // namespace

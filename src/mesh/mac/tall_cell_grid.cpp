@@ -76,6 +76,44 @@ void TallCellGrid::learn_ghost_ring() {
     }
 }
 
+std::vector<int> TallCellGrid::unknown_cells() const {
+  const MacGrid& g = grid_;
+  std::vector<int> cell(unknowns_, -1);
+  for (int k = 0; k < g.nz; ++k)
+    for (int i = 0; i < g.nx; ++i) {
+      const TallCellColumn& col = columns_[i + g.nx * k];
+      if (col.has_tall_cell()) {
+        cell[col.first_unknown] = g.index(i, col.terrain, k);
+        cell[col.first_unknown + 1] = g.index(i, col.terrain + 1, k);
+      }
+      for (int j = col.band; j < g.ny; ++j) {
+        const int u = cell_unknown_[g.index(i, j, k)];
+        if (u >= 0) cell[u] = g.index(i, j, k);
+      }
+    }
+  return cell;
+}
+
+std::vector<std::pair<long, int>> TallCellGrid::ring_unknown_cells() const {
+  std::vector<std::pair<long, int>> out;
+  if (ring_columns_.empty()) return out;
+  const MacGrid& g = grid_;
+  for (int k = -1; k <= g.nz; ++k)
+    for (int i = -1; i <= g.nx; ++i) {
+      if (i >= 0 && i < g.nx && k >= 0 && k < g.nz) continue;
+      const TallCellColumn& col = column(i, k);
+      if (col.has_tall_cell()) {
+        out.emplace_back(col.first_unknown, g.index(i, col.terrain, k));
+        out.emplace_back(col.first_unknown + 1, g.index(i, col.terrain + 1, k));
+      }
+      for (int j = col.band; j < g.ny; ++j) {
+        const int u = ring_unknown_[g.index(i, j, k)];
+        if (u >= 0) out.emplace_back(u, g.index(i, j, k));
+      }
+    }
+  return out;
+}
+
 const TallCellColumn& TallCellGrid::column(int i, int k) const {
   if (i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz) return columns_[i + grid_.nx * k];
   return ring_columns_.at((i + 1) + (grid_.nx + 2) * (k + 1));

@@ -13,6 +13,7 @@
 // blocks of lower ranks (global number = local + first_unknown()), and learns the columns of
 // its ghost ring (their rows and global unknowns) from the neighbouring blocks, so the matrix
 // rows of its unknowns can be assembled with their couplings across the block faces.
+#include <utility>
 #include <vector>
 
 #include "kernels/host_vector.hpp"
@@ -59,6 +60,13 @@ class TallCellGrid {
     const bool own = i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz;
     return (own ? first_unknown_ : 0) + column(i, k).first_unknown;
   }
+
+  /// The lattice cell (padded index) that carries each of this block's unknowns in a ghost
+  /// exchange: a uniform unknown its cell, a tall cell's bottom and top samples its lowest two
+  /// cells.
+  std::vector<int> unknown_cells() const;
+  /// The same for the ghost ring's unknowns: (global unknown, padded index) pairs.
+  std::vector<std::pair<long, int>> ring_unknown_cells() const;
 
   /// The (at most two) global unknowns and weights of lattice cell (i, j, k) of the block or of
   /// its ghost ring: p = sum w u.

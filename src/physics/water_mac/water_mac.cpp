@@ -140,10 +140,6 @@ class WaterMac final : public Module {
       const std::string e = solvers::mac::multigrid_size_error(global_, solvers::mac::MacMultigridOptions{}.max_coarse_cells);
       if (!e.empty()) throw std::invalid_argument("water_mac (solver = \"multigrid\"): " + e);
     }
-    if (block_.split() && optical_depth_ > 0 && backend_ != solvers::mac::PressureBackend::hypre)
-      throw std::invalid_argument("water_mac.solver = \"" + std::string(solvers::mac::to_string(backend_)) +
-                                  "\" solves tall cells on one rank (optical_depth = " + std::to_string(optical_depth_) +
-                                  " on " + std::to_string(comm.size()) + " ranks: use solver = \"hypre\", BoomerAMG)");
     if (block_.split() && backend_ == solvers::mac::PressureBackend::mic0)
       throw std::invalid_argument("water_mac.solver = \"mic0\" runs on one rank (on " + std::to_string(comm.size()) +
                                   " ranks use \"multigrid\" or \"hypre\")");

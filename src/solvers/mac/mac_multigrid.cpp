@@ -60,7 +60,7 @@ MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A, c
   // Down to blocks of at most 64 cells, or as far as the dimensions stay even (coarsened in
   // double, then stored in single precision); a block's first cell stays on the coarse grid.
   Stencil level = A;
-  complete_ghosts(exec, nullptr, level);
+  complete_block_stencil(exec, halo_, static_cast<const Stencil*>(nullptr), level);
   levels_.push_back(kernels::mac::convert_stencil<float>(exec, level));
   const auto& lower = block.global_lower;
   parity_.push_back((lower[0] + lower[2]) & 1);
@@ -70,7 +70,7 @@ MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A, c
                        lower[0] % (1 << shift) == 0 && lower[2] % (1 << shift) == 0;
     if (!all_ranks(comm, local)) break;
     Stencil coarse = kernels::mac::coarsen_stencil(exec, level);
-    complete_ghosts(exec, &level, coarse);
+    complete_block_stencil(exec, halo_, &level, coarse);
     level = coarse;
     levels_.push_back(kernels::mac::convert_stencil<float>(exec, level));
     parity_.push_back(((lower[0] >> shift) + (lower[2] >> shift)) & 1);
@@ -85,27 +85,29 @@ MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A, c
   setup_coarse_solve(level);
 }
 
-template <class ExecSpace>
-void MacMultigrid<ExecSpace>::complete_ghosts(const ExecSpace& exec, const Stencil* fine, Stencil& level) const {
-  const MPI_Comm comm = halo_.block().comm;
+template <class ExecSpace, class MemSpace>
+void complete_block_stencil(const ExecSpace& exec, const mesh::LatticeGhostExchange& halo,
+                            const kernels::mac::PoissonStencil<MemSpace>* fine,
+                            kernels::mac::PoissonStencil<MemSpace>& level) {
+  const MPI_Comm comm = halo.block().comm;
   int any = level.any_solid ? 1 : 0, global_any = 0;
   MPI_Allreduce(&any, &global_any, 1, MPI_INT, MPI_MAX, comm);
-  if (!halo_.block().split()) return;  // one block: the coefficients are complete
+  if (!halo.block().split()) return;  // one block: the coefficients are complete
   const mesh::MacGrid& g = level.grid;
   // a coarse level: the ghost cells' + faces are this block's - faces, then the diagonal at
   // the block faces (the caller exchanged the finest level's conductances)
   if (fine) {
-    halo_.exchange(exec, g, level.cx);
-    halo_.exchange(exec, g, level.cz);
+    halo.exchange(exec, g, level.cx);
+    halo.exchange(exec, g, level.cz);
     kernels::mac::coarse_diagonal(exec, *fine, level);
   }
-  halo_.exchange(exec, g, level.diag);
-  halo_.exchange(exec, g, level.inverse_diag);
-  halo_.exchange(exec, g, level.solid);
+  halo.exchange(exec, g, level.diag);
+  halo.exchange(exec, g, level.inverse_diag);
+  halo.exchange(exec, g, level.solid);
   // the extension into solids must run on every rank when it runs on one (it exchanges)
   level.any_solid = global_any != 0;
   kernels::mac::compute_solid_shares(exec, level);
-  halo_.exchange(exec, g, level.solid_share);
+  halo.exchange(exec, g, level.solid_share);
 }
 
 template <class ExecSpace>
@@ -259,8 +261,14 @@ void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
 }
 
 template class MacMultigrid<DefaultExecSpace>;
+template void complete_block_stencil(const DefaultExecSpace&, const mesh::LatticeGhostExchange&,
+                                     const kernels::mac::PoissonStencil<DefaultExecSpace::memory_space>*,
+                                     kernels::mac::PoissonStencil<DefaultExecSpace::memory_space>&);
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template class MacMultigrid<Kokkos::Serial>;
+template void complete_block_stencil(const Kokkos::Serial&, const mesh::LatticeGhostExchange&,
+                                     const kernels::mac::PoissonStencil<Kokkos::Serial::memory_space>*,
+                                     kernels::mac::PoissonStencil<Kokkos::Serial::memory_space>&);
 #endif
 
 }  // namespace amphora::solvers::mac

@@ -34,6 +34,15 @@ struct MacMultigridOptions {
 /// naming the dimension at fault and the nearest sizes that work.
 std::string multigrid_size_error(const mesh::MacGrid& g, long max_coarse_cells);
 
+/// Completes a level of a split grid's stencil hierarchy: on a coarse level (`fine` given: the
+/// level it was coarsened from) the ghost cells' + faces and the diagonal at the block faces,
+/// then on every level the ghost diagonal, solid flags and solid shares; `any_solid` becomes the
+/// same on every rank. Collective over the block's ranks; on one block only `any_solid` is set.
+template <class ExecSpace, class MemSpace>
+void complete_block_stencil(const ExecSpace& exec, const mesh::LatticeGhostExchange& halo,
+                            const kernels::mac::PoissonStencil<MemSpace>* fine,
+                            kernels::mac::PoissonStencil<MemSpace>& level);
+
 /// CG's inner products over the blocks of a split grid: local sums (ghost entries of one factor
 /// are zero in every product CG forms) added over the ranks.
 struct BlockInnerProduct {
@@ -101,7 +110,6 @@ class MacMultigrid {
     halo_.exchange(exec, levels_[l].grid, v);
   }
   /// Exchanges a level's ghost coefficients and makes the ones that depend on them consistent.
-  void complete_ghosts(const ExecSpace& exec, const Stencil* fine, Stencil& level) const;
   void setup_coarse_solve(const Stencil& coarsest);
 
   MacMultigridOptions options_;

@@ -189,10 +189,10 @@ template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
     PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
-  if (T.block().split() && backend != PressureBackend::hypre)
+  if (T.block().split() && backend == PressureBackend::mic0)
     throw std::invalid_argument(std::string("pressure back end '") + to_string(backend) +
-                                "' solves tall cells on one rank; for tall cells split over ranks use 'hypre' "
-                                "(BoomerAMG)");
+                                "' solves tall cells on one rank; for tall cells split over ranks use 'multigrid' "
+                                "or 'hypre'");
   switch (backend) {
     case PressureBackend::multigrid:
       return std::make_unique<MultigridPressureSolver<ExecSpace, TallCellMultigrid<ExecSpace>>>(exec, T, A_t, A);

@@ -50,7 +50,7 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
     const MacBlock& block = {});
 
 /// A_t = P^T A P of the tall-cell grid T over the uniform stencil A (on a split grid: this
-/// block's rows, and only the hypre back end, BoomerAMG, solves it; the others refuse).
+/// block's rows; MIC(0) refuses one).
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
     PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t,

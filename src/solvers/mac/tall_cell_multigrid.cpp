@@ -1,43 +1,122 @@
 #include "solvers/mac/tall_cell_multigrid.hpp"
 
+#include <mpi.h>
+
+#include <cstdint>
+#include <vector>
+
 #include "solvers/mac/tall_cell_matrix.hpp"
 
 namespace amphora::solvers::mac {
 
+namespace {
+bool on_every_rank(MPI_Comm comm, bool local) {
+  int in = local ? 1 : 0, out = 0;
+  MPI_Allreduce(&in, &out, 1, MPI_INT, MPI_MIN, comm);
+  return out == 1;
+}
+
+/// Every block's rows (global columns) in one matrix, on every rank: rank order is the global
+/// numbering of the unknowns.
+CsrMatrix gather_rows(MPI_Comm comm, const CsrMatrix& M, std::vector<int>& counts, std::vector<int>& displacements) {
+  int ranks = 1;
+  MPI_Comm_size(comm, &ranks);
+  const int n = static_cast<int>(M.n), nnz = static_cast<int>(M.nnz());
+  counts.assign(ranks, 0);
+  std::vector<int> nnz_counts(ranks, 0), nnz_displacements(ranks, 0);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm);
+  MPI_Allgather(&nnz, 1, MPI_INT, nnz_counts.data(), 1, MPI_INT, comm);
+  displacements.assign(ranks, 0);
+  for (int r = 1; r < ranks; ++r) {
+    displacements[r] = displacements[r - 1] + counts[r - 1];
+    nnz_displacements[r] = nnz_displacements[r - 1] + nnz_counts[r - 1];
+  }
+  CsrMatrix W;
+  W.n = displacements[ranks - 1] + counts[ranks - 1];
+  const long total_nnz = nnz_displacements[ranks - 1] + nnz_counts[ranks - 1];
+  std::vector<int> lengths(W.n), mine(n);
+  for (int i = 0; i < n; ++i) mine[i] = static_cast<int>(M.row_ptr[i + 1] - M.row_ptr[i]);
+  MPI_Allgatherv(mine.data(), n, MPI_INT, lengths.data(), counts.data(), displacements.data(), MPI_INT, comm);
+  W.cols.resize(total_nnz);
+  W.values.resize(total_nnz);
+  MPI_Allgatherv(M.cols.data(), nnz, MPI_INT, W.cols.data(), nnz_counts.data(), nnz_displacements.data(), MPI_INT, comm);
+  MPI_Allgatherv(M.values.data(), nnz, MPI_DOUBLE, W.values.data(), nnz_counts.data(), nnz_displacements.data(),
+                 MPI_DOUBLE, comm);
+  W.row_ptr.assign(W.n + 1, 0);
+  for (long i = 0; i < W.n; ++i) W.row_ptr[i + 1] = W.row_ptr[i] + lengths[i];
+  return W;
+}
+/// The eigenvalue estimate's start vector: a hash of each unknown's cell in global indices, so
+/// every split of the grid estimates the same lambda_max and the V-cycle does not depend on
+/// the rank count beyond round-off.
+std::vector<double> start_vector(const mesh::TallCellGrid& T, const mesh::MacBlock& block) {
+  const mesh::MacGrid& g = T.grid();
+  std::vector<double> start;
+  for (const int c : T.unknown_cells()) {
+    const long i = c % g.stride_y() - 1 + block.global_lower[0], j = (c / g.stride_y()) % (g.ny + 2) - 1,
+               k = c / g.stride_z() - 1 + block.global_lower[2];
+    std::uint64_t h = static_cast<std::uint64_t>(i + 1000003L * (j + 1000003L * k)) + 0x9e3779b97f4a7c15ULL;
+    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ULL;  // splitmix64's finaliser
+    h = (h ^ (h >> 27)) * 0x94d049bb133111ebULL;
+    h ^= h >> 31;
+    start.push_back(static_cast<double>(h >> 11) / 9007199254740992.0 - 0.5);
+  }
+  return start;
+}
+}  // namespace
+
 template <class ExecSpace>
 TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T,
                                                 const CsrMatrix& A_t, const Stencil& A,
-                                                const TallCellMultigridOptions& options) {
+                                                const TallCellMultigridOptions& options)
+    : halo_(T.block()) {
+  const mesh::MacBlock& block = T.block();
+  const MPI_Comm comm = block.comm;
   const ChebyshevOptions smoothing{options.chebyshev_degree, options.smoothing_range, 12};
+  const BlockInnerProduct inner{comm};
   CsrMatrix level_matrix = A_t;
   mesh::TallCellGrid level_grid = T;
   Stencil level_A = A;
+  complete_block_stencil(exec, halo_, static_cast<const Stencil*>(nullptr), level_A);
+  mesh::MacBlock level_block = block;
   for (int l = 0;; ++l) {
     auto L = std::make_unique<Level>();
     L->layout = mesh::make_layout<MemSpace>(level_grid);
     L->A = level_A;
-    L->A_t = Csr(level_matrix);
+    L->A_t = Csr(level_matrix, level_grid);
     const int n = L->A_t.n;
     L->b = Vector("amphora::tall_mg::b", n);
     L->x = Vector("amphora::tall_mg::x", n);
     L->r = Vector("amphora::tall_mg::r", n);
     L->lattice = Vector("amphora::tall_mg::lattice", level_A.grid.padded_size());
+    // every rank decides together (a block's first cell must stay on the coarse grid)
     const mesh::MacGrid g = level_A.grid;
-    const bool coarsest = g.nx % 2 || g.ny % 2 || g.nz % 2 || g.cells() <= options.max_coarse_cells;
-    if (coarsest) {
-      coarse_ = std::make_unique<CoarseCholesky>(level_matrix);
-      coarse_host_.resize(n);
+    long cells = g.cells();
+    MPI_Allreduce(MPI_IN_PLACE, &cells, 1, MPI_LONG, MPI_SUM, comm);
+    const bool halvable = g.nx % 2 == 0 && g.ny % 2 == 0 && g.nz % 2 == 0 && level_block.global_lower[0] % 2 == 0 &&
+                          level_block.global_lower[2] % 2 == 0;
+    if (!on_every_rank(comm, halvable) || cells <= options.max_coarse_cells) {
+      const CsrMatrix whole = block.split() ? gather_rows(comm, level_matrix, coarse_counts_, coarse_displacements_)
+                                            : level_matrix;
+      coarse_ = std::make_unique<CoarseCholesky>(whole);
+      coarse_first_ = level_grid.first_unknown();
+      coarse_host_.resize(whole.n);
+      coarse_local_.resize(n);
       levels_.push_back(std::move(L));
       break;
     }
-    L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Csr, Vector>>(exec, L->A_t, L->A_t.inverse_diagonal,
-                                                                              smoothing);
+    L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Csr, Vector, BlockInnerProduct>>(
+        exec, L->A_t, L->A_t.inverse_diagonal, smoothing, inner,
+        to_view<MemSpace>(start_vector(level_grid, level_block), "amphora::tall_mg::start"));
     levels_.push_back(std::move(L));
     // the next level: the same optical depth in metres on the coarser lattice
-    level_A = kernels::mac::coarsen_stencil(exec, level_A);
+    Stencil coarse = kernels::mac::coarsen_stencil(exec, level_A);
+    complete_block_stencil(exec, halo_, &level_A, coarse);
+    level_A = coarse;
+    for (int d : {0, 2}) level_block.global_lower[d] /= 2;
     const int depth = (T.optical_depth() + (2 << l) - 1) >> (l + 1);
     const auto host_A = kernels::mac::copy_stencil<HostMemSpace>(level_A);
-    level_grid = mesh::TallCellGrid(host_A, std::max(depth, 1));
+    level_grid = mesh::TallCellGrid(host_A, std::max(depth, 1), level_block);
     level_matrix = assemble_tall_cell_matrix(level_grid, host_A);
   }
 }
@@ -45,28 +124,50 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
 template <class ExecSpace>
 void TallCellMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l, const Vector& b, const Vector& x) const {
   const Level& L = *levels_[l];
+  const bool split = halo_.block().split();
   if (l + 1 == levels()) {
-    Kokkos::View<double*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> host(coarse_host_.data(),
-                                                                                     coarse_host_.size());
-    Kokkos::deep_copy(exec, host, b);
+    const int n = static_cast<int>(coarse_local_.size());
+    Kokkos::View<double*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> local(coarse_local_.data(), n);
+    Kokkos::deep_copy(exec, local, b);
     exec.fence();
+    if (split)
+      MPI_Allgatherv(coarse_local_.data(), n, MPI_DOUBLE, coarse_host_.data(), coarse_counts_.data(),
+                     coarse_displacements_.data(), MPI_DOUBLE, halo_.block().comm);
+    else
+      coarse_host_ = coarse_local_;
     coarse_->solve(coarse_host_.data(), coarse_host_.data());
-    Kokkos::deep_copy(exec, x, host);
+    for (int i = 0; i < n; ++i) coarse_local_[i] = coarse_host_[coarse_first_ + i];
+    Kokkos::deep_copy(exec, x, local);
     return;
   }
   const Level& C = *levels_[l + 1];
   L.smoother->smooth(exec, b, x, true);
   // restriction: r -> G^-1 r -> lattice -> coarse lattice -> coarse tall unknowns
-  kernels::mac::residual_csr(exec, L.A_t, b, x, L.r);
+  if (split) {
+    L.A_t.apply(exec, x, L.r);
+    blas1::axpby(exec, 1.0, b, -1.0, L.r);
+  } else {
+    kernels::mac::residual_csr(exec, L.A_t.local, b, x, L.r);
+  }
   kernels::mac::tall_cell_gram_solve(exec, L.layout, L.r);
   kernels::mac::tall_cell_prolongate(exec, L.layout, L.r, L.lattice);
-  kernels::mac::restrict_residual(exec, L.A, C.A, L.lattice, C.lattice);
+  if (split) sync(exec, L, L.lattice);
+  kernels::mac::restrict_to_coarse(exec, L.A, C.A, L.lattice, C.lattice);
+  if (C.A.any_solid) {
+    if (split) sync(exec, C, C.lattice);
+    kernels::mac::gather_from_solids(exec, C.A, C.lattice);
+  }
   kernels::mac::tall_cell_restrict(exec, C.layout, C.lattice, C.b);
   vcycle(exec, l + 1, C.b, C.x);
   // prolongation: coarse tall -> coarse lattice -> lattice -> fit -> add
   kernels::mac::tall_cell_prolongate(exec, C.layout, C.x, C.lattice);
+  if (split) sync(exec, C, C.lattice);
+  if (C.A.any_solid) {
+    kernels::mac::extend_into_solids(exec, C.A, C.lattice);
+    if (split) sync(exec, C, C.lattice);
+  }
   blas1::fill(exec, L.lattice, 0.0);
-  kernels::mac::prolongate_correction(exec, C.A, L.A, C.lattice, L.lattice);
+  kernels::mac::prolongate_add(exec, C.A, L.A, C.lattice, L.lattice);
   kernels::mac::tall_cell_restrict(exec, L.layout, L.lattice, L.r);
   kernels::mac::tall_cell_gram_solve(exec, L.layout, L.r);
   blas1::axpy(exec, 1.0, L.r, x);

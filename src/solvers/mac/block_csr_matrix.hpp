@@ -1,0 +1,86 @@
+#pragma once
+// This block's rows of a tall-cell matrix on a grid split over ranks, as an operator: columns
+// of this block's unknowns first, then those of the ghost ring, whose values arrive through the
+// lattice ghost exchange (every unknown is carried by one lattice cell, mesh::TallCellGrid::
+// unknown_cells), so no communication pattern of its own is needed. On one block it is the
+// plain CSR product.
+#include <stdexcept>
+#include <unordered_map>
+#include <vector>
+
+#include "mesh/mac/lattice_halo.hpp"
+#include "mesh/mac/tall_cell_grid.hpp"
+#include "solvers/device_csr.hpp"
+
+namespace amphora::solvers::mac {
+
+template <class MemSpace>
+struct BlockCsrMatrix {
+  using Vector = Kokkos::View<double*, MemSpace>;
+  int n = 0;       ///< this block's rows (unknowns)
+  int ghosts = 0;  ///< columns of the ghost ring
+  DeviceCsrMatrix<MemSpace> local;  ///< columns [0, n): this block's, [n, n + ghosts): the ring's
+  Vector inverse_diagonal;
+  mesh::MacGrid grid;
+  mesh::LatticeGhostExchange halo;
+  Kokkos::View<int*, MemSpace> own_cells, ghost_cells;  ///< lattice cells carrying the unknowns
+  Vector lattice, extended;                             ///< scratch of apply()
+
+  BlockCsrMatrix() = default;
+  /// M: rows of T's block with global columns (assemble_tall_cell_matrix).
+  BlockCsrMatrix(const CsrMatrix& M, const mesh::TallCellGrid& T) : grid(T.grid()), halo(T.block()) {
+    n = static_cast<int>(M.n);
+    CsrMatrix C = M;
+    const long first = T.first_unknown();
+    std::unordered_map<long, int> ring;  // global unknown -> lattice cell
+    for (const auto& [u, cell] : T.ring_unknown_cells()) ring.emplace(u, cell);
+    std::unordered_map<long, int> column;  // global unknown of the ring -> local column
+    std::vector<int> ghost;
+    for (auto& c : C.cols) {
+      const long g = c;
+      if (g >= first && g < first + n) {
+        c = static_cast<int>(g - first);
+        continue;
+      }
+      auto it = column.find(g);
+      if (it == column.end()) {
+        const auto r = ring.find(g);
+        if (r == ring.end()) throw std::logic_error("BlockCsrMatrix: a column is neither this block's nor its ring's");
+        it = column.emplace(g, n + static_cast<int>(ghost.size())).first;
+        ghost.push_back(r->second);
+      }
+      c = it->second;
+    }
+    ghosts = static_cast<int>(ghost.size());
+    local = DeviceCsrMatrix<MemSpace>(C);
+    inverse_diagonal = local.inverse_diagonal;
+    own_cells = to_view<MemSpace>(T.unknown_cells(), "amphora::block_csr::own_cells");
+    ghost_cells = to_view<MemSpace>(ghost, "amphora::block_csr::ghost_cells");
+    extended = Vector("amphora::block_csr::extended", n + ghosts);
+    if (halo.block().split()) lattice = Vector("amphora::block_csr::lattice", grid.padded_size());
+  }
+
+  /// y = A x (x, y: this block's unknowns). Collective on a split grid.
+  template <class ExecSpace, class X, class Y>
+  void apply(const ExecSpace& exec, const X& x, const Y& y) const {
+    if (!halo.block().split()) {
+      local.apply(exec, x, y);
+      return;
+    }
+    const Vector L = lattice, E = extended;
+    const auto own = own_cells, ring = ghost_cells;
+    const int rows = n;
+    Kokkos::parallel_for(
+        "amphora::block_csr::to_lattice", RangePolicy<ExecSpace>(exec, 0, rows), KOKKOS_LAMBDA(int u) {
+          L(own(u)) = x(u);
+          E(u) = x(u);
+        });
+    halo.exchange(exec, grid, L);
+    Kokkos::parallel_for(
+        "amphora::block_csr::from_ring", RangePolicy<ExecSpace>(exec, 0, ghosts),
+        KOKKOS_LAMBDA(int g) { E(rows + g) = L(ring(g)); });
+    local.apply(exec, E, y);
+  }
+};
+
+}  // namespace amphora::solvers::mac
