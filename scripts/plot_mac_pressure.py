@@ -60,9 +60,10 @@ for ax, kind in zip(axes, ("Uniform", "TallCells")):
         ax.plot(xs, [seconds(runs["mg2r"][("Uniform", 0, n)]) for n in xs], ":", marker="s", color="C0",
                 label="multigrid-CG, 2 ranks")
     else:
-        xs = [n for n in sizes if ("TallCells", 1, n) in runs["tall2r"]]
-        ax.plot(xs, [seconds(runs["tall2r"][("TallCells", 1, n)]) for n in xs], ":", marker="s", color="C1",
-                label="tall BoomerAMG-CG, 2 ranks")
+        for backend in (0, 1):
+            xs = [n for n in sizes if ("TallCells", backend, n) in runs["tall2r"]]
+            ax.plot(xs, [seconds(runs["tall2r"][("TallCells", backend, n)]) for n in xs], ":", marker="s",
+                    color=f"C{backend}", label=f"{names[('TallCells', backend)]}, 2 ranks")
     ax.set_xscale("log", base=2)
     ax.set_yscale("log")
     ax.set_xlabel("n (n^3 footprint)")
@@ -98,9 +99,10 @@ for n in sizes:
         if r:
             row.append(f"{names[('TallCells', b)]} {seconds(r):.3f} s ({int(r['iterations'])} its, "
                        f"{r['unknowns'] / 1e3:.0f}k unknowns = uniform / {r['reduction']:.2f})")
-    r = runs["tall2r"].get(("TallCells", 1, n))
-    if r:
-        row.append(f"BoomerAMG-CG 2 ranks {seconds(r):.3f} s ({int(r['iterations'])} its)")
+    for b in (0, 1):
+        r = runs["tall2r"].get(("TallCells", b, n))
+        if r:
+            row.append(f"{names[('TallCells', b)]} 2 ranks {seconds(r):.3f} s ({int(r['iterations'])} its)")
     if len(row) > 1:
         lines.append(" ".join(row))
 open(os.path.join(out, "mac_pressure_summary.txt"), "w").write("\n".join(lines) + "\n")
