@@ -135,6 +135,26 @@ SplitScene split_scene(const Communicator& comm) {
   return S;
 }
 
+/// Largest |block - whole| over this block's cells and largest |whole| there, over all ranks.
+struct Difference {
+  double max = 0, scale = 0;
+};
+Difference block_difference(const Communicator& comm, const SplitScene& S, const std::vector<double>& block,
+                            const std::vector<double>& whole) {
+  Difference d;
+  const MacGrid &g = S.local.grid, &w = S.whole.grid;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const double v = whole[w.index(S.box.lo[0] + i, S.box.lo[1] + j, S.box.lo[2] + k)];
+        d.max = std::max(d.max, std::abs(block[g.index(i, j, k)] - v));
+        d.scale = std::max(d.scale, std::abs(v));
+      }
+  MPI_Allreduce(MPI_IN_PLACE, &d.max, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+  MPI_Allreduce(MPI_IN_PLACE, &d.scale, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+  return d;
+}
+
 TEST(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock) {
   Communicator comm;
   const SplitScene S = split_scene(comm);
@@ -162,19 +182,10 @@ TEST(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock) {
   // the distributed pressure equals the single-block one (solved on this rank alone)
   const std::vector<double> p = solve(comm.get(), local, box.lo);
   const std::vector<double> q = solve(MPI_COMM_SELF, whole, {0, 0, 0});
-  double diff = 0, scale = 0;
-  for (int k = 0; k < local.grid.nz; ++k)
-    for (int j = 0; j < local.grid.ny; ++j)
-      for (int i = 0; i < local.grid.nx; ++i) {
-        const double pv = p[local.grid.index(i, j, k)];
-        const double qv = q[whole.grid.index(box.lo[0] + i, box.lo[1] + j, box.lo[2] + k)];
-        diff = std::max(diff, std::abs(pv - qv));
-        scale = std::max(scale, std::abs(qv));
-      }
-  MPI_Allreduce(MPI_IN_PLACE, &diff, 1, MPI_DOUBLE, MPI_MAX, comm.get());
-  MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+  const Difference pq = block_difference(comm, S, p, q);
+  const double scale = pq.scale;
   EXPECT_GT(scale, 0.0);
-  EXPECT_LT(diff, 1e-8 * scale) << "ranks " << comm.size();
+  EXPECT_LT(pq.max, 1e-8 * scale) << "ranks " << comm.size();
 
   // the same through the pressure-solver interface; MIC(0) refuses a block
   const auto A = kernels::mac::copy_stencil<Mem>(local.A);
@@ -206,13 +217,7 @@ TEST(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock) {
   const int split_iterations = solve_mg(local, block, pm);
   const int whole_iterations = solve_mg(whole, mesh::MacBlock{}, qm);
   EXPECT_EQ(split_iterations, whole_iterations) << "ranks " << comm.size();
-  double d3 = 0;
-  for (int k = 0; k < local.grid.nz; ++k)
-    for (int j = 0; j < local.grid.ny; ++j)
-      for (int i = 0; i < local.grid.nx; ++i)
-        d3 = std::max(d3, std::abs(pm[local.grid.index(i, j, k)] -
-                                   qm[whole.grid.index(box.lo[0] + i, box.lo[1] + j, box.lo[2] + k)]));
-  MPI_Allreduce(MPI_IN_PLACE, &d3, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+  const double d3 = block_difference(comm, S, pm, qm).max;
   EXPECT_LT(d3, 1e-9 * scale) << "multigrid on " << comm.size() << " ranks, " << split_iterations << " iterations";
   // and one V-cycle on the blocks is the single block's V-cycle, to single-precision round-off
   using MG = solvers::mac::MacMultigrid<Exec>;
@@ -222,16 +227,8 @@ TEST(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock) {
   Kokkos::View<double*, Mem> zs("zs", local.grid.padded_size()), zw("zw", whole.grid.padded_size());
   split_mg.apply(Exec(), to_view<Mem>(local.b), zs);
   whole_mg.apply(Exec(), to_view<Mem>(whole.b), zw);
-  const auto zsh = to_std_vector(zs), zwh = to_std_vector(zw);
-  double d4 = 0, zmax = 0;
-  for (int k = 0; k < local.grid.nz; ++k)
-    for (int j = 0; j < local.grid.ny; ++j)
-      for (int i = 0; i < local.grid.nx; ++i) {
-        const double w = zwh[whole.grid.index(box.lo[0] + i, box.lo[1] + j, box.lo[2] + k)];
-        d4 = std::max(d4, std::abs(zsh[local.grid.index(i, j, k)] - w));
-        zmax = std::max(zmax, std::abs(w));
-      }
-  MPI_Allreduce(MPI_IN_PLACE, &d4, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+  const Difference z = block_difference(comm, S, to_std_vector(zs), to_std_vector(zw));
+  const double d4 = z.max, zmax = z.scale;
   EXPECT_LT(d4, 1e-6 * zmax) << "V-cycle on " << comm.size() << " ranks";
   if (comm.rank() == 0)
     std::printf("V-cycle: max difference %.3g of %.3g\n", d4, zmax);
@@ -308,18 +305,9 @@ TEST(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   };
   // BoomerAMG-CG and the own tall-cell multigrid-CG on the blocks: the single block's pressure
   for (const auto backend : {PressureBackend::hypre, PressureBackend::multigrid}) {
-    const std::vector<double> p = solve_tall(backend, T, local, M, iterations[0]);
-    const std::vector<double> q = solve_tall(backend, W, whole, Mw, iterations[1]);
-    double diff = 0, scale = 0;
-    for (int k = 0; k < local.grid.nz; ++k)
-      for (int j = 0; j < local.grid.ny; ++j)
-        for (int i = 0; i < local.grid.nx; ++i) {
-          const double qv = q[whole.grid.index(box.lo[0] + i, box.lo[1] + j, box.lo[2] + k)];
-          diff = std::max(diff, std::abs(p[local.grid.index(i, j, k)] - qv));
-          scale = std::max(scale, std::abs(qv));
-        }
-    MPI_Allreduce(MPI_IN_PLACE, &diff, 1, MPI_DOUBLE, MPI_MAX, comm.get());
-    MPI_Allreduce(MPI_IN_PLACE, &scale, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+    const Difference pq = block_difference(comm, S, solve_tall(backend, T, local, M, iterations[0]),
+                                           solve_tall(backend, W, whole, Mw, iterations[1]));
+    const double diff = pq.max, scale = pq.scale;
     EXPECT_GT(scale, 0.0);
     EXPECT_LT(diff, 1e-8 * scale) << solvers::mac::to_string(backend) << " on " << comm.size() << " ranks";
     // the V-cycle on the blocks is the single block's up to the eigenvalue estimates' start
@@ -346,24 +334,16 @@ TEST(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
     grid.prolongate(to_std_vector(z).data(), lattice.data());
     return lattice;
   };
-  const std::vector<double> zs = vcycle(split_mg, T, local), zw = vcycle(whole_mg, W, whole);
-  double dz = 0, zmax = 0;
-  for (int k = 0; k < local.grid.nz; ++k)
-    for (int j = 0; j < local.grid.ny; ++j)
-      for (int i = 0; i < local.grid.nx; ++i) {
-        const double w = zw[whole.grid.index(box.lo[0] + i, box.lo[1] + j, box.lo[2] + k)];
-        dz = std::max(dz, std::abs(zs[local.grid.index(i, j, k)] - w));
-        zmax = std::max(zmax, std::abs(w));
-      }
-  MPI_Allreduce(MPI_IN_PLACE, &dz, 1, MPI_DOUBLE, MPI_MAX, comm.get());
-  MPI_Allreduce(MPI_IN_PLACE, &zmax, 1, MPI_DOUBLE, MPI_MAX, comm.get());
+  const Difference z = block_difference(comm, S, vcycle(split_mg, T, local), vcycle(whole_mg, W, whole));
+  const double dz = z.max, zmax = z.scale;
   EXPECT_LT(dz, 1e-10 * zmax) << "tall-cell V-cycle on " << comm.size() << " ranks";
   if (comm.rank() == 0)
     std::printf("tall-cell V-cycle (%d levels): max difference %.3g of %.3g\n", split_mg.levels(), dz, zmax);
-  if (comm.size() > 1)  // MIC(0) solves one block only
+  if (comm.size() > 1) {  // MIC(0) solves one block only
     EXPECT_THROW(solvers::mac::make_tall_cell_pressure_solver(PressureBackend::mic0, Exec(), T, M,
                                                               kernels::mac::copy_stencil<Mem>(local.A)),
                  std::invalid_argument);
+  }
 }
 
 }  // namespace
