@@ -6,7 +6,8 @@
 // tall-cell grid below an optical depth (Irving et al. 2006: pressure and velocity linear in
 // height in the tall cells, conservative upwind advection there, the grid rebuilt every
 // sub-step). Each run step is split into sub-steps that keep the CFL number at most `cfl`. On
-// several ranks the grid is split horizontally into blocks (uniform cells; multigrid or hypre).
+// several ranks the grid is split horizontally into blocks (uniform or tall cells; multigrid or
+// hypre).
 //
 // Scenes: a dam break (a water column of width a and height 2a collapsing along x; the front
 // against Martin & Moyce 1952), a drop splashing into a deep pool, still water over uneven
