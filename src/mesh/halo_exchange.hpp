@@ -66,7 +66,7 @@ class HaloExchange {
     exec.fence();
   }
 
- private:
+ public:  // (CUDA: extended lambdas may not live in private member functions)
   struct Region {
     Index3 lo, n;
     size_t size() const { return size_t(n[0]) * n[1] * n[2]; }
@@ -112,6 +112,7 @@ class HaloExchange {
         });
   }
 
+ private:
   BoxDecomposition decomposition_;
   Communicator comm_;
   int ghost_;

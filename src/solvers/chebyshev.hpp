@@ -64,7 +64,7 @@ class ChebyshevSmoother {
   /// As a preconditioner: z = p(D^-1 A) D^-1 r (smoothing from zero).
   void apply(const ExecSpace& exec, const Vector& r, const Vector& z) const { smooth(exec, r, z, true); }
 
- private:
+ public:  // (CUDA: extended lambdas may not live in private member functions)
   double estimate_lambda_max(const ExecSpace& exec, const Inner& dot, const Vector& start) const {
     // Jacobi-preconditioned CG from a smooth-free start vector; alphas, betas -> Lanczos.
     const int n = static_cast<int>(inv_diag_.extent(0));
@@ -100,6 +100,7 @@ class ChebyshevSmoother {
     return alphas.empty() ? 1.0 : lanczos_extreme_eigenvalues(alphas, betas).second;
   }
 
+ private:
   const Operator* A_;
   Vector inv_diag_;
   ChebyshevOptions options_;

@@ -63,7 +63,9 @@ struct WideGrid {
 };
 
 class LatticeGhostExchange {
-  /// Padded indices of a box of lattice entries, x fastest.
+ public:
+  /// Padded indices of a box of lattice entries, x fastest (public, as shift() is: CUDA names a
+  /// lambda's captured types outside the class).
   struct Region {
     MacGrid g;
     int i0, ni, j0, nj, k0, nk;
@@ -137,7 +139,7 @@ class LatticeGhostExchange {
     exec.fence();
   }
 
- private:
+ public:  // (CUDA: extended lambdas may not live in private member functions)
   /// Sends `from_region` of `src` to the neighbour across face (d, side) and receives the
   /// opposite neighbour's into `to_region` of `dst` (same sizes on both ends).
   template <class ExecSpace, class Src, class Dst>
@@ -173,6 +175,7 @@ class LatticeGhostExchange {
     }
   }
 
+ private:
   MacBlock block_;
 };
 

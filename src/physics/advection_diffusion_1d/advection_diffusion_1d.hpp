@@ -47,7 +47,7 @@ class AdvectionDiffusion1D final : public Module {
   double max_error(double t) const;
   const OverlappingGrid1D& grid() const { return grid_; }
 
- private:
+ public:  // (CUDA: extended lambdas may not live in private member functions)
   static constexpr int kGrids = 2;
   static const char* block_name(int g) { return g == 0 ? "grid1" : "grid2"; }
   int owner(int g) const { return comm_.size() == 1 ? 0 : g; }
@@ -55,6 +55,7 @@ class AdvectionDiffusion1D final : public Module {
   void apply_boundary_conditions(double t);
   void interpolate();
 
+ private:
   Communicator comm_;
   ExecSpace exec_;
   ManufacturedWave exact_;

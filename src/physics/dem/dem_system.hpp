@@ -117,7 +117,7 @@ class DemSystem {
   /// Replaces all particles with those of `s` that lie in this rank's subdomain.
   void load(const HostState& s);
 
- private:
+ public:  // (CUDA: extended lambdas may not live in private member functions)
   /// Host copies of every per-particle array (mirrors: no copy at all on a host backend).
   struct HostArrays {
     host_mirror_t<Vec> x, v, omega, force, torque;
@@ -151,6 +151,7 @@ class DemSystem {
   void resize_owned(int n);
   double timer_mark(double& slot, double since) const;
 
+ private:
   DemConfig config_;
   Communicator comm_;
   ExecSpace exec_;

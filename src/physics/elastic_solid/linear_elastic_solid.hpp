@@ -114,7 +114,7 @@ class LinearElasticSolid {
     rotate();
   }
 
- private:
+ public:  // (CUDA: extended lambdas may not live in private member functions)
   /// Rows ny (and 0 if `bottom`) of the new level from boundary(x, y, t + dt, c).
   template <class Boundary>
   void set_rows(const Boundary& boundary, bool bottom) {
@@ -147,6 +147,7 @@ class LinearElasticSolid {
         });
   }
 
+ private:
   ElasticGrid g_;
   ElasticMaterial m_;
   double dt_, t_ = 0;

@@ -274,7 +274,7 @@ class WaterMac final : public Module {
   }
   std::vector<std::string> owned_blocks() const override { return {"water"}; }
 
- private:
+ public:  // (CUDA: extended lambdas may not live in private member functions)
   /// The padded-lattice range of the whole grid this rank's block holds in the checkpoint:
   /// its cells, and the ghost layer where it meets the box faces ([lo, hi] inclusive).
   void owned_range(int rank, int lo[3], int hi[3]) const {
@@ -633,6 +633,7 @@ class WaterMac final : public Module {
     return comm_.sum(sum) / (double(global_.nx) * global_.nz);
   }
 
+ private:
   Communicator comm_;
   std::string scene_;
   mesh::MacGrid global_;  ///< the whole grid

@@ -100,7 +100,7 @@ class MacMultigrid {
   int levels() const { return static_cast<int>(levels_.size()); }
   const LevelStencil& level(int l) const { return levels_[l]; }
 
- private:
+ public:  // (CUDA: extended lambdas may not live in private member functions)
   void vcycle(const ExecSpace& exec, int l) const;
   void coarse_solve(const ExecSpace& exec) const;
   void smooth(const ExecSpace& exec, int l, int first_colour) const;
@@ -109,9 +109,9 @@ class MacMultigrid {
   void sync(const ExecSpace& exec, int l, const View& v) const {
     halo_.exchange(exec, levels_[l].grid, v);
   }
-  /// Exchanges a level's ghost coefficients and makes the ones that depend on them consistent.
   void setup_coarse_solve(const Stencil& coarsest);
 
+ private:
   MacMultigridOptions options_;
   mesh::LatticeGhostExchange halo_;
   Stencil fine_;
