@@ -79,15 +79,22 @@ struct UniformBox {
   }
 };
 
-void Uniform(benchmark::State& state) {
-  const int backend = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
-  int rank = 0, ranks = 1;
+/// This process's rank and the number of ranks; false (the run skipped, saying why) when the
+/// sequential back end 2 is asked to run on several.
+bool ranks_of(benchmark::State& state, int backend, int& rank, int& ranks) {
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   if (ranks > 1 && backend == 2) {
-    state.SkipWithError("MIC(0) runs on one rank");
-    return;
+    state.SkipWithError("back end 2 (MIC(0) / IC(0)) runs on one rank");
+    return false;
   }
+  return true;
+}
+
+void Uniform(benchmark::State& state) {
+  const int backend = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
+  int rank = 0, ranks = 1;
+  if (!ranks_of(state, backend, rank, ranks)) return;
   const UniformBox box(n, rank, ranks);
   const Exec exec;
   amphora::solvers::SolverControl control;
@@ -186,12 +193,7 @@ DeepWater deep_water(int n, int rank, int ranks) {
 void TallCells(benchmark::State& state) {
   const int backend = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
   int rank = 0, ranks = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &ranks);
-  if (ranks > 1 && backend == 2) {
-    state.SkipWithError("IC(0) runs on one rank");
-    return;
-  }
+  if (!ranks_of(state, backend, rank, ranks)) return;
   const DeepWater water = deep_water(n, rank, ranks);
   const auto& host_A = water.A;
   // the same stencil in the execution space's memory
