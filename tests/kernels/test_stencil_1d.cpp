@@ -12,6 +12,18 @@ struct ConstantSource {
   KOKKOS_INLINE_FUNCTION double operator()(double, double) const { return c; }
 };
 
+/// u(i) = p + q x + r x^2 at x = x0 + i dx (a free function: CUDA's extended lambdas may not
+/// live in a test body, a private member).
+View quadratic(const TestExecSpace& exec, int n, double x0, double dx, double p, double q, double r) {
+  View u("u", n);
+  Kokkos::parallel_for(
+      "test::quadratic", RangePolicy<TestExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
+        const double x = x0 + i * dx;
+        u(i) = p + q * x + r * x * x;
+      });
+  return u;
+}
+
 // D0 and D+D- are exact on quadratics, so one step of the scheme on u = p + q x + r x^2 gives
 // u + dt (-a (q + 2 r x) + 2 nu r + f) to round-off.
 TEST(Stencil1D, ExactOnQuadratics) {
@@ -19,12 +31,7 @@ TEST(Stencil1D, ExactOnQuadratics) {
   const int n = 257;
   const double x0 = -0.3, dx = 1.0 / 256, a = 0.7, nu = 0.05, dt = 1e-3, f = 0.25;
   const double p = 0.5, q = -1.25, r = 2.0;
-  View u("u", n), v("v", n);
-  Kokkos::parallel_for(
-      "test::quadratic", RangePolicy<TestExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
-        const double x = x0 + i * dx;
-        u(i) = p + q * x + r * x * x;
-      });
+  View u = quadratic(exec, n, x0, dx, p, q, r), v("v", n);
   stencil::advection_diffusion_ftcs(exec, u, v, 1, n - 1, x0, dx, a, nu, 0.0, dt,
                                     ConstantSource{f});
   auto uh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), u);
