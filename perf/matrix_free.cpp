@@ -46,7 +46,9 @@
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "stream_bandwidth.hpp"
 
-namespace {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace bench_matrix_free_cases {
 
 using Exec = amphora::DefaultExecSpace;
 using Op = amphora::solvers::MatrixFreeOperator<3, Exec>;
@@ -293,4 +295,5 @@ void PoissonSolve(benchmark::State& state) {
 }
 BENCHMARK(PoissonSolve)->ArgsProduct({{2, 4}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(1);
 
-}  // namespace
+}  // namespace bench_matrix_free_cases
+using namespace bench_matrix_free_cases;

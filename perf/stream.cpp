@@ -7,7 +7,9 @@
 
 #include "kernels/spaces.hpp"
 
-namespace {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace bench_stream_cases {
 
 using amphora::DefaultExecSpace;
 using amphora::DefaultMemSpace;
@@ -51,7 +53,8 @@ void StreamTriad(benchmark::State& state) {
   });
 }
 
-}  // namespace
+}  // namespace bench_stream_cases
+using namespace bench_stream_cases;
 
 BENCHMARK(StreamCopy)->UseManualTime()->Unit(benchmark::kMillisecond)->Arg(1 << 10)->Arg(1 << 20)->Arg(1 << 25)->Arg(1 << 26);
 BENCHMARK(StreamTriad)->UseManualTime()->Unit(benchmark::kMillisecond)->Arg(1 << 10)->Arg(1 << 20)->Arg(1 << 25)->Arg(1 << 26);

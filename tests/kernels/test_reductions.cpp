@@ -5,7 +5,9 @@
 #include "test_backend.hpp"
 
 namespace amphora {
-namespace {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace test_reductions_cases {
 
 using test::TestExecSpace;
 using View = Kokkos::View<double*, test::TestMemSpace>;
@@ -47,5 +49,6 @@ TEST(Reductions, FirstNonFiniteOfEmptyView) {
   EXPECT_EQ(reduce::first_nonfinite(TestExecSpace(), View("x", 0)), -1);
 }
 
-}  // namespace
+}  // namespace test_reductions_cases
+using namespace test_reductions_cases;
 }  // namespace amphora

@@ -10,7 +10,9 @@
 #include "test_backend.hpp"
 
 namespace amphora::kernels::mac {
-namespace {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace test_staggered_interpolation_cases {
 
 using Exec = test::TestExecSpace;
 using Mem = test::TestMemSpace;
@@ -53,5 +55,6 @@ TEST(StaggeredInterpolation, VelocityAtASampleIsTrilinearInterpolationThere) {
   }
 }
 
-}  // namespace
+}  // namespace test_staggered_interpolation_cases
+using namespace test_staggered_interpolation_cases;
 }  // namespace amphora::kernels::mac

@@ -2,7 +2,9 @@
 #include "test_backend.hpp"
 
 namespace amphora {
-namespace {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace test_stencil_1d_cases {
 
 using test::TestExecSpace;
 using View = Kokkos::View<double*, test::TestMemSpace>;
@@ -52,5 +54,6 @@ TEST(Stencil1D, StabilityLimit) {
   EXPECT_DOUBLE_EQ(stencil::advection_diffusion_ftcs_dt_limit(0.0, 0.5, 0.1), 0.01);
 }
 
-}  // namespace
+}  // namespace test_stencil_1d_cases
+using namespace test_stencil_1d_cases;
 }  // namespace amphora

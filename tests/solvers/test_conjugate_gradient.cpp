@@ -8,7 +8,9 @@
 #include "test_backend.hpp"
 
 namespace amphora::solvers {
-namespace {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace test_conjugate_gradient_cases {
 
 using test::TestExecSpace;
 using View = Kokkos::View<double*, test::TestMemSpace>;
@@ -96,5 +98,6 @@ TEST(ConjugateGradient, ZeroRightHandSideConvergesAtOnce) {
   EXPECT_EQ(r.iterations, 0);
 }
 
-}  // namespace
+}  // namespace test_conjugate_gradient_cases
+using namespace test_conjugate_gradient_cases;
 }  // namespace amphora::solvers

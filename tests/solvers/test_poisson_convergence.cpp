@@ -13,7 +13,9 @@
 #include "test_backend.hpp"
 
 namespace amphora::solvers {
-namespace {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace test_poisson_convergence_cases {
 
 using test::TestExecSpace;
 using Vector = Kokkos::View<double*, test::TestMemSpace>;
@@ -77,5 +79,6 @@ TEST(PoissonConvergence, CurvedCubeOrdersKPlus1InL2AndKInH1) {
   check_orders<3>(6, {6, 12});
 }
 
-}  // namespace
+}  // namespace test_poisson_convergence_cases
+using namespace test_poisson_convergence_cases;
 }  // namespace amphora::solvers

@@ -11,7 +11,9 @@
 
 namespace amphora::dem {
 
-namespace {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace dem_system_kernels {
 
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
@@ -61,7 +63,8 @@ void grow(View& v, int n) {
 
 constexpr int kGhostRecord = 15;  // x3 v3 omega3 radius mass inertia material gid (+1 spare)
 
-}  // namespace
+}  // namespace dem_system_kernels
+using namespace dem_system_kernels;
 
 template <class ExecSpace>
 DemSystem<ExecSpace>::DemSystem(const DemConfig& config, const Communicator& comm,

@@ -17,7 +17,9 @@
 #include "solvers/matrix_free/multigrid.hpp"
 
 namespace amphora::poisson_fem {
-namespace {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace poisson_fem_kernels {
 
 template <int dim>
 class PoissonFem final : public Module {
@@ -186,7 +188,8 @@ class PoissonFem final : public Module {
   bool solved_ = false;
 };
 
-}  // namespace
+}  // namespace poisson_fem_kernels
+using namespace poisson_fem_kernels;
 
 ParamTable parameter_table() {
   ParamTable t;

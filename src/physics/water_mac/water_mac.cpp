@@ -89,7 +89,9 @@ ParamTable parameter_table() {
   return t;
 }
 
-namespace {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace water_mac_kernels {
 
 using Exec = DefaultExecSpace;
 using Mem = Exec::memory_space;
@@ -660,7 +662,8 @@ class WaterMac final : public Module {
   long last_unknowns_ = 0;
 };
 
-}  // namespace
+}  // namespace water_mac_kernels
+using namespace water_mac_kernels;
 
 std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {
   return std::make_unique<WaterMac>(p, comm);
