@@ -283,6 +283,16 @@ PoissonStencil<DstMemSpace, S> copy_stencil(const PoissonStencil<MemSpace, S>& A
   return B;
 }
 
+/// A readable on the host: A itself where its memory is host-accessible (no copy: the tall-cell
+/// setup reads it every sub-step), else a host copy. Read-only use.
+template <class MemSpace, class S>
+PoissonStencil<HostMemSpace, S> host_stencil(const PoissonStencil<MemSpace, S>& A) {
+  if constexpr (std::is_same_v<MemSpace, HostMemSpace>)
+    return A;
+  else
+    return copy_stencil<HostMemSpace>(A);
+}
+
 /// The same matrix with d and 1/d in another precision.
 template <class Scalar, class ExecSpace, class MemSpace, class S>
 PoissonStencil<MemSpace, Scalar> convert_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {

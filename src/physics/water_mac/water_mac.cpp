@@ -490,7 +490,7 @@ class WaterMac final : public Module {
       r = solver->solve(exec, b_, p_, control_);
     } else {
       // tall cells: solve P^T A P y = P^T b, then p = P y on the lattice
-      const auto H = kernels::mac::copy_stencil<HostMemSpace>(A);
+      const auto H = kernels::mac::host_stencil(A);
       const mesh::TallCellGrid T(H, optical_depth_, block_);
       const solvers::CsrMatrix M = solvers::mac::assemble_tall_cell_matrix(T, H);
       const auto layout = mesh::make_layout<Mem>(T);

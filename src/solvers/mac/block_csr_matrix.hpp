@@ -10,6 +10,7 @@
 
 #include "mesh/mac/lattice_halo.hpp"
 #include "mesh/mac/tall_cell_grid.hpp"
+#include "kernels/blas1.hpp"
 #include "solvers/device_csr.hpp"
 
 namespace amphora::solvers::mac {
@@ -80,6 +81,17 @@ struct BlockCsrMatrix {
         "amphora::block_csr::from_ring", RangePolicy<ExecSpace>(exec, 0, ghosts),
         KOKKOS_LAMBDA(int g) { E(rows + g) = L(ring(g)); });
     local.apply(exec, E, y);
+  }
+
+  /// r = b - A x. Collective on a split grid.
+  template <class ExecSpace, class B, class X, class R>
+  void residual(const ExecSpace& exec, const B& b, const X& x, const R& r) const {
+    if (!halo.block().split()) {
+      kernels::mac::residual_csr(exec, local, b, x, r);
+      return;
+    }
+    apply(exec, x, r);
+    blas1::axpby(exec, 1.0, b, -1.0, r);
   }
 };
 

@@ -115,7 +115,7 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     level_A = coarse;
     for (int d : {0, 2}) level_block.global_lower[d] /= 2;
     const int depth = (T.optical_depth() + (2 << l) - 1) >> (l + 1);
-    const auto host_A = kernels::mac::copy_stencil<HostMemSpace>(level_A);
+    const auto host_A = kernels::mac::host_stencil(level_A);
     level_grid = mesh::TallCellGrid(host_A, std::max(depth, 1), level_block);
     level_matrix = assemble_tall_cell_matrix(level_grid, host_A);
   }
@@ -124,13 +124,12 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
 template <class ExecSpace>
 void TallCellMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l, const Vector& b, const Vector& x) const {
   const Level& L = *levels_[l];
-  const bool split = halo_.block().split();
   if (l + 1 == levels()) {
     const int n = static_cast<int>(coarse_local_.size());
     Kokkos::View<double*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> local(coarse_local_.data(), n);
     Kokkos::deep_copy(exec, local, b);
     exec.fence();
-    if (split)
+    if (halo_.block().split())
       MPI_Allgatherv(coarse_local_.data(), n, MPI_DOUBLE, coarse_host_.data(), coarse_counts_.data(),
                      coarse_displacements_.data(), MPI_DOUBLE, halo_.block().comm);
     else
@@ -143,28 +142,23 @@ void TallCellMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l, const Ve
   const Level& C = *levels_[l + 1];
   L.smoother->smooth(exec, b, x, true);
   // restriction: r -> G^-1 r -> lattice -> coarse lattice -> coarse tall unknowns
-  if (split) {
-    L.A_t.apply(exec, x, L.r);
-    blas1::axpby(exec, 1.0, b, -1.0, L.r);
-  } else {
-    kernels::mac::residual_csr(exec, L.A_t.local, b, x, L.r);
-  }
+  L.A_t.residual(exec, b, x, L.r);
   kernels::mac::tall_cell_gram_solve(exec, L.layout, L.r);
   kernels::mac::tall_cell_prolongate(exec, L.layout, L.r, L.lattice);
-  if (split) sync(exec, L, L.lattice);
+  sync(exec, L, L.lattice);
   kernels::mac::restrict_to_coarse(exec, L.A, C.A, L.lattice, C.lattice);
   if (C.A.any_solid) {
-    if (split) sync(exec, C, C.lattice);
+    sync(exec, C, C.lattice);
     kernels::mac::gather_from_solids(exec, C.A, C.lattice);
   }
   kernels::mac::tall_cell_restrict(exec, C.layout, C.lattice, C.b);
   vcycle(exec, l + 1, C.b, C.x);
   // prolongation: coarse tall -> coarse lattice -> lattice -> fit -> add
   kernels::mac::tall_cell_prolongate(exec, C.layout, C.x, C.lattice);
-  if (split) sync(exec, C, C.lattice);
+  sync(exec, C, C.lattice);
   if (C.A.any_solid) {
     kernels::mac::extend_into_solids(exec, C.A, C.lattice);
-    if (split) sync(exec, C, C.lattice);
+    sync(exec, C, C.lattice);
   }
   blas1::fill(exec, L.lattice, 0.0);
   kernels::mac::prolongate_add(exec, C.A, L.A, C.lattice, L.lattice);

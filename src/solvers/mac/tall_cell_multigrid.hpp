@@ -69,7 +69,7 @@ class TallCellMultigrid {
     Vector b, x, r, lattice;
   };
   void vcycle(const ExecSpace& exec, int l, const Vector& b, const Vector& x) const;
-  /// The ghost layer of a level's lattice field (split grids).
+  /// The ghost layer of a level's lattice field (nothing on one block).
   void sync(const ExecSpace& exec, const Level& L, const Vector& v) const { halo_.exchange(exec, L.A.grid, v); }
 
   mesh::LatticeGhostExchange halo_;
