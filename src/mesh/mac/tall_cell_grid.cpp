@@ -76,40 +76,39 @@ void TallCellGrid::learn_ghost_ring() {
     }
 }
 
+namespace {
+/// f(unknown, cell) for every unknown of column (i, k) and the lattice cell that carries it: a
+/// tall cell's samples its lowest two cells, a uniform unknown (`uniform`, per padded cell) its
+/// cell. Unknowns as the column and `uniform` number them.
+template <class F>
+void for_each_carrier(const MacGrid& g, const TallCellColumn& col, const std::vector<int>& uniform, int i, int k,
+                      const F& f) {
+  if (col.has_tall_cell()) {
+    f(col.first_unknown, g.index(i, col.terrain, k));
+    f(col.first_unknown + 1, g.index(i, col.terrain + 1, k));
+  }
+  for (int j = col.band; j < g.ny; ++j) {
+    const int c = g.index(i, j, k);
+    if (uniform[c] >= 0) f(uniform[c], c);
+  }
+}
+}  // namespace
+
 std::vector<int> TallCellGrid::unknown_cells() const {
-  const MacGrid& g = grid_;
   std::vector<int> cell(unknowns_, -1);
-  for (int k = 0; k < g.nz; ++k)
-    for (int i = 0; i < g.nx; ++i) {
-      const TallCellColumn& col = columns_[i + g.nx * k];
-      if (col.has_tall_cell()) {
-        cell[col.first_unknown] = g.index(i, col.terrain, k);
-        cell[col.first_unknown + 1] = g.index(i, col.terrain + 1, k);
-      }
-      for (int j = col.band; j < g.ny; ++j) {
-        const int u = cell_unknown_[g.index(i, j, k)];
-        if (u >= 0) cell[u] = g.index(i, j, k);
-      }
-    }
+  for (int k = 0; k < grid_.nz; ++k)
+    for (int i = 0; i < grid_.nx; ++i)
+      for_each_carrier(grid_, column(i, k), cell_unknown_, i, k, [&](int u, int c) { cell[u] = c; });
   return cell;
 }
 
 std::vector<std::pair<long, int>> TallCellGrid::ring_unknown_cells() const {
   std::vector<std::pair<long, int>> out;
   if (ring_columns_.empty()) return out;
-  const MacGrid& g = grid_;
-  for (int k = -1; k <= g.nz; ++k)
-    for (int i = -1; i <= g.nx; ++i) {
-      if (i >= 0 && i < g.nx && k >= 0 && k < g.nz) continue;
-      const TallCellColumn& col = column(i, k);
-      if (col.has_tall_cell()) {
-        out.emplace_back(col.first_unknown, g.index(i, col.terrain, k));
-        out.emplace_back(col.first_unknown + 1, g.index(i, col.terrain + 1, k));
-      }
-      for (int j = col.band; j < g.ny; ++j) {
-        const int u = ring_unknown_[g.index(i, j, k)];
-        if (u >= 0) out.emplace_back(u, g.index(i, j, k));
-      }
+  for (int k = -1; k <= grid_.nz; ++k)
+    for (int i = -1; i <= grid_.nx; ++i) {
+      if (i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz) continue;
+      for_each_carrier(grid_, column(i, k), ring_unknown_, i, k, [&](int u, int c) { out.emplace_back(u, c); });
     }
   return out;
 }
