@@ -51,14 +51,16 @@ struct EvenOddMatrix {
 
 /// y = M x along one direction of a tensor of lines: line `p` (0 <= p < n_post) and offset `s`
 /// (0 <= s < stride) reads x[(p n_cols + i) stride + s] and writes y[(p n_rows + o) stride + s].
-/// With `add`, y += M x. In place (x == y) is allowed when n_rows == n_cols.
-template <int n_rows, int n_cols, int stride, int n_post, bool add, class T>
+/// With `add`, y += M x. In place (x == y) is allowed when n_rows == n_cols. `sign` is m.sign
+/// when the caller knows it at compile time (values +1, derivatives -1), 0 to read m.sign: a
+/// known sign takes a test and branch out of every output pair of the hot sweeps.
+template <int n_rows, int n_cols, int stride, int n_post, bool add, int sign = 0, class T>
 KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd(const EvenOddMatrix<n_rows, n_cols>& m,
                                                 const T* x, T* y) {
   constexpr int hc = EvenOddMatrix<n_rows, n_cols>::half_cols;
   constexpr int hr = EvenOddMatrix<n_rows, n_cols>::half_rows;
   constexpr int hcs = hc > 0 ? hc : 1;
-  const bool negate = m.sign < 0;
+  const bool negate = sign == 0 ? m.sign < 0 : sign < 0;
   for (int p = 0; p < n_post; ++p)
     for (int s = 0; s < stride; ++s) {
       const T* xl = x + p * n_cols * stride + s;

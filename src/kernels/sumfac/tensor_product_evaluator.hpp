@@ -28,12 +28,12 @@ struct TensorProductEvaluator {
       }
     }
     if constexpr (dim == 2) {
-      apply_even_odd<n_q, n_p, 1, n_p, false>(s.values, u, tmp);
-      apply_even_odd<n_q, n_p, n_q, 1, false>(s.values, tmp, v);
+      apply_even_odd<n_q, n_p, 1, n_p, false, 1>(s.values, u, tmp);
+      apply_even_odd<n_q, n_p, n_q, 1, false, 1>(s.values, tmp, v);
     } else {
-      apply_even_odd<n_q, n_p, 1, n_p * n_p, false>(s.values, u, v);
-      apply_even_odd<n_q, n_p, n_q, n_p, false>(s.values, v, tmp);
-      apply_even_odd<n_q, n_p, n_q * n_q, 1, false>(s.values, tmp, v);
+      apply_even_odd<n_q, n_p, 1, n_p * n_p, false, 1>(s.values, u, v);
+      apply_even_odd<n_q, n_p, n_q, n_p, false, 1>(s.values, v, tmp);
+      apply_even_odd<n_q, n_p, n_q * n_q, 1, false, 1>(s.values, tmp, v);
     }
   }
 
@@ -48,12 +48,12 @@ struct TensorProductEvaluator {
       }
     }
     if constexpr (dim == 2) {
-      apply_even_odd<n_p, n_q, n_q, 1, false>(s.values_t, v, tmp);
-      apply_even_odd<n_p, n_q, 1, n_p, false>(s.values_t, tmp, u);
+      apply_even_odd<n_p, n_q, n_q, 1, false, 1>(s.values_t, v, tmp);
+      apply_even_odd<n_p, n_q, 1, n_p, false, 1>(s.values_t, tmp, u);
     } else {
-      apply_even_odd<n_p, n_q, n_q * n_q, 1, false>(s.values_t, v, tmp);
-      apply_even_odd<n_p, n_q, n_q, n_p, false>(s.values_t, tmp, v);
-      apply_even_odd<n_p, n_q, 1, n_p * n_p, false>(s.values_t, v, u);
+      apply_even_odd<n_p, n_q, n_q * n_q, 1, false, 1>(s.values_t, v, tmp);
+      apply_even_odd<n_p, n_q, n_q, n_p, false, 1>(s.values_t, tmp, v);
+      apply_even_odd<n_p, n_q, 1, n_p * n_p, false, 1>(s.values_t, v, u);
     }
   }
 
@@ -76,20 +76,20 @@ struct TensorProductEvaluator {
   template <class T>
   KOKKOS_FORCEINLINE_FUNCTION static void gradients(const ShapeData<n_p, n_q>& s, const T* v,
                                                     T* grad) {
-    apply_even_odd<n_q, n_q, 1, ipow(n_q, dim - 1), false>(s.derivative, v, grad);
-    apply_even_odd<n_q, n_q, n_q, ipow(n_q, dim - 2), false>(s.derivative, v, grad + n_points);
+    apply_even_odd<n_q, n_q, 1, ipow(n_q, dim - 1), false, -1>(s.derivative, v, grad);
+    apply_even_odd<n_q, n_q, n_q, ipow(n_q, dim - 2), false, -1>(s.derivative, v, grad + n_points);
     if constexpr (dim == 3)
-      apply_even_odd<n_q, n_q, n_q * n_q, 1, false>(s.derivative, v, grad + 2 * n_points);
+      apply_even_odd<n_q, n_q, n_q * n_q, 1, false, -1>(s.derivative, v, grad + 2 * n_points);
   }
 
   /// v = sum_d D_d^T flux_d (transpose of gradients()); with `add`, v += ... .
   template <bool add, class T>
   KOKKOS_FORCEINLINE_FUNCTION static void integrate_gradients(const ShapeData<n_p, n_q>& s,
                                                               const T* flux, T* v) {
-    apply_even_odd<n_q, n_q, 1, ipow(n_q, dim - 1), add>(s.derivative_t, flux, v);
-    apply_even_odd<n_q, n_q, n_q, ipow(n_q, dim - 2), true>(s.derivative_t, flux + n_points, v);
+    apply_even_odd<n_q, n_q, 1, ipow(n_q, dim - 1), add, -1>(s.derivative_t, flux, v);
+    apply_even_odd<n_q, n_q, n_q, ipow(n_q, dim - 2), true, -1>(s.derivative_t, flux + n_points, v);
     if constexpr (dim == 3)
-      apply_even_odd<n_q, n_q, n_q * n_q, 1, true>(s.derivative_t, flux + 2 * n_points, v);
+      apply_even_odd<n_q, n_q, n_q * n_q, 1, true, -1>(s.derivative_t, flux + 2 * n_points, v);
   }
 
   /// Tensor weight w_i w_j (w_k) of point q.
