@@ -92,6 +92,20 @@ struct TensorProductEvaluator {
       apply_even_odd<n_q, n_q, n_q * n_q, 1, true, -1>(s.derivative_t, flux + 2 * n_points, v);
   }
 
+  /// f(q, weight(q)) for every point q in order, without weight()'s divisions (the same
+  /// products in the same order, so the same numbers).
+  template <class F>
+  KOKKOS_FORCEINLINE_FUNCTION static void for_each_weighted_point(const ShapeData<n_p, n_q>& s, const F& f) {
+    constexpr int n_outer = dim == 3 ? n_q : 1;
+    for (int k = 0; k < n_outer; ++k)
+      for (int j = 0; j < n_q; ++j)
+        for (int i = 0; i < n_q; ++i) {
+          double w = s.weights[i] * s.weights[j];
+          if constexpr (dim == 3) w *= s.weights[k];
+          f((k * n_q + j) * n_q + i, w);
+        }
+  }
+
   /// Tensor weight w_i w_j (w_k) of point q.
   KOKKOS_FORCEINLINE_FUNCTION static double weight(const ShapeData<n_p, n_q>& s, int q) {
     double w = s.weights[q % n_q] * s.weights[(q / n_q) % n_q];

@@ -129,7 +129,7 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
     const bool per_cell = mode == GeometryMode::cartesian || mode == GeometryMode::affine;
     if (kind == OperatorKind::mass) {
       if (per_cell) {
-        for (int q = 0; q < n_points; ++q) s.v[q] *= T(Eval::weight(shape, q)) * c[0];
+        Eval::for_each_weighted_point(shape, [&](int q, double w) { s.v[q] *= T(w) * c[0]; });
       } else {
         for (int q = 0; q < n_points; ++q) s.v[q] *= c[q];
       }
@@ -139,10 +139,9 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
     Eval::gradients(shape, s.v, s.grad);
     if (kind == OperatorKind::laplace) {
       if (mode == GeometryMode::cartesian) {
-        for (int q = 0; q < n_points; ++q) {
-          const T w(Eval::weight(shape, q));
-          for (int a = 0; a < dim; ++a) s.grad[a * n_points + q] *= w * c[a];
-        }
+        Eval::for_each_weighted_point(shape, [&](int q, double w) {
+          for (int a = 0; a < dim; ++a) s.grad[a * n_points + q] *= T(w) * c[a];
+        });
       } else {
         const long stride = per_cell ? 1 : n_points;  // [coef] per cell, [coef][point] stored
         for (int q = 0; q < n_points; ++q) {
