@@ -134,6 +134,17 @@ TEST(MatrixFreeOperator, LaplaceAndMassMatchAssembledMatricesForDegrees1To6In3D)
 
 // The run-time-size fallback: pairs the compiled table lacks (degree + 3 and degree points per
 // direction) and, forced, pairs it has; 2D and 3D, curved, mass and Laplace, 3 components.
+// 16 slabs or more run in blocks of consecutive slabs (QkLattice::slabs_per_block): block
+// counts even and odd, the last block short, along a periodic direction (the last block of an
+// odd count then runs in a third colour) and a Dirichlet one.
+TEST(MatrixFreeOperator, SlabBlocksOfEveryCountMatchAssembledMatrices) {
+  for (int n : {16, 17, 18, 33}) {  // 8, 9 (last short), 9, 9 (last short) blocks
+    check<2>({K::laplace, G::cartesian, "cartesian", 2}, 9, n, 1);  // y periodic
+    check<2>({K::mass, G::stored, "curved", 3}, 9, n, 1);
+  }
+  check<3>({K::laplace, G::affine, "affine", 2}, 9, 2, 18);  // z Dirichlet
+}
+
 TEST(MatrixFreeOperator, GenericKernelMatchesAssembledMatrices) {
   for (int k : {1, 2, 4}) {
     check<2>({K::laplace, G::on_the_fly, "curved", k, 2}, 5, 3, 1);
@@ -225,7 +236,7 @@ namespace {
 TEST(MatrixFreeOperator, ResultDoesNotDependOnTheBackendOrThreadCount) {
 #if defined(KOKKOS_ENABLE_SERIAL)
   for (int k : {3, 5}) {
-    auto m = mixed_mesh<3>(17, 6, 7, "curved");
+    auto m = mixed_mesh<3>(17, 6, 18, "curved");  // 9 slab blocks of 2
     const mesh::QkSpace<3, TestExecSpace> space(m, k);
     const mesh::QkSpace<3, Kokkos::Serial> serial_space(m, k);
     typename MatrixFreeOperator<3, TestExecSpace>::Options o;

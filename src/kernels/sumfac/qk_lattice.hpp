@@ -52,26 +52,44 @@ struct QkLattice {
     for (int d = 1; d < dim; ++d) n *= cells[d];
     return n;
   }
-  /// Cells along the slab direction (the last one), whose parity colours the cell loop.
+  /// Cells along the slab direction (the last one). Slabs run in blocks of consecutive
+  /// slabs, and the blocks' parity colours the cell loop.
   KOKKOS_INLINE_FUNCTION int n_slabs() const { return cells[dim - 1]; }
   KOKKOS_INLINE_FUNCTION int batches_per_slab() const { return n_batches() / cells[dim - 1]; }
 
-  /// Colour of slab s in the coloured cell loop: parity, and 2 for the last slab of an odd
-  /// periodic count (it touches slab 0).
-  KOKKOS_INLINE_FUNCTION int slab_colour(int s) const {
+  /// Slabs per block: about 8 blocks, so that one thread runs consecutive slabs and finds the
+  /// node layer they share still in cache (with one slab per block it was loaded twice). Fixed
+  /// by the lattice, not by the thread count, so the order of the sums is fixed too.
+  KOKKOS_INLINE_FUNCTION int slabs_per_block() const {
     const int n = cells[dim - 1];
-    return (periodic[dim - 1] && n % 2 == 1 && n > 1 && s == n - 1) ? 2 : s % 2;
+    return n >= 16 ? n / 8 : 1;
+  }
+  KOKKOS_INLINE_FUNCTION int n_slab_blocks() const {
+    const int r = slabs_per_block();
+    return (cells[dim - 1] + r - 1) / r;
+  }
+  /// Colour of block B: parity, and 2 for the last block of an odd periodic count (it
+  /// touches block 0).
+  KOKKOS_INLINE_FUNCTION int block_colour(int B) const {
+    const int nb = n_slab_blocks();
+    return (periodic[dim - 1] && nb % 2 == 1 && nb > 1 && B == nb - 1) ? 2 : B % 2;
+  }
+  KOKKOS_INLINE_FUNCTION int slab_colour(int s) const { return block_colour(s / slabs_per_block()); }
+  /// Whether slab t runs before slab s: an earlier colour, or earlier in the same block.
+  KOKKOS_INLINE_FUNCTION bool slab_runs_before(int t, int s) const {
+    const int ct = slab_colour(t), cs = slab_colour(s), r = slabs_per_block();
+    return ct < cs || (ct == cs && t / r == s / r && t < s);
   }
   /// Node layers (along the last direction) slab s writes first when slabs run by colour:
-  /// [first, end). A layer shared with a slab of an earlier colour is left to that slab.
+  /// [first, end). A layer shared with a slab that runs earlier is left to that slab.
   KOKKOS_INLINE_FUNCTION void slab_first_layers(int s, int& first, int& end) const {
-    const int n = cells[dim - 1], k = degree, c = slab_colour(s);
+    const int n = cells[dim - 1], k = degree;
     const bool per = periodic[dim - 1];
     const int lower = s > 0 ? s - 1 : (per ? n - 1 : -1);
     const int upper = s < n - 1 ? s + 1 : (per ? 0 : -1);
-    first = (lower < 0 || lower == s || slab_colour(lower) > c) ? s * k : s * k + 1;
+    first = (lower < 0 || lower == s || !slab_runs_before(lower, s)) ? s * k : s * k + 1;
     const bool upper_wraps = per && s == n - 1;
-    end = (!upper_wraps && (upper < 0 || slab_colour(upper) > c)) ? (s + 1) * k + 1 : (s + 1) * k;
+    end = (!upper_wraps && (upper < 0 || !slab_runs_before(upper, s))) ? (s + 1) * k + 1 : (s + 1) * k;
   }
 
   /// Cell coordinates of lane 0 of batch b: (bx * width, cy, cz).

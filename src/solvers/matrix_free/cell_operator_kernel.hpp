@@ -4,10 +4,11 @@
 // template serves every (dim, n_p, n_q); MatrixFreeOperator picks the instance from a table.
 //
 // Concurrent scatter-adds into shared nodes are avoided, not locked, on host spaces: a batch's
-// lanes are consecutive cells of one row (one thread adds them in order), and whole slabs of
-// cells (a layer along the last direction) are the parallel items, run in two colours (three
-// for an odd periodic count) so no two concurrent slabs share a node. Sums are then formed in
-// an order that does not depend on the thread count. Device spaces use atomics instead.
+// lanes are consecutive cells of one row (one thread adds them in order), and blocks of
+// consecutive slabs of cells (a slab: a layer of cells along the last direction) are the
+// parallel items, each run in order by one thread, in two colours (three for an odd periodic
+// count) so no two concurrent blocks share a node. Sums are then formed in an order that does
+// not depend on the thread count. Device spaces use atomics instead.
 #include <Kokkos_Core.hpp>
 
 #include "kernels/spaces.hpp"
@@ -263,15 +264,19 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
     return false;
   } else {
     const int slabs = lattice.n_slabs(), per_slab = lattice.batches_per_slab();
-    const bool odd_periodic = lattice.periodic[dim - 1] && slabs % 2 == 1 && slabs > 1;
-    const int regular = odd_periodic ? slabs - 1 : slabs;
+    const int blocks = lattice.n_slab_blocks(), run = lattice.slabs_per_block();
+    const bool odd_periodic = lattice.block_colour(blocks - 1) == 2;
+    const int regular = odd_periodic ? blocks - 1 : blocks;
     for (int colour = 0; colour < 3; ++colour) {
       const int items = colour < 2 ? (regular - colour + 1) / 2 : (odd_periodic ? 1 : 0);
       if (items <= 0) continue;
       Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, items), KOKKOS_LAMBDA(int i) {
-        const int slab = colour < 2 ? 2 * i + colour : slabs - 1;
-        first_touch(slab);
-        for (int b = slab * per_slab; b < (slab + 1) * per_slab; ++b) body(b);
+        const int block = colour < 2 ? 2 * i + colour : blocks - 1;
+        const int last = block * run + run < slabs ? block * run + run : slabs;
+        for (int slab = block * run; slab < last; ++slab) {
+          first_touch(slab);
+          for (int b = slab * per_slab; b < (slab + 1) * per_slab; ++b) body(b);
+        }
       });
     }
     return true;
