@@ -49,50 +49,55 @@ struct EvenOddMatrix {
   }
 };
 
-/// y = M x along one direction of a tensor of lines: line `p` (0 <= p < n_post) and offset `s`
-/// (0 <= s < stride) reads x[(p n_cols + i) stride + s] and writes y[(p n_rows + o) stride + s].
-/// With `add`, y += M x. In place (x == y) is allowed when n_rows == n_cols. `sign` is m.sign
-/// when the caller knows it at compile time (values +1, derivatives -1), 0 to read m.sign: a
-/// known sign takes a test and branch out of every output pair of the hot sweeps.
-template <int n_rows, int n_cols, int stride, int n_post, bool add, int sign = 0, class T>
-KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd(const EvenOddMatrix<n_rows, n_cols>& m,
-                                                const T* x, T* y) {
+/// One line: y[o ys] = sum_i M[o][i] x[i xs] (with `add`, +=). `sign` is m.sign when the
+/// caller knows it at compile time (values +1, derivatives -1), 0 to read m.sign: a known sign
+/// takes a test and branch out of every output pair of the hot sweeps. In place (x == y) is
+/// allowed when n_rows == n_cols and xs == ys.
+template <int n_rows, int n_cols, int xs, int ys, bool add, int sign = 0, class T>
+KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_line(const EvenOddMatrix<n_rows, n_cols>& m, const T* xl, T* yl) {
   constexpr int hc = EvenOddMatrix<n_rows, n_cols>::half_cols;
   constexpr int hr = EvenOddMatrix<n_rows, n_cols>::half_rows;
   constexpr int hcs = hc > 0 ? hc : 1;
   const bool negate = sign == 0 ? m.sign < 0 : sign < 0;
-  for (int p = 0; p < n_post; ++p)
-    for (int s = 0; s < stride; ++s) {
-      const T* xl = x + p * n_cols * stride + s;
-      T* yl = y + p * n_rows * stride + s;
-      T e[hcs], d[hcs];
-      for (int i = 0; i < hc; ++i) {
-        e[i] = xl[i * stride] + xl[(n_cols - 1 - i) * stride];
-        d[i] = xl[i * stride] - xl[(n_cols - 1 - i) * stride];
-      }
-      T mid = EvenOddMatrix<n_rows, n_cols>::has_middle_col ? xl[(n_cols / 2) * stride] : T(0.0);
-      for (int o = 0; o < hr; ++o) {
-        T ev = EvenOddMatrix<n_rows, n_cols>::has_middle_col ? T(m.middle[o]) * mid : T(0.0);
-        T od = T(0.0);
-        for (int i = 0; i < hc; ++i) {
-          ev += T(m.even[o][i]) * e[i];
-          od += T(m.odd[o][i]) * d[i];
-        }
-        if (2 * o + 1 == n_rows) {
-          if (add) yl[o * stride] += ev + od;
-          else yl[o * stride] = ev + od;
-        } else {
-          const T lo = ev + od, hi = negate ? od - ev : ev - od;
-          if (add) {
-            yl[o * stride] += lo;
-            yl[(n_rows - 1 - o) * stride] += hi;
-          } else {
-            yl[o * stride] = lo;
-            yl[(n_rows - 1 - o) * stride] = hi;
-          }
-        }
+  T e[hcs], d[hcs];
+  for (int i = 0; i < hc; ++i) {
+    e[i] = xl[i * xs] + xl[(n_cols - 1 - i) * xs];
+    d[i] = xl[i * xs] - xl[(n_cols - 1 - i) * xs];
+  }
+  T mid = EvenOddMatrix<n_rows, n_cols>::has_middle_col ? xl[(n_cols / 2) * xs] : T(0.0);
+  for (int o = 0; o < hr; ++o) {
+    T ev = EvenOddMatrix<n_rows, n_cols>::has_middle_col ? T(m.middle[o]) * mid : T(0.0);
+    T od = T(0.0);
+    for (int i = 0; i < hc; ++i) {
+      ev += T(m.even[o][i]) * e[i];
+      od += T(m.odd[o][i]) * d[i];
+    }
+    if (2 * o + 1 == n_rows) {
+      if (add) yl[o * ys] += ev + od;
+      else yl[o * ys] = ev + od;
+    } else {
+      const T lo = ev + od, hi = negate ? od - ev : ev - od;
+      if (add) {
+        yl[o * ys] += lo;
+        yl[(n_rows - 1 - o) * ys] += hi;
+      } else {
+        yl[o * ys] = lo;
+        yl[(n_rows - 1 - o) * ys] = hi;
       }
     }
+  }
+}
+
+/// y = M x along one direction of a tensor of lines: line `p` (0 <= p < n_post) and offset `s`
+/// (0 <= s < stride) reads x[(p n_cols + i) stride + s] and writes y[(p n_rows + o) stride + s].
+/// With `add`, y += M x. In place (x == y) is allowed when n_rows == n_cols.
+template <int n_rows, int n_cols, int stride, int n_post, bool add, int sign = 0, class T>
+KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd(const EvenOddMatrix<n_rows, n_cols>& m,
+                                                const T* x, T* y) {
+  for (int p = 0; p < n_post; ++p)
+    for (int s = 0; s < stride; ++s)
+      apply_even_odd_line<n_rows, n_cols, stride, stride, add, sign>(m, x + p * n_cols * stride + s,
+                                                                      y + p * n_rows * stride + s);
 }
 
 }  // namespace amphora::sumfac

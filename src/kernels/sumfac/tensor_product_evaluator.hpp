@@ -92,6 +92,42 @@ struct TensorProductEvaluator {
       apply_even_odd<n_q, n_q, n_q * n_q, 1, true, -1>(s.derivative_t, flux + 2 * n_points, v);
   }
 
+  /// out = sum_d D_d^T (w c_d) D_d v: the Laplacian of a Cartesian cell (metric diag(c), w the
+  /// point weights) from the values v at the points, one line at a time. The same operations
+  /// in the same order as gradients(), the scaling and integrate_gradients<false>() (so the
+  /// same numbers), but no gradient tensor is formed: v, out and a line stay in L1 where the
+  /// three gradients would not (3 x 22 KB at n_q = 7, W = 8).
+  template <class T>
+  KOKKOS_FORCEINLINE_FUNCTION static void diagonal_laplace(const ShapeData<n_p, n_q>& s, const T* v, const T* c,
+                                                           T* out) {
+    diagonal_laplace_direction<0>(s, v, c, out);
+    diagonal_laplace_direction<1>(s, v, c, out);
+    if constexpr (dim == 3) diagonal_laplace_direction<2>(s, v, c, out);
+  }
+  template <int d, class T>
+  KOKKOS_FORCEINLINE_FUNCTION static void diagonal_laplace_direction(const ShapeData<n_p, n_q>& s, const T* v,
+                                                                     const T* c, T* out) {
+    constexpr int stride = ipow(n_q, d), n_outer = dim == 3 ? n_q : 1;
+    // (a, b): the point's other two indices, slower first; q runs along d
+    for (int b = 0; b < n_outer; ++b)
+      for (int a = 0; a < n_q; ++a) {
+        int ijk[3] = {0, 0, 0};
+        const int other[2] = {d == 0 ? 1 : 0, d == 2 ? 1 : 2};  // the other directions, in order
+        ijk[other[0]] = a;
+        ijk[other[1]] = b;
+        const int base = ijk[0] + n_q * (ijk[1] + n_q * ijk[2]);
+        T g[n_q];
+        apply_even_odd_line<n_q, n_q, stride, 1, false, -1>(s.derivative, v + base, g);
+        for (int q = 0; q < n_q; ++q) {
+          ijk[d] = q;
+          double w = s.weights[ijk[0]] * s.weights[ijk[1]];
+          if constexpr (dim == 3) w *= s.weights[ijk[2]];
+          g[q] *= T(w) * c[d];
+        }
+        apply_even_odd_line<n_q, n_q, 1, stride, (d > 0), -1>(s.derivative_t, g, out + base);
+      }
+  }
+
   /// f(q, weight(q)) for every point q in order, without weight()'s divisions (the same
   /// products in the same order, so the same numbers).
   template <class F>

@@ -137,24 +137,23 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
       Eval::integrate_values(shape, s.v, u, s.tmp);
       return;
     }
+    if (kind == OperatorKind::laplace && mode == GeometryMode::cartesian) {
+      Eval::diagonal_laplace(shape, s.v, c, s.grad);
+      Eval::integrate_values(shape, s.grad, u, s.tmp);
+      return;
+    }
     Eval::gradients(shape, s.v, s.grad);
     if (kind == OperatorKind::laplace) {
-      if (mode == GeometryMode::cartesian) {
-        Eval::for_each_weighted_point(shape, [&](int q, double w) {
-          for (int a = 0; a < dim; ++a) s.grad[a * n_points + q] *= T(w) * c[a];
-        });
-      } else {
-        const long stride = per_cell ? 1 : n_points;  // [coef] per cell, [coef][point] stored
-        for (int q = 0; q < n_points; ++q) {
-          const long qc = per_cell ? 0 : q;
-          const T w = per_cell ? T(Eval::weight(shape, q)) : T(1.0);
-          T g[dim];
-          for (int a = 0; a < dim; ++a) g[a] = s.grad[a * n_points + q];
-          for (int a = 0; a < dim; ++a) {
-            T f = T(0.0);
-            for (int e = 0; e < dim; ++e) f += c[sumfac::sym_index<dim>(a, e) * stride + qc] * g[e];
-            s.grad[a * n_points + q] = per_cell ? w * f : f;
-          }
+      const long stride = per_cell ? 1 : n_points;  // [coef] per cell, [coef][point] stored
+      for (int q = 0; q < n_points; ++q) {
+        const long qc = per_cell ? 0 : q;
+        const T w = per_cell ? T(Eval::weight(shape, q)) : T(1.0);
+        T g[dim];
+        for (int a = 0; a < dim; ++a) g[a] = s.grad[a * n_points + q];
+        for (int a = 0; a < dim; ++a) {
+          T f = T(0.0);
+          for (int e = 0; e < dim; ++e) f += c[sumfac::sym_index<dim>(a, e) * stride + qc] * g[e];
+          s.grad[a * n_points + q] = per_cell ? w * f : f;
         }
       }
       Eval::template integrate_gradients<false>(shape, s.grad, s.v);
