@@ -94,9 +94,9 @@ struct TensorProductEvaluator {
 
   /// out = sum_d D_d^T (w c_d) D_d v: the Laplacian of a Cartesian cell (metric diag(c), w the
   /// point weights) from the values v at the points, one line at a time. The same operations
-  /// in the same order as gradients(), the scaling and integrate_gradients<false>() (so the
-  /// same numbers), but no gradient tensor is formed: v, out and a line stay in L1 where the
-  /// three gradients would not (3 x 22 KB at n_q = 7, W = 8).
+  /// in the same order as gradients(), the scaling and integrate_gradients<false>(), but no
+  /// gradient tensor is formed: v, out and a line stay in L1 where the three gradients would
+  /// not (3 x 22 KB at n_q = 7, W = 8).
   template <class T>
   KOKKOS_FORCEINLINE_FUNCTION static void diagonal_laplace(const ShapeData<n_p, n_q>& s, const T* v, const T* c,
                                                            T* out) {
