@@ -120,9 +120,7 @@ struct TensorProductEvaluator {
         apply_even_odd_line<n_q, n_q, stride, 1, false, -1>(s.derivative, v + base, g);
         for (int q = 0; q < n_q; ++q) {
           ijk[d] = q;
-          double w = s.weights[ijk[0]] * s.weights[ijk[1]];
-          if constexpr (dim == 3) w *= s.weights[ijk[2]];
-          g[q] *= T(w) * c[d];
+          g[q] *= T(weight(s, ijk[0], ijk[1], ijk[2])) * c[d];
         }
         apply_even_odd_line<n_q, n_q, 1, stride, (d > 0), -1>(s.derivative_t, g, out + base);
       }
@@ -135,18 +133,18 @@ struct TensorProductEvaluator {
     constexpr int n_outer = dim == 3 ? n_q : 1;
     for (int k = 0; k < n_outer; ++k)
       for (int j = 0; j < n_q; ++j)
-        for (int i = 0; i < n_q; ++i) {
-          double w = s.weights[i] * s.weights[j];
-          if constexpr (dim == 3) w *= s.weights[k];
-          f((k * n_q + j) * n_q + i, w);
-        }
+        for (int i = 0; i < n_q; ++i) f((k * n_q + j) * n_q + i, weight(s, i, j, k));
   }
 
-  /// Tensor weight w_i w_j (w_k) of point q.
-  KOKKOS_FORCEINLINE_FUNCTION static double weight(const ShapeData<n_p, n_q>& s, int q) {
-    double w = s.weights[q % n_q] * s.weights[(q / n_q) % n_q];
-    if constexpr (dim == 3) w *= s.weights[q / (n_q * n_q)];
+  /// Tensor weight w_i w_j (w_k) of point (i, j, k) (k ignored in 2D).
+  KOKKOS_FORCEINLINE_FUNCTION static double weight(const ShapeData<n_p, n_q>& s, int i, int j, int k) {
+    double w = s.weights[i] * s.weights[j];
+    if constexpr (dim == 3) w *= s.weights[k];
     return w;
+  }
+  /// Tensor weight of point q.
+  KOKKOS_FORCEINLINE_FUNCTION static double weight(const ShapeData<n_p, n_q>& s, int q) {
+    return weight(s, q % n_q, (q / n_q) % n_q, dim == 3 ? q / (n_q * n_q) : 0);
   }
 };
 
