@@ -1,9 +1,10 @@
 #pragma once
-// This block's rows of a tall-cell matrix on a grid split over ranks, as an operator: columns
-// of this block's unknowns first, then those of the ghost ring, whose values arrive through the
-// lattice ghost exchange (every unknown is carried by one lattice cell, mesh::TallCellGrid::
-// unknown_cells), so no communication pattern of its own is needed. On one block it is the
-// plain CSR product.
+// This block's rows of a matrix whose columns are the unknowns of a tall-cell grid split over
+// ranks (a tall-cell matrix, or a transfer from another level's unknowns), as an operator:
+// columns of this block's unknowns first, then those of the ghost ring, whose values arrive
+// through the lattice ghost exchange (every unknown is carried by one lattice cell,
+// mesh::TallCellGrid::unknown_cells), so no communication pattern of its own is needed. On one
+// block it is the plain CSR product.
 #include <stdexcept>
 #include <unordered_map>
 #include <vector>
@@ -18,9 +19,10 @@ namespace amphora::solvers::mac {
 template <class MemSpace>
 struct BlockCsrMatrix {
   using Vector = Kokkos::View<double*, MemSpace>;
-  int n = 0;       ///< this block's rows (unknowns)
-  int ghosts = 0;  ///< columns of the ghost ring
-  DeviceCsrMatrix<MemSpace> local;  ///< columns [0, n): this block's, [n, n + ghosts): the ring's
+  int n = 0;        ///< this block's rows
+  int columns = 0;  ///< this block's unknowns of the column grid (n for a square matrix)
+  int ghosts = 0;   ///< columns of the ghost ring
+  DeviceCsrMatrix<MemSpace> local;  ///< columns [0, columns): this block's, then the ring's
   Vector inverse_diagonal;
   mesh::MacGrid grid;
   mesh::LatticeGhostExchange halo;
@@ -28,9 +30,11 @@ struct BlockCsrMatrix {
   Vector lattice, extended;                             ///< scratch of apply()
 
   BlockCsrMatrix() = default;
-  /// M: rows of T's block with global columns (assemble_tall_cell_matrix).
+  /// M: this block's rows with global columns, the unknowns of T (assemble_tall_cell_matrix:
+  /// T's own rows; a level transfer: another grid's).
   BlockCsrMatrix(const CsrMatrix& M, const mesh::TallCellGrid& T) : grid(T.grid()), halo(T.block()) {
     n = static_cast<int>(M.n);
+    columns = static_cast<int>(T.unknowns());
     CsrMatrix C = M;
     const long first = T.first_unknown();
     std::unordered_map<long, int> ring;  // global unknown -> lattice cell
@@ -39,7 +43,7 @@ struct BlockCsrMatrix {
     std::vector<int> ghost;
     for (auto& c : C.cols) {
       const long g = c;
-      if (g >= first && g < first + n) {
+      if (g >= first && g < first + columns) {
         c = static_cast<int>(g - first);
         continue;
       }
@@ -47,7 +51,7 @@ struct BlockCsrMatrix {
       if (it == column.end()) {
         const auto r = ring.find(g);
         if (r == ring.end()) throw std::logic_error("BlockCsrMatrix: a column is neither this block's nor its ring's");
-        it = column.emplace(g, n + static_cast<int>(ghost.size())).first;
+        it = column.emplace(g, columns + static_cast<int>(ghost.size())).first;
         ghost.push_back(r->second);
       }
       c = it->second;
@@ -57,11 +61,12 @@ struct BlockCsrMatrix {
     inverse_diagonal = local.inverse_diagonal;
     own_cells = to_view<MemSpace>(T.unknown_cells(), "amphora::block_csr::own_cells");
     ghost_cells = to_view<MemSpace>(ghost, "amphora::block_csr::ghost_cells");
-    extended = Vector("amphora::block_csr::extended", n + ghosts);
+    extended = Vector("amphora::block_csr::extended", columns + ghosts);
     if (halo.block().split()) lattice = Vector("amphora::block_csr::lattice", grid.padded_size());
   }
 
-  /// y = A x (x, y: this block's unknowns). Collective on a split grid.
+  /// y = A x (x: this block's unknowns of the column grid, y: its rows). Collective on a split
+  /// grid.
   template <class ExecSpace, class X, class Y>
   void apply(const ExecSpace& exec, const X& x, const Y& y) const {
     if (!halo.block().split()) {
@@ -70,16 +75,16 @@ struct BlockCsrMatrix {
     }
     const Vector L = lattice, E = extended;
     const auto own = own_cells, ring = ghost_cells;
-    const int rows = n;
+    const int first_ghost = columns;
     Kokkos::parallel_for(
-        "amphora::block_csr::to_lattice", RangePolicy<ExecSpace>(exec, 0, rows), KOKKOS_LAMBDA(int u) {
+        "amphora::block_csr::to_lattice", RangePolicy<ExecSpace>(exec, 0, columns), KOKKOS_LAMBDA(int u) {
           L(own(u)) = x(u);
           E(u) = x(u);
         });
     halo.exchange(exec, grid, L);
     Kokkos::parallel_for(
         "amphora::block_csr::from_ring", RangePolicy<ExecSpace>(exec, 0, ghosts),
-        KOKKOS_LAMBDA(int g) { E(rows + g) = L(ring(g)); });
+        KOKKOS_LAMBDA(int g) { E(first_ghost + g) = L(ring(g)); });
     local.apply(exec, E, y);
   }
 

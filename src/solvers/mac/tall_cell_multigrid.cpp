@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "solvers/mac/tall_cell_level_transfer.hpp"
 #include "solvers/mac/tall_cell_matrix.hpp"
 
 namespace amphora::solvers::mac {
@@ -81,14 +82,11 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
   mesh::MacBlock level_block = block;
   for (int l = 0;; ++l) {
     auto L = std::make_unique<Level>();
-    L->layout = mesh::make_layout<MemSpace>(level_grid);
-    L->A = level_A;
     L->A_t = Csr(level_matrix, level_grid);
     const int n = L->A_t.n;
     L->b = Vector("amphora::tall_mg::b", n);
     L->x = Vector("amphora::tall_mg::x", n);
     L->r = Vector("amphora::tall_mg::r", n);
-    L->lattice = Vector("amphora::tall_mg::lattice", level_A.grid.padded_size());
     // every rank decides together (a block's first cell must stay on the coarse grid)
     const mesh::MacGrid g = level_A.grid;
     long cells = g.cells();
@@ -108,7 +106,6 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Csr, Vector, BlockInnerProduct>>(
         exec, L->A_t, L->A_t.inverse_diagonal, smoothing, inner,
         to_view<MemSpace>(start_vector(level_grid, level_block), "amphora::tall_mg::start"));
-    levels_.push_back(std::move(L));
     // the next level: the same optical depth in metres on the coarser lattice
     Stencil coarse = kernels::mac::coarsen_stencil(exec, level_A);
     complete_block_stencil(exec, halo_, &level_A, coarse);
@@ -116,7 +113,12 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     for (int d : {0, 2}) level_block.global_lower[d] /= 2;
     const int depth = (T.optical_depth() + (2 << l) - 1) >> (l + 1);
     const auto host_A = kernels::mac::host_stencil(level_A);
-    level_grid = mesh::TallCellGrid(host_A, std::max(depth, 1), level_block);
+    mesh::TallCellGrid coarse_grid(host_A, std::max(depth, 1), level_block);
+    const TallCellLevelTransfer transfer = tall_cell_level_transfer(level_grid, coarse_grid, host_A);
+    L->prolongation = Csr(transfer.prolongation, coarse_grid);
+    L->restriction = Csr(transfer.restriction, level_grid);
+    levels_.push_back(std::move(L));
+    level_grid = std::move(coarse_grid);
     level_matrix = assemble_tall_cell_matrix(level_grid, host_A);
   }
 }
@@ -141,29 +143,10 @@ void TallCellMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l, const Ve
   }
   const Level& C = *levels_[l + 1];
   L.smoother->smooth(exec, b, x, true);
-  // restriction: r -> G^-1 r -> lattice -> coarse lattice -> coarse tall unknowns
   L.A_t.residual(exec, b, x, L.r);
-  kernels::mac::tall_cell_gram_solve(exec, L.layout, L.r);
-  kernels::mac::tall_cell_prolongate(exec, L.layout, L.r, L.lattice);
-  sync(exec, L, L.lattice);
-  kernels::mac::restrict_to_coarse(exec, L.A, C.A, L.lattice, C.lattice);
-  if (C.A.any_solid) {
-    sync(exec, C, C.lattice);
-    kernels::mac::gather_from_solids(exec, C.A, C.lattice);
-  }
-  kernels::mac::tall_cell_restrict(exec, C.layout, C.lattice, C.b);
+  L.restriction.apply(exec, L.r, C.b);
   vcycle(exec, l + 1, C.b, C.x);
-  // prolongation: coarse tall -> coarse lattice -> lattice -> fit -> add
-  kernels::mac::tall_cell_prolongate(exec, C.layout, C.x, C.lattice);
-  sync(exec, C, C.lattice);
-  if (C.A.any_solid) {
-    kernels::mac::extend_into_solids(exec, C.A, C.lattice);
-    sync(exec, C, C.lattice);
-  }
-  blas1::fill(exec, L.lattice, 0.0);
-  kernels::mac::prolongate_add(exec, C.A, L.A, C.lattice, L.lattice);
-  kernels::mac::tall_cell_restrict(exec, L.layout, L.lattice, L.r);
-  kernels::mac::tall_cell_gram_solve(exec, L.layout, L.r);
+  L.prolongation.apply(exec, C.x, L.r);
   blas1::axpy(exec, 1.0, L.r, x);
   L.smoother->smooth(exec, b, x, false);
 }

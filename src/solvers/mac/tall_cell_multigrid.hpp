@@ -3,23 +3,19 @@
 // hierarchy of tall-cell grids over lattices with cells twice as wide, the same optical depth
 // in metres (in the spirit of the restricted tall-cell grids of Chentanez & Müller 2011), each
 // level's matrix assembled as P_l^T A_l P_l from the rediscretised lattice matrix A_l. Between
-// tall-cell levels l and l+1
-//   Q = G_l^-1 P_l^T P_u P_{l+1},  G_l = P_l^T P_l   (coarse tall -> coarse lattice -> fine
-//                                  lattice by trilinear P_u -> least-squares fit on level l),
-//   restriction Q^T = P_{l+1}^T P_u^T P_l G_l^-1,
-// so Q^T A_t,l Q ~ A_t,l+1 on functions the coarse level represents. Chebyshev–Jacobi smoothing
-// on each level (parallel, symmetric), exact sparse Cholesky on the coarsest. The transfers pass
-// over the lattices; all smoothing is on the tall-cell unknowns.
+// tall-cell levels the prolongation Q interpolates the coarse tall-cell pressure at the fine
+// unknowns (trilinear between cells, linear in height inside tall cells) and the restriction
+// is Q^T, both assembled (tall_cell_level_transfer.hpp), so a V-cycle costs work in proportion
+// to the unknowns, not to the lattices under them. Chebyshev–Jacobi smoothing on each level
+// (parallel, symmetric), exact sparse Cholesky on the coarsest.
 //
-// On a grid split over ranks (T.block()) every level keeps the blocks, halved, as the uniform
-// multigrid does: each level's rows of A_t with the ghost ring's columns (BlockCsrMatrix), the
-// lattices' ghost layers exchanged before the restriction and the prolongation read across the
-// block faces, inner products summed over the ranks, and the coarsest system gathered and
+// On a split grid (T.block()) every level keeps the blocks, halved, as the uniform multigrid
+// does: each level's rows of A_t and of the transfers with the ghost ring's columns
+// (BlockCsrMatrix), inner products summed over the ranks, and the coarsest system gathered and
 // factorised on every rank.
 #include <memory>
 #include <vector>
 
-#include "kernels/mac/tall_cell_transfer.hpp"
 #include "solvers/chebyshev.hpp"
 #include "solvers/device_csr.hpp"
 #include "solvers/mac/block_csr_matrix.hpp"
@@ -62,15 +58,12 @@ class TallCellMultigrid {
 
  private:
   struct Level {
-    mesh::TallCellLayout<MemSpace> layout;
-    Stencil A;  // the lattice matrix
     Csr A_t;
+    Csr prolongation, restriction;  // from and to the next coarser level (none on the coarsest)
     std::unique_ptr<ChebyshevSmoother<ExecSpace, Csr, Vector, BlockInnerProduct>> smoother;
-    Vector b, x, r, lattice;
+    Vector b, x, r;
   };
   void vcycle(const ExecSpace& exec, int l, const Vector& b, const Vector& x) const;
-  /// The ghost layer of a level's lattice field (nothing on one block).
-  void sync(const ExecSpace& exec, const Level& L, const Vector& v) const { halo_.exchange(exec, L.A.grid, v); }
 
   mesh::LatticeGhostExchange halo_;
   std::vector<std::unique_ptr<Level>> levels_;

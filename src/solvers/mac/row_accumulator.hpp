@@ -1,0 +1,83 @@
+#pragma once
+// A host accumulator for the rows of a sparse matrix (solvers/mac assembly of tall-cell
+// matrices and transfers), with global row numbers: a block keeps its own rows.
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+#include "solvers/csr_matrix.hpp"
+
+namespace amphora::solvers::mac {
+
+/// Rows of a sparse matrix under assembly: up to K entries per row inline in flat arrays, the
+/// rest of a longer row in a per-row overflow list; entries found by linear search. No
+/// allocation per row (the tall-cell matrices and transfers are assembled every sub-step).
+/// Rows come out with their columns sorted.
+template <int K>
+class RowAccumulator {
+ public:
+  /// Rows first .. first + n - 1 of the global matrix (the others are dropped).
+  RowAccumulator(long n, long first) : first_(first), count_(n, 0), cols_(n * K), values_(n * K), overflow_(n) {}
+  void add(long global_row, int c, double v) {
+    const long r = global_row - first_;
+    if (r < 0 || r >= static_cast<long>(count_.size())) return;  // another block's row
+    int* cols = cols_.data() + static_cast<long>(r) * K;
+    double* values = values_.data() + static_cast<long>(r) * K;
+    const int m = count_[r];
+    for (int e = 0; e < m; ++e)
+      if (cols[e] == c) {
+        values[e] += v;
+        return;
+      }
+    if (m < K) {
+      cols[m] = c;
+      values[m] = v;
+      count_[r] = m + 1;
+      return;
+    }
+    for (auto& e : overflow_[r])
+      if (e.first == c) {
+        e.second += v;
+        return;
+      }
+    overflow_[r].emplace_back(c, v);
+  }
+  /// += scale v v^T for the n entries (ids, v).
+  void add_outer(const int* ids, const double* v, int n, double scale) {
+    for (int a = 0; a < n; ++a)
+      for (int b = 0; b < n; ++b) add(ids[a], ids[b], scale * v[a] * v[b]);
+  }
+  CsrMatrix to_csr() const {
+    const long n = static_cast<long>(count_.size());
+    CsrMatrix M;
+    M.n = n;
+    M.row_ptr.resize(n + 1);
+    M.row_ptr[0] = 0;
+    for (long r = 0; r < n; ++r) M.row_ptr[r + 1] = M.row_ptr[r] + count_[r] + static_cast<long>(overflow_[r].size());
+    M.cols.resize(M.row_ptr[n]);
+    M.values.resize(M.row_ptr[n]);
+    std::vector<std::pair<int, double>> row;
+    for (long r = 0; r < n; ++r) {
+      row.clear();
+      for (int e = 0; e < count_[r]; ++e) row.emplace_back(cols_[r * K + e], values_[r * K + e]);
+      row.insert(row.end(), overflow_[r].begin(), overflow_[r].end());
+      std::sort(row.begin(), row.end());
+      long at = M.row_ptr[r];
+      for (const auto& [c, v] : row) {
+        M.cols[at] = c;
+        M.values[at++] = v;
+      }
+    }
+    return M;
+  }
+
+ private:
+  long first_ = 0;
+  std::vector<int> count_;
+  std::vector<int> cols_;
+  std::vector<double> values_;
+  std::vector<std::vector<std::pair<int, double>>> overflow_;
+};
+
+
+}  // namespace amphora::solvers::mac

@@ -1,0 +1,196 @@
+#include "solvers/mac/tall_cell_level_transfer.hpp"
+
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+
+namespace amphora::solvers::mac {
+
+namespace {
+/// The coarse cells (one or two) and weights of cell-centred linear interpolation at fine cell
+/// f along one direction: 3/4 from the parent, 1/4 from the parent's neighbour on f's side;
+/// beyond an edge of the grid the neighbour is the parent reflected, +1/4 at a wall, -1/4 at an
+/// open face (grid_transfer.hpp).
+int axis_weights(int f, int n_coarse, bool edge_lo, bool edge_hi, bool wall_lo, bool wall_hi, int index[2],
+                 double weight[2]) {
+  const int parent = f >= 0 ? f / 2 : -((1 - f) / 2);  // floor(f / 2): ring cells lie at -1
+  const int side = f - 2 * parent;
+  index[0] = parent;
+  const bool outside = side == 0 ? parent == 0 && edge_lo : parent == n_coarse - 1 && edge_hi;
+  if (outside) {
+    weight[0] = 0.75 + ((side == 0 ? wall_lo : wall_hi) ? 0.25 : -0.25);
+    return 1;
+  }
+  weight[0] = 0.75;
+  index[1] = side == 0 ? parent - 1 : parent + 1;
+  weight[1] = 0.25;
+  return 2;
+}
+}  // namespace
+
+TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, const mesh::TallCellGrid& coarse,
+                                               const kernels::mac::PoissonStencil<HostMemSpace>& coarse_A) {
+  const mesh::MacGrid &gf = fine.grid(), &gc = coarse.grid();
+  const auto edge = coarse_A.edges();
+  const auto wall = coarse_A.walls();
+  // every fine unknown whose row of Q this block needs: its own (for Q) and its ring's (for the
+  // coarse rows of Q^T), with the cell that carries it
+  std::vector<std::pair<long, int>> carriers;
+  const std::vector<int> own = fine.unknown_cells();
+  for (std::size_t u = 0; u < own.size(); ++u) carriers.emplace_back(fine.first_unknown() + long(u), own[u]);
+  for (const auto& ring : fine.ring_unknown_cells()) carriers.push_back(ring);
+
+  // the rows of Q for all of them, merged; then Q^T's rows of this block's coarse unknowns
+  std::vector<long> row_ptr{0};
+  std::vector<int> cols;
+  std::vector<double> values;
+  row_ptr.reserve(carriers.size() + 1);
+  cols.reserve(carriers.size() * 16);
+  values.reserve(carriers.size() * 16);
+  std::vector<std::pair<int, double>> acc[2], rows[2];
+  // acc += scale * (the coarse pressure interpolated at fine cell (i, j, k)), as coarse unknowns
+  auto interpolate = [&](int i, int j, int k, double scale, std::vector<std::pair<int, double>>& to) {
+    int xi[2], yi[2], zi[2];
+    double xw[2], yw[2], zw[2];
+    const int nx = axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw);
+    const int ny = axis_weights(j, gc.ny, edge[2], edge[3], wall[2], wall[3], yi, yw);
+    const int nz = axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw);
+    int ids[16];
+    double ws[16];
+    int n = 0;
+    double total = 0.0, solid = 0.0;
+    for (int c = 0; c < nz; ++c)
+      for (int b = 0; b < ny; ++b)
+        for (int a = 0; a < nx; ++a) {
+          const double w = xw[a] * yw[b] * zw[c];
+          total += w;
+          const int C = gc.index(xi[a], yi[b], zi[c]);
+          if (coarse_A.solid(C)) {
+            solid += w;
+            continue;
+          }
+          if (coarse_A.inverse_diag(C) == 0.0) continue;  // air: zero pressure
+          int U[2];
+          double W[2];
+          const int m = coarse.weights(xi[a], yi[b], zi[c], U, W);
+          for (int e = 0; e < m; ++e) ids[n] = U[e], ws[n++] = w * W[e];
+        }
+    if (total - solid <= 0.0) return;
+    scale *= total / (total - solid);
+    for (int e = 0; e < n; ++e) {
+      auto it = std::find_if(to.begin(), to.end(), [&](const auto& p) { return p.first == ids[e]; });
+      if (it == to.end())
+        to.emplace_back(ids[e], scale * ws[e]);
+      else
+        it->second += scale * ws[e];
+    }
+  };
+  auto emit = [&](std::vector<std::pair<int, double>>& row) {
+    std::sort(row.begin(), row.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+    for (const auto& [U, w] : row) {
+      cols.push_back(U);
+      values.push_back(w);
+    }
+    row_ptr.push_back(static_cast<long>(cols.size()));
+  };
+  for (std::size_t r = 0; r < carriers.size(); ++r) {
+    int i, j, k;
+    gf.ijk(carriers[r].second, i, j, k);
+    const mesh::TallCellColumn& column = fine.column(i, k);
+    acc[0].clear();
+    if (j >= column.band) {  // a uniform cell
+      interpolate(i, j, k, 1.0, acc[0]);
+      emit(acc[0]);
+      continue;
+    }
+    // A tall cell (its two samples are carried by its lowest two cells, r and r + 1): the
+    // least-squares fit G^-1 P^T of the interpolated coarse pressure over its rows, G = P^T P
+    // in closed form as in kernels/mac/tall_cell_transfer.hpp.
+    acc[1].clear();
+    const int t = column.terrain, L = column.band - column.terrain;
+    // Where both coarse rows of the interpolation lie inside the coarse tall cells of all the
+    // columns it reads, the interpolated pressure is linear in the fine row (linear interpolation
+    // of linear functions), so those rows enter through their two ends: the sums over them cost
+    // scalar work only.
+    int lo = t, hi = column.band - 1;
+    {
+      int xi[2], zi[2];
+      double xw[2], zw[2];
+      const int nx = axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw);
+      const int nz = axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw);
+      for (int c = 0; c < nz; ++c)
+        for (int a = 0; a < nx; ++a) {
+          const mesh::TallCellColumn& C = coarse.column(xi[a], zi[c]);
+          if (!C.has_tall_cell()) hi = lo - 1;
+          lo = std::max(lo, 2 * C.terrain + 1);
+          hi = std::min(hi, 2 * C.band - 2);
+        }
+    }
+    double ends[2][2] = {{0.0, 0.0}, {0.0, 0.0}};  // [sample][lo or hi end]
+    for (int jj = t; jj < column.band; ++jj) {
+      const double s = double(jj - t) / double(L - 1);
+      if (jj >= lo && jj <= hi) {
+        const double lambda = hi > lo ? double(jj - lo) / double(hi - lo) : 0.0;
+        ends[0][0] += (1.0 - s) * (1.0 - lambda), ends[0][1] += (1.0 - s) * lambda;
+        ends[1][0] += s * (1.0 - lambda), ends[1][1] += s * lambda;
+        continue;
+      }
+      if (s < 1.0) interpolate(i, jj, k, 1.0 - s, acc[0]);
+      if (s > 0.0) interpolate(i, jj, k, s, acc[1]);
+    }
+    if (lo <= hi)
+      for (int side = 0; side < 2; ++side) {
+        interpolate(i, lo, k, ends[side][0], acc[side]);
+        if (hi > lo) interpolate(i, hi, k, ends[side][1], acc[side]);
+      }
+    const double square = L * (2.0 * L - 1) / (6.0 * (L - 1)), cross = 0.5 * L - square;
+    const double det = square * square - cross * cross;
+    // rows = G^-1 [acc0; acc1] on the union of their columns
+    rows[0].clear(), rows[1].clear();
+    for (int side = 0; side < 2; ++side)
+      for (const auto& entry : acc[side])
+        if (std::none_of(rows[0].begin(), rows[0].end(), [&](const auto& p) { return p.first == entry.first; }))
+          rows[0].emplace_back(entry.first, 0.0), rows[1].emplace_back(entry.first, 0.0);
+    for (std::size_t e = 0; e < rows[0].size(); ++e) {
+      const int U = rows[0][e].first;
+      double v[2] = {0.0, 0.0};
+      for (int side = 0; side < 2; ++side)
+        for (const auto& [V, w] : acc[side])
+          if (V == U) v[side] = w;
+      rows[0][e].second = (square * v[0] - cross * v[1]) / det;
+      rows[1][e].second = (square * v[1] - cross * v[0]) / det;
+    }
+    emit(rows[0]);
+    emit(rows[1]);
+    ++r;  // the top sample's row is done
+  }
+  TallCellLevelTransfer t;
+  CsrMatrix& Q = t.prolongation;
+  Q.n = fine.unknowns();
+  Q.row_ptr.assign(row_ptr.begin(), row_ptr.begin() + Q.n + 1);
+  Q.cols.assign(cols.begin(), cols.begin() + Q.row_ptr[Q.n]);
+  Q.values.assign(values.begin(), values.begin() + Q.row_ptr[Q.n]);
+  // Q^T by counting: carriers come in increasing fine unknowns within the block and within
+  // the ring, so each coarse row lists its fine columns in that order
+  CsrMatrix& R = t.restriction;
+  const long first = coarse.first_unknown();
+  R.n = coarse.unknowns();
+  R.row_ptr.assign(R.n + 1, 0);
+  for (const int U : cols)
+    if (U >= first && U < first + R.n) ++R.row_ptr[U - first + 1];
+  for (long r = 0; r < R.n; ++r) R.row_ptr[r + 1] += R.row_ptr[r];
+  R.cols.resize(R.row_ptr[R.n]);
+  R.values.resize(R.row_ptr[R.n]);
+  std::vector<long> next(R.row_ptr.begin(), R.row_ptr.end() - 1);
+  for (std::size_t r = 0; r < carriers.size(); ++r)
+    for (long e = row_ptr[r]; e < row_ptr[r + 1]; ++e) {
+      const long U = cols[e] - first;
+      if (U < 0 || U >= R.n) continue;
+      R.cols[next[U]] = static_cast<int>(carriers[r].first);
+      R.values[next[U]++] = values[e];
+    }
+  return t;
+}
+
+}  // namespace amphora::solvers::mac
