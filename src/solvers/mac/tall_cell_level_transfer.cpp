@@ -48,17 +48,21 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   row_ptr.reserve(carriers.size() + 1);
   cols.reserve(carriers.size() * 16);
   values.reserve(carriers.size() * 16);
-  std::vector<std::pair<int, double>> acc[2], rows[2];
-  // acc += scale * (the coarse pressure interpolated at fine cell (i, j, k)), as coarse unknowns
-  auto interpolate = [&](int i, int j, int k, double scale, std::vector<std::pair<int, double>>& to) {
+  // the terms of the row(s) under construction: coarse unknown, which fine sample (a tall cell
+  // fits its two together), weight
+  struct Term {
+    int id, side;
+    double w;
+  };
+  std::vector<Term> terms;
+  // += scale * (the coarse pressure interpolated at fine cell (i, j, k)), for sample `side`
+  auto interpolate = [&](int i, int j, int k, int side, double scale) {
     int xi[2], yi[2], zi[2];
     double xw[2], yw[2], zw[2];
     const int nx = axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw);
     const int ny = axis_weights(j, gc.ny, edge[2], edge[3], wall[2], wall[3], yi, yw);
     const int nz = axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw);
-    int ids[16];
-    double ws[16];
-    int n = 0;
+    const std::size_t first = terms.size();
     double total = 0.0, solid = 0.0;
     for (int c = 0; c < nz; ++c)
       for (int b = 0; b < ny; ++b)
@@ -74,40 +78,39 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
           int U[2];
           double W[2];
           const int m = coarse.weights(xi[a], yi[b], zi[c], U, W);
-          for (int e = 0; e < m; ++e) ids[n] = U[e], ws[n++] = w * W[e];
+          for (int e = 0; e < m; ++e) terms.push_back({U[e], side, w * W[e]});
         }
-    if (total - solid <= 0.0) return;
-    scale *= total / (total - solid);
-    for (int e = 0; e < n; ++e) {
-      auto it = std::find_if(to.begin(), to.end(), [&](const auto& p) { return p.first == ids[e]; });
-      if (it == to.end())
-        to.emplace_back(ids[e], scale * ws[e]);
-      else
-        it->second += scale * ws[e];
-    }
+    const double share = total - solid > 0.0 ? scale * total / (total - solid) : 0.0;
+    for (std::size_t e = first; e < terms.size(); ++e) terms[e].w *= share;
   };
-  auto emit = [&](std::vector<std::pair<int, double>>& row) {
-    std::sort(row.begin(), row.end(), [](const auto& p, const auto& q) { return p.first < q.first; });
-    for (const auto& [U, w] : row) {
-      cols.push_back(U);
-      values.push_back(w);
+  // the row of one uniform sample, or the rows G^-1 [sum_0; sum_1] of a tall cell's two
+  auto emit = [&](int samples, double square, double cross) {
+    std::sort(terms.begin(), terms.end(), [](const Term& x, const Term& y) { return x.id < y.id; });
+    const double det = square * square - cross * cross;
+    for (int out = 0; out < samples; ++out) {
+      for (std::size_t e = 0; e < terms.size();) {
+        const int id = terms[e].id;
+        double v[2] = {0.0, 0.0};
+        for (; e < terms.size() && terms[e].id == id; ++e) v[terms[e].side] += terms[e].w;
+        cols.push_back(id);
+        values.push_back(samples == 1 ? v[0] : (square * v[out] - cross * v[1 - out]) / det);
+      }
+      row_ptr.push_back(static_cast<long>(cols.size()));
     }
-    row_ptr.push_back(static_cast<long>(cols.size()));
+    terms.clear();
   };
   for (std::size_t r = 0; r < carriers.size(); ++r) {
     int i, j, k;
     gf.ijk(carriers[r].second, i, j, k);
     const mesh::TallCellColumn& column = fine.column(i, k);
-    acc[0].clear();
     if (j >= column.band) {  // a uniform cell
-      interpolate(i, j, k, 1.0, acc[0]);
-      emit(acc[0]);
+      interpolate(i, j, k, 0, 1.0);
+      emit(1, 1.0, 0.0);
       continue;
     }
     // A tall cell (its two samples are carried by its lowest two cells, r and r + 1): the
     // least-squares fit G^-1 P^T of the interpolated coarse pressure over its rows, G = P^T P
     // in closed form as in kernels/mac/tall_cell_transfer.hpp.
-    acc[1].clear();
     const int t = column.terrain, L = column.band - column.terrain;
     // Where both coarse rows of the interpolation lie inside the coarse tall cells of all the
     // columns it reads, the interpolated pressure is linear in the fine row (linear interpolation
@@ -136,33 +139,16 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
         ends[1][0] += s * (1.0 - lambda), ends[1][1] += s * lambda;
         continue;
       }
-      if (s < 1.0) interpolate(i, jj, k, 1.0 - s, acc[0]);
-      if (s > 0.0) interpolate(i, jj, k, s, acc[1]);
+      if (s < 1.0) interpolate(i, jj, k, 0, 1.0 - s);
+      if (s > 0.0) interpolate(i, jj, k, 1, s);
     }
     if (lo <= hi)
       for (int side = 0; side < 2; ++side) {
-        interpolate(i, lo, k, ends[side][0], acc[side]);
-        if (hi > lo) interpolate(i, hi, k, ends[side][1], acc[side]);
+        interpolate(i, lo, k, side, ends[side][0]);
+        if (hi > lo) interpolate(i, hi, k, side, ends[side][1]);
       }
     const double square = L * (2.0 * L - 1) / (6.0 * (L - 1)), cross = 0.5 * L - square;
-    const double det = square * square - cross * cross;
-    // rows = G^-1 [acc0; acc1] on the union of their columns
-    rows[0].clear(), rows[1].clear();
-    for (int side = 0; side < 2; ++side)
-      for (const auto& entry : acc[side])
-        if (std::none_of(rows[0].begin(), rows[0].end(), [&](const auto& p) { return p.first == entry.first; }))
-          rows[0].emplace_back(entry.first, 0.0), rows[1].emplace_back(entry.first, 0.0);
-    for (std::size_t e = 0; e < rows[0].size(); ++e) {
-      const int U = rows[0][e].first;
-      double v[2] = {0.0, 0.0};
-      for (int side = 0; side < 2; ++side)
-        for (const auto& [V, w] : acc[side])
-          if (V == U) v[side] = w;
-      rows[0][e].second = (square * v[0] - cross * v[1]) / det;
-      rows[1][e].second = (square * v[1] - cross * v[0]) / det;
-    }
-    emit(rows[0]);
-    emit(rows[1]);
+    emit(2, square, cross);
     ++r;  // the top sample's row is done
   }
   TallCellLevelTransfer t;

@@ -70,27 +70,33 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
         const int in = i + (dir == 0), kn = k + (dir == 1);
         const mesh::TallCellColumn &col = T.column(i, k), &next = T.column(in, kn);
         const double dc = tall_step(col), dn = tall_step(next);
-        double block[4][4] = {};
-        bool any_block = false;
-        for (int j = std::max(col.terrain, next.terrain); j < g.ny; ++j) {
+        // tall against tall: sum_j c_j v(j) v(j)^T with v = (1 - t, t, -(1 - s), -s) linear in
+        // j, so from the moments sum c, sum c x, sum c x^2 (x = j - j0, small for accuracy)
+        const int j0 = std::max(col.terrain, next.terrain), j_tall = std::min(col.band, next.band);
+        double m0 = 0.0, m1 = 0.0, m2 = 0.0;
+        for (int j = j0; j < g.ny; ++j) {
           const double c = cond(g.index(i, j, k));
           if (c == 0.0) continue;
-          if (j < col.band && j < next.band) {  // tall against tall: a 4x4 block
-            const double t = (j - col.terrain) * dc, s = (j - next.terrain) * dn;
-            const double v[4] = {1.0 - t, t, -(1.0 - s), -s};
-            for (int a = 0; a < 4; ++a)
-              for (int b = 0; b < 4; ++b) block[a][b] += c * v[a] * v[b];
-            any_block = true;
+          if (j < j_tall) {
+            const double x = j - j0;
+            m0 += c, m1 += c * x, m2 += c * x * x;
           } else {
             add_face(i, j, k, in, j, kn, c);
           }
         }
-        if (any_block) {
+        if (m0 != 0.0) {
+          // v(j0 + x) = p + q x
+          const double t0 = (j0 - col.terrain) * dc, s0 = (j0 - next.terrain) * dn;
+          const double p[4] = {1.0 - t0, t0, -(1.0 - s0), -s0}, q[4] = {-dc, dc, dn, -dn};
           const int bot = static_cast<int>(T.global_first_unknown(i, k));
           const int nbot = static_cast<int>(T.global_first_unknown(in, kn));
           const int ids[4] = {bot, bot + 1, nbot, nbot + 1};
           for (int a = 0; a < 4; ++a)
-            for (int b = 0; b < 4; ++b) rows.add(ids[a], ids[b], block[a][b]);
+            for (int b = a; b < 4; ++b) {  // one value for (a, b) and (b, a): exactly symmetric
+              const double v = p[a] * p[b] * m0 + (p[a] * q[b] + q[a] * p[b]) * m1 + q[a] * q[b] * m2;
+              rows.add(ids[a], ids[b], v);
+              if (b != a) rows.add(ids[b], ids[a], v);
+            }
         }
       }
   }
