@@ -112,20 +112,37 @@ void mark_fluid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, cons
       });
 }
 
+/// The lowest row of the block holding an air cell (ny if none). Extrapolation fills faces
+/// between two air cells only, so it has nothing to do below this row: under deep water most
+/// of the lattice.
+template <class ExecSpace, class T>
+int lowest_air_row(const ExecSpace& exec, const mesh::MacGrid& g, const T& type) {
+  int lowest = g.ny;
+  Kokkos::parallel_reduce(
+      "amphora::mac::lowest_air_row",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
+      KOKKOS_LAMBDA(int k, int j, int i, int& acc) {
+        if (type(g.index(i, j, k)) == mesh::MacCellType::air && j < acc) acc = j;
+      },
+      Kokkos::Min<int>(lowest));
+  return lowest;
+}
+
 /// Layer `layer` (>= 2) of extrapolation, in place: every unknown (mark 0), non-solid face of
 /// component d with face neighbours (same component, 6 directions) marked 1 .. layer - 1 takes
 /// their mean and the mark `layer`. Faces marked in this layer are not read by it (their mark is
 /// either 0 or `layer` while it runs), so the update is order- and thread-count-free without a
-/// second buffer. Marks: 1 = known (next to fluid), 0 = unknown.
+/// second buffer. Marks: 1 = known (next to fluid), 0 = unknown. Rows below first_row are
+/// skipped: pass lowest_air_row(), below which no face lies between two air cells.
 template <class ExecSpace, class T, class F, class M>
 void extrapolate_layer(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const F& face,
-                       const M& mark, int layer, const mesh::MacEdges& edges = mesh::box_edges()) {
+                       const M& mark, int layer, const mesh::MacEdges& edges = mesh::box_edges(), int first_row = 0) {
   using mesh::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   const int sy = g.stride_y(), sz = g.stride_z();
   Kokkos::parallel_for(
       "amphora::mac::extrapolate_layer",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::min(first_row, ey), 0}, {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         int L, R;
         const bool inside = detail::face_cells(g, edges, d, i, j, k, L, R);

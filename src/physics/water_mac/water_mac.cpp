@@ -522,6 +522,7 @@ class WaterMac final : public Module {
     const Exec exec;
     const mesh::MacGrid& g = grid_;
     const Vector faces[3] = {u_, v_, w_};
+    const int first_row = kernels::mac::lowest_air_row(exec, g, type_);
     for (int d = 0; d < 3; ++d) {
       // faces next to fluid keep their values; solid and box faces are zero (the projection
       // set them), the rest are filled layer by layer from known neighbours
@@ -540,7 +541,7 @@ class WaterMac final : public Module {
       halo_.exchange(exec, g, faces[d]);
       halo_.exchange(exec, g, valid_);
       for (int layer = 2; layer < 2 + extrapolation_layers_; ++layer) {
-        kernels::mac::extrapolate_layer(exec, g, d, type_, faces[d], valid_, layer, edges_);
+        kernels::mac::extrapolate_layer(exec, g, d, type_, faces[d], valid_, layer, edges_, first_row);
         halo_.exchange(exec, g, faces[d]);
         halo_.exchange(exec, g, valid_);
       }

@@ -59,10 +59,11 @@ struct BlockCsrMatrix {
     ghosts = static_cast<int>(ghost.size());
     local = DeviceCsrMatrix<MemSpace>(C);
     inverse_diagonal = local.inverse_diagonal;
+    if (!halo.block().split()) return;  // one block: apply() is the plain product
     own_cells = to_view<MemSpace>(T.unknown_cells(), "amphora::block_csr::own_cells");
     ghost_cells = to_view<MemSpace>(ghost, "amphora::block_csr::ghost_cells");
     extended = Vector("amphora::block_csr::extended", columns + ghosts);
-    if (halo.block().split()) lattice = Vector("amphora::block_csr::lattice", grid.padded_size());
+    lattice = Vector("amphora::block_csr::lattice", grid.padded_size());
   }
 
   /// y = A x (x: this block's unknowns of the column grid, y: its rows). Collective on a split
