@@ -35,6 +35,11 @@ struct BlockCsrMatrix {
   BlockCsrMatrix(const CsrMatrix& M, const mesh::TallCellGrid& T) : grid(T.grid()), halo(T.block()) {
     n = static_cast<int>(M.n);
     columns = static_cast<int>(T.unknowns());
+    if (!halo.block().split()) {  // one block: global columns are local ones, apply() the plain product
+      local = DeviceCsrMatrix<MemSpace>(M);
+      inverse_diagonal = local.inverse_diagonal;
+      return;
+    }
     CsrMatrix C = M;
     const long first = T.first_unknown();
     std::unordered_map<long, int> ring;  // global unknown -> lattice cell
@@ -59,7 +64,6 @@ struct BlockCsrMatrix {
     ghosts = static_cast<int>(ghost.size());
     local = DeviceCsrMatrix<MemSpace>(C);
     inverse_diagonal = local.inverse_diagonal;
-    if (!halo.block().split()) return;  // one block: apply() is the plain product
     own_cells = to_view<MemSpace>(T.unknown_cells(), "amphora::block_csr::own_cells");
     ghost_cells = to_view<MemSpace>(ghost, "amphora::block_csr::ghost_cells");
     extended = Vector("amphora::block_csr::extended", columns + ghosts);

@@ -1,6 +1,7 @@
 #include "solvers/mac/tall_cell_level_transfer.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <utility>
 #include <vector>
 
@@ -40,116 +41,145 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   const std::vector<int> own = fine.unknown_cells();
   for (std::size_t u = 0; u < own.size(); ++u) carriers.emplace_back(fine.first_unknown() + long(u), own[u]);
   for (const auto& ring : fine.ring_unknown_cells()) carriers.push_back(ring);
+  const auto is_tall_top = [&](int cell) {
+    int i, j, k;
+    gf.ijk(cell, i, j, k);
+    const mesh::TallCellColumn& column = fine.column(i, k);
+    return j < column.band && j == column.terrain + 1;
+  };
 
-  // the rows of Q for all of them, merged; then Q^T's rows of this block's coarse unknowns
+  // The rows of Q for all of them, merged, built in chunks of carriers in parallel (each row
+  // alone, so the result does not depend on the threads); then Q^T's rows of this block's
+  // coarse unknowns.
+  struct Rows {
+    std::vector<long> length;
+    std::vector<int> cols;
+    std::vector<double> values;
+  };
+  const auto build = [&](std::size_t r_begin, std::size_t r_end, Rows& out) {
+    // the terms of the row(s) under construction: coarse unknown, which fine sample (a tall cell
+    // fits its two together), weight
+    struct Term {
+      int id, side;
+      double w;
+    };
+    std::vector<Term> terms;
+    // += scale * (the coarse pressure interpolated at fine cell (i, j, k)), for sample `side`
+    auto interpolate = [&](int i, int j, int k, int side, double scale) {
+      int xi[2], yi[2], zi[2];
+      double xw[2], yw[2], zw[2];
+      const int nx = axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw);
+      const int ny = axis_weights(j, gc.ny, edge[2], edge[3], wall[2], wall[3], yi, yw);
+      const int nz = axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw);
+      const std::size_t first = terms.size();
+      double total = 0.0, solid = 0.0;
+      for (int c = 0; c < nz; ++c)
+        for (int b = 0; b < ny; ++b)
+          for (int a = 0; a < nx; ++a) {
+            const double w = xw[a] * yw[b] * zw[c];
+            total += w;
+            const int C = gc.index(xi[a], yi[b], zi[c]);
+            if (coarse_A.solid(C)) {
+              solid += w;
+              continue;
+            }
+            if (coarse_A.inverse_diag(C) == 0.0) continue;  // air: zero pressure
+            int U[2];
+            double W[2];
+            const int m = coarse.weights(xi[a], yi[b], zi[c], U, W);
+            for (int e = 0; e < m; ++e) terms.push_back({U[e], side, w * W[e]});
+          }
+      const double share = total - solid > 0.0 ? scale * total / (total - solid) : 0.0;
+      for (std::size_t e = first; e < terms.size(); ++e) terms[e].w *= share;
+    };
+    // the row of one uniform sample, or the rows G^-1 [sum_0; sum_1] of a tall cell's two
+    auto emit = [&](int samples, double square, double cross) {
+      std::sort(terms.begin(), terms.end(), [](const Term& x, const Term& y) { return x.id < y.id; });
+      const double det = square * square - cross * cross;
+      for (int sample = 0; sample < samples; ++sample) {
+        for (std::size_t e = 0; e < terms.size();) {
+          const int id = terms[e].id;
+          double v[2] = {0.0, 0.0};
+          for (; e < terms.size() && terms[e].id == id; ++e) v[terms[e].side] += terms[e].w;
+          out.cols.push_back(id);
+          out.values.push_back(samples == 1 ? v[0] : (square * v[sample] - cross * v[1 - sample]) / det);
+        }
+        out.length.push_back(static_cast<long>(out.cols.size()));
+      }
+      terms.clear();
+    };
+    for (std::size_t r = r_begin; r < r_end; ++r) {
+      int i, j, k;
+      gf.ijk(carriers[r].second, i, j, k);
+      const mesh::TallCellColumn& column = fine.column(i, k);
+      if (j >= column.band) {  // a uniform cell
+        interpolate(i, j, k, 0, 1.0);
+        emit(1, 1.0, 0.0);
+        continue;
+      }
+      // A tall cell (its two samples are carried by its lowest two cells, r and r + 1): the
+      // least-squares fit G^-1 P^T of the interpolated coarse pressure over its rows, G = P^T P
+      // in closed form as in kernels/mac/tall_cell_transfer.hpp.
+      const int t = column.terrain, L = column.band - column.terrain;
+      // Where both coarse rows of the interpolation lie inside the coarse tall cells of all the
+      // columns it reads, the interpolated pressure is linear in the fine row (linear interpolation
+      // of linear functions), so those rows enter through their two ends: the sums over them cost
+      // scalar work only.
+      int lo = t, hi = column.band - 1;
+      {
+        int xi[2], zi[2];
+        double xw[2], zw[2];
+        const int nx = axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw);
+        const int nz = axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw);
+        for (int c = 0; c < nz; ++c)
+          for (int a = 0; a < nx; ++a) {
+            const mesh::TallCellColumn& C = coarse.column(xi[a], zi[c]);
+            if (!C.has_tall_cell()) hi = lo - 1;
+            lo = std::max(lo, 2 * C.terrain + 1);
+            hi = std::min(hi, 2 * C.band - 2);
+          }
+      }
+      double ends[2][2] = {{0.0, 0.0}, {0.0, 0.0}};  // [sample][lo or hi end]
+      for (int jj = t; jj < column.band; ++jj) {
+        const double s = double(jj - t) / double(L - 1);
+        if (jj >= lo && jj <= hi) {
+          const double lambda = hi > lo ? double(jj - lo) / double(hi - lo) : 0.0;
+          ends[0][0] += (1.0 - s) * (1.0 - lambda), ends[0][1] += (1.0 - s) * lambda;
+          ends[1][0] += s * (1.0 - lambda), ends[1][1] += s * lambda;
+          continue;
+        }
+        if (s < 1.0) interpolate(i, jj, k, 0, 1.0 - s);
+        if (s > 0.0) interpolate(i, jj, k, 1, s);
+      }
+      if (lo <= hi)
+        for (int side = 0; side < 2; ++side) {
+          interpolate(i, lo, k, side, ends[side][0]);
+          if (hi > lo) interpolate(i, hi, k, side, ends[side][1]);
+        }
+      const double square = L * (2.0 * L - 1) / (6.0 * (L - 1)), cross = 0.5 * L - square;
+      emit(2, square, cross);
+      ++r;  // the top sample's row is done
+    }
+  };
+  // chunk bounds never split a tall cell's two samples (the bottom's carrier, then the top's)
+  const std::size_t n_carriers = carriers.size(), chunks = std::min<std::size_t>(64, n_carriers + 1);
+  std::vector<std::size_t> bound(chunks + 1, n_carriers);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    std::size_t r = c * n_carriers / chunks;
+    while (r > 0 && r < n_carriers && is_tall_top(carriers[r].second)) ++r;
+    bound[c] = r;
+  }
+  std::vector<Rows> parts(chunks);
+  Kokkos::parallel_for("amphora::tall_mg::transfer_rows", Kokkos::RangePolicy<HostExecSpace>(0, chunks),
+                       [&](std::size_t c) { build(bound[c], bound[c + 1], parts[c]); });
   std::vector<long> row_ptr{0};
   std::vector<int> cols;
   std::vector<double> values;
-  row_ptr.reserve(carriers.size() + 1);
-  cols.reserve(carriers.size() * 16);
-  values.reserve(carriers.size() * 16);
-  // the terms of the row(s) under construction: coarse unknown, which fine sample (a tall cell
-  // fits its two together), weight
-  struct Term {
-    int id, side;
-    double w;
-  };
-  std::vector<Term> terms;
-  // += scale * (the coarse pressure interpolated at fine cell (i, j, k)), for sample `side`
-  auto interpolate = [&](int i, int j, int k, int side, double scale) {
-    int xi[2], yi[2], zi[2];
-    double xw[2], yw[2], zw[2];
-    const int nx = axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw);
-    const int ny = axis_weights(j, gc.ny, edge[2], edge[3], wall[2], wall[3], yi, yw);
-    const int nz = axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw);
-    const std::size_t first = terms.size();
-    double total = 0.0, solid = 0.0;
-    for (int c = 0; c < nz; ++c)
-      for (int b = 0; b < ny; ++b)
-        for (int a = 0; a < nx; ++a) {
-          const double w = xw[a] * yw[b] * zw[c];
-          total += w;
-          const int C = gc.index(xi[a], yi[b], zi[c]);
-          if (coarse_A.solid(C)) {
-            solid += w;
-            continue;
-          }
-          if (coarse_A.inverse_diag(C) == 0.0) continue;  // air: zero pressure
-          int U[2];
-          double W[2];
-          const int m = coarse.weights(xi[a], yi[b], zi[c], U, W);
-          for (int e = 0; e < m; ++e) terms.push_back({U[e], side, w * W[e]});
-        }
-    const double share = total - solid > 0.0 ? scale * total / (total - solid) : 0.0;
-    for (std::size_t e = first; e < terms.size(); ++e) terms[e].w *= share;
-  };
-  // the row of one uniform sample, or the rows G^-1 [sum_0; sum_1] of a tall cell's two
-  auto emit = [&](int samples, double square, double cross) {
-    std::sort(terms.begin(), terms.end(), [](const Term& x, const Term& y) { return x.id < y.id; });
-    const double det = square * square - cross * cross;
-    for (int out = 0; out < samples; ++out) {
-      for (std::size_t e = 0; e < terms.size();) {
-        const int id = terms[e].id;
-        double v[2] = {0.0, 0.0};
-        for (; e < terms.size() && terms[e].id == id; ++e) v[terms[e].side] += terms[e].w;
-        cols.push_back(id);
-        values.push_back(samples == 1 ? v[0] : (square * v[out] - cross * v[1 - out]) / det);
-      }
-      row_ptr.push_back(static_cast<long>(cols.size()));
-    }
-    terms.clear();
-  };
-  for (std::size_t r = 0; r < carriers.size(); ++r) {
-    int i, j, k;
-    gf.ijk(carriers[r].second, i, j, k);
-    const mesh::TallCellColumn& column = fine.column(i, k);
-    if (j >= column.band) {  // a uniform cell
-      interpolate(i, j, k, 0, 1.0);
-      emit(1, 1.0, 0.0);
-      continue;
-    }
-    // A tall cell (its two samples are carried by its lowest two cells, r and r + 1): the
-    // least-squares fit G^-1 P^T of the interpolated coarse pressure over its rows, G = P^T P
-    // in closed form as in kernels/mac/tall_cell_transfer.hpp.
-    const int t = column.terrain, L = column.band - column.terrain;
-    // Where both coarse rows of the interpolation lie inside the coarse tall cells of all the
-    // columns it reads, the interpolated pressure is linear in the fine row (linear interpolation
-    // of linear functions), so those rows enter through their two ends: the sums over them cost
-    // scalar work only.
-    int lo = t, hi = column.band - 1;
-    {
-      int xi[2], zi[2];
-      double xw[2], zw[2];
-      const int nx = axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw);
-      const int nz = axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw);
-      for (int c = 0; c < nz; ++c)
-        for (int a = 0; a < nx; ++a) {
-          const mesh::TallCellColumn& C = coarse.column(xi[a], zi[c]);
-          if (!C.has_tall_cell()) hi = lo - 1;
-          lo = std::max(lo, 2 * C.terrain + 1);
-          hi = std::min(hi, 2 * C.band - 2);
-        }
-    }
-    double ends[2][2] = {{0.0, 0.0}, {0.0, 0.0}};  // [sample][lo or hi end]
-    for (int jj = t; jj < column.band; ++jj) {
-      const double s = double(jj - t) / double(L - 1);
-      if (jj >= lo && jj <= hi) {
-        const double lambda = hi > lo ? double(jj - lo) / double(hi - lo) : 0.0;
-        ends[0][0] += (1.0 - s) * (1.0 - lambda), ends[0][1] += (1.0 - s) * lambda;
-        ends[1][0] += s * (1.0 - lambda), ends[1][1] += s * lambda;
-        continue;
-      }
-      if (s < 1.0) interpolate(i, jj, k, 0, 1.0 - s);
-      if (s > 0.0) interpolate(i, jj, k, 1, s);
-    }
-    if (lo <= hi)
-      for (int side = 0; side < 2; ++side) {
-        interpolate(i, lo, k, side, ends[side][0]);
-        if (hi > lo) interpolate(i, hi, k, side, ends[side][1]);
-      }
-    const double square = L * (2.0 * L - 1) / (6.0 * (L - 1)), cross = 0.5 * L - square;
-    emit(2, square, cross);
-    ++r;  // the top sample's row is done
+  for (const Rows& part : parts) {
+    const long base = row_ptr.back();
+    for (const long end : part.length) row_ptr.push_back(base + end);
+    cols.insert(cols.end(), part.cols.begin(), part.cols.end());
+    values.insert(values.end(), part.values.begin(), part.values.end());
   }
   TallCellLevelTransfer t;
   CsrMatrix& Q = t.prolongation;
