@@ -5,7 +5,6 @@
 #include <utility>
 #include <vector>
 
-
 namespace amphora::solvers::mac {
 
 namespace {
@@ -52,7 +51,7 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   // alone, so the result does not depend on the threads); then Q^T's rows of this block's
   // coarse unknowns.
   struct Rows {
-    std::vector<long> length;
+    std::vector<long> ends;  // each row's end in cols/values
     std::vector<int> cols;
     std::vector<double> values;
   };
@@ -104,7 +103,7 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
           out.cols.push_back(id);
           out.values.push_back(samples == 1 ? v[0] : (square * v[sample] - cross * v[1 - sample]) / det);
         }
-        out.length.push_back(static_cast<long>(out.cols.size()));
+        out.ends.push_back(static_cast<long>(out.cols.size()));
       }
       terms.clear();
     };
@@ -177,7 +176,7 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   std::vector<double> values;
   for (const Rows& part : parts) {
     const long base = row_ptr.back();
-    for (const long end : part.length) row_ptr.push_back(base + end);
+    for (const long end : part.ends) row_ptr.push_back(base + end);
     cols.insert(cols.end(), part.cols.begin(), part.cols.end());
     values.insert(values.end(), part.values.begin(), part.values.end());
   }
