@@ -95,11 +95,12 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    for r in runs:
+    for n, r in enumerate(runs):
         ax.plot(r["seconds_per_step"], 100 * r["error"], "o", color="C0" if r["depth"] else "C3")
         label = "uniform" if r["depth"] == 0 else f"D = {r['depth']}"
+        # labels alternately above and below their points, so neighbours do not overlap
         ax.annotate(f"{label}\n{r['unknowns'] / 1e3:.0f}k unknowns", (r["seconds_per_step"], 100 * r["error"]),
-                    textcoords="offset points", xytext=(6, 4), fontsize=8)
+                    textcoords="offset points", xytext=(6, 4 if n % 2 else -22), fontsize=8)
     ax.axhline(5, color="grey", lw=0.8, ls="--")
     ax.margins(0.2)
     ax.set_xlabel("wall time per step [s]")
