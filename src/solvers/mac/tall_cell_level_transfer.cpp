@@ -181,11 +181,6 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
     values.insert(values.end(), part.values.begin(), part.values.end());
   }
   TallCellLevelTransfer t;
-  CsrMatrix& Q = t.prolongation;
-  Q.n = fine.unknowns();
-  Q.row_ptr.assign(row_ptr.begin(), row_ptr.begin() + Q.n + 1);
-  Q.cols.assign(cols.begin(), cols.begin() + Q.row_ptr[Q.n]);
-  Q.values.assign(values.begin(), values.begin() + Q.row_ptr[Q.n]);
   // Q^T by counting: carriers come in increasing fine unknowns within the block and within
   // the ring, so each coarse row lists its fine columns in that order
   CsrMatrix& R = t.restriction;
@@ -205,6 +200,15 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       R.cols[next[U]] = static_cast<int>(carriers[r].first);
       R.values[next[U]++] = values[e];
     }
+  // Q: this block's rows, the first ones (the ring's follow them)
+  CsrMatrix& Q = t.prolongation;
+  Q.n = fine.unknowns();
+  row_ptr.resize(Q.n + 1);
+  cols.resize(row_ptr.back());
+  values.resize(row_ptr.back());
+  Q.row_ptr = std::move(row_ptr);
+  Q.cols = std::move(cols);
+  Q.values = std::move(values);
   return t;
 }
 
