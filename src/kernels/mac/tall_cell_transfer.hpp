@@ -3,8 +3,8 @@
 // lattice = P y (one work item per lattice cell) and y = P^T lattice (one work item per column,
 // so the sums over a tall cell need no atomics), and y = (P^T P)^-1 y (per column: a 2x2 solve
 // for the tall samples, identity for the uniform cells): the least-squares fit of a lattice
-// function by tall-cell unknowns, which the tall-cell multigrid uses to pass to and from the
-// uniform coarse grid.
+// function by tall-cell unknowns, which the water module uses to start a pressure solve from the
+// last one on a rebuilt grid.
 #include "mesh/mac/tall_cell_grid.hpp"
 
 namespace amphora::kernels::mac {
@@ -43,8 +43,20 @@ void tall_cell_restrict(const ExecSpace& exec, const mesh::TallCellLayout<MemSpa
       });
 }
 
-/// y = (P^T P)^-1 y: for a tall cell of L rows, P^T P = sum_j [(1-t)^2, t(1-t); t(1-t), t^2],
-/// t = j/(L-1), in closed form: sum t^2 = sum (1-t)^2 = L(2L-1) / (6(L-1)), sum t = L/2.
+/// G = P^T P of a tall cell of L rows: sum_j [(1-t)^2, t(1-t); t(1-t), t^2], t = j/(L-1), in
+/// closed form: sum t^2 = sum (1-t)^2 = L(2L-1) / (6(L-1)) ("square"), sum t(1-t) = L/2 - that.
+struct TallCellGram {
+  double square, cross;
+  KOKKOS_INLINE_FUNCTION explicit TallCellGram(int rows)
+      : square(rows * (2.0 * rows - 1) / (6.0 * (rows - 1))), cross(0.5 * rows - square) {}
+  /// One component of G^-1 (a, b) (G is symmetric with equal diagonal): the first for (a, b),
+  /// the second for (b, a).
+  KOKKOS_INLINE_FUNCTION double solve(double a, double b) const {
+    return (square * a - cross * b) / (square * square - cross * cross);
+  }
+};
+
+/// y = (P^T P)^-1 y, tall cell by tall cell.
 template <class ExecSpace, class MemSpace, class Y>
 void tall_cell_gram_solve(const ExecSpace& exec, const mesh::TallCellLayout<MemSpace>& T, const Y& y) {
   const mesh::MacGrid g = T.grid;
@@ -52,11 +64,11 @@ void tall_cell_gram_solve(const ExecSpace& exec, const mesh::TallCellLayout<MemS
       "amphora::mac::tall_cell_gram_solve", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz), KOKKOS_LAMBDA(int col) {
         const int j0 = T.terrain(col), jb = T.band(col);
         if (jb <= j0) return;
-        const double L = jb - j0, square = L * (2 * L - 1) / (6 * (L - 1)), cross = 0.5 * L - square;
+        const TallCellGram G(jb - j0);
         const int u = T.first_unknown(col);
-        const double det = square * square - cross * cross, y0 = y(u), y1 = y(u + 1);
-        y(u) = (square * y0 - cross * y1) / det;
-        y(u + 1) = (square * y1 - cross * y0) / det;
+        const double y0 = y(u), y1 = y(u + 1);
+        y(u) = G.solve(y0, y1);
+        y(u + 1) = G.solve(y1, y0);
       });
 }
 

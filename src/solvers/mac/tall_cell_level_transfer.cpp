@@ -5,6 +5,9 @@
 #include <utility>
 #include <vector>
 
+#include "kernels/mac/grid_transfer.hpp"
+#include "kernels/mac/tall_cell_transfer.hpp"
+
 namespace amphora::solvers::mac {
 
 namespace {
@@ -19,7 +22,7 @@ int axis_weights(int f, int n_coarse, bool edge_lo, bool edge_hi, bool wall_lo, 
   index[0] = parent;
   const bool outside = side == 0 ? parent == 0 && edge_lo : parent == n_coarse - 1 && edge_hi;
   if (outside) {
-    weight[0] = 0.75 + ((side == 0 ? wall_lo : wall_hi) ? 0.25 : -0.25);
+    weight[0] = 0.75 + kernels::mac::detail::reflected_weight<double>(side == 0 ? wall_lo : wall_hi);
     return 1;
   }
   weight[0] = 0.75;
@@ -92,16 +95,16 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       for (std::size_t e = first; e < terms.size(); ++e) terms[e].w *= share;
     };
     // the row of one uniform sample, or the rows G^-1 [sum_0; sum_1] of a tall cell's two
-    auto emit = [&](int samples, double square, double cross) {
+    auto emit = [&](const kernels::mac::TallCellGram* G) {
+      const int samples = G ? 2 : 1;
       std::sort(terms.begin(), terms.end(), [](const Term& x, const Term& y) { return x.id < y.id; });
-      const double det = square * square - cross * cross;
       for (int sample = 0; sample < samples; ++sample) {
         for (std::size_t e = 0; e < terms.size();) {
           const int id = terms[e].id;
           double v[2] = {0.0, 0.0};
           for (; e < terms.size() && terms[e].id == id; ++e) v[terms[e].side] += terms[e].w;
           out.cols.push_back(id);
-          out.values.push_back(samples == 1 ? v[0] : (square * v[sample] - cross * v[1 - sample]) / det);
+          out.values.push_back(!G ? v[0] : G->solve(v[sample], v[1 - sample]));
         }
         out.ends.push_back(static_cast<long>(out.cols.size()));
       }
@@ -113,7 +116,7 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       const mesh::TallCellColumn& column = fine.column(i, k);
       if (j >= column.band) {  // a uniform cell
         interpolate(i, j, k, 0, 1.0);
-        emit(1, 1.0, 0.0);
+        emit(nullptr);
         continue;
       }
       // A tall cell (its two samples are carried by its lowest two cells, r and r + 1): the
@@ -155,8 +158,8 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
           interpolate(i, lo, k, side, ends[side][0]);
           if (hi > lo) interpolate(i, hi, k, side, ends[side][1]);
         }
-      const double square = L * (2.0 * L - 1) / (6.0 * (L - 1)), cross = 0.5 * L - square;
-      emit(2, square, cross);
+      const kernels::mac::TallCellGram G(L);
+      emit(&G);
       ++r;  // the top sample's row is done
     }
   };
