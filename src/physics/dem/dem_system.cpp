@@ -688,18 +688,20 @@ void DemSystem<ExecSpace>::compute_forces() {
           const double inv = 1.0 / dist;
           const double n[3] = {dx[0] * inv, dx[1] * inv, dx[2] * inv};
           const double mj = mass(j);
+          const double dv[3] = {vi[0] - v(j, 0), vi[1] - v(j, 1), vi[2] - v(j, 2)};
+          // The approach speed from dx, not n: off the chain sqrt -> division -> n.
+          const double vn = (dv[0] * dx[0] + dv[1] * dx[1] + dv[2] * dx[2]) * inv;
           // R* = ri rj / (ri + rj) and m* = mi mj / (mi + mj) with one division.
           const double q = 1.0 / (rsum * (mi + mj));
           // Velocity of i's contact point relative to j's: v_i - v_j + (r_i w_i + r_j w_j) x n.
           const double a[3] = {ri * wi[0] + rj * om(j, 0), ri * wi[1] + rj * om(j, 1),
                                ri * wi[2] + rj * om(j, 2)};
-          const double vr[3] = {vi[0] - v(j, 0) + a[1] * n[2] - a[2] * n[1],
-                                vi[1] - v(j, 1) + a[2] * n[0] - a[0] * n[2],
-                                vi[2] - v(j, 2) + a[0] * n[1] - a[1] * n[0]};
+          const double vr[3] = {dv[0] + a[1] * n[2] - a[2] * n[1], dv[1] + a[2] * n[0] - a[0] * n[2],
+                                dv[2] + a[0] * n[1] - a[1] * n[0]};
           const double wr[3] = {wi[0] - om(j, 0), wi[1] - om(j, 1), wi[2] - om(j, 2)};
           double s[3] = {shear(k, 0), shear(k, 1), shear(k, 2)};
           const ContactForce c = hertz_mindlin_force(pairs(mati, mat(j)), ri * rj * (mi + mj) * q,
-                                                     mi * mj * rsum * q, n, rsum - dist, vr, wr,
+                                                     mi * mj * rsum * q, n, rsum - dist, vn, vr, wr,
                                                      ri, dt, s);
           for (int d = 0; d < 3; ++d) {
             shear(k, d) = s[d];

@@ -20,9 +20,11 @@ struct ContactForce {
 ///   v_rel: velocity of i's contact point relative to j's (translation and rotation)
 ///   w_rel: omega_i - omega_j (rolling);  lever: distance from i's centre to the contact point
 ///   shear: tangential displacement history of this contact, updated in place.
+///   vn: v_rel . n, the approach speed (> 0: approaching), which callers may know sooner than
+///   v_rel and n (the rotational part of v_rel is normal to n).
 KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& c, double r_eff,
                                                         double m_eff, const double n[3],
-                                                        double delta, const double v_rel[3],
+                                                        double delta, double vn, const double v_rel[3],
                                                         const double w_rel[3], double lever,
                                                         double dt, double shear[3]) {
   ContactForce out;
@@ -34,7 +36,6 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficie
   const double gamma_n = c.gamma_n * sqrt_ma;
   const double gamma_t = c.gamma_t * sqrt_ma;
 
-  const double vn = v_rel[0] * n[0] + v_rel[1] * n[1] + v_rel[2] * n[2];  // > 0: approaching
   const double vt[3] = {v_rel[0] - vn * n[0], v_rel[1] - vn * n[1], v_rel[2] - vn * n[2]};
   // Damping may not turn the contact attractive (the calibration in contact_model.cpp assumes
   // the same clamp).
@@ -74,6 +75,16 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficie
   }
   out.normal = fn;
   return out;
+}
+
+/// The same with vn = v_rel . n formed here.
+KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& c, double r_eff,
+                                                        double m_eff, const double n[3],
+                                                        double delta, const double v_rel[3],
+                                                        const double w_rel[3], double lever,
+                                                        double dt, double shear[3]) {
+  const double vn = v_rel[0] * n[0] + v_rel[1] * n[1] + v_rel[2] * n[2];
+  return hertz_mindlin_force(c, r_eff, m_eff, n, delta, vn, v_rel, w_rel, lever, dt, shear);
 }
 
 }  // namespace amphora::dem
