@@ -34,7 +34,10 @@ class PressureSolver {
   using MemSpace = typename ExecSpace::memory_space;
   using Vector = Kokkos::View<double*, MemSpace>;
   virtual ~PressureSolver() = default;
-  /// Solves A x = b to control's tolerances from the guess in x.
+  /// Solves A x = b to control's tolerances from the guess in x. On the uniform grid b is a
+  /// padded lattice whose ghost ring must hold zeros: every back end counts it in the norms
+  /// (multigrid and MIC(0) in their residuals too; with a non-zero ring neither converges).
+  /// kernels::mac::pressure_rhs writes it so.
   virtual SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& control) = 0;
   virtual PressureBackend backend() const = 0;
 };
