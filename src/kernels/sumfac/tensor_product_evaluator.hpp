@@ -14,22 +14,33 @@ struct TensorProductEvaluator {
   static_assert(dim == 2 || dim == 3, "dim must be 2 or 3");
   static constexpr int n_dofs = ipow(n_p, dim);
   static constexpr int n_points = ipow(n_q, dim);
+  /// Whether values() and integrate_values() run their square 3D sweeps in place (a line is
+  /// read whole before it is written; the same numbers): from n_q = 6 on, where three point
+  /// arrays of a W = 8 batch outgrow a 48 KB L1 (at n_q = 3 in place measured no faster,
+  /// possibly slower: LaplaceDealii/2, 2 threads, 3 noisy rounds).
+  static constexpr bool in_place = dim == 3 && n_p == n_q && n_q >= 6;
   /// Scratch needed by values() and integrate_values().
   static constexpr int n_scratch = ipow(n_q, dim - 1) * (n_p > n_q ? n_p : n_q);
 
-  /// v = values of u at the points. u and v distinct; v needs n_points, tmp n_scratch.
+  /// v = values of u at the points; v needs n_points, tmp n_scratch. u and v distinct, or the
+  /// same array when in_place (then tmp is not used).
   template <class T>
   KOKKOS_FORCEINLINE_FUNCTION static void values(const ShapeData<n_p, n_q>& s, const T* u, T* v,
                                                  T* tmp) {
     if constexpr (n_p == n_q) {
       if (s.collocated) {
-        for (int i = 0; i < n_points; ++i) v[i] = u[i];
+        if (v != u)
+          for (int i = 0; i < n_points; ++i) v[i] = u[i];
         return;
       }
     }
     if constexpr (dim == 2) {
       apply_even_odd<n_q, n_p, 1, n_p, false, 1>(s.values, u, tmp);
       apply_even_odd<n_q, n_p, n_q, 1, false, 1>(s.values, tmp, v);
+    } else if constexpr (in_place) {
+      apply_even_odd<n_q, n_p, 1, n_p * n_p, false, 1>(s.values, u, v);
+      apply_even_odd<n_q, n_p, n_q, n_p, false, 1>(s.values, v, v);
+      apply_even_odd<n_q, n_p, n_q * n_q, 1, false, 1>(s.values, v, v);
     } else {
       apply_even_odd<n_q, n_p, 1, n_p * n_p, false, 1>(s.values, u, v);
       apply_even_odd<n_q, n_p, n_q, n_p, false, 1>(s.values, v, tmp);
@@ -50,6 +61,10 @@ struct TensorProductEvaluator {
     if constexpr (dim == 2) {
       apply_even_odd<n_p, n_q, n_q, 1, false, 1>(s.values_t, v, tmp);
       apply_even_odd<n_p, n_q, 1, n_p, false, 1>(s.values_t, tmp, u);
+    } else if constexpr (in_place) {
+      apply_even_odd<n_p, n_q, n_q * n_q, 1, false, 1>(s.values_t, v, v);
+      apply_even_odd<n_p, n_q, n_q, n_p, false, 1>(s.values_t, v, v);
+      apply_even_odd<n_p, n_q, 1, n_p * n_p, false, 1>(s.values_t, v, u);
     } else {
       apply_even_odd<n_p, n_q, n_q * n_q, 1, false, 1>(s.values_t, v, tmp);
       apply_even_odd<n_p, n_q, n_q, n_p, false, 1>(s.values_t, tmp, v);

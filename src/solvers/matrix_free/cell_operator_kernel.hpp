@@ -126,6 +126,16 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
 
   /// u <- A_cell u for batch b, with coefficients `c` from coefficients().
   KOKKOS_INLINE_FUNCTION void apply_local(const T* c, T* u, Scratch& s) const {
+    if constexpr (Eval::in_place) {
+      if (kind == OperatorKind::laplace && mode == GeometryMode::cartesian) {
+        // Values in place of u: u and the result are the whole working set, 2 x 22 KB at
+        // n_q = 7, W = 8, within L1.
+        Eval::values(shape, u, u, s.tmp);
+        Eval::diagonal_laplace(shape, u, c, s.grad);
+        Eval::integrate_values(shape, s.grad, u, s.tmp);
+        return;
+      }
+    }
     Eval::values(shape, u, s.v, s.tmp);
     const bool per_cell = mode == GeometryMode::cartesian || mode == GeometryMode::affine;
     if (kind == OperatorKind::mass) {
@@ -218,6 +228,16 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
     const long n = lattice.n_dofs();
     for (int comp = 0; comp < n_components; ++comp) {
       gather(src + comp * n, ix, u);
+      if constexpr (Access::prefetch_rows) {
+        // While the batch computes: the lines its scatter will add to, and the source lines of
+        // the next batch.
+        this->prefetch(dst + comp * n, ix, 0, true);
+        if (b + 1 < lattice.n_batches()) {
+          BatchIndex next;
+          batch_index(b + 1, next);
+          this->prefetch(src + comp * n, next, 0, false);
+        }
+      }
       apply_local(c, u, s);
       this->template scatter_add<atomic>(dst + comp * n, ix, u);
     }
