@@ -4,10 +4,11 @@
 # touching simple-cubic lattice under gravity, Hertz + tangential history, E = 5 MPa, e = 0.9,
 # mu = 0.5, dt = 1e-5 s, skin 0.75 mm) at 1e4, 1e5 and 1e6 particles, on 1 and 2 threads and
 # 1 and 2 ranks. Writes output/bench/dem.csv and the chart output/bench/dem.png.
-#   scripts/bench_dem.sh [STEPS]   (LIGGGHTS steps per run, default 1000)
+#   scripts/bench_dem.sh [STEPS]   (LIGGGHTS steps timed after 20 untimed ones, default 200: the
+#   window of perf/dem.cpp, steps 21-220)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-steps=${1:-1000}
+steps=${1:-200}
 bash "$here/scripts/build.sh" release
 if ! command -v liggghts > /dev/null; then
   [ "$(id -u)" = 0 ] || { echo "install Debian's liggghts (as root) for the anchor" >&2; exit 1; }
@@ -27,7 +28,7 @@ liggghts_rate() {  # n ranks
   local dir; dir=$(mktemp -d)
   (cd "$dir" && OMP_NUM_THREADS=1 mpiexec -n "$ranks" liggghts -var NX "$nx" -var NY "$nx" -var NZ "$nz" \
       -var STEPS "$steps" -in "$here/perf/liggghts/dense_bed.in" > log.txt 2>&1)
-  local loop; loop=$(sed -n 's/^Loop time of \([0-9.e+-]*\) on.*/\1/p' "$dir/log.txt")
+  local loop; loop=$(sed -n 's/^Loop time of \([0-9.e+-]*\) on.*/\1/p' "$dir/log.txt" | tail -1)
   python3 -c "print($nx*$nx*$nz*$steps/$loop)"
   rm -rf "$dir"
 }
