@@ -125,25 +125,26 @@ struct BatchDofAccess {
     }
   }
 
-  /// Rows of a batch beyond what a core's hardware prefetcher follows at once (it tracks
-  /// about 32 streams; a batch reads one per row).
+  /// Whether kernels prefetch a batch's rows: from n_p = 6 (degree 5), where it measured
+  /// faster (LaplaceDealii/5 and 6, 1 and 2 threads). At degrees 2-4 a prefetch of the next
+  /// batch measured slower (the hardware prefetcher follows those fewer rows by itself).
   static constexpr bool prefetch_rows = n_rows > 32;
 
-  /// Asks for the cache lines of a fast batch's rows, shifted `ahead` doubles along x, to be
-  /// brought into L2 (for writing with `write`). A hint: does nothing on devices.
-  KOKKOS_INLINE_FUNCTION void prefetch(const double* base, const BatchIndex& ix, long ahead, bool write) const {
+  /// Asks for the cache lines of a fast batch's rows to be brought into L2 (for writing with
+  /// `write`). A hint: does nothing on devices.
+  KOKKOS_INLINE_FUNCTION void prefetch(const double* base, const BatchIndex& ix, bool write) const {
 #if defined(__GNUC__) && !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
     if (!ix.fast) return;
     const int len = W * lattice.degree + 1;
     for (int r = 0; r < n_rows; ++r) {
-      const double* p = base + ix.rows[r] + ix.start + ahead;
+      const double* p = base + ix.rows[r] + ix.start;
       for (int m = 0; m < len; m += 8) {  // one step per 64-byte line: none is skipped
         if (write) __builtin_prefetch(p + m, 1, 2);
         else __builtin_prefetch(p + m, 0, 2);
       }
     }
 #else
-    (void)base, (void)ix, (void)ahead, (void)write;
+    (void)base, (void)ix, (void)write;
 #endif
   }
 

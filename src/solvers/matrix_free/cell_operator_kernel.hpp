@@ -231,11 +231,11 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
       if constexpr (Access::prefetch_rows) {
         // While the batch computes: the lines its scatter will add to, and the source lines of
         // the next batch.
-        this->prefetch(dst + comp * n, ix, 0, true);
+        this->prefetch(dst + comp * n, ix, true);
         if (b + 1 < lattice.n_batches()) {
           BatchIndex next;
           batch_index(b + 1, next);
-          this->prefetch(src + comp * n, next, 0, false);
+          this->prefetch(src + comp * n, next, false);
         }
       }
       apply_local(c, u, s);
