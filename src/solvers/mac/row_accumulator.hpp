@@ -79,5 +79,4 @@ class RowAccumulator {
   std::vector<std::vector<std::pair<int, double>>> overflow_;
 };
 
-
 }  // namespace amphora::solvers::mac

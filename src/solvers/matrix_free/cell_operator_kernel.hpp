@@ -126,33 +126,26 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
 
   /// u <- A_cell u for batch b, with coefficients `c` from coefficients().
   KOKKOS_INLINE_FUNCTION void apply_local(const T* c, T* u, Scratch& s) const {
-    if constexpr (Eval::in_place) {
-      if (kind == OperatorKind::laplace && mode == GeometryMode::cartesian) {
-        // Values in place of u: u and the result are the whole working set, 2 x 22 KB at
-        // n_q = 7, W = 8, within L1.
-        Eval::values(shape, u, u, s.tmp);
-        Eval::diagonal_laplace(shape, u, c, s.grad);
-        Eval::integrate_values(shape, s.grad, u, s.tmp);
-        return;
-      }
-    }
-    Eval::values(shape, u, s.v, s.tmp);
+    // The values at the points: in place of u where the sweeps may run in place (u is not read
+    // again; the cartesian Laplace then works on 2 arrays, 2 x 22 KB at n_q = 7, W = 8, in L1).
+    T* const v = Eval::in_place ? u : s.v;
+    Eval::values(shape, u, v, s.tmp);
     const bool per_cell = mode == GeometryMode::cartesian || mode == GeometryMode::affine;
     if (kind == OperatorKind::mass) {
       if (per_cell) {
-        Eval::for_each_weighted_point(shape, [&](int q, double w) { s.v[q] *= T(w) * c[0]; });
+        Eval::for_each_weighted_point(shape, [&](int q, double w) { v[q] *= T(w) * c[0]; });
       } else {
-        for (int q = 0; q < n_points; ++q) s.v[q] *= c[q];
+        for (int q = 0; q < n_points; ++q) v[q] *= c[q];
       }
-      Eval::integrate_values(shape, s.v, u, s.tmp);
+      Eval::integrate_values(shape, v, u, s.tmp);
       return;
     }
     if (kind == OperatorKind::laplace && mode == GeometryMode::cartesian) {
-      Eval::diagonal_laplace(shape, s.v, c, s.grad);
+      Eval::diagonal_laplace(shape, v, c, s.grad);
       Eval::integrate_values(shape, s.grad, u, s.tmp);
       return;
     }
-    Eval::gradients(shape, s.v, s.grad);
+    Eval::gradients(shape, v, s.grad);
     if (kind == OperatorKind::laplace) {
       const long stride = per_cell ? 1 : n_points;  // [coef] per cell, [coef][point] stored
       for (int q = 0; q < n_points; ++q) {
@@ -226,17 +219,16 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
     batch_index(b, ix);
     const T* c = coefficients(b, s);
     const long n = lattice.n_dofs();
+    BatchIndex next;  // the next batch's rows, prefetched while this one computes
+    const bool prefetch_next = Access::prefetch_rows && b + 1 < lattice.n_batches();
+    if (prefetch_next) batch_index(b + 1, next);
     for (int comp = 0; comp < n_components; ++comp) {
       gather(src + comp * n, ix, u);
       if constexpr (Access::prefetch_rows) {
         // While the batch computes: the lines its scatter will add to, and the source lines of
         // the next batch.
         this->prefetch(dst + comp * n, ix, true);
-        if (b + 1 < lattice.n_batches()) {
-          BatchIndex next;
-          batch_index(b + 1, next);
-          this->prefetch(src + comp * n, next, false);
-        }
+        if (prefetch_next) this->prefetch(src + comp * n, next, false);
       }
       apply_local(c, u, s);
       this->template scatter_add<atomic>(dst + comp * n, ix, u);
