@@ -45,7 +45,7 @@ struct CellGrid {
 };
 
 /// Points sorted by cell: the points of cell c are permutation[offsets(c) .. offsets(c+1)),
-/// in increasing point index.
+/// in increasing key (the point index, unless bin_points is given keys).
 template <class MemSpace>
 struct Bins {
   Kokkos::View<int*, MemSpace> offsets;
@@ -53,10 +53,17 @@ struct Bins {
   Kokkos::View<int*, MemSpace> cell;  ///< cell of each point
 };
 
-/// Bins points x(0 .. n) (x is any View indexable as x(i, d)).
-template <class ExecSpace, class Positions>
+/// The point index as the key of bin_points' order within a cell.
+struct PointIndex {
+  KOKKOS_INLINE_FUNCTION int operator()(int i) const { return i; }
+};
+
+/// Bins points x(0 .. n) (x is any View indexable as x(i, d)); within a cell, points are in
+/// increasing key(i) (distinct keys: a global id, say).
+template <class ExecSpace, class Positions, class Keys = PointIndex>
 Bins<typename ExecSpace::memory_space> bin_points(const ExecSpace& exec, const CellGrid& grid,
-                                                  const Positions& x, int n) {
+                                                  const Positions& x, int n,
+                                                  const Keys& key = Keys()) {
   using Mem = typename ExecSpace::memory_space;
   Bins<Mem> b;
   const int nc = grid.num_cells();
@@ -92,13 +99,14 @@ Bins<typename ExecSpace::memory_space> bin_points(const ExecSpace& exec, const C
       "amphora::bin_points::sort_cells", RangePolicy<ExecSpace>(exec, 0, nc),
       KOKKOS_LAMBDA(int c) {
         for (int a = offsets(c) + 1; a < offsets(c + 1); ++a) {
-          const int key = perm(a);
+          const int p = perm(a);
+          const auto k = key(p);
           int b2 = a - 1;
-          while (b2 >= offsets(c) && perm(b2) > key) {
+          while (b2 >= offsets(c) && key(perm(b2)) > k) {
             perm(b2 + 1) = perm(b2);
             --b2;
           }
-          perm(b2 + 1) = key;
+          perm(b2 + 1) = p;
         }
       });
   exec.fence();

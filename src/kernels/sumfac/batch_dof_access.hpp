@@ -1,6 +1,7 @@
 #pragma once
 // Reading and writing the nodal values of one cell batch of a Q_k lattice (QkLattice): the
 // gather/scatter half of every matrix-free kernel (operators, transfers, error norms).
+#include "kernels/prefetch.hpp"
 #include "kernels/sumfac/qk_lattice.hpp"
 #include "kernels/sumfac/simd.hpp"
 #include "kernels/sumfac/strided_lanes.hpp"
@@ -138,10 +139,8 @@ struct BatchDofAccess {
     const int len = W * lattice.degree + 1;
     for (int r = 0; r < n_rows; ++r) {
       const double* p = base + ix.rows[r] + ix.start;
-      for (int m = 0; m < len; m += 8) {  // one step per 64-byte line: none is skipped
-        if (write) __builtin_prefetch(p + m, 1, 2);
-        else __builtin_prefetch(p + m, 0, 2);
-      }
+      // one step per 64-byte line: none is skipped
+      for (int m = 0; m < len; m += 8) prefetch_line(p + m, write);
     }
 #else
     (void)base, (void)ix, (void)write;

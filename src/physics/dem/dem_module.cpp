@@ -288,6 +288,7 @@ DemModule::System::HostState DemModule::gather() const {
   const System::HostState mine = system_->save();
   System::HostState all;
   all.x = comm_.gatherv(mine.x);
+  all.x_build = comm_.gatherv(mine.x_build);
   all.v = comm_.gatherv(mine.v);
   all.omega = comm_.gatherv(mine.omega);
   all.force = comm_.gatherv(mine.force);
@@ -312,6 +313,7 @@ DemModule::System::HostState DemModule::gather() const {
       dst.insert(dst.end(), src.begin() + i * width, src.begin() + (i + 1) * width);
     };
     put(all.x, s.x, 3);
+    put(all.x_build, s.x_build, 3);
     put(all.v, s.v, 3);
     put(all.omega, s.omega, 3);
     put(all.force, s.force, 3);
@@ -447,6 +449,7 @@ std::vector<StateBlock> DemModule::state() const {
               {"omega", s.omega},
               {"force", s.force},
               {"torque", s.torque},
+              {"x_build", s.x_build},
               {"radius", s.radius},
               {"material", as_double(s.material)},
               {"gid", as_double(s.gid)},
@@ -466,8 +469,9 @@ void DemModule::restore(const std::vector<StateBlock>& blocks) {
     if (blocks.empty()) throw std::runtime_error("checkpoint lacks block 'particles'");
     for (const auto& [name, data] : blocks[0].arrays) arrays[name] = data;
   }
-  for (const char* name : {"x", "v", "omega", "force", "torque", "radius", "material", "gid",
-                           "wall_shear", "contact_gid", "contact_shear", "module"}) {
+  // x_build: absent from checkpoints of before it was kept (they continue from their x)
+  for (const char* name : {"x", "x_build", "v", "omega", "force", "torque", "radius", "material",
+                           "gid", "wall_shear", "contact_gid", "contact_shear", "module"}) {
     std::vector<double>& a = arrays[name];
     long long n = static_cast<long long>(a.size());
     MPI_Bcast(&n, 1, MPI_LONG_LONG, 0, comm_.get());
@@ -476,6 +480,7 @@ void DemModule::restore(const std::vector<StateBlock>& blocks) {
   }
   System::HostState s;
   s.x = arrays["x"];
+  s.x_build = arrays["x_build"];
   s.v = arrays["v"];
   s.omega = arrays["omega"];
   s.force = arrays["force"];

@@ -1,12 +1,15 @@
 #include "physics/dem/dem_system.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <tuple>
 #include <limits>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 
 #include "kernels/binning.hpp"
+#include "kernels/prefetch.hpp"
 #include "physics/dem/hertz_mindlin.hpp"
 
 namespace amphora::dem {
@@ -61,7 +64,71 @@ void grow(View& v, int n) {
   }
 }
 
-constexpr int kGhostRecord = 15;  // x3 v3 omega3 radius mass inertia material gid (+1 spare)
+/// The entry of row r whose partner has global id g, r's entries lo .. hi being sorted by gid
+/// and holding it.
+template <class Neighbors, class Ids>
+KOKKOS_INLINE_FUNCTION int entry_of(const Neighbors& nbr, const Ids& gid, int lo, int hi,
+                                    std::int64_t g) {
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    if (gid(nbr(mid)) <= g) lo = mid; else hi = mid;
+  }
+  return lo;
+}
+
+/// Gravity and the walls' forces on particle i at (x, v, omega) and time t: where a force
+/// evaluation starts, before the pairs add theirs. Walls not in `near` are skipped.
+template <class Mem>
+struct BodyForces {
+  using R = Kokkos::MemoryTraits<Kokkos::Restrict>;
+  Kokkos::View<const double*, Mem, R> rad, mass;
+  Kokkos::View<const int*, Mem, R> mat;
+  Kokkos::View<const PairCoefficients**, Mem, R> pairs;
+  Kokkos::View<const Wall*, Mem, R> walls;
+  Kokkos::View<double** [3], Kokkos::LayoutRight, Mem, R> wshear;
+  Kokkos::View<unsigned*, Mem, R> wmask;
+  int nw;
+  double dt, g[3];
+
+  KOKKOS_FORCEINLINE_FUNCTION void operator()(int i, double t, unsigned near, const double xi[3],
+                                         const double vi[3], const double wi[3], double F[3],
+                                         double T[3]) const {
+    const double ri = rad(i), mi = mass(i);
+    for (int d = 0; d < 3; ++d) {
+      F[d] = mi * g[d];
+      T[d] = 0.0;
+    }
+    if (!near) return;
+    for (int w = 0; w < nw; ++w) {
+      if (!(near & (1u << w))) continue;
+      double nn[3], delta, vw[3];
+      const Wall& wall = walls(w);
+      if (!wall_contact(wall, t, xi, ri, nn, delta, vw)) {
+        if (wmask(i) & (1u << w)) {
+          wmask(i) &= ~(1u << w);
+          wshear(i, w, 0) = wshear(i, w, 1) = wshear(i, w, 2) = 0.0;
+        }
+        continue;
+      }
+      wmask(i) |= 1u << w;
+      const double vr[3] = {vi[0] - vw[0] + ri * (wi[1] * nn[2] - wi[2] * nn[1]),
+                            vi[1] - vw[1] + ri * (wi[2] * nn[0] - wi[0] * nn[2]),
+                            vi[2] - vw[2] + ri * (wi[0] * nn[1] - wi[1] * nn[0])};
+      const double wr[3] = {wi[0] - wall.angular_velocity[0], wi[1] - wall.angular_velocity[1],
+                            wi[2] - wall.angular_velocity[2]};
+      double s[3] = {wshear(i, w, 0), wshear(i, w, 1), wshear(i, w, 2)};
+      const ContactForce c =
+          hertz_mindlin_force(pairs(mat(i), wall.material), ri, mi, nn, delta, vr, wr, dt, s);
+      for (int d = 0; d < 3; ++d) {
+        wshear(i, w, d) = s[d];
+        F[d] += c.force[d];
+        T[d] += ri * c.moment[d] + c.rolling[d];
+      }
+    }
+  }
+};
+
+constexpr int kGhostRecord = 17;  // x3 v3 omega3 radius mass inertia material gid x_build3
 
 }  // namespace dem_system_kernels
 using namespace dem_system_kernels;
@@ -98,6 +165,9 @@ DemSystem<ExecSpace>::DemSystem(const DemConfig& config, const Communicator& com
   rec_shear_ = Hist("amphora::dem::rec_shear", 0, config_.max_contacts);
   rec_gid_ = RecIds("amphora::dem::rec_gid", 0, config_.max_contacts);
   shear_ = decltype(shear_)("amphora::dem::shear", 0);
+  half_start_ = Kokkos::View<int*, Mem>("amphora::dem::half_start", 0);
+  row_order_ = Kokkos::View<int*, Mem>("amphora::dem::row_order", 0);
+  slab_start_ = Kokkos::View<int*, Mem>("amphora::dem::slab_start", 1);
   list_.offsets = Kokkos::View<int*, Mem>("amphora::dem::list_offsets", 1);
   list_.neighbors = Kokkos::View<int*, Mem>("amphora::dem::list_neighbors", 0);
 }
@@ -114,10 +184,10 @@ void DemSystem<ExecSpace>::resize_owned(int n) {
 template <class ExecSpace>
 typename DemSystem<ExecSpace>::HostArrays DemSystem<ExecSpace>::to_host() const {
   auto copy = [](const auto& view) { return Kokkos::create_mirror_view_and_copy(HostMemSpace(), view); };
-  return {copy(p_.x),      copy(p_.v),          copy(p_.omega),     copy(p_.force),
-          copy(p_.torque), copy(p_.radius),     copy(p_.mass),      copy(p_.inertia),
-          copy(p_.material), copy(p_.gid),      copy(wall_shear_),  copy(rec_shear_),
-          copy(rec_gid_)};
+  return {copy(p_.x),        copy(p_.v),      copy(p_.omega),  copy(p_.force),
+          copy(p_.torque),   copy(x_build_),  copy(p_.radius), copy(p_.mass),
+          copy(p_.inertia),  copy(p_.material), copy(p_.gid),  copy(wall_shear_),
+          copy(rec_shear_),  copy(rec_gid_)};
 }
 
 template <class ExecSpace>
@@ -127,6 +197,7 @@ void DemSystem<ExecSpace>::from_host(const HostArrays& h) {
   Kokkos::deep_copy(p_.omega, h.omega);
   Kokkos::deep_copy(p_.force, h.force);
   Kokkos::deep_copy(p_.torque, h.torque);
+  Kokkos::deep_copy(x_build_, h.x_build);
   Kokkos::deep_copy(p_.radius, h.radius);
   Kokkos::deep_copy(p_.mass, h.mass);
   Kokkos::deep_copy(p_.inertia, h.inertia);
@@ -163,14 +234,14 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
   const int n0 = p_.n_owned, n1 = n0 + static_cast<int>(mine.size());
   resize_owned(n1);
   HostArrays h = to_host();
-  auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque;
+  auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
   auto &r = h.radius, &m = h.mass, &in = h.inertia;
   auto &mat = h.material, &gid = h.gid, &ws = h.wall_shear, &rg = h.rec_gid;
   for (int k = 0; k < int(mine.size()); ++k) {
     const ParticleSpec& s = *mine[k];
     const int i = n0 + k;
     for (int d = 0; d < 3; ++d) {
-      x(i, d) = s.x[d];
+      x(i, d) = xb(i, d) = s.x[d];
       v(i, d) = s.v[d];
       om(i, d) = s.omega[d];
       f(i, d) = tq(i, d) = 0.0;
@@ -189,6 +260,7 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
   list_.neighbors = Kokkos::View<int*, Mem>("amphora::dem::list_neighbors", 0);
   p_.n_owned = n1;
   need_rebuild_ = true;
+  keep_build_positions_ = false;
   forces_valid_ = false;
 }
 
@@ -204,11 +276,12 @@ double DemSystem<ExecSpace>::timer_mark(double& slot, double since) const {
 template <class ExecSpace>
 void DemSystem<ExecSpace>::history_to_records() {
   // Collective on every path: ranks without particles (or lists) take part in the check.
-  const bool have = list_.rows() == p_.n_owned && p_.n_owned > 0;
+  const bool have = list_.rows() == p_.size() && p_.n_owned > 0;
   const int n = p_.n_owned;
   const int K = config_.max_contacts;
   const auto off = list_.offsets;
   const auto nbr = list_.neighbors;
+  const auto half = half_start_;
   const auto shear = shear_;
   const auto gid = p_.gid;
   const auto rg = rec_gid_;
@@ -217,15 +290,19 @@ void DemSystem<ExecSpace>::history_to_records() {
   Kokkos::parallel_reduce(
       "amphora::dem::history_to_records", RangePolicy<ExecSpace>(exec_, 0, have ? n : 0),
       KOKKOS_LAMBDA(int i, int& over) {
+        // Both particles of a pair record its spring (in the pair's orientation): either may
+        // be the one whose row evaluates it after the next rebuild.
         int r = 0;
         for (int k = off(i); k < off(i + 1); ++k) {
-          if (shear(k, 0) == 0.0 && shear(k, 1) == 0.0 && shear(k, 2) == 0.0) continue;
+          const int j = nbr(k);
+          const int e = k < half(i) ? entry_of(nbr, gid, half(j), off(j + 1), gid(i)) : k;
+          if (shear(e, 0) == 0.0 && shear(e, 1) == 0.0 && shear(e, 2) == 0.0) continue;
           if (r == K) {
             over = over > 0 ? over : 1;
             break;
           }
-          rg(i, r) = gid(nbr(k));
-          for (int d = 0; d < 3; ++d) rs(i, r, d) = shear(k, d);
+          rg(i, r) = gid(j);
+          for (int d = 0; d < 3; ++d) rs(i, r, d) = shear(e, d);
           ++r;
         }
         for (; r < K; ++r) {  // empty slots are clean, so a checkpoint holds no stale bits
@@ -251,16 +328,23 @@ void DemSystem<ExecSpace>::records_to_history() {
   const auto gid = p_.gid;
   const auto rg = rec_gid_;
   const auto rs = rec_shear_;
+  const auto half = half_start_;
   Kokkos::parallel_for(
       "amphora::dem::records_to_history", RangePolicy<ExecSpace>(exec_, 0, n),
       KOKKOS_LAMBDA(int i) {
-        // Rows and records are both sorted by partner gid: merge.
+        // Rows and records are both sorted by partner gid: merge. A spring goes to the row
+        // that evaluates the pair: i's for larger-gid partners, a ghost partner's (which has
+        // no records) for smaller-gid ghosts; an owned smaller-gid partner fills its own.
         int a = 0;
         for (int k = off(i); k < off(i + 1) && a < K; ++k) {
-          const std::int64_t g = gid(nbr(k));
+          const int j = nbr(k);
+          const std::int64_t g = gid(j);
+          if (k < half(i) && j < n) continue;
           while (a < K && rg(i, a) >= 0 && rg(i, a) < g) ++a;
-          if (a < K && rg(i, a) == g)
-            for (int d = 0; d < 3; ++d) shear(k, d) = rs(i, a, d);
+          if (a < K && rg(i, a) == g) {
+            const int e = k < half(i) ? entry_of(nbr, gid, half(j), off(j + 1), gid(i)) : k;
+            for (int d = 0; d < 3; ++d) shear(e, d) = rs(i, a, d);
+          }
         }
       });
 }
@@ -288,11 +372,14 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
       leaving);
   if (!comm_.any(leaving > 0)) return;
 
-  // Rare path (rebuilds where something leaves): pack on the host.
+  // Rare path (rebuilds where something leaves): pack on the host. Force and torque are not
+  // carried: the force evaluation under way zeroes them again.
+  forces_zeroed_ = false;
   const int nw = static_cast<int>(wall_shear_.extent(1)), K = config_.max_contacts;
-  const int rec = 12 + 1 + 3 * nw + 4 * K;  // x v omega radius(mass, inertia recomputed) ...
+  // x v omega radius material gid spare, walls' and contacts' history, x_build
+  const int rec = 12 + 1 + 3 * nw + 4 * K + 3;
   HostArrays h = to_host();
-  auto &hx = h.x, &hv = h.v, &ho = h.omega, &hr = h.radius;
+  auto &hx = h.x, &hv = h.v, &ho = h.omega, &hr = h.radius, &hxb = h.x_build;
   auto &hmat = h.material, &hgid = h.gid, &hws = h.wall_shear, &hrg = h.rec_gid, &hrs = h.rec_shear;
   auto pack = [&](int i, std::vector<double>& out) {
     for (int d = 0; d < 3; ++d) out.push_back(hx(i, d));
@@ -308,6 +395,7 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
       out.push_back(double(hrg(i, c)));
       for (int d = 0; d < 3; ++d) out.push_back(hrs(i, c, d));
     }
+    for (int d = 0; d < 3; ++d) out.push_back(hxb(i, d));
   };
   std::vector<std::vector<double>> out(comm_.size());
   std::vector<double> kept;
@@ -347,6 +435,7 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
       hrg(i, c) = static_cast<std::int64_t>(*q++);
       for (int d = 0; d < 3; ++d) hrs(i, c, d) = *q++;
     }
+    for (int d = 0; d < 3; ++d) hxb(i, d) = *q++;
   }
   from_host(h);
   p_.n_owned = m;
@@ -356,11 +445,18 @@ template <class ExecSpace>
 void DemSystem<ExecSpace>::sort_owned_by_cell() {
   const int n = p_.n_owned;
   if (n == 0) return;
+  // The cells of the whole domain's grid (order_rows) over this subdomain, and gid order in a
+  // cell: storage close to the order the force loop runs the rows in.
+  const CellGrid global = row_cells();
   const auto lo = decomposition_.lo(comm_.rank());
   const auto hi = decomposition_.hi(comm_.rank());
-  const double glo[3] = {lo[0], lo[1], lo[2]}, ghi[3] = {hi[0], hi[1], hi[2]};
-  const CellGrid grid = CellGrid::covering(glo, ghi, ghost_width_);
-  const auto bins = bin_points(exec_, grid, p_.x, n);
+  CellGrid grid = global;
+  for (int d = 0; d < 3; ++d) {
+    const double first = global.coord(lo[d], d), last = global.coord(hi[d], d);
+    grid.lo[d] = global.lo[d] + first * global.h;
+    grid.n[d] = int(last - first) + 1;
+  }
+  const auto bins = bin_points(exec_, grid, x_build_, n, p_.gid);
   const auto& perm = bins.permutation;
   p_.x = permuted(exec_, p_.x, perm, n);
   p_.v = permuted(exec_, p_.v, perm, n);
@@ -375,7 +471,7 @@ void DemSystem<ExecSpace>::sort_owned_by_cell() {
   wall_shear_ = permuted(exec_, wall_shear_, perm, n);
   rec_gid_ = permuted(exec_, rec_gid_, perm, n);
   rec_shear_ = permuted(exec_, rec_shear_, perm, n);
-  x_build_ = Vec(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::dem::x_build"), n);
+  x_build_ = permuted(exec_, x_build_, perm, n);
 }
 
 template <class ExecSpace>
@@ -393,6 +489,7 @@ void DemSystem<ExecSpace>::build_ghosts() {
   auto hin = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.inertia);
   auto hmat = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.material);
   auto hgid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.gid);
+  auto hxb = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x_build_);
   std::vector<double> data;  // ghost records in arrival order
   auto value = [&](int i, int field) -> double {
     if (i < n) {
@@ -405,6 +502,7 @@ void DemSystem<ExecSpace>::build_ghosts() {
         case 11: return hin(i);
         case 12: return double(hmat(i));
         case 13: return double(hgid(i));
+        case 14: case 15: case 16: return hxb(i, field - 14);
         default: return 0.0;
       }
     }
@@ -423,7 +521,7 @@ void DemSystem<ExecSpace>::build_ghosts() {
       const int total = n + int(data.size()) / kGhostRecord;
       if (decomposition_.neighbor(d, side) >= 0) {
         for (int i = 0; i < candidates; ++i) {
-          const double c = value(i, d);
+          const double c = value(i, 14 + d);  // where the lists are built
           if (side == 0 ? c < lo[d] + ghost_width_ : c >= hi[d] - ghost_width_) {
             send.push_back(i);
             for (int f = 0; f < kGhostRecord; ++f) out.push_back(value(i, f));
@@ -443,6 +541,8 @@ void DemSystem<ExecSpace>::build_ghosts() {
   }
   const int ng = int(data.size()) / kGhostRecord;
   p_.reserve(n + ng);
+  grow(x_build_, n + ng);
+  hxb = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x_build_);
   hx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.x);
   hv = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.v);
   ho = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.omega);
@@ -464,7 +564,9 @@ void DemSystem<ExecSpace>::build_ghosts() {
     hin(i) = q[11];
     hmat(i) = static_cast<int>(q[12]);
     hgid(i) = static_cast<std::int64_t>(q[13]);
+    for (int d = 0; d < 3; ++d) hxb(i, d) = q[14 + d];
   }
+  Kokkos::deep_copy(x_build_, hxb);
   Kokkos::deep_copy(p_.x, hx);
   Kokkos::deep_copy(p_.v, hv);
   Kokkos::deep_copy(p_.omega, ho);
@@ -527,6 +629,14 @@ void DemSystem<ExecSpace>::rebuild() {
   p_.n_ghost = 0;
   remove_and_migrate();
   t = timer_mark(timers_.comm, t);
+  // Lists, ghosts and the rows' order follow the positions of this rebuild; a restart's first
+  // rebuild keeps those of the checkpoint's (the run it continues built its lists there).
+  if (!keep_build_positions_) {
+    const int n_own = p_.n_owned;
+    Kokkos::deep_copy(exec_, Kokkos::subview(x_build_, Kokkos::make_pair(0, n_own), Kokkos::ALL),
+                      Kokkos::subview(p_.x, Kokkos::make_pair(0, n_own), Kokkos::ALL));
+  }
+  keep_build_positions_ = false;
   sort_owned_by_cell();
   t = timer_mark(timers_.binning, t);
   build_ghosts();
@@ -541,27 +651,46 @@ void DemSystem<ExecSpace>::rebuild() {
     ghi[d] = std::min(hi[d] + ghost_width_, config_.domain_hi[d]);
   }
   const CellGrid grid = CellGrid::covering(glo, ghi, ghost_width_);
-  const auto bins = bin_points(exec_, grid, p_.x, total);
+  const auto bins = bin_points(exec_, grid, x_build_, total);
   t = timer_mark(timers_.binning, t);
-  list_ = build_verlet_list(exec_, grid, bins, p_.x, p_.radius, p_.gid, n, config_.skin);
+  list_ = build_verlet_list(exec_, grid, bins, x_build_, p_.radius, p_.gid, total, config_.skin);
+  {
+    half_start_ = Kokkos::View<int*, Mem>("amphora::dem::half_start", total);
+    const auto half = half_start_;
+    const auto off = list_.offsets;
+    const auto nbr = list_.neighbors;
+    const auto gid = p_.gid;
+    Kokkos::parallel_for(
+        "amphora::dem::half_start", RangePolicy<ExecSpace>(exec_, 0, total), KOKKOS_LAMBDA(int i) {
+          int k = off(i);
+          while (k < off(i + 1) && gid(nbr(k)) < gid(i)) ++k;
+          half(i) = k;
+        });
+  }
   records_to_history();
+  order_rows();
   {
     wall_mask_ = Kokkos::View<unsigned*, Mem>("amphora::dem::wall_mask", n);
     wall_near_ = Kokkos::View<unsigned*, Mem>("amphora::dem::wall_near", n);
-    row_mask_ = Kokkos::View<unsigned*, Mem>("amphora::dem::row_mask", n);
+    row_mask_ = Kokkos::View<unsigned*, Mem>("amphora::dem::row_mask", total);
     const auto mask = wall_mask_;
     const auto near = wall_near_;
     const auto rmask = row_mask_;
     const auto ws = wall_shear_;
     const auto sh = shear_;
     const auto off = list_.offsets;
-    const auto x = p_.x;
+    const auto x = x_build_;
     const auto rad = p_.radius;
     const auto walls = walls_;
     const int nw = n_walls_;
     const double t_now = time_, skin = config_.skin;
     Kokkos::parallel_for(
-        "amphora::dem::history_masks", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
+        "amphora::dem::history_masks", RangePolicy<ExecSpace>(exec_, 0, total), KOKKOS_LAMBDA(int i) {
+          unsigned r = 0;
+          for (int k = off(i); k < off(i + 1) && k - off(i) < 32; ++k)
+            if (sh(k, 0) != 0.0 || sh(k, 1) != 0.0 || sh(k, 2) != 0.0) r |= 1u << (k - off(i));
+          rmask(i) = r;
+          if (i >= n) return;  // ghosts: no walls here
           unsigned m = 0, w_near = 0;
           const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
           for (int w = 0; w < nw; ++w) {
@@ -576,18 +705,53 @@ void DemSystem<ExecSpace>::rebuild() {
           }
           mask(i) = m;
           near(i) = w_near | m;
-          unsigned r = 0;
-          for (int k = off(i); k < off(i + 1) && k - off(i) < 32; ++k)
-            if (sh(k, 0) != 0.0 || sh(k, 1) != 0.0 || sh(k, 2) != 0.0) r |= 1u << (k - off(i));
-          rmask(i) = r;
         });
   }
-  if (int(x_build_.extent(0)) < n) x_build_ = Vec("amphora::dem::x_build", n);
-  Kokkos::deep_copy(exec_, Kokkos::subview(x_build_, Kokkos::make_pair(0, n), Kokkos::ALL),
-                    Kokkos::subview(p_.x, Kokkos::make_pair(0, n), Kokkos::ALL));
   timer_mark(timers_.list, t);
   ++timers_.rebuilds;
   need_rebuild_ = false;
+}
+
+template <class ExecSpace>
+CellGrid DemSystem<ExecSpace>::row_cells() const {
+  return CellGrid::covering(config_.domain_lo.data(), config_.domain_hi.data(), ghost_width_);
+}
+
+template <class ExecSpace>
+void DemSystem<ExecSpace>::order_rows() {
+  // Slabs of 2 cell layers, at least 2 ghost widths thick: rows of slabs two apart are more
+  // than 4 r_max + skin apart at the build positions, so the particles they touch (within
+  // 2 r_max, each centre within skin / 2 of its build position) are disjoint.
+  const int total = p_.size();
+  const CellGrid cells = row_cells();
+  const auto hx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x_build_);
+  const auto hgid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.gid);
+  // colour, slab, cell (k, j, i), gid, row
+  std::vector<std::tuple<int, int, int, int, int, std::int64_t, int>> key(total);
+  for (int i = 0; i < total; ++i) {
+    const int ci = cells.coord(hx(i, 0), 0), cj = cells.coord(hx(i, 1), 1), ck = cells.coord(hx(i, 2), 2);
+    const int slab = ck / 2;
+    key[i] = {slab % 2, slab, ck, cj, ci, hgid(i), i};
+  }
+  std::sort(key.begin(), key.end());
+  row_order_ = Kokkos::View<int*, Mem>("amphora::dem::row_order", total);
+  auto order = Kokkos::create_mirror_view(row_order_);
+  std::vector<int> starts;
+  colour_slabs_[0] = colour_slabs_[1] = 0;
+  for (int a = 0; a < total; ++a) {
+    order(a) = std::get<6>(key[a]);
+    if (a == 0 || std::get<1>(key[a]) != std::get<1>(key[a - 1])) {
+      if (std::get<0>(key[a]) == 0) colour_slabs_[1] = int(starts.size()) + 1;
+      starts.push_back(a);
+    }
+  }
+  colour_slabs_[2] = int(starts.size());
+  starts.push_back(total);
+  Kokkos::deep_copy(row_order_, order);
+  slab_start_ = Kokkos::View<int*, Mem>("amphora::dem::slab_start", starts.size());
+  auto hs = Kokkos::create_mirror_view(slab_start_);
+  for (size_t u = 0; u < starts.size(); ++u) hs(u) = starts[u];
+  Kokkos::deep_copy(slab_start_, hs);
 }
 
 template <class ExecSpace>
@@ -613,10 +777,13 @@ double DemSystem<ExecSpace>::kick_drift() {
           x(i, d) += dt * v(i, d);
           const double dd = x(i, d) - xb(i, d);
           d2 += dd * dd;
+          // used: the next force evaluation adds to zero (f is at hand here)
+          f(i, d) = tq(i, d) = 0.0;
         }
         acc = math::max(acc, d2);
       },
       Kokkos::Max<double>(max_d2));
+  forces_zeroed_ = true;
   return max_d2;
 }
 
@@ -639,6 +806,7 @@ template <class ExecSpace>
 void DemSystem<ExecSpace>::compute_forces() {
   const double dt = config_.dt, t = time_;
   const double g0 = config_.gravity[0], g1 = config_.gravity[1], g2 = config_.gravity[2];
+  const int n = p_.n_owned;
   // Restrict-qualified Views: no store through one may alias another, so the compiler keeps
   // loads in registers across the contact loop (about 1.3x on the dense bed).
   using R = Kokkos::MemoryTraits<Kokkos::Restrict>;
@@ -647,101 +815,112 @@ void DemSystem<ExecSpace>::compute_forces() {
   const Kokkos::View<double* [3], Kokkos::LayoutRight, Mem, R> f = p_.force, tq = p_.torque;
   const Kokkos::View<const double*, Mem, R> rad = p_.radius, mass = p_.mass;
   const Kokkos::View<const int*, Mem, R> mat = p_.material, off = list_.offsets,
-                                         nbr = list_.neighbors;
+                                         nbr = list_.neighbors, half = half_start_,
+                                         order = row_order_, slab = slab_start_;
   const Kokkos::View<double* [3], Kokkos::LayoutRight, Mem, R> shear = shear_;
   const Kokkos::View<const PairCoefficients**, Mem, R> pairs = pairs_;
-  const Kokkos::View<const Wall*, Mem, R> walls = walls_;
-  const Kokkos::View<double** [3], Kokkos::LayoutRight, Mem, R> wshear = wall_shear_;
-  const Kokkos::View<unsigned*, Mem, R> wmask = wall_mask_;
   const Kokkos::View<const unsigned*, Mem, R> wnear = wall_near_;
   const Kokkos::View<unsigned*, Mem, R> rmask = row_mask_;
-  const int nw = n_walls_;
-  Kokkos::parallel_for(
-      "amphora::dem::compute_forces", RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
-      KOKKOS_LAMBDA(int i) {
-        const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
-        const double vi[3] = {v(i, 0), v(i, 1), v(i, 2)};
-        const double wi[3] = {om(i, 0), om(i, 1), om(i, 2)};
-        const double ri = rad(i), mi = mass(i);
-        const int mati = mat(i);
-        double F[3] = {mi * g0, mi * g1, mi * g2};
-        double T[3] = {0, 0, 0};
-        const int k0 = off(i);
-        unsigned springs = rmask(i);
-        for (int k = k0; k < off(i + 1); ++k) {
-          const int j = nbr(k);
-          const double dx[3] = {x(j, 0) - xi[0], x(j, 1) - xi[1], x(j, 2) - xi[2]};
-          const double d2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-          const double rj = rad(j), rsum = ri + rj;
-          const unsigned bit = k - k0 < 32 ? 1u << (k - k0) : 0u;
-          if (d2 >= rsum * rsum) {
-            // Contact lost (or never made): its spring resets. Touched only when it may be set,
-            // so the many near-but-apart neighbours cost no history traffic.
-            if (bit == 0u || (springs & bit)) {
-              shear(k, 0) = shear(k, 1) = shear(k, 2) = 0.0;
-              springs &= ~bit;
+  // Force and torque start at zero (kick_drift left them so, having used them): the rows add
+  // to them, even slabs in parallel, then odd ones; in a slab, row by row in order. A row adds
+  // its particle's gravity, walls and share of its pairs with larger-gid partners in one go,
+  // and the partners' shares to theirs.
+  if (!forces_zeroed_) {
+    Kokkos::deep_copy(exec_, p_.force, 0.0);
+    Kokkos::deep_copy(exec_, p_.torque, 0.0);
+  }
+  forces_zeroed_ = false;
+  const BodyForces<Mem> body{p_.radius,   p_.mass,    p_.material, pairs_,     walls_,
+                             wall_shear_, wall_mask_, n_walls_,    config_.dt, {g0, g1, g2}};
+  for (int colour = 0; colour < 2; ++colour) {
+    // Slabs hold unequal numbers of rows: one at a time to whichever thread is free.
+    using Slabs = Kokkos::RangePolicy<ExecSpace, Kokkos::Schedule<Kokkos::Dynamic>, Kokkos::IndexType<int>>;
+    Kokkos::parallel_for(
+        "amphora::dem::pair_forces",
+        Slabs(exec_, colour_slabs_[colour], colour_slabs_[colour + 1], Kokkos::ChunkSize(1)),
+        KOKKOS_LAMBDA(int u) {
+          for (int a = slab(u); a < slab(u + 1); ++a) {
+            // the springs of a row a few ahead: their lines are far apart and read only where
+            // pairs touch, which no hardware prefetcher foresees
+            if (a + 4 < slab(u + 1)) {
+              const int r = order(a + 4);
+              const double* p = shear.data() + 3 * size_t(half(r));
+              if (half(r) < off(r + 1)) prefetch_line(p, true);
+              if (half(r) + 1 < off(r + 1)) prefetch_line(p + 5, true);
             }
-            continue;
-          }
-          springs |= bit;
-          const double dist = math::sqrt(d2);
-          const double inv = 1.0 / dist;
-          const double n[3] = {dx[0] * inv, dx[1] * inv, dx[2] * inv};
-          const double mj = mass(j);
-          const double dv[3] = {vi[0] - v(j, 0), vi[1] - v(j, 1), vi[2] - v(j, 2)};
-          // The approach speed from dx, not n: off the chain sqrt -> division -> n.
-          const double vn = (dv[0] * dx[0] + dv[1] * dx[1] + dv[2] * dx[2]) * inv;
-          // R* = ri rj / (ri + rj) and m* = mi mj / (mi + mj) with one division.
-          const double q = 1.0 / (rsum * (mi + mj));
-          // Velocity of i's contact point relative to j's: v_i - v_j + (r_i w_i + r_j w_j) x n.
-          const double a[3] = {ri * wi[0] + rj * om(j, 0), ri * wi[1] + rj * om(j, 1),
-                               ri * wi[2] + rj * om(j, 2)};
-          const double vr[3] = {dv[0] + a[1] * n[2] - a[2] * n[1], dv[1] + a[2] * n[0] - a[0] * n[2],
-                                dv[2] + a[0] * n[1] - a[1] * n[0]};
-          const double wr[3] = {wi[0] - om(j, 0), wi[1] - om(j, 1), wi[2] - om(j, 2)};
-          double s[3] = {shear(k, 0), shear(k, 1), shear(k, 2)};
-          const ContactForce c = hertz_mindlin_force(pairs(mati, mat(j)), ri * rj * (mi + mj) * q,
-                                                     mi * mj * rsum * q, n, rsum - dist, vn, vr, wr,
-                                                     ri, dt, s);
-          for (int d = 0; d < 3; ++d) {
-            shear(k, d) = s[d];
-            F[d] += c.force[d];
-            T[d] += c.torque[d];
-          }
-        }
-        const unsigned near = wnear(i);
-        for (int w = 0; w < nw; ++w) {
-          if (!(near & (1u << w))) continue;
-          double n[3], delta, vw[3];
-          const Wall& wall = walls(w);
-          if (!wall_contact(wall, t, xi, ri, n, delta, vw)) {
-            if (wmask(i) & (1u << w)) {
-              wmask(i) &= ~(1u << w);
-              wshear(i, w, 0) = wshear(i, w, 1) = wshear(i, w, 2) = 0.0;
+            const int i = order(a);
+            const bool owned = i < n;  // else a ghost's row: only its pairs with owned particles
+            const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
+            const double vi[3] = {v(i, 0), v(i, 1), v(i, 2)};
+            const double wi[3] = {om(i, 0), om(i, 1), om(i, 2)};
+            const double ri = rad(i), mi = mass(i);
+            const int mati = mat(i);
+            // gravity, the walls, and i's share of its pairs with larger-gid partners in gid
+            // order
+            double F[3] = {0, 0, 0};
+            double T[3] = {0, 0, 0};
+            if (owned) body(i, t, wnear(i), xi, vi, wi, F, T);
+            const int k0 = off(i);
+            unsigned springs = rmask(i);
+            for (int k = half(i); k < off(i + 1); ++k) {
+              const int j = nbr(k);
+              if (!owned && j >= n) continue;
+              const double dx[3] = {x(j, 0) - xi[0], x(j, 1) - xi[1], x(j, 2) - xi[2]};
+              const double d2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+              const double rj = rad(j), rsum = ri + rj;
+              const unsigned bit = k - k0 < 32 ? 1u << (k - k0) : 0u;
+              if (d2 >= rsum * rsum) {
+                // Contact lost (or never made): its spring resets. Touched only when it may be
+                // set, so the many near-but-apart neighbours cost no history traffic.
+                if (bit == 0u || (springs & bit)) {
+                  shear(k, 0) = shear(k, 1) = shear(k, 2) = 0.0;
+                  springs &= ~bit;
+                }
+                continue;
+              }
+              springs |= bit;
+              const double dist = math::sqrt(d2);
+              const double inv = 1.0 / dist;
+              const double nn[3] = {dx[0] * inv, dx[1] * inv, dx[2] * inv};
+              const double mj = mass(j);
+              const double dv[3] = {vi[0] - v(j, 0), vi[1] - v(j, 1), vi[2] - v(j, 2)};
+              // The approach speed from dx, not n: off the chain sqrt -> division -> n.
+              const double vn = (dv[0] * dx[0] + dv[1] * dx[1] + dv[2] * dx[2]) * inv;
+              // R* = ri rj / (ri + rj) and m* = mi mj / (mi + mj) with one division.
+              const double q = 1.0 / (rsum * (mi + mj));
+              // Velocity of i's contact point relative to j's: v_i - v_j + (r_i w_i + r_j w_j) x n.
+              const double w[3] = {ri * wi[0] + rj * om(j, 0), ri * wi[1] + rj * om(j, 1),
+                                   ri * wi[2] + rj * om(j, 2)};
+              const double vr[3] = {dv[0] + w[1] * nn[2] - w[2] * nn[1],
+                                    dv[1] + w[2] * nn[0] - w[0] * nn[2],
+                                    dv[2] + w[0] * nn[1] - w[1] * nn[0]};
+              const double wr[3] = {wi[0] - om(j, 0), wi[1] - om(j, 1), wi[2] - om(j, 2)};
+              double s[3] = {shear(k, 0), shear(k, 1), shear(k, 2)};
+              const ContactForce c = hertz_mindlin_force(pairs(mati, mat(j)),
+                                                         ri * rj * (mi + mj) * q, mi * mj * rsum * q,
+                                                         nn, rsum - dist, vn, vr, wr, dt, s);
+              for (int d = 0; d < 3; ++d) {
+                shear(k, d) = s[d];
+                F[d] += c.force[d];
+                T[d] += ri * c.moment[d] + c.rolling[d];
+              }
+              if (j < n) {
+                for (int d = 0; d < 3; ++d) {
+                  f(j, d) -= c.force[d];
+                  tq(j, d) += rj * c.moment[d] - c.rolling[d];
+                }
+              }
             }
-            continue;
+            rmask(i) = springs;
+            if (owned) {
+              for (int d = 0; d < 3; ++d) {
+                f(i, d) += F[d];
+                tq(i, d) += T[d];
+              }
+            }
           }
-          wmask(i) |= 1u << w;
-          const double vr[3] = {vi[0] - vw[0] + ri * (wi[1] * n[2] - wi[2] * n[1]),
-                                vi[1] - vw[1] + ri * (wi[2] * n[0] - wi[0] * n[2]),
-                                vi[2] - vw[2] + ri * (wi[0] * n[1] - wi[1] * n[0])};
-          const double wr[3] = {wi[0] - wall.angular_velocity[0], wi[1] - wall.angular_velocity[1],
-                                wi[2] - wall.angular_velocity[2]};
-          double s[3] = {wshear(i, w, 0), wshear(i, w, 1), wshear(i, w, 2)};
-          const ContactForce c =
-              hertz_mindlin_force(pairs(mati, wall.material), ri, mi, n, delta, vr, wr, ri, dt, s);
-          for (int d = 0; d < 3; ++d) {
-            wshear(i, w, d) = s[d];
-            F[d] += c.force[d];
-            T[d] += c.torque[d];
-          }
-        }
-        rmask(i) = springs;
-        for (int d = 0; d < 3; ++d) {
-          f(i, d) = F[d];
-          tq(i, d) = T[d];
-        }
-      });
+        });
+  }
 }
 
 template <class ExecSpace>
@@ -772,6 +951,7 @@ void DemSystem<ExecSpace>::step() {
   ++steps_;
   t = timer_mark(timers_.integrate, t);
   const double half_skin = 0.5 * config_.skin;
+  if (max_d2 > half_skin * half_skin) keep_build_positions_ = false;
   if (need_rebuild_ || max_d2 > half_skin * half_skin) {
     rebuild();
   } else {
@@ -818,7 +998,7 @@ DemDiagnostics DemSystem<ExecSpace>::diagnostics() const {
   const int nw = n_walls_;
   const double t = time_;
   const double g0 = config_.gravity[0], g1 = config_.gravity[1], g2 = config_.gravity[2];
-  const bool have_list = list_.rows() == n;
+  const bool have_list = list_.rows() == p_.size();
   double ke = 0, re = 0, pe = 0, el = 0, mo = 0;
   long long contacts = 0, wcontacts = 0;
   using Policy = RangePolicy<ExecSpace>;
@@ -945,7 +1125,7 @@ std::vector<int> DemSystem<ExecSpace>::contact_counts() const {
   const auto walls = walls_;
   const int nw = n_walls_;
   const double t = time_;
-  const bool have_list = list_.rows() == n;
+  const bool have_list = list_.rows() == p_.size();
   Kokkos::parallel_for(
       "amphora::dem::contact_counts", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
         int c = 0;
@@ -996,11 +1176,14 @@ typename DemSystem<ExecSpace>::HostState DemSystem<ExecSpace>::save() const {
   self->history_to_records();
   const int n = p_.n_owned, nw = int(wall_shear_.extent(1)), K = config_.max_contacts;
   const HostArrays h = to_host();
-  const auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque;
+  const auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
   const auto &r = h.radius, &mat = h.material, &gid = h.gid;
   const auto &ws = h.wall_shear, &rg = h.rec_gid, &rs = h.rec_shear;
+  // Before the first rebuild there are no build positions yet.
+  const bool built = list_.rows() == p_.size() && n > 0;
   for (int i = 0; i < n; ++i) {
     for (int d = 0; d < 3; ++d) {
+      s.x_build.push_back(built ? xb(i, d) : x(i, d));
       s.x.push_back(x(i, d));
       s.v.push_back(v(i, d));
       s.omega.push_back(om(i, d));
@@ -1032,12 +1215,14 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
   p_.n_owned = p_.n_ghost = 0;
   resize_owned(n);
   HostArrays h = to_host();
-  auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque;
+  auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
   auto &r = h.radius, &m = h.mass, &in = h.inertia;
   auto &mat = h.material, &gid = h.gid, &ws = h.wall_shear, &rg = h.rec_gid, &rs = h.rec_shear;
+  const bool have_build = s.x_build.size() == s.x.size();
   for (int a = 0; a < n; ++a) {
     const size_t i = mine[a];
     for (int d = 0; d < 3; ++d) {
+      xb(a, d) = have_build ? s.x_build[3 * i + d] : s.x[3 * i + d];
       x(a, d) = s.x[3 * i + d];
       v(a, d) = s.v[3 * i + d];
       om(a, d) = s.omega[3 * i + d];
@@ -1060,10 +1245,11 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
   p_.n_owned = n;
   list_.offsets = Kokkos::View<int*, Mem>("amphora::dem::list_offsets", 1);
   list_.neighbors = Kokkos::View<int*, Mem>("amphora::dem::list_neighbors", 0);
-  // Forces of the saved state are restored as they were: the next step rebuilds the lists
-  // after its first half kick, as an uninterrupted run may or may not have, which changes no
-  // bit (sums run in global-id order; the history comes back from the records).
-  need_rebuild_ = true;
+  // Forces of the saved state are restored as they were. The next step rebuilds after its
+  // first half kick, at the saved build positions unless a rebuild is due anyway: the lists,
+  // ghosts and rows' order (so the order of every sum) are those of the run it continues, on
+  // any rank count, and the history comes back from the records.
+  keep_build_positions_ = have_build;
   forces_valid_ = true;
 }
 

@@ -5,8 +5,18 @@
 // displacement since the last build could close half the skin, and spatial decomposition over
 // MPI ranks with ghost particles and migration. Tangential history lives with the list between
 // rebuilds and with the particles across them (records keyed by the partner's global id), so it
-// survives rebuilds, sorting and migration. Forces are summed per particle over its neighbours
-// in global-id order: trajectories are the same bits on any thread or rank count.
+// survives rebuilds, sorting and migration.
+//
+// Each pair's contact law is evaluated once, in the pair's own orientation (smaller global id
+// first), by the row of its first particle, which keeps the spring, takes its share and adds
+// the partner's to the partner's force (ghosts have rows too: a ghost's row evaluates its pairs
+// with owned particles). Rows run in slabs across z, each two cutoffs (2 r_max + skin) thick
+// or more, so rows of every other slab reach disjoint particles and those slabs run in
+// parallel; each slab's rows run in a fixed order (global cell, then gid, at the positions of
+// the last rebuild). A particle thus receives its contributions in an order set by the
+// particles alone: trajectories are the same bits on any thread or rank count, and a
+// checkpoint (which carries the positions of the last rebuild) continues bit for bit. (On
+// GPUs the slabs are too few to fill the device: a per-particle path is still to be written.)
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -110,6 +120,7 @@ class DemSystem {
   /// torque, radius, material, gid, wall history, contact records (partner gid, history).
   struct HostState {
     std::vector<double> x, v, omega, force, torque, radius, wall_shear, contact_shear;
+    std::vector<double> x_build;  ///< positions at the last rebuild (empty: x)
     std::vector<std::int64_t> gid, contact_gid;
     std::vector<int> material;
   };
@@ -120,7 +131,7 @@ class DemSystem {
  public:  // (CUDA: extended lambdas may not live in private member functions)
   /// Host copies of every per-particle array (mirrors: no copy at all on a host backend).
   struct HostArrays {
-    host_mirror_t<Vec> x, v, omega, force, torque;
+    host_mirror_t<Vec> x, v, omega, force, torque, x_build;
     host_mirror_t<typename ParticleSet<Mem>::Scalar> radius, mass, inertia;
     host_mirror_t<typename ParticleSet<Mem>::Int> material;
     host_mirror_t<typename ParticleSet<Mem>::Id> gid;
@@ -138,6 +149,8 @@ class DemSystem {
   void build_ghosts();
   void forward_ghosts();
   void compute_forces();
+  void order_rows();
+  CellGrid row_cells() const;  // the domain's grid the rows' order is taken on
   double kick_drift();
   // A step's second half kick is deferred to the next step's first (one pass over the
   // particles instead of two; the same two additions, so the same bits): until then the
@@ -162,7 +175,11 @@ class DemSystem {
   double ghost_width_ = 0;
 
   ParticleSet<Mem> p_;
+  // Positions at the last rebuild (owned and ghosts): the lists, the ghosts and the rows' order
+  // are those of these positions.
   Vec x_build_;
+  bool keep_build_positions_ = false;  // the next rebuild keeps x_build_ (a restart's first)
+  bool forces_zeroed_ = false;  // force and torque are zero, ready for a force evaluation
   Hist wall_shear_;   // (particle, wall, 3)
   // Bit w set: wall w's history of this particle may be non-zero. Derived from wall_shear_
   // at each rebuild, so the force loop reads a particle's wall histories only when it must.
@@ -175,8 +192,17 @@ class DemSystem {
   Kokkos::View<unsigned*, Mem> row_mask_;
   Hist rec_shear_;    // (particle, record, 3), valid across a rebuild
   RecIds rec_gid_;    // (particle, record): partner gid or -1
-  NeighborList<Mem> list_;
-  Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> shear_;  // aligned with list_.neighbors
+  NeighborList<Mem> list_;  // rows for owned particles and ghosts
+  // Aligned with list_.neighbors: the springs of the pairs each row evaluates (zero elsewhere).
+  Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> shear_;
+  // Row i's entries from half_start_(i) on are its partners of larger gid: the pairs it
+  // evaluates.
+  Kokkos::View<int*, Mem> half_start_;
+  // Rows in the order they run: slab by slab (slabs of one colour, even or odd, run in
+  // parallel); slab u holds row_order_(slab_start_(u) .. slab_start_(u+1)); the slabs of colour
+  // c are colour_slabs_[c] .. colour_slabs_[c+1].
+  Kokkos::View<int*, Mem> row_order_, slab_start_;
+  int colour_slabs_[3] = {0, 0, 0};
 
   // Ghost forwarding plan: per exchange (d, side), the local indices sent and where the
   // received copies start.

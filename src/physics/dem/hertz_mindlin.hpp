@@ -10,23 +10,25 @@
 namespace amphora::dem {
 
 struct ContactForce {
-  double force[3];   ///< on particle i (normal + tangential + cohesion)
-  double torque[3];  ///< on particle i about its centre (tangential + rolling)
-  double normal;     ///< normal force magnitude (>0 repulsive), for diagnostics
+  double force[3];    ///< on particle i (normal + tangential + cohesion); j takes minus this
+  double moment[3];   ///< n x (tangential force on i): i's centre, and j's, at distance l from
+                      ///< the contact point take the torque l * moment from it
+  double rolling[3];  ///< rolling-resistance torque on i; j takes minus this
+  double normal;      ///< normal force magnitude (>0 repulsive), for diagnostics
 };
 
 /// Force and torque on particle i from a contact with j (or a wall).
 ///   n: unit vector from i's centre towards the contact partner; delta > 0: overlap
 ///   v_rel: velocity of i's contact point relative to j's (translation and rotation)
-///   w_rel: omega_i - omega_j (rolling);  lever: distance from i's centre to the contact point
+///   w_rel: omega_i - omega_j (rolling)
 ///   shear: tangential displacement history of this contact, updated in place.
 ///   vn: v_rel . n, the approach speed (> 0: approaching), which callers may know sooner than
 ///   v_rel and n (the rotational part of v_rel is normal to n).
 KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& c, double r_eff,
                                                         double m_eff, const double n[3],
                                                         double delta, double vn, const double v_rel[3],
-                                                        const double w_rel[3], double lever,
-                                                        double dt, double shear[3]) {
+                                                        const double w_rel[3], double dt,
+                                                        double shear[3]) {
   ContactForce out;
   // Contact radius a = sqrt(R* delta); stiffnesses grow with a, damping with sqrt(m* a).
   const double a = math::sqrt(r_eff * delta);
@@ -63,15 +65,17 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficie
   const double f_coh = c.cohesion * math::pi * r_eff * delta;
   for (int d = 0; d < 3; ++d) out.force[d] = -(fn - f_coh) * n[d] + ft[d];
 
-  // Torque of the tangential force applied at the contact point lever * n.
-  out.torque[0] = lever * (n[1] * ft[2] - n[2] * ft[1]);
-  out.torque[1] = lever * (n[2] * ft[0] - n[0] * ft[2]);
-  out.torque[2] = lever * (n[0] * ft[1] - n[1] * ft[0]);
+  // The tangential force at the contact point, l n from i's centre, has the torque l n x ft
+  // on i; j's centre lies at -l' n from the point and takes -ft: the torque l' n x ft as well.
+  out.moment[0] = n[1] * ft[2] - n[2] * ft[1];
+  out.moment[1] = n[2] * ft[0] - n[0] * ft[2];
+  out.moment[2] = n[0] * ft[1] - n[1] * ft[0];
   // Rolling resistance: a constant torque mu_r R* |F_n| against the relative rotation.
   const double w2 = w_rel[0] * w_rel[0] + w_rel[1] * w_rel[1] + w_rel[2] * w_rel[2];
+  for (int d = 0; d < 3; ++d) out.rolling[d] = 0.0;
   if (c.rolling_friction > 0 && w2 > 0) {
     const double m = c.rolling_friction * r_eff * fn / math::sqrt(w2);
-    for (int d = 0; d < 3; ++d) out.torque[d] -= m * w_rel[d];
+    for (int d = 0; d < 3; ++d) out.rolling[d] = -m * w_rel[d];
   }
   out.normal = fn;
   return out;
@@ -81,10 +85,10 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficie
 KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& c, double r_eff,
                                                         double m_eff, const double n[3],
                                                         double delta, const double v_rel[3],
-                                                        const double w_rel[3], double lever,
-                                                        double dt, double shear[3]) {
+                                                        const double w_rel[3], double dt,
+                                                        double shear[3]) {
   const double vn = v_rel[0] * n[0] + v_rel[1] * n[1] + v_rel[2] * n[2];
-  return hertz_mindlin_force(c, r_eff, m_eff, n, delta, vn, v_rel, w_rel, lever, dt, shear);
+  return hertz_mindlin_force(c, r_eff, m_eff, n, delta, vn, v_rel, w_rel, dt, shear);
 }
 
 }  // namespace amphora::dem
