@@ -1,6 +1,7 @@
 # DEM through the real binary: a settling bed gives the same bits on 1 and 2 threads and on 1
-# and 2 ranks (forces are summed per particle in global-id order), continues bit for bit from
-# a checkpoint (contact history and insertion state included), and bad input is refused.
+# and 2 ranks (a particle receives its pair forces in an order set by the particles alone: see
+# dem_system.hpp), continues bit for bit from a checkpoint (contact history, insertion state and
+# build positions included), and bad input is refused.
 source "$(dirname "$0")/common.sh"
 bed() {  # file output_dir [extra [dem] lines...]
   local file=$1 out=$2; shift 2
