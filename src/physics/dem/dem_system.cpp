@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
-#include <tuple>
-#include <limits>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "kernels/binning.hpp"
 #include "kernels/prefetch.hpp"
@@ -76,8 +76,8 @@ KOKKOS_INLINE_FUNCTION int entry_of(const Neighbors& nbr, const Ids& gid, int lo
   return lo;
 }
 
-/// Gravity and the walls' forces on particle i at (x, v, omega) and time t: where a force
-/// evaluation starts, before the pairs add theirs. Walls not in `near` are skipped.
+/// Gravity and the walls' forces on particle i at (x, v, omega) and time t, where the share
+/// its row adds starts. Walls not in `near` are skipped.
 template <class Mem>
 struct BodyForces {
   using R = Kokkos::MemoryTraits<Kokkos::Restrict>;
@@ -452,9 +452,9 @@ void DemSystem<ExecSpace>::sort_owned_by_cell() {
   const auto hi = decomposition_.hi(comm_.rank());
   CellGrid grid = global;
   for (int d = 0; d < 3; ++d) {
-    const double first = global.coord(lo[d], d), last = global.coord(hi[d], d);
+    const int first = global.coord(lo[d], d), last = global.coord(hi[d], d);
     grid.lo[d] = global.lo[d] + first * global.h;
-    grid.n[d] = int(last - first) + 1;
+    grid.n[d] = last - first + 1;
   }
   const auto bins = bin_points(exec_, grid, x_build_, n, p_.gid);
   const auto& perm = bins.permutation;
