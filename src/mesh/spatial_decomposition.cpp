@@ -83,4 +83,13 @@ std::vector<double> SpatialDecomposition::exchange_face(int d, int side,
   return in;
 }
 
+void SpatialDecomposition::exchange_face(int d, int side, const double* out, int n_out,
+                                         double* in, int n_in) const {
+  const int to = neighbor(d, side), from = neighbor(d, 1 - side);
+  const int tag = 220 + 2 * d + side;
+  MPI_Sendrecv(out, to >= 0 ? n_out : 0, MPI_DOUBLE, to >= 0 ? to : MPI_PROC_NULL, tag, in,
+               from >= 0 ? n_in : 0, MPI_DOUBLE, from >= 0 ? from : MPI_PROC_NULL, tag,
+               comm_.get(), MPI_STATUS_IGNORE);
+}
+
 }  // namespace amphora

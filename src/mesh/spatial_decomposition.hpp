@@ -31,6 +31,9 @@ class SpatialDecomposition {
   /// Sends `out` to the neighbour across face (d, side) and returns what the neighbour on the
   /// opposite face sent (empty where there is none). Collective over the pair.
   std::vector<double> exchange_face(int d, int side, const std::vector<double>& out) const;
+  /// The same where both sides know the sizes (a repeated exchange): n_out doubles from `out`
+  /// to the neighbour across (d, side), n_in into `in` from the opposite one. One message.
+  void exchange_face(int d, int side, const double* out, int n_out, double* in, int n_in) const;
 
  private:
   Communicator comm_;

@@ -515,7 +515,7 @@ void DemSystem<ExecSpace>::build_ghosts() {
     // arrive), never ghosts that came in along this direction (they would go back home).
     const int candidates = n + int(data.size()) / kGhostRecord;
     for (int side = 0; side < 2; ++side) {
-      GhostLeg leg{d, side, {}, 0, 0};
+      GhostLeg leg{d, side, {}, 0, 0, {}, {}};
       std::vector<int> send;
       std::vector<double> out;
       const int total = n + int(data.size()) / kGhostRecord;
@@ -533,6 +533,8 @@ void DemSystem<ExecSpace>::build_ghosts() {
       leg.recv_count = int(in.size()) / kGhostRecord;
       data.insert(data.end(), in.begin(), in.end());
       leg.send = Kokkos::View<int*, Mem>("amphora::dem::ghost_send", send.size());
+      leg.send_buf = Kokkos::View<double*, Mem>("amphora::dem::ghost_send_buf", 9 * send.size());
+      leg.recv_buf = Kokkos::View<double*, Mem>("amphora::dem::ghost_recv_buf", 9 * size_t(leg.recv_count));
       auto hs = Kokkos::create_mirror_view(leg.send);
       for (size_t k = 0; k < send.size(); ++k) hs(k) = send[k];
       Kokkos::deep_copy(leg.send, hs);
@@ -587,8 +589,7 @@ void DemSystem<ExecSpace>::forward_ghosts() {
   for (const auto& leg : legs_) {
     const auto send = leg.send;
     const int ns = static_cast<int>(send.extent(0));
-    Kokkos::View<double*, Mem> buf(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::dem::fwd"),
-                                   size_t(9) * ns);
+    const auto buf = leg.send_buf, rbuf = leg.recv_buf;
     Kokkos::parallel_for(
         "amphora::dem::forward_ghosts::pack", RangePolicy<ExecSpace>(exec_, 0, ns),
         KOKKOS_LAMBDA(int k) {
@@ -600,12 +601,11 @@ void DemSystem<ExecSpace>::forward_ghosts() {
           }
         });
     exec_.fence();
-    auto hb = Kokkos::create_mirror_view_and_copy(HostMemSpace(), buf);
-    const std::vector<double> out(hb.data(), hb.data() + hb.size());
-    const std::vector<double> in = decomposition_.exchange_face(leg.d, leg.side, out);
-    Kokkos::View<double*, Mem> rbuf("amphora::dem::fwd_recv", in.size());
-    auto hrb = Kokkos::create_mirror_view(rbuf);
-    for (size_t k = 0; k < in.size(); ++k) hrb(k) = in[k];
+    // Host mirrors (the buffers themselves on host back ends): both sides know the sizes.
+    const auto hb = Kokkos::create_mirror_view_and_copy(HostMemSpace(), buf);
+    const auto hrb = Kokkos::create_mirror_view(rbuf);
+    decomposition_.exchange_face(leg.d, leg.side, hb.data(), int(hb.size()), hrb.data(),
+                                 int(hrb.size()));
     Kokkos::deep_copy(rbuf, hrb);
     const int first = leg.recv_first;
     Kokkos::parallel_for(

@@ -210,6 +210,7 @@ class DemSystem {
     int d, side;
     Kokkos::View<int*, Mem> send;
     int recv_first = 0, recv_count = 0;
+    Kokkos::View<double*, Mem> send_buf, recv_buf;  // kept from step to step
   };
   std::vector<GhostLeg> legs_;
 
