@@ -276,7 +276,7 @@ double DemSystem<ExecSpace>::timer_mark(double& slot, double since) const {
 template <class ExecSpace>
 void DemSystem<ExecSpace>::history_to_records() {
   // Collective on every path: ranks without particles (or lists) take part in the check.
-  const bool have = list_.rows() == p_.size() && p_.n_owned > 0;
+  const bool have = has_lists() && p_.n_owned > 0;
   const int n = p_.n_owned;
   const int K = config_.max_contacts;
   const auto off = list_.offsets;
@@ -998,7 +998,7 @@ DemDiagnostics DemSystem<ExecSpace>::diagnostics() const {
   const int nw = n_walls_;
   const double t = time_;
   const double g0 = config_.gravity[0], g1 = config_.gravity[1], g2 = config_.gravity[2];
-  const bool have_list = list_.rows() == p_.size();
+  const bool have_list = has_lists();
   double ke = 0, re = 0, pe = 0, el = 0, mo = 0;
   long long contacts = 0, wcontacts = 0;
   using Policy = RangePolicy<ExecSpace>;
@@ -1125,7 +1125,7 @@ std::vector<int> DemSystem<ExecSpace>::contact_counts() const {
   const auto walls = walls_;
   const int nw = n_walls_;
   const double t = time_;
-  const bool have_list = list_.rows() == p_.size();
+  const bool have_list = has_lists();
   Kokkos::parallel_for(
       "amphora::dem::contact_counts", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
         int c = 0;
@@ -1180,7 +1180,7 @@ typename DemSystem<ExecSpace>::HostState DemSystem<ExecSpace>::save() const {
   const auto &r = h.radius, &mat = h.material, &gid = h.gid;
   const auto &ws = h.wall_shear, &rg = h.rec_gid, &rs = h.rec_shear;
   // Before the first rebuild there are no build positions yet.
-  const bool built = list_.rows() == p_.size() && n > 0;
+  const bool built = has_lists() && n > 0;
   for (int i = 0; i < n; ++i) {
     for (int d = 0; d < 3; ++d) {
       s.x_build.push_back(built ? xb(i, d) : x(i, d));

@@ -142,6 +142,9 @@ class DemSystem {
   void from_host(const HostArrays& h);
 
   void rebuild();
+  /// Whether the lists are those of the current particles (rows for owned and ghosts): not
+  /// so between an insertion or a load and the next rebuild.
+  bool has_lists() const { return list_.rows() == p_.size(); }
   void history_to_records();
   void records_to_history();
   void remove_and_migrate();
