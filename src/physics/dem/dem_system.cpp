@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 
 #include "kernels/binning.hpp"
 #include "kernels/prefetch.hpp"
@@ -22,6 +23,22 @@ double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
+
+/// A LayoutRight [n][3] View seen as a restrict pointer whose row stride, 3, is known at
+/// compile time. Kokkos keeps a LayoutRight stride at run time (rows may be padded), which in
+/// the contact loop costs a register (spilled) and a multiply per access.
+template <class T>
+struct Rows3 {
+  T* KOKKOS_RESTRICT p;
+  template <class View>
+  explicit Rows3(const View& v) : p(v.data()) {
+    static_assert(std::is_same_v<typename View::array_layout, Kokkos::LayoutRight> &&
+                      View::rank == 2 && View::static_extent(1) == 3,
+                  "Rows3 views a LayoutRight [n][3] View");
+    if (v.extent(0) > 1 && v.stride(0) != 3) throw std::logic_error("Rows3: padded rows");
+  }
+  KOKKOS_FORCEINLINE_FUNCTION T& operator()(int i, int d) const { return p[3 * size_t(i) + d]; }
+};
 
 /// dst(i, ...) = src(perm(i), ...) for i < n, for LayoutRight Views of any rank: the inner
 /// extents of a row are contiguous.
@@ -768,14 +785,19 @@ double DemSystem<ExecSpace>::kick_drift() {
         const double hm = 0.5 * dt / m(i), hi = 0.5 * dt / in(i);
         double d2 = 0;
         for (int d = 0; d < 3; ++d) {
+          const double fd = f(i, d), td = tq(i, d);
+          double vd = v(i, d), wd = om(i, d);
           if (pending) {
-            v(i, d) += hm * f(i, d);
-            om(i, d) += hi * tq(i, d);
+            vd += hm * fd;
+            wd += hi * td;
           }
-          v(i, d) += hm * f(i, d);
-          om(i, d) += hi * tq(i, d);
-          x(i, d) += dt * v(i, d);
-          const double dd = x(i, d) - xb(i, d);
+          vd += hm * fd;
+          wd += hi * td;
+          const double xd = x(i, d) + dt * vd;
+          v(i, d) = vd;
+          om(i, d) = wd;
+          x(i, d) = xd;
+          const double dd = xd - xb(i, d);
           d2 += dd * dd;
           // used: the next force evaluation adds to zero (f is at hand here)
           f(i, d) = tq(i, d) = 0.0;
@@ -810,14 +832,12 @@ void DemSystem<ExecSpace>::compute_forces() {
   // Restrict-qualified Views: no store through one may alias another, so the compiler keeps
   // loads in registers across the contact loop (about 1.3x on the dense bed).
   using R = Kokkos::MemoryTraits<Kokkos::Restrict>;
-  const Kokkos::View<const double* [3], Kokkos::LayoutRight, Mem, R> x = p_.x, v = p_.v,
-                                                                     om = p_.omega;
-  const Kokkos::View<double* [3], Kokkos::LayoutRight, Mem, R> f = p_.force, tq = p_.torque;
+  const Rows3<const double> x(p_.x), v(p_.v), om(p_.omega);
+  const Rows3<double> f(p_.force), tq(p_.torque), shear(shear_);
   const Kokkos::View<const double*, Mem, R> rad = p_.radius, mass = p_.mass;
   const Kokkos::View<const int*, Mem, R> mat = p_.material, off = list_.offsets,
                                          nbr = list_.neighbors, half = half_start_,
                                          order = row_order_, slab = slab_start_;
-  const Kokkos::View<double* [3], Kokkos::LayoutRight, Mem, R> shear = shear_;
   const Kokkos::View<const PairCoefficients**, Mem, R> pairs = pairs_;
   const Kokkos::View<const unsigned*, Mem, R> wnear = wall_near_;
   const Kokkos::View<unsigned*, Mem, R> rmask = row_mask_;
@@ -844,7 +864,7 @@ void DemSystem<ExecSpace>::compute_forces() {
             // pairs touch, which no hardware prefetcher foresees
             if (a + 4 < slab(u + 1)) {
               const int r = order(a + 4);
-              const double* p = shear.data() + 3 * size_t(half(r));
+              const double* p = shear.p + 3 * size_t(half(r));
               if (half(r) < off(r + 1)) prefetch_line(p, true);
               if (half(r) + 1 < off(r + 1)) prefetch_line(p + 5, true);
             }
