@@ -696,6 +696,7 @@ void DemSystem<ExecSpace>::rebuild() {
     const auto ws = wall_shear_;
     const auto sh = shear_;
     const auto off = list_.offsets;
+    const auto half = half_start_;
     const auto x = x_build_;
     const auto rad = p_.radius;
     const auto walls = walls_;
@@ -703,9 +704,10 @@ void DemSystem<ExecSpace>::rebuild() {
     const double t_now = time_, skin = config_.skin;
     Kokkos::parallel_for(
         "amphora::dem::history_masks", RangePolicy<ExecSpace>(exec_, 0, total), KOKKOS_LAMBDA(int i) {
+          // Bit b: the spring of the row's b-th own entry (from half(i) on) may be set.
           unsigned r = 0;
-          for (int k = off(i); k < off(i + 1) && k - off(i) < 32; ++k)
-            if (sh(k, 0) != 0.0 || sh(k, 1) != 0.0 || sh(k, 2) != 0.0) r |= 1u << (k - off(i));
+          for (int k = half(i); k < off(i + 1) && k - half(i) < 32; ++k)
+            if (sh(k, 0) != 0.0 || sh(k, 1) != 0.0 || sh(k, 2) != 0.0) r |= 1u << (k - half(i));
           rmask(i) = r;
           if (i >= n) return;  // ghosts: no walls here
           unsigned m = 0, w_near = 0;
@@ -880,7 +882,7 @@ void DemSystem<ExecSpace>::compute_forces() {
             double F[3] = {0, 0, 0};
             double T[3] = {0, 0, 0};
             if (owned) body(i, t, wnear(i), xi, vi, wi, F, T);
-            const int k0 = off(i);
+            const int k0 = half(i);
             unsigned springs = rmask(i);
             for (int k = half(i); k < off(i + 1); ++k) {
               const int j = nbr(k);

@@ -189,9 +189,9 @@ class DemSystem {
   Kokkos::View<unsigned*, Mem> wall_mask_;
   // Bit w set: wall w may touch the particle before the next rebuild (set at each rebuild).
   Kokkos::View<unsigned*, Mem> wall_near_;
-  // Bit b set: entry off(i) + b of row i may hold a non-zero spring (rows longer than 32 keep
-  // their tail entries always "set"). Spares the force loop the history reads of the many
-  // listed neighbours that do not touch.
+  // Bit b set: entry half_start_(i) + b of row i (its b-th own pair) may hold a non-zero
+  // spring (rows with more than 32 own pairs keep their tail entries always "set"). Spares
+  // the force loop the history reads of the many listed neighbours that do not touch.
   Kokkos::View<unsigned*, Mem> row_mask_;
   Hist rec_shear_;    // (particle, record, 3), valid across a rebuild
   RecIds rec_gid_;    // (particle, record): partner gid or -1
