@@ -23,6 +23,10 @@ struct ShapeData {
   /// s*s, s*d, d*d. They integrate a point field against phi_i^2 and its derivative
   /// products, which gives an operator's diagonal in dim sweeps per term.
   EvenOddMatrix<n_p, n_q> ss_t, sd_t, dd_t;
+  /// The quadrature's 1D mass and stiffness matrices, n_p x n_p: M_ij = sum_q w_q l_i l_j and
+  /// K_ij = sum_q w_q l_i' l_j' at the points. A Cartesian cell's Laplacian is their Kronecker
+  /// sum (TensorProductEvaluator::cartesian_laplace).
+  EvenOddMatrix<n_p, n_p> mass, stiffness;
   double weights[n_q];
   double points[n_q];
   /// Quadrature points coincide with the nodes (n_q = n_p, Gauss–Lobatto): values are identity.
@@ -41,6 +45,18 @@ struct ShapeData {
       s.ss_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(ss, n_q, n_p), 1);
       s.sd_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(sd, n_q, n_p), -1);
       s.dd_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(dd, n_q, n_p), 1);
+    }
+    {
+      const std::vector<double> v = lagrange_values(nodes, q.points), g = lagrange_derivatives(nodes, q.points);
+      std::vector<double> m(n_p * n_p, 0.0), k(n_p * n_p, 0.0);
+      for (int i = 0; i < n_p; ++i)
+        for (int j = 0; j < n_p; ++j)
+          for (int p = 0; p < n_q; ++p) {
+            m[i * n_p + j] += q.weights[p] * v[p * n_p + i] * v[p * n_p + j];
+            k[i * n_p + j] += q.weights[p] * g[p * n_p + i] * g[p * n_p + j];
+          }
+      s.mass = EvenOddMatrix<n_p, n_p>::from_dense(m, 1);
+      s.stiffness = EvenOddMatrix<n_p, n_p>::from_dense(k, 1);
     }
     const std::vector<double> d = lagrange_derivatives(q.points, q.points);
     s.derivative = EvenOddMatrix<n_q, n_q>::from_dense(d, -1);

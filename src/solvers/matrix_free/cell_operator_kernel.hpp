@@ -126,6 +126,11 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
 
   /// u <- A_cell u for batch b, with coefficients `c` from coefficients().
   KOKKOS_INLINE_FUNCTION void apply_local(const T* c, T* u, Scratch& s) const {
+    if (kind == OperatorKind::laplace && mode == GeometryMode::cartesian && !shape.collocated) {
+      static_assert(dim * n_points >= n_dofs, "cartesian_laplace's scratch is s.grad");
+      Eval::cartesian_laplace(shape, c, u, s.grad);  // the 1D matrices: no points needed
+      return;
+    }
     // The values at the points: in place of u where the sweeps may run in place (u is not read
     // again; the cartesian Laplace then works on 2 arrays, 2 x 22 KB at n_q = 7, W = 8, in L1).
     T* const v = Eval::in_place ? u : s.v;
