@@ -88,6 +88,70 @@ KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_line(const EvenOddMatrix<n_rows,
   }
 }
 
+/// One line through two square matrices of the same (+1) symmetry at once, sharing the even
+/// and odd parts of x: y1 = s1 (A x), y2 = s2 (B x) (with `add2`, y2 += ...). x may not alias
+/// y1 or y2.
+template <int n, int xs, int ys, bool add2, class T>
+KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_pair_line(const EvenOddMatrix<n, n>& a,
+                                                          const EvenOddMatrix<n, n>& b, const T* xl,
+                                                          T* y1, T* y2, T s1, T s2) {
+  using M = EvenOddMatrix<n, n>;
+  constexpr int hc = M::half_cols, hr = M::half_rows, hcs = hc > 0 ? hc : 1;
+  T e[hcs], d[hcs];
+  for (int i = 0; i < hc; ++i) {
+    e[i] = xl[i * xs] + xl[(n - 1 - i) * xs];
+    d[i] = xl[i * xs] - xl[(n - 1 - i) * xs];
+  }
+  const T mid = M::has_middle_col ? xl[(n / 2) * xs] : T(0.0);
+  for (int o = 0; o < hr; ++o) {
+    T ea = M::has_middle_col ? T(a.middle[o]) * mid : T(0.0), oa = T(0.0);
+    T eb = M::has_middle_col ? T(b.middle[o]) * mid : T(0.0), ob = T(0.0);
+    for (int i = 0; i < hc; ++i) {
+      ea += T(a.even[o][i]) * e[i];
+      oa += T(a.odd[o][i]) * d[i];
+      eb += T(b.even[o][i]) * e[i];
+      ob += T(b.odd[o][i]) * d[i];
+    }
+    const T lo1 = s1 * (ea + oa), lo2 = s2 * (eb + ob);
+    if (add2) y2[o * ys] += lo2;
+    else y2[o * ys] = lo2;
+    y1[o * ys] = lo1;
+    if (2 * o + 1 != n) {
+      const T hi1 = s1 * (ea - oa), hi2 = s2 * (eb - ob);
+      y1[(n - 1 - o) * ys] = hi1;
+      if (add2) y2[(n - 1 - o) * ys] += hi2;
+      else y2[(n - 1 - o) * ys] = hi2;
+    }
+  }
+}
+
+/// y = A x1 + B x2 for one line of each, A and B square with +1 symmetry. In place (y == x1 or
+/// y == x2) is allowed: both lines are read whole before y is written.
+template <int n, int s, class T>
+KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_sum_line(const EvenOddMatrix<n, n>& a, const T* x1,
+                                                         const EvenOddMatrix<n, n>& b, const T* x2, T* y) {
+  using M = EvenOddMatrix<n, n>;
+  constexpr int hc = M::half_cols, hr = M::half_rows, hcs = hc > 0 ? hc : 1;
+  T e1[hcs], d1[hcs], e2[hcs], d2[hcs];
+  for (int i = 0; i < hc; ++i) {
+    e1[i] = x1[i * s] + x1[(n - 1 - i) * s];
+    d1[i] = x1[i * s] - x1[(n - 1 - i) * s];
+    e2[i] = x2[i * s] + x2[(n - 1 - i) * s];
+    d2[i] = x2[i * s] - x2[(n - 1 - i) * s];
+  }
+  const T m1 = M::has_middle_col ? x1[(n / 2) * s] : T(0.0);
+  const T m2 = M::has_middle_col ? x2[(n / 2) * s] : T(0.0);
+  for (int o = 0; o < hr; ++o) {
+    T ev = M::has_middle_col ? T(a.middle[o]) * m1 + T(b.middle[o]) * m2 : T(0.0), od = T(0.0);
+    for (int i = 0; i < hc; ++i) {
+      ev += T(a.even[o][i]) * e1[i] + T(b.even[o][i]) * e2[i];
+      od += T(a.odd[o][i]) * d1[i] + T(b.odd[o][i]) * d2[i];
+    }
+    y[o * s] = ev + od;
+    if (2 * o + 1 != n) y[(n - 1 - o) * s] = ev - od;
+  }
+}
+
 /// y = M x along one direction of a tensor of lines: line `p` (0 <= p < n_post) and offset `s`
 /// (0 <= s < stride) reads x[(p n_cols + i) stride + s] and writes y[(p n_rows + o) stride + s].
 /// With `add`, y += M x. In place (x == y) is allowed when n_rows == n_cols.

@@ -130,24 +130,23 @@ struct TensorProductEvaluator {
       apply_even_odd<n_p, n_p, n_p, 1, true, 1>(s.stiffness, a, u);
     } else {
       // Plane k of u is read whole before plane k of mm is written: mm takes u's place, so
-      // the working set is 2 n_dofs (2 x 22 KB at n_p = 7, W = 8) and three planes.
+      // the working set is 2 n_dofs (2 x 22 KB at n_p = 7, W = 8) and two planes. Sweeps of
+      // M and K over the same lines share the lines' even and odd parts.
       T* const mm = u;    // c_2 M_y M_x u
       T* const mk = tmp;  // c_0 M_y K_x u + c_1 K_y M_x u
+      const T one(1.0);
       for (int k = 0; k < n_p; ++k) {
-        T a[nn], b[nn], ay[nn];
-        apply_even_odd<n_p, n_p, 1, n_p, false, 1>(s.mass, u + k * nn, a);  // along x
-        apply_even_odd<n_p, n_p, 1, n_p, false, 1>(s.stiffness, u + k * nn, b);
-        for (int i = 0; i < nn; ++i) {
-          ay[i] = c[1] * a[i];
-          a[i] *= c[2];
-          b[i] *= c[0];
-        }
-        apply_even_odd<n_p, n_p, n_p, 1, false, 1>(s.mass, a, mm + k * nn);  // along y
-        apply_even_odd<n_p, n_p, n_p, 1, false, 1>(s.mass, b, mk + k * nn);
-        apply_even_odd<n_p, n_p, n_p, 1, true, 1>(s.stiffness, ay, mk + k * nn);
+        T a[nn], b[nn];
+        for (int j = 0; j < n_p; ++j)  // along x: a = M_x u, b = c_0 K_x u
+          apply_even_odd_pair_line<n_p, 1, 1, false>(s.mass, s.stiffness, u + k * nn + j * n_p,
+                                                     a + j * n_p, b + j * n_p, one, c[0]);
+        apply_even_odd<n_p, n_p, n_p, 1, false, 1>(s.mass, b, mk + k * nn);  // along y
+        for (int i = 0; i < n_p; ++i)
+          apply_even_odd_pair_line<n_p, n_p, n_p, true>(s.mass, s.stiffness, a + i, mm + k * nn + i,
+                                                        mk + k * nn + i, c[2], c[1]);
       }
-      apply_even_odd<n_p, n_p, nn, 1, false, 1>(s.stiffness, mm, u);  // along z, in place
-      apply_even_odd<n_p, n_p, nn, 1, true, 1>(s.mass, mk, u);
+      for (int i = 0; i < nn; ++i)  // along z, in place
+        apply_even_odd_sum_line<n_p, nn>(s.stiffness, mm + i, s.mass, mk + i, u + i);
     }
   }
 
