@@ -45,9 +45,6 @@ struct ShapeData {
       s.ss_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(ss, n_q, n_p), 1);
       s.sd_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(sd, n_q, n_p), -1);
       s.dd_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(dd, n_q, n_p), 1);
-    }
-    {
-      const std::vector<double> v = lagrange_values(nodes, q.points), g = lagrange_derivatives(nodes, q.points);
       std::vector<double> m(n_p * n_p, 0.0), k(n_p * n_p, 0.0);
       for (int i = 0; i < n_p; ++i)
         for (int j = 0; j < n_p; ++j)

@@ -132,7 +132,8 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
       return;
     }
     // The values at the points: in place of u where the sweeps may run in place (u is not read
-    // again; the cartesian Laplace then works on 2 arrays, 2 x 22 KB at n_q = 7, W = 8, in L1).
+    // again; the collocated cartesian Laplace then works on 2 arrays, 2 x 22 KB at n_q = 7,
+    // W = 8, in L1).
     T* const v = Eval::in_place ? u : s.v;
     Eval::values(shape, u, v, s.tmp);
     const bool per_cell = mode == GeometryMode::cartesian || mode == GeometryMode::affine;
