@@ -77,9 +77,7 @@ std::vector<double> SpatialDecomposition::exchange_face(int d, int side,
   MPI_Sendrecv(&n_out, 1, MPI_INT, to >= 0 ? to : MPI_PROC_NULL, tag, &n_in, 1, MPI_INT,
                from >= 0 ? from : MPI_PROC_NULL, tag, comm_.get(), MPI_STATUS_IGNORE);
   std::vector<double> in(static_cast<size_t>(from >= 0 ? n_in : 0));
-  MPI_Sendrecv(out.data(), to >= 0 ? n_out : 0, MPI_DOUBLE, to >= 0 ? to : MPI_PROC_NULL, tag + 10,
-               in.data(), static_cast<int>(in.size()), MPI_DOUBLE,
-               from >= 0 ? from : MPI_PROC_NULL, tag + 10, comm_.get(), MPI_STATUS_IGNORE);
+  exchange_face(d, side, out.data(), n_out, in.data(), static_cast<int>(in.size()));
   return in;
 }
 

@@ -132,9 +132,8 @@ struct BatchDofAccess {
   static constexpr bool prefetch_rows = n_rows > 32;
 
   /// Asks for the cache lines of a fast batch's rows to be brought into L2 (for writing with
-  /// `write`). A hint: does nothing on devices.
+  /// `write`). A hint: does nothing on devices (prefetch_line).
   KOKKOS_INLINE_FUNCTION void prefetch(const double* base, const BatchIndex& ix, bool write) const {
-#if defined(__GNUC__) && !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
     if (!ix.fast) return;
     const int len = W * lattice.degree + 1;
     for (int r = 0; r < n_rows; ++r) {
@@ -142,9 +141,6 @@ struct BatchDofAccess {
       // one step per 64-byte line: none is skipped
       for (int m = 0; m < len; m += 8) prefetch_line(p + m, write);
     }
-#else
-    (void)base, (void)ix, (void)write;
-#endif
   }
 
   template <bool atomic>

@@ -49,6 +49,18 @@ struct EvenOddMatrix {
   }
 };
 
+/// The even and odd parts of a line of n entries at stride xs, which every product with an
+/// even-odd matrix starts from: e[i] = x_i + x_(n-1-i), d[i] = x_i - x_(n-1-i) for i < n / 2,
+/// and the middle entry (zero for even n).
+template <int n, int xs, class T>
+KOKKOS_FORCEINLINE_FUNCTION void even_odd_parts(const T* xl, T* e, T* d, T& mid) {
+  for (int i = 0; i < n / 2; ++i) {
+    e[i] = xl[i * xs] + xl[(n - 1 - i) * xs];
+    d[i] = xl[i * xs] - xl[(n - 1 - i) * xs];
+  }
+  mid = n % 2 == 1 ? xl[(n / 2) * xs] : T(0.0);
+}
+
 /// One line: y[o ys] = sum_i M[o][i] x[i xs] (with `add`, +=). `sign` is m.sign when the
 /// caller knows it at compile time (values +1, derivatives -1), 0 to read m.sign: a known sign
 /// takes a test and branch out of every output pair of the hot sweeps. In place (x == y) is
@@ -59,12 +71,8 @@ KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_line(const EvenOddMatrix<n_rows,
   constexpr int hr = EvenOddMatrix<n_rows, n_cols>::half_rows;
   constexpr int hcs = hc > 0 ? hc : 1;
   const bool negate = sign == 0 ? m.sign < 0 : sign < 0;
-  T e[hcs], d[hcs];
-  for (int i = 0; i < hc; ++i) {
-    e[i] = xl[i * xs] + xl[(n_cols - 1 - i) * xs];
-    d[i] = xl[i * xs] - xl[(n_cols - 1 - i) * xs];
-  }
-  T mid = EvenOddMatrix<n_rows, n_cols>::has_middle_col ? xl[(n_cols / 2) * xs] : T(0.0);
+  T e[hcs], d[hcs], mid;
+  even_odd_parts<n_cols, xs>(xl, e, d, mid);
   for (int o = 0; o < hr; ++o) {
     T ev = EvenOddMatrix<n_rows, n_cols>::has_middle_col ? T(m.middle[o]) * mid : T(0.0);
     T od = T(0.0);
@@ -97,12 +105,8 @@ KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_pair_line(const EvenOddMatrix<n,
                                                           T* y1, T* y2, T s1, T s2) {
   using M = EvenOddMatrix<n, n>;
   constexpr int hc = M::half_cols, hr = M::half_rows, hcs = hc > 0 ? hc : 1;
-  T e[hcs], d[hcs];
-  for (int i = 0; i < hc; ++i) {
-    e[i] = xl[i * xs] + xl[(n - 1 - i) * xs];
-    d[i] = xl[i * xs] - xl[(n - 1 - i) * xs];
-  }
-  const T mid = M::has_middle_col ? xl[(n / 2) * xs] : T(0.0);
+  T e[hcs], d[hcs], mid;
+  even_odd_parts<n, xs>(xl, e, d, mid);
   for (int o = 0; o < hr; ++o) {
     T ea = M::has_middle_col ? T(a.middle[o]) * mid : T(0.0), oa = T(0.0);
     T eb = M::has_middle_col ? T(b.middle[o]) * mid : T(0.0), ob = T(0.0);
@@ -132,15 +136,9 @@ KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_sum_line(const EvenOddMatrix<n, 
                                                          const EvenOddMatrix<n, n>& b, const T* x2, T* y) {
   using M = EvenOddMatrix<n, n>;
   constexpr int hc = M::half_cols, hr = M::half_rows, hcs = hc > 0 ? hc : 1;
-  T e1[hcs], d1[hcs], e2[hcs], d2[hcs];
-  for (int i = 0; i < hc; ++i) {
-    e1[i] = x1[i * s] + x1[(n - 1 - i) * s];
-    d1[i] = x1[i * s] - x1[(n - 1 - i) * s];
-    e2[i] = x2[i * s] + x2[(n - 1 - i) * s];
-    d2[i] = x2[i * s] - x2[(n - 1 - i) * s];
-  }
-  const T m1 = M::has_middle_col ? x1[(n / 2) * s] : T(0.0);
-  const T m2 = M::has_middle_col ? x2[(n / 2) * s] : T(0.0);
+  T e1[hcs], d1[hcs], m1, e2[hcs], d2[hcs], m2;
+  even_odd_parts<n, s>(x1, e1, d1, m1);
+  even_odd_parts<n, s>(x2, e2, d2, m2);
   for (int o = 0; o < hr; ++o) {
     T ev = M::has_middle_col ? T(a.middle[o]) * m1 + T(b.middle[o]) * m2 : T(0.0), od = T(0.0);
     for (int i = 0; i < hc; ++i) {
