@@ -92,6 +92,18 @@ struct QkLattice {
     end = (!upper_wraps && (upper < 0 || !slab_runs_before(upper, s))) ? (s + 1) * k + 1 : (s + 1) * k;
   }
 
+  /// Rows of batches in a slab: the rows of cells along direction 1 in 3D, the slab itself in
+  /// 2D. One thread runs a slab's rows in order.
+  KOKKOS_INLINE_FUNCTION int rows_per_slab() const { return dim == 3 ? cells[1] : 1; }
+  /// Node layers along direction 1 that row r of a slab (3D) writes first when rows run in
+  /// order: [first, end). The layer shared with row r - 1 is left to it, and so is layer 0 for
+  /// the last row of a periodic direction.
+  KOKKOS_INLINE_FUNCTION void row_first_layers(int r, int& first, int& end) const {
+    const int k = degree;
+    first = r == 0 ? 0 : r * k + 1;
+    end = (periodic[1] && r == cells[1] - 1) ? (r + 1) * k : (r + 1) * k + 1;
+  }
+
   /// Cell coordinates of lane 0 of batch b: (bx * width, cy, cz).
   KOKKOS_INLINE_FUNCTION void batch_cell(int b, int* c) const {
     c[0] = (b % batches_x) * width;

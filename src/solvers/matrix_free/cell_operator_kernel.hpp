@@ -267,8 +267,9 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
 };
 
 /// Runs body(b) for every batch b so that batches running at once share no node (see the top
-/// of this file), calling first_touch(slab) before a slab's batches on host spaces (so a
-/// destination can be zeroed layer by layer while it is in cache: QkLattice::slab_first_layers).
+/// of this file), calling first_touch(slab, row) before each row of a slab's batches on host
+/// spaces (so a destination can be zeroed row by row while it is in cache:
+/// QkLattice::slab_first_layers and row_first_layers).
 /// Device spaces run all batches at once: body must add atomically, first_touch is not called.
 /// Returns whether first_touch was called.
 template <class ExecSpace, int dim, class FirstTouch, class Body>
@@ -281,6 +282,7 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
     return false;
   } else {
     const int slabs = lattice.n_slabs(), per_slab = lattice.batches_per_slab();
+    const int rows = lattice.rows_per_slab(), per_row = per_slab / rows;
     const int blocks = lattice.n_slab_blocks(), run = lattice.slabs_per_block();
     const bool odd_periodic = lattice.block_colour(blocks - 1) == 2;
     const int regular = odd_periodic ? blocks - 1 : blocks;
@@ -290,10 +292,12 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
       Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, items), KOKKOS_LAMBDA(int i) {
         const int block = colour < 2 ? 2 * i + colour : blocks - 1;
         const int last = block * run + run < slabs ? block * run + run : slabs;
-        for (int slab = block * run; slab < last; ++slab) {
-          first_touch(slab);
-          for (int b = slab * per_slab; b < (slab + 1) * per_slab; ++b) body(b);
-        }
+        for (int slab = block * run; slab < last; ++slab)
+          for (int row = 0; row < rows; ++row) {
+            first_touch(slab, row);
+            const int b0 = slab * per_slab + row * per_row;
+            for (int b = b0; b < b0 + per_row; ++b) body(b);
+          }
       });
     }
     return true;

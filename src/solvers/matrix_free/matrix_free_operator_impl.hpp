@@ -72,7 +72,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const long n = op.space_->n_dofs();
     constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
     blas1::fill(exec, y, 0.0);
-    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::generic", KOKKOS_LAMBDA(int) {},
+    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::generic", KOKKOS_LAMBDA(int, int) {},
                             KOKKOS_LAMBDA(int b) {
                               int c[3] = {0, 0, 0};
                               k.lattice.batch_cell(b, c);
