@@ -116,6 +116,8 @@ TEST(MatrixFreeOperator, LaplaceAndMassMatchAssembledMatricesForDegrees1To6In2D)
     check<2>({K::mass, G::stored, "curved", k, 1}, 9, 3, 1);
     check<2>({K::laplace, G::affine, "affine", k}, 9, 3, 1);
     check<2>({K::mass, G::cartesian, "cartesian", k}, 9, 3, 1);
+    check<2>({K::mass, G::affine, "affine", k, 1}, 9, 3, 1);
+    check<2>({K::laplace, G::cartesian, "cartesian", k, 0, true}, 9, 3, 1);  // collocated
   }
 }
 
@@ -124,7 +126,12 @@ TEST(MatrixFreeOperator, LaplaceAndMassMatchAssembledMatricesForDegrees1To6In3D)
     const int nx = k <= 3 ? 9 : 9, ny = k <= 3 ? 3 : 3, nz = k <= 4 ? 2 : 1;
     check<3>({K::laplace, G::stored, "curved", k}, nx, ny, nz);
     check<3>({K::mass, G::on_the_fly, "curved", k, 1}, nx, ny, nz);
-    check<3>({K::laplace, G::cartesian, "cartesian", k}, nx, ny, nz);  // in-place sweeps from k = 5
+    // The operators of the 1D matrices: Kronecker sums (Laplace) and products (mass), Gauss
+    // and collocated Gauss–Lobatto points.
+    check<3>({K::laplace, G::cartesian, "cartesian", k}, nx, ny, nz);
+    check<3>({K::laplace, G::cartesian, "cartesian", k, 0, true}, nx, ny, nz);
+    check<3>({K::mass, G::cartesian, "cartesian", k, 1}, nx, ny, nz);
+    check<3>({K::mass, G::affine, "affine", k}, nx, ny, nz);
     if (k <= 4) {
       check<3>({K::laplace, G::on_the_fly, "curved", k, 1}, nx, ny, nz);
       check<3>({K::laplace, G::affine, "affine", k}, nx, ny, nz);

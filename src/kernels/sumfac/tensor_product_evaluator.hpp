@@ -150,38 +150,62 @@ struct TensorProductEvaluator {
     }
   }
 
-  /// out = sum_d D_d^T (w c_d) D_d v: the Laplacian of a Cartesian cell (metric diag(c), w the
-  /// point weights) from the values v at the points, one line at a time. The same operations
-  /// in the same order as gradients(), the scaling and integrate_gradients<false>(), but no
-  /// gradient tensor is formed: v, out and a line stay in L1 where the three gradients would
-  /// not (3 x 22 KB at n_q = 7, W = 8).
+  /// u <- A u for the Laplacian of a Cartesian cell whose quadrature points are its nodes
+  /// (Gauss–Lobatto, n_q = n_p): the 1D mass is then diagonal, M = diag(w), and
+  ///   A = c_0 W (x) W (x) K + c_1 W (x) K (x) W + c_2 K (x) W (x) W
+  /// is one sweep of K per direction, each line scaled by the other directions' weights:
+  /// 3 sweeps where the path through the points takes 6 (2 and 4 in 2D). The x and y sweeps
+  /// of a plane go into tmp (n_dofs); the z sweep adds them into u in place.
   template <class T>
-  KOKKOS_FORCEINLINE_FUNCTION static void diagonal_laplace(const ShapeData<n_p, n_q>& s, const T* v, const T* c,
-                                                           T* out) {
-    diagonal_laplace_direction<0>(s, v, c, out);
-    diagonal_laplace_direction<1>(s, v, c, out);
-    if constexpr (dim == 3) diagonal_laplace_direction<2>(s, v, c, out);
-  }
-  template <int d, class T>
-  KOKKOS_FORCEINLINE_FUNCTION static void diagonal_laplace_direction(const ShapeData<n_p, n_q>& s, const T* v,
-                                                                     const T* c, T* out) {
-    constexpr int stride = ipow(n_q, d), n_outer = dim == 3 ? n_q : 1;
-    // (a, b): the point's other two indices, slower first; q runs along d
-    for (int b = 0; b < n_outer; ++b)
-      for (int a = 0; a < n_q; ++a) {
-        int ijk[3] = {0, 0, 0};
-        const int other[2] = {d == 0 ? 1 : 0, d == 2 ? 1 : 2};  // the other directions, in order
-        ijk[other[0]] = a;
-        ijk[other[1]] = b;
-        const int base = ijk[0] + n_q * (ijk[1] + n_q * ijk[2]);
-        T g[n_q];
-        apply_even_odd_line<n_q, n_q, stride, 1, false, -1>(s.derivative, v + base, g);
-        for (int q = 0; q < n_q; ++q) {
-          ijk[d] = q;
-          g[q] *= T(weight(s, ijk[0], ijk[1], ijk[2])) * c[d];
-        }
-        apply_even_odd_line<n_q, n_q, 1, stride, (d > 0), -1>(s.derivative_t, g, out + base);
+  KOKKOS_FORCEINLINE_FUNCTION static void collocated_cartesian_laplace(const ShapeData<n_p, n_q>& s, const T* c,
+                                                                       T* u, T* tmp) {
+    static_assert(n_p == n_q, "collocation needs the points to be the nodes");
+    const double* w = s.weights;
+    if constexpr (dim == 2) {
+      for (int j = 0; j < n_p; ++j)  // along x
+        scaled_stiffness_line<1, 1, false>(s, u + j * n_p, c[0] * T(w[j]), tmp + j * n_p);
+      for (int i = 0; i < n_p; ++i)  // along y, in place
+        scaled_stiffness_line<n_p, n_p, true>(s, u + i, c[1] * T(w[i]), u + i, tmp + i);
+    } else {
+      constexpr int nn = n_p * n_p;
+      for (int k = 0; k < n_p; ++k) {
+        T* const t = tmp + k * nn;
+        for (int j = 0; j < n_p; ++j)  // along x
+          scaled_stiffness_line<1, 1, false>(s, u + k * nn + j * n_p, c[0] * T(w[j] * w[k]), t + j * n_p);
+        for (int i = 0; i < n_p; ++i)  // along y
+          scaled_stiffness_line<n_p, n_p, true>(s, u + k * nn + i, c[1] * T(w[i] * w[k]), t + i, t + i);
       }
+      for (int j = 0; j < n_p; ++j)  // along z, in place
+        for (int i = 0; i < n_p; ++i)
+          scaled_stiffness_line<nn, nn, true>(s, u + j * n_p + i, c[2] * T(w[i] * w[j]), u + j * n_p + i,
+                                              tmp + j * n_p + i);
+    }
+  }
+  /// One line: y = scale (K x), with `add` y = base + scale (K x). x is read whole before y
+  /// is written, so y may be x or base.
+  template <int xs, int ys, bool add, class T>
+  KOKKOS_FORCEINLINE_FUNCTION static void scaled_stiffness_line(const ShapeData<n_p, n_q>& s, const T* x,
+                                                                const T& scale, T* y, const T* base = nullptr) {
+    T g[n_p];
+    apply_even_odd_line<n_p, n_p, xs, 1, false, 1>(s.stiffness, x, g);
+    for (int o = 0; o < n_p; ++o) y[o * ys] = add ? base[o * ys] + scale * g[o] : scale * g[o];
+  }
+
+  /// u <- c M (x) M (x) M u: the mass matrix of a cell with a constant Jacobian determinant c
+  /// (Cartesian and affine cells) from the quadrature's 1D mass (ShapeData::mass; the tensor
+  /// quadrature factors), in dim in-place sweeps of n_p x n_p where the path through the
+  /// points takes 2 dim of n_p x n_q.
+  template <class T>
+  KOKKOS_FORCEINLINE_FUNCTION static void per_cell_mass(const ShapeData<n_p, n_q>& s, const T& c, T* u) {
+    if constexpr (dim == 2) {
+      apply_even_odd<n_p, n_p, 1, n_p, false, 1>(s.mass, u, u);
+      apply_even_odd<n_p, n_p, n_p, 1, false, 1>(s.mass, u, u);
+    } else {
+      apply_even_odd<n_p, n_p, 1, n_p * n_p, false, 1>(s.mass, u, u);
+      apply_even_odd<n_p, n_p, n_p, n_p, false, 1>(s.mass, u, u);
+      apply_even_odd<n_p, n_p, n_p * n_p, 1, false, 1>(s.mass, u, u);
+    }
+    for (int i = 0; i < n_dofs; ++i) u[i] *= c;
   }
 
   /// f(q, weight(q)) for every point q in order, without weight()'s divisions (the same

@@ -126,29 +126,26 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
 
   /// u <- A_cell u for batch b, with coefficients `c` from coefficients().
   KOKKOS_INLINE_FUNCTION void apply_local(const T* c, T* u, Scratch& s) const {
-    if (kind == OperatorKind::laplace && mode == GeometryMode::cartesian && !shape.collocated) {
-      static_assert(dim * n_points >= n_dofs, "cartesian_laplace's scratch is s.grad");
-      Eval::cartesian_laplace(shape, c, u, s.grad);  // the 1D matrices: no points needed
-      return;
+    const bool per_cell = mode == GeometryMode::cartesian || mode == GeometryMode::affine;
+    // Operators of the 1D matrices (Kronecker products and sums): no points needed.
+    if (kind == OperatorKind::laplace && mode == GeometryMode::cartesian) {
+      static_assert(dim * n_points >= n_dofs, "the Cartesian Laplace's scratch is s.grad");
+      if constexpr (n_p == n_q)
+        if (shape.collocated) return Eval::collocated_cartesian_laplace(shape, c, u, s.grad);
+      return Eval::cartesian_laplace(shape, c, u, s.grad);
     }
+    if (kind == OperatorKind::mass && per_cell && !shape.collocated) return Eval::per_cell_mass(shape, c[0], u);
     // The values at the points: in place of u where the sweeps may run in place (u is not read
-    // again; the collocated cartesian Laplace then works on 2 arrays, 2 x 22 KB at n_q = 7,
-    // W = 8, in L1).
+    // again).
     T* const v = Eval::in_place ? u : s.v;
     Eval::values(shape, u, v, s.tmp);
-    const bool per_cell = mode == GeometryMode::cartesian || mode == GeometryMode::affine;
-    if (kind == OperatorKind::mass) {
+    if (kind == OperatorKind::mass) {  // collocated (diagonal) or with point coefficients
       if (per_cell) {
         Eval::for_each_weighted_point(shape, [&](int q, double w) { v[q] *= T(w) * c[0]; });
       } else {
         for (int q = 0; q < n_points; ++q) v[q] *= c[q];
       }
       Eval::integrate_values(shape, v, u, s.tmp);
-      return;
-    }
-    if (kind == OperatorKind::laplace && mode == GeometryMode::cartesian) {
-      Eval::diagonal_laplace(shape, v, c, s.grad);
-      Eval::integrate_values(shape, s.grad, u, s.tmp);
       return;
     }
     Eval::gradients(shape, v, s.grad);
