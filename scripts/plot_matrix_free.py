@@ -67,7 +67,7 @@ if bp:
         b, p, e = args(r)
         if b == 5 and e == 7:
             lines.append(f"BP5 p={p} {r['DoFs'] / 1e6:.1f}M DoFs: {r['MDoF/s']:.1f} MDoF/s = "
-                         f"{100 * r['MDoF/s'] / r['bound_MDoF/s']:.0f}% of STREAM / 112 B ({r['bound_MDoF/s']:.0f})")
+                         f"{100 * r['MDoF/s'] / r['bound_MDoF/s']:.0f}% of STREAM / 104 B ({r['bound_MDoF/s']:.0f})")
     lines.append("BP MDoF/s at the largest size, 2 threads: " + "; ".join(
         f"BP{b}: " + " ".join(f"p{p}={best[(b, p)]:.0f}" for p in range(1, 9) if (b, p) in best) for b in range(1, 7)))
 

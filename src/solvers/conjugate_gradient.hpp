@@ -77,8 +77,11 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
                                 const Preconditioner& M = Preconditioner(),
                                 const Inner& dot = Inner()) {
   const auto n = x.extent(0);
+  // Unpreconditioned: z is r, so neither the copy z = r nor the product r.z (it is r.r) is
+  // formed: 32 of 136 bytes per unknown and iteration (the CEED BPs' CG).
+  constexpr bool unpreconditioned = std::is_same_v<Preconditioner, IdentityPreconditioner>;
   View r(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::r"), n);
-  View z(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::z"), n);
+  View z = unpreconditioned ? r : View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::z"), n);
   View p(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::p"), n);
   View q(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::q"), n);
 
@@ -95,9 +98,9 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
     result.converged = true;
     return result;
   }
-  M.apply(exec, r, z);
+  if (!unpreconditioned) M.apply(exec, r, z);
   blas1::copy(exec, z, p);
-  double rz = dot(exec, r, z);
+  double rz = unpreconditioned ? rr : dot(exec, r, z);
   for (int it = 1; it <= control.max_iterations; ++it) {
     A.apply(exec, p, q);
     const double pq = dot(exec, p, q);
@@ -116,8 +119,8 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
       result.converged = true;
       break;
     }
-    M.apply(exec, r, z);
-    const double rz_new = dot(exec, r, z);
+    if (!unpreconditioned) M.apply(exec, r, z);
+    const double rz_new = unpreconditioned ? rr : dot(exec, r, z);
     blas1::axpby(exec, 1.0, z, rz_new / rz, p);  // p = z + beta p
     rz = rz_new;
   }
