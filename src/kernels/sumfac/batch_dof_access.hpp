@@ -195,18 +195,21 @@ struct FirstTouchZero {
   KOKKOS_INLINE_FUNCTION void operator()(int slab, int row) const {
     int first = 0, end = 0;
     lattice.slab_first_layers(slab, first, end);
-    // 3D: the row's layers along direction 1 in each of the slab's layers; 2D: the slab's.
-    int row_first = 0, row_end = 1;
-    if (dim == 3) lattice.row_first_layers(row, row_first, row_end);
     const long line = lattice.dofs[0];
     const long layer = dim == 3 ? line * lattice.dofs[1] : line;
+    // The part of each of the slab's layers the row writes first: its lines along direction 1
+    // in 3D (row_first_layers); the whole layer in 2D, where a slab is one row.
+    long begin = 0, stop = layer;
+    if constexpr (dim == 3) {
+      int row_first = 0, row_end = 0;
+      lattice.row_first_layers(row, row_first, row_end);
+      begin = row_first * line;
+      stop = row_end * line;
+    }
     const long n = lattice.n_dofs();
     for (int c = 0; c < components; ++c)
-      for (int l = first; l < end; ++l) {
-        double* y_l = y + c * n + l * layer;
-        const long begin = dim == 3 ? row_first * line : 0, stop = dim == 3 ? row_end * line : layer;
-        for (long i = begin; i < stop; ++i) y_l[i] = 0.0;
-      }
+      for (int l = first; l < end; ++l)
+        for (long i = begin; i < stop; ++i) y[c * n + l * layer + i] = 0.0;
   }
 };
 
