@@ -117,8 +117,12 @@ struct QkLattice {
   }
   /// Lanes of the batch that hold real cells (the last batch of a row may be partial).
   KOKKOS_INLINE_FUNCTION int active_lanes(int b) const {
-    const int c0 = (b % batches_x) * width;
-    return cells[0] - c0 < width ? cells[0] - c0 : width;
+    const int c[3] = {(b % batches_x) * width, 0, 0};
+    return active_lanes_at(c);
+  }
+  /// The same for the batch whose lane 0 is cell c (batch_cell).
+  KOKKOS_INLINE_FUNCTION int active_lanes_at(const int* c) const {
+    return cells[0] - c[0] < width ? cells[0] - c[0] : width;
   }
 
   KOKKOS_INLINE_FUNCTION int dof_1d(int d, int node) const {
@@ -162,7 +166,11 @@ struct QkLattice {
   KOKKOS_INLINE_FUNCTION bool wraps(int b) const {
     int c[3];
     batch_cell(b, c);
-    const int last0 = c[0] + active_lanes(b) - 1;
+    return wraps_at(c);
+  }
+  /// The same for the batch whose lane 0 is cell c (batch_cell).
+  KOKKOS_INLINE_FUNCTION bool wraps_at(const int* c) const {
+    const int last0 = c[0] + active_lanes_at(c) - 1;
     for (int d = 0; d < dim; ++d)
       if (periodic[d] && (d == 0 ? last0 : c[d]) == cells[d] - 1) return true;
     return false;

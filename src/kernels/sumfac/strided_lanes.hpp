@@ -12,6 +12,15 @@ namespace amphora::sumfac {
 /// u[i][l] = p[l k + i] for i <= k and every lane l.
 template <int k, int W>
 KOKKOS_FORCEINLINE_FUNCTION void read_strided_row(const double* p, Simd<W>* u) {
+#ifdef AMPHORA_SIMD_VECTOR_EXTENSIONS
+  if constexpr (k == 1) {
+    // degree 1: node i of the lanes is p[i .. i + W), two unaligned whole-vector loads (GCC
+    // otherwise assembles them from scalar loads and inserts)
+    __builtin_memcpy(&u[0].v, p, sizeof(u[0].v));
+    __builtin_memcpy(&u[1].v, p + 1, sizeof(u[1].v));
+    return;
+  }
+#endif
   for (int l = 0; l < W; ++l)
     for (int i = 0; i <= k; ++i) u[i][l] = p[l * k + i];
 }
@@ -20,6 +29,21 @@ KOKKOS_FORCEINLINE_FUNCTION void read_strided_row(const double* p, Simd<W>* u) {
 /// folding it in first leaves W k disjoint, contiguous entries and the row's last node.
 template <int k, int W>
 KOKKOS_FORCEINLINE_FUNCTION void add_strided_row(double* p, const Simd<W>* u) {
+#ifdef AMPHORA_SIMD_VECTOR_EXTENSIONS
+  if constexpr (k == 1) {
+    // degree 1: p[0 .. W) += u[0] + u[1] shifted up one lane, then the last node; one
+    // read-modify-write of a whole vector (two overlapping ones would stall on store
+    // forwarding)
+    typename Simd<W>::native row;
+    for (int l = 0; l < W; ++l) row[l] = u[0][l] + (l > 0 ? u[1][l - 1] : 0.0);
+    typename Simd<W>::native dst;
+    __builtin_memcpy(&dst, p, sizeof(dst));
+    dst += row;
+    __builtin_memcpy(p, &dst, sizeof(dst));
+    p[W] += u[1][W - 1];
+    return;
+  }
+#endif
   alignas(64) double row[W * k];
   for (int l = 0; l < W; ++l) {
     row[l * k] = u[0][l] + (l > 0 ? u[k][l - 1] : 0.0);

@@ -125,7 +125,7 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
   }
 
   /// u <- A_cell u for batch b, with coefficients `c` from coefficients().
-  KOKKOS_INLINE_FUNCTION void apply_local(const T* c, T* u, Scratch& s) const {
+  KOKKOS_FORCEINLINE_FUNCTION void apply_local(const T* c, T* u, Scratch& s) const {
     const bool per_cell = mode == GeometryMode::cartesian || mode == GeometryMode::affine;
     // Operators of the 1D matrices (Kronecker products and sums): no points needed.
     if (kind == OperatorKind::laplace && mode == GeometryMode::cartesian) {
