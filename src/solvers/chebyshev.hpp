@@ -2,7 +2,8 @@
 // Chebyshev smoother/preconditioner around point Jacobi (Adams, Brezina, Hu & Tuminaro 2003;
 // deal.II's PreconditionChebyshev): damps the eigencomponents of D^-1 A in
 // [lambda_max / smoothing_range, 1.2 lambda_max] with a degree-d polynomial. lambda_max comes
-// from a few CG steps on D^-1 A (Lanczos). Parallel and deterministic, unlike Gauss–Seidel.
+// from a few CG steps on D^-1 A (Lanczos), or the caller gives an upper bound (then the
+// interval ends there). Parallel and deterministic, unlike Gauss–Seidel.
 #include <cmath>
 #include <vector>
 
@@ -18,6 +19,9 @@ struct ChebyshevOptions {
   int degree = 4;
   double smoothing_range = 15.0;
   int eigenvalue_iterations = 12;
+  /// If positive: a known upper bound of lambda_max(D^-1 A) (jacobi_gershgorin_bound), used as
+  /// the interval's upper end instead of 1.2 times an estimate, which is then not made.
+  double lambda_max_bound = 0.0;
 };
 
 /// `Inner` is the inner product of the eigenvalue estimate (conjugate_gradient's); `start`,
@@ -32,14 +36,19 @@ class ChebyshevSmoother {
       : A_(&A), inv_diag_(inverse_diagonal), options_(options),
         r_("amphora::chebyshev::r", inverse_diagonal.extent(0)),
         d_("amphora::chebyshev::d", inverse_diagonal.extent(0)) {
-    lambda_max_ = estimate_lambda_max(exec, inner, start);
+    if (options.lambda_max_bound > 0.0) {
+      lambda_max_ = upper_ = options.lambda_max_bound;
+    } else {
+      lambda_max_ = estimate_lambda_max(exec, inner, start);
+      upper_ = 1.2 * lambda_max_;  // the estimate approaches lambda_max from below
+    }
   }
 
   double lambda_max() const { return lambda_max_; }
 
   /// `degree` Chebyshev steps on A x = b from x (from zero if zero_initial).
   void smooth(const ExecSpace& exec, const Vector& b, const Vector& x, bool zero_initial) const {
-    const double hi = 1.2 * lambda_max_, lo = lambda_max_ / options_.smoothing_range;
+    const double hi = upper_, lo = lambda_max_ / options_.smoothing_range;
     const double theta = 0.5 * (hi + lo), delta = 0.5 * (hi - lo), sigma = theta / delta;
     const Vector r = r_, d = d_, D = inv_diag_;
     const int n = static_cast<int>(x.extent(0));
@@ -105,7 +114,8 @@ class ChebyshevSmoother {
   Vector inv_diag_;
   ChebyshevOptions options_;
   Vector r_, d_;
-  double lambda_max_ = 1.0;
+  double lambda_max_ = 1.0;  ///< estimated or bound
+  double upper_ = 1.2;       ///< the damped interval's upper end
 };
 
 }  // namespace amphora::solvers

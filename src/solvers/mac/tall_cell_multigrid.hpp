@@ -7,7 +7,8 @@
 // unknowns (trilinear between cells, linear in height inside tall cells) and the restriction
 // is Q^T, both assembled (tall_cell_level_transfer.hpp), so a V-cycle costs work in proportion
 // to the unknowns, not to the lattices under them. Chebyshev–Jacobi smoothing on each level
-// (parallel, symmetric), exact sparse Cholesky on the coarsest.
+// (parallel, symmetric; the interval from Gershgorin's bound), exact sparse Cholesky on the
+// coarsest.
 //
 // On a split grid (T.block()) every level keeps the blocks, halved, as the uniform multigrid
 // does: each level's rows of A_t and of the transfers with the ghost ring's columns
