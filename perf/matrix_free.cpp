@@ -20,6 +20,9 @@
 // x += a p and r -= a q with r.r in one pass 48, p = r + b p 24: 104 bytes per component;
 // unpreconditioned, z is r). A CG fused into the operator loop could go down to ~48 bytes.
 //
+// BPOperator/bp/p: the bare operator of BP bp, y = A x, on ~4e7 DoFs (components counted;
+// vectors of 320 MB, beyond the last-level cache). Bound: STREAM / 16 bytes per DoF.
+//
 // GeometryModes/mode/p: Laplace (Gauss p+1) on ~2 million DoFs with each geometry mode (0
 // cartesian, 1 affine, 2 stored at points, 3 on the fly; curved cells for 2 and 3):
 // throughput against geometry bytes per DoF, the memory-for-flops trade.
@@ -150,20 +153,27 @@ void LaplaceLarge(benchmark::State& state) {
 }
 BENCHMARK(LaplaceLarge)->DenseRange(2, 6)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-void BP(benchmark::State& state) {
-  using amphora::solvers::OperatorKind;
-  const int bp = static_cast<int>(state.range(0)), p = static_cast<int>(state.range(1));
-  const double target = std::pow(10.0, static_cast<double>(state.range(2)));
-  const int n = cells_for(target, p);
-  const bool mass = bp <= 2;
-  auto m = mesh::unit_cube<3>(n, mass ? mesh::FaceCondition::neumann : mesh::FaceCondition::dirichlet);
-  const DistributedSpace space(m, p, amphora::Communicator());
+/// The operator of CEED bake-off problem bp (1-6) at degree p (see the top of this file).
+Op::Options bp_options(int bp, int p) {
   Op::Options o;
-  o.kind = mass ? OperatorKind::mass : OperatorKind::laplace;
+  o.kind = bp <= 2 ? amphora::solvers::OperatorKind::mass : amphora::solvers::OperatorKind::laplace;
   o.geometry = amphora::solvers::GeometryMode::cartesian;
   o.components = bp % 2 == 0 ? 3 : 1;
   o.n_q = bp >= 5 ? p + 1 : p + 2;
   o.quadrature = bp >= 5 ? amphora::sumfac::QuadratureKind::gauss_lobatto : amphora::sumfac::QuadratureKind::gauss;
+  return o;
+}
+/// The unit cube of BP bp: no Dirichlet faces for the mass BPs, Dirichlet all round otherwise.
+DistributedSpace bp_space(int bp, int p, int cells) {
+  const auto faces = bp <= 2 ? mesh::FaceCondition::neumann : mesh::FaceCondition::dirichlet;
+  return DistributedSpace(mesh::unit_cube<3>(cells, faces), p, amphora::Communicator());
+}
+
+void BP(benchmark::State& state) {
+  const int bp = static_cast<int>(state.range(0)), p = static_cast<int>(state.range(1));
+  const double target = std::pow(10.0, static_cast<double>(state.range(2)));
+  const DistributedSpace space = bp_space(bp, p, cells_for(target, p));
+  const Op::Options o = bp_options(bp, p);
   const DistributedOp op(space, o);
   const long N = space.n_global() * o.components;
   Vector b = random_vector(op.size(), 7), x("x", op.size());
@@ -196,6 +206,18 @@ void bp_args(benchmark::internal::Benchmark* b) {
       for (int e = 4; e <= 7; ++e) b->Args({bp, p, e});
 }
 BENCHMARK(BP)->Apply(bp_args)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
+
+void BPOperator(benchmark::State& state) {
+  const int bp = static_cast<int>(state.range(0)), p = static_cast<int>(state.range(1));
+  const Op::Options o = bp_options(bp, p);
+  const DistributedSpace space = bp_space(bp, p, cells_for(4e7 / o.components, p));
+  const DistributedOp op(space, o);
+  Vector x = random_vector(op.size(), 1), y("y", op.size());
+  time_applications(state, op, x, y);
+  report(state, static_cast<double>(space.n_global() * o.components), 16.0);
+  state.counters["ranks"] = space.communicator().size();
+}
+BENCHMARK(BPOperator)->ArgsProduct({{1, 2, 3, 4, 5, 6}, {1, 2, 3, 4, 5, 6, 7, 8}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void GeometryModes(benchmark::State& state) {
   using amphora::solvers::GeometryMode;

@@ -4,8 +4,9 @@
 # output/bench/, then the charts:
 #   matrix_free_bp.png        CEED BP1-6 throughput against degree and problem size (2 threads)
 #   matrix_free_geometry.png  Laplace throughput against geometry bytes per DoF (the modes)
-# and a table of the deal.II comparison, the large-size bandwidth fractions and the
-# multigrid-vs-BoomerAMG solve in output/bench/matrix_free_summary.txt.
+# and a table of the deal.II comparison, the large-size bandwidth fractions (LaplaceLarge and
+# the bare BP operators, BPOperator) and the multigrid-vs-BoomerAMG solve in
+# output/bench/matrix_free_summary.txt.
 #   scripts/bench_matrix_free.sh [quick]   (quick: BP sizes up to 1e6, no Poisson solves)
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -26,7 +27,7 @@ run() {  # name threads filter [extra args]; RANKS=n for an MPI run (one core pe
   echo "== $name, $threads thread(s), $ranks rank(s)"
   OMP_NUM_THREADS=$threads "${launch[@]}" "$bench" --benchmark_filter="$filter" \
     --benchmark_out="$out/matrix_free_${name}_${tag}.json" --benchmark_out_format=json "$@" \
-    | grep -E "^(LaplaceDealii|LaplaceLarge|BP|GeometryModes|PoissonSolve)" | grep -v "_mean\|_stddev\|_cv" || true
+    | grep -E "^(LaplaceDealii|LaplaceLarge|BP|BPOperator|GeometryModes|PoissonSolve)" | grep -v "_mean\|_stddev\|_cv" || true
 }
 bp_filter='^BP/'
 [ "${1:-}" = quick ] && bp_filter='^BP/[1-6]/[1-8]/[4-6]/'
@@ -38,4 +39,5 @@ for t in 1 2; do
 done
 RANKS=2 run dealii 1 '^LaplaceDealii' --benchmark_repetitions=5 --benchmark_min_time=2 --benchmark_report_aggregates_only=true
 run bp 2 "$bp_filter"
+run bpop 2 '^BPOperator/' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 /usr/bin/python3 scripts/plot_matrix_free.py "$out"

@@ -43,7 +43,7 @@ if bp:
         bound = [r["bound_MDoF/s"] for r in bp if args(r)[0] == b]
         if bound:
             ax.axhline(bound[0], color="k", ls="--", lw=0.8,
-                       label="STREAM / 112 B" if b == 1 else None)
+                       label="STREAM / 104 B" if b == 1 else None)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(f"BP{b}")
@@ -93,6 +93,11 @@ if geo:
     for r in geo:
         lines.append(f"geometry {names[args(r)[0]]:10s} p={args(r)[1]}: {r['MDoF/s']:.1f} MDoF/s, "
                      f"{r['geometry_B/DoF']:.1f} B/DoF geometry")
+
+for r in medians(load(f"{out}/matrix_free_bpop_2threads.json")):
+    b, p = args(r)[:2]
+    lines.append(f"BPOperator BP{b} p={p} {r['DoFs'] / 1e6:.1f}M DoFs, 2 threads: {r['MDoF/s']:.1f} MDoF/s, "
+                 f"{100 * r['MDoF/s'] / r['bound_MDoF/s']:.0f}% of the STREAM bound (16 B/DoF)")
 
 for t in (1, 2):
     for r in medians(load(f"{out}/matrix_free_dealii_{t}threads.json")):
