@@ -113,27 +113,6 @@ std::vector<std::pair<long, int>> TallCellGrid::ring_unknown_cells() const {
   return out;
 }
 
-const TallCellColumn& TallCellGrid::column(int i, int k) const {
-  if (i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz) return columns_[i + grid_.nx * k];
-  return ring_columns_.at((i + 1) + (grid_.nx + 2) * (k + 1));
-}
-
-int TallCellGrid::weights(int i, int j, int k, int u[2], double w[2]) const {
-  const bool own = i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz;
-  const TallCellColumn& col = column(i, k);
-  const long base = own ? first_unknown_ : 0;  // the ring's numbers are global already
-  if (j >= col.terrain && j < col.band) {
-    const double t = double(j - col.terrain) / double(col.band - 1 - col.terrain);
-    u[0] = static_cast<int>(base + col.first_unknown), w[0] = 1.0 - t;
-    u[1] = static_cast<int>(base + col.first_unknown + 1), w[1] = t;
-    return 2;
-  }
-  const int unknown = own ? cell_unknown_[grid_.index(i, j, k)] : ring_unknown_.at(grid_.index(i, j, k));
-  if (unknown < 0) return 0;
-  u[0] = static_cast<int>(base + unknown), w[0] = 1.0;
-  return 1;
-}
-
 void TallCellGrid::prolongate(const double* y, double* lattice) const {
   const MacGrid& g = grid_;
   for (long c = 0; c < g.padded_size(); ++c) lattice[c] = 0.0;

@@ -54,7 +54,10 @@ class TallCellGrid {
   const std::vector<int>& cell_unknown() const { return cell_unknown_; }
   /// Column (i, k) of the block or of its ghost ring (i = -1..nx, k = -1..nz; the ring's
   /// first_unknown in the global numbering; outside the global box: no fluid).
-  const TallCellColumn& column(int i, int k) const;
+  const TallCellColumn& column(int i, int k) const {
+    if (i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz) return columns_[i + grid_.nx * k];
+    return ring_columns_.at((i + 1) + (grid_.nx + 2) * (k + 1));
+  }
   /// Global number of the first unknown of column (i, k) (block or ghost ring).
   long global_first_unknown(int i, int k) const {
     const bool own = i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz;
@@ -70,7 +73,22 @@ class TallCellGrid {
 
   /// The (at most two) global unknowns and weights of lattice cell (i, j, k) of the block or of
   /// its ghost ring: p = sum w u.
-  int weights(int i, int j, int k, int u[2], double w[2]) const;
+  /// (Inline: the assemblies and level transfers call it a few times per unknown.)
+  int weights(int i, int j, int k, int u[2], double w[2]) const {
+    const bool own = i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz;
+    const TallCellColumn& col = column(i, k);
+    const long base = own ? first_unknown_ : 0;  // the ring's numbers are global already
+    if (j >= col.terrain && j < col.band) {
+      const double t = double(j - col.terrain) / double(col.band - 1 - col.terrain);
+      u[0] = static_cast<int>(base + col.first_unknown), w[0] = 1.0 - t;
+      u[1] = static_cast<int>(base + col.first_unknown + 1), w[1] = t;
+      return 2;
+    }
+    const int unknown = own ? cell_unknown_[grid_.index(i, j, k)] : ring_unknown_.at(grid_.index(i, j, k));
+    if (unknown < 0) return 0;
+    u[0] = static_cast<int>(base + unknown), w[0] = 1.0;
+    return 1;
+  }
   /// Lattice values P y (host, padded lattice; zero off the fluid).
   void prolongate(const double* y, double* lattice) const;
   /// y = P^T lattice.

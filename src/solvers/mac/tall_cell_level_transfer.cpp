@@ -66,6 +66,10 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       double w;
     };
     std::vector<Term> terms;
+    // about 8 coarse unknowns per row (trilinear), so no regrowth copies of the row arrays
+    out.ends.reserve(r_end - r_begin);
+    out.cols.reserve(10 * (r_end - r_begin));
+    out.values.reserve(10 * (r_end - r_begin));
     // += scale * (the coarse pressure interpolated at fine cell (i, j, k)), for sample `side`
     auto interpolate = [&](int i, int j, int k, int side, double scale) {
       int xi[2], yi[2], zi[2];

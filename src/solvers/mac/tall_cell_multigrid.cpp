@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <optional>
 #include <vector>
 
 #include "solvers/mac/tall_cell_level_transfer.hpp"
@@ -56,14 +57,17 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
   const mesh::MacBlock& block = T.block();
   const MPI_Comm comm = block.comm;
   const BlockInnerProduct inner{comm};
-  CsrMatrix level_matrix = A_t;
-  mesh::TallCellGrid level_grid = T;
+  // the level's matrix and grid: A_t and T themselves on the finest (not copied)
+  const CsrMatrix* level_matrix = &A_t;
+  const mesh::TallCellGrid* level_grid = &T;
+  CsrMatrix coarse_matrix;
+  std::optional<mesh::TallCellGrid> coarse_level_grid;
   Stencil level_A = A;
   complete_block_stencil(exec, halo_, static_cast<const Stencil*>(nullptr), level_A);
   mesh::MacBlock level_block = block;
   for (int l = 0;; ++l) {
     auto L = std::make_unique<Level>();
-    L->A_t = Csr(level_matrix, level_grid);
+    L->A_t = Csr(*level_matrix, *level_grid);
     const int n = L->A_t.n;
     L->b = Vector("amphora::tall_mg::b", n);
     L->x = Vector("amphora::tall_mg::x", n);
@@ -75,10 +79,10 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     const bool halvable = g.nx % 2 == 0 && g.ny % 2 == 0 && g.nz % 2 == 0 && level_block.global_lower[0] % 2 == 0 &&
                           level_block.global_lower[2] % 2 == 0;
     if (!on_every_rank(comm, halvable) || cells <= options.max_coarse_cells) {
-      const CsrMatrix whole = block.split() ? gather_rows(comm, level_matrix, coarse_counts_, coarse_displacements_)
-                                            : level_matrix;
+      const CsrMatrix whole = block.split() ? gather_rows(comm, *level_matrix, coarse_counts_, coarse_displacements_)
+                                            : *level_matrix;
       coarse_ = std::make_unique<CoarseCholesky>(whole);
-      coarse_first_ = level_grid.first_unknown();
+      coarse_first_ = level_grid->first_unknown();
       coarse_host_.resize(whole.n);
       coarse_local_.resize(n);
       levels_.push_back(std::move(L));
@@ -90,7 +94,7 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     ChebyshevOptions smoothing;
     smoothing.degree = options.chebyshev_degree;
     smoothing.smoothing_range = options.smoothing_range;
-    smoothing.lambda_max_bound = jacobi_gershgorin_bound(level_matrix, level_grid.first_unknown());
+    smoothing.lambda_max_bound = jacobi_gershgorin_bound(*level_matrix, level_grid->first_unknown());
     MPI_Allreduce(MPI_IN_PLACE, &smoothing.lambda_max_bound, 1, MPI_DOUBLE, MPI_MAX, comm);
     L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Csr, Vector, BlockInnerProduct>>(
         exec, L->A_t, L->A_t.inverse_diagonal, smoothing, inner);
@@ -102,12 +106,14 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     const int depth = (T.optical_depth() + (2 << l) - 1) >> (l + 1);
     const auto host_A = kernels::mac::host_stencil(level_A);
     mesh::TallCellGrid coarse_grid(host_A, std::max(depth, 1), level_block);
-    const TallCellLevelTransfer transfer = tall_cell_level_transfer(level_grid, coarse_grid, host_A);
+    const TallCellLevelTransfer transfer = tall_cell_level_transfer(*level_grid, coarse_grid, host_A);
     L->prolongation = Csr(transfer.prolongation, coarse_grid);
-    L->restriction = Csr(transfer.restriction, level_grid);
+    L->restriction = Csr(transfer.restriction, *level_grid);
     levels_.push_back(std::move(L));
-    level_grid = std::move(coarse_grid);
-    level_matrix = assemble_tall_cell_matrix(level_grid, host_A);
+    coarse_level_grid.emplace(std::move(coarse_grid));  // the finer one is done with
+    level_grid = &*coarse_level_grid;
+    coarse_matrix = assemble_tall_cell_matrix(*level_grid, host_A);
+    level_matrix = &coarse_matrix;
   }
 }
 
