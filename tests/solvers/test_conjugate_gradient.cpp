@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "solvers/conjugate_gradient.hpp"
+#include "laplacian_1d.hpp"
 #include "test_backend.hpp"
 
 namespace amphora::solvers {
@@ -15,19 +16,7 @@ namespace test_conjugate_gradient_cases {
 using test::TestExecSpace;
 using View = Kokkos::View<double*, test::TestMemSpace>;
 
-/// y = A x for A = tridiag(-1, 2 + shift, -1) (h^2-scaled Laplacian plus a shift).
-struct Laplacian1D {
-  double shift = 0.0;
-  void apply(const TestExecSpace& exec, const View& x, const View& y) const {
-    const int n = static_cast<int>(x.extent(0));
-    const double s = shift;
-    Kokkos::parallel_for(
-        "test::Laplacian1D", RangePolicy<TestExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
-          const double left = i > 0 ? x(i - 1) : 0.0, right = i < n - 1 ? x(i + 1) : 0.0;
-          y(i) = (2.0 + s) * x(i) - left - right;
-        });
-  }
-};
+using test::Laplacian1D;
 
 std::vector<double> thomas(int n, double diag, const std::vector<double>& rhs) {
   std::vector<double> c(n), d(n), x(n);
