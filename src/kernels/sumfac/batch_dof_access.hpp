@@ -40,14 +40,13 @@ struct BatchDofAccess {
   KOKKOS_INLINE_FUNCTION void batch_index(int b, BatchIndex& ix) const {
     int cell[3];
     lattice.batch_cell(b, cell);
+    row_index(cell, ix);
+    lane_index(cell, ix);
+  }
+  /// The part of batch_index that depends on the row of cells only (rows, row_constrained):
+  /// the same for every batch of the row, so a kernel running a row forms it once.
+  KOKKOS_INLINE_FUNCTION void row_index(const int* cell, BatchIndex& ix) const {
     const int k = lattice.degree;
-    // from the cell found once (active_lanes(b) and wraps(b) would divide by the batch counts
-    // again: a tenth of a degree-1 operator's time)
-    ix.active = lattice.active_lanes_at(cell);
-    ix.fast = ix.active == W && !lattice.wraps_at(cell);
-    ix.x_lower = cell[0] == 0 && (lattice.dirichlet_faces & 1);
-    ix.x_upper = cell[0] + W == lattice.cells[0] && (lattice.dirichlet_faces >> 1 & 1);
-    ix.start = static_cast<long>(cell[0]) * k;
     const long sx = lattice.dofs[0], sxy = sx * lattice.dofs[1];
     for (int r = 0; r < n_rows; ++r) {
       const int ny = cell[1] * k + r % n_p;
@@ -55,6 +54,16 @@ struct BatchDofAccess {
       ix.rows[r] = sx * lattice.dof_1d(1, ny) + (dim == 3 ? sxy * lattice.dof_1d(2, nz) : 0);
       ix.row_constrained[r] = lattice.constrained_1d(1, ny) || (dim == 3 && lattice.constrained_1d(2, nz));
     }
+  }
+  /// The rest, for the batch whose lane 0 is cell `cell` (batch_cell), after row_index for its
+  /// row.
+  KOKKOS_INLINE_FUNCTION void lane_index(const int* cell, BatchIndex& ix) const {
+    const int k = lattice.degree;
+    ix.active = lattice.active_lanes_at(cell);
+    ix.fast = ix.active == W && !lattice.wraps_at(cell);
+    ix.x_lower = cell[0] == 0 && (lattice.dirichlet_faces & 1);
+    ix.x_upper = cell[0] + W == lattice.cells[0] && (lattice.dirichlet_faces >> 1 & 1);
+    ix.start = static_cast<long>(cell[0]) * k;
     if (ix.fast) return;
     for (int l = 0; l < W; ++l)
       for (int i = 0; i < n_p; ++i) {
@@ -133,13 +142,14 @@ struct BatchDofAccess {
   /// batch measured slower (the hardware prefetcher follows those fewer rows by itself).
   static constexpr bool prefetch_rows = n_rows > 32;
 
-  /// Asks for the cache lines of a fast batch's rows to be brought into L2 (for writing with
-  /// `write`). A hint: does nothing on devices (prefetch_line).
-  KOKKOS_INLINE_FUNCTION void prefetch(const double* base, const BatchIndex& ix, bool write) const {
+  /// Asks for the cache lines of a fast batch's rows, moved along them by `shift` entries (the
+  /// next batch of the row: W k), to be brought into L2 (for writing with `write`). A hint:
+  /// does nothing on devices (prefetch_line).
+  KOKKOS_INLINE_FUNCTION void prefetch(const double* base, const BatchIndex& ix, bool write, long shift = 0) const {
     if (!ix.fast) return;
     const int len = W * lattice.degree + 1;
     for (int r = 0; r < n_rows; ++r) {
-      const double* p = base + ix.rows[r] + ix.start;
+      const double* p = base + ix.rows[r] + ix.start + shift;
       // one step per 64-byte line: none is skipped
       for (int m = 0; m < len; m += 8) prefetch_line(p + m, write);
     }

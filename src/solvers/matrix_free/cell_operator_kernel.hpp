@@ -9,6 +9,8 @@
 // parallel items, each run in order by one thread, in two colours (three for an odd periodic
 // count) so no two concurrent blocks share a node. Sums are then formed in an order that does
 // not depend on the thread count. Device spaces use atomics instead.
+#include <type_traits>
+
 #include <Kokkos_Core.hpp>
 
 #include "kernels/spaces.hpp"
@@ -212,29 +214,36 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
       }
   }
 
-  /// dst += A src on batch b, every component.
+  /// dst += A src on batches b0 .. b1 - 1 of one row of cells, every component. The row's part
+  /// of the batch index is formed once (row_index); each batch adds its lanes' (lane_index).
   template <bool atomic>
-  KOKKOS_INLINE_FUNCTION void apply_batch(const double* src, double* dst, int n_components,
-                                          int b) const {
+  KOKKOS_INLINE_FUNCTION void apply_row(const double* src, double* dst, int n_components, int b0, int b1) const {
     Scratch s;
     T u[n_dofs];
     BatchIndex ix;
-    batch_index(b, ix);
-    const T* c = coefficients(b, s);
+    int cell[3];
+    lattice.batch_cell(b0, cell);
+    this->row_index(cell, ix);
     const long n = lattice.n_dofs();
-    BatchIndex next;  // the next batch's rows, prefetched while this one computes
-    const bool prefetch_next = Access::prefetch_rows && b + 1 < lattice.n_batches();
-    if (prefetch_next) batch_index(b + 1, next);
-    for (int comp = 0; comp < n_components; ++comp) {
-      gather(src + comp * n, ix, u);
-      if constexpr (Access::prefetch_rows) {
-        // While the batch computes: the lines its scatter will add to, and the source lines of
-        // the next batch.
-        this->prefetch(dst + comp * n, ix, true);
-        if (prefetch_next) this->prefetch(src + comp * n, next, false);
+    for (int b = b0; b < b1; ++b, cell[0] += lattice.width) {
+      this->lane_index(cell, ix);
+      const T* c = coefficients(b, s);
+      // The next batch's source lines: W k entries further along the same rows, or at the end
+      // of the row the first batch of the next row of the slab (its rows k node lines further
+      // along direction 1; at the slab's last row, none).
+      const int k = lattice.degree;
+      const bool next_in_row = b + 1 < b1, next_row = !next_in_row && cell[1] + 1 < lattice.cells[1];
+      const long shift = next_in_row ? static_cast<long>(W) * k : static_cast<long>(k) * lattice.dofs[0] - ix.start;
+      for (int comp = 0; comp < n_components; ++comp) {
+        gather(src + comp * n, ix, u);
+        if constexpr (Access::prefetch_rows) {
+          // while the batch computes: the lines its scatter will add to, and the next batch's
+          this->prefetch(dst + comp * n, ix, true);
+          if (next_in_row || next_row) this->prefetch(src + comp * n, ix, false, shift);
+        }
+        apply_local(c, u, s);
+        this->template scatter_add<atomic>(dst + comp * n, ix, u);
       }
-      apply_local(c, u, s);
-      this->template scatter_add<atomic>(dst + comp * n, ix, u);
     }
   }
 
@@ -266,7 +275,9 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
 /// Runs body(b) for every batch b so that batches running at once share no node (see the top
 /// of this file), calling first_touch(slab, row) before each row of a slab's batches on host
 /// spaces (so a destination can be zeroed row by row while it is in cache:
-/// QkLattice::slab_first_layers and row_first_layers).
+/// QkLattice::slab_first_layers and row_first_layers). A body taking two ints is called as
+/// body(b0, b1) for the batches b0 .. b1 - 1 of one row of cells instead (one batch at a time on
+/// devices), so it can form what the row's batches share once.
 /// Device spaces run all batches at once: body must add atomically, first_touch is not called.
 /// Returns whether first_touch was called.
 template <class ExecSpace, int dim, class FirstTouch, class Body>
@@ -274,8 +285,13 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
                              const char* label, const FirstTouch& first_touch, const Body& body) {
   constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace,
                                                    typename ExecSpace::memory_space>::accessible;
+  constexpr bool by_row = std::is_invocable_v<const Body&, int, int>;
   if constexpr (!host) {
-    Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, lattice.n_batches()), body);
+    if constexpr (by_row)
+      Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, lattice.n_batches()),
+                           KOKKOS_LAMBDA(int b) { body(b, b + 1); });
+    else
+      Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, lattice.n_batches()), body);
     return false;
   } else {
     const int slabs = lattice.n_slabs(), per_slab = lattice.batches_per_slab();
@@ -293,7 +309,10 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
           for (int row = 0; row < rows; ++row) {
             first_touch(slab, row);
             const int b0 = slab * per_slab + row * per_row;
-            for (int b = b0; b < b0 + per_row; ++b) body(b);
+            if constexpr (by_row)
+              body(b0, b0 + per_row);
+            else
+              for (int b = b0; b < b0 + per_row; ++b) body(b);
           }
       });
     }

@@ -58,7 +58,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     if (atomic) blas1::fill(exec, y, 0.0);
     const auto zero = first_touch_zero(op, y);
     for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
-                            KOKKOS_LAMBDA(int b) { k.template apply_batch<atomic>(src, dst, comps, b); });
+                            KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<atomic>(src, dst, comps, b0, b1); });
     copy_constrained(op, exec, x, y);
   }
 
