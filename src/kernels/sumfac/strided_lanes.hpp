@@ -5,9 +5,25 @@
 // the compiler turns the strided reads into whole-vector loads and permutes; the adds go
 // through a contiguous buffer, so they are whole vectors too instead of a chain of scalar
 // read-modify-writes that may alias one another.
+#include <cstddef>
+#include <utility>
+
 #include "kernels/sumfac/simd.hpp"
 
 namespace amphora::sumfac {
+
+#ifdef AMPHORA_SIMD_VECTOR_EXTENSIONS
+namespace detail {
+/// (0, a_0, ..., a_{W-2}): a's lanes moved up by one in one permute (lane l of the result is
+/// lane W + l - 1 of the pair (zero, a)).
+template <int W, std::size_t... l>
+KOKKOS_FORCEINLINE_FUNCTION typename Simd<W>::native up_one_lane(const typename Simd<W>::native& a,
+                                                                 std::index_sequence<l...>) {
+  const typename Simd<W>::native zero = {};
+  return __builtin_shufflevector(zero, a, (l == 0 ? 0 : int(W + l - 1))...);
+}
+}  // namespace detail
+#endif
 
 /// u[i][l] = p[l k + i] for i <= k and every lane l.
 template <int k, int W>
@@ -34,8 +50,7 @@ KOKKOS_FORCEINLINE_FUNCTION void add_strided_row(double* p, const Simd<W>* u) {
     // degree 1: p[0 .. W) += u[0] + u[1] shifted up one lane, then the last node; one
     // read-modify-write of a whole vector (two overlapping ones would stall on store
     // forwarding)
-    typename Simd<W>::native row;
-    for (int l = 0; l < W; ++l) row[l] = u[0][l] + (l > 0 ? u[1][l - 1] : 0.0);
+    const typename Simd<W>::native row = u[0].v + detail::up_one_lane<W>(u[1].v, std::make_index_sequence<W>());
     typename Simd<W>::native dst;
     __builtin_memcpy(&dst, p, sizeof(dst));
     dst += row;
