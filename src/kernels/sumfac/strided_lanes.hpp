@@ -12,15 +12,28 @@
 
 namespace amphora::sumfac {
 
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector)
+#define AMPHORA_HAS_SHUFFLEVECTOR 1
+#endif
+#endif
+
 #ifdef AMPHORA_SIMD_VECTOR_EXTENSIONS
 namespace detail {
-/// (0, a_0, ..., a_{W-2}): a's lanes moved up by one in one permute (lane l of the result is
-/// lane W + l - 1 of the pair (zero, a)).
+/// (0, a_0, ..., a_{W-2}): a's lanes moved up by one, in one permute where the compiler has
+/// __builtin_shufflevector (clang, GCC 12+; lane l of the result is lane W + l - 1 of the pair
+/// (zero, a)), else lane by lane.
 template <int W, std::size_t... l>
 KOKKOS_FORCEINLINE_FUNCTION typename Simd<W>::native up_one_lane(const typename Simd<W>::native& a,
                                                                  std::index_sequence<l...>) {
   const typename Simd<W>::native zero = {};
+#ifdef AMPHORA_HAS_SHUFFLEVECTOR
   return __builtin_shufflevector(zero, a, (l == 0 ? 0 : int(W + l - 1))...);
+#else
+  typename Simd<W>::native r = zero;
+  for (int m = 1; m < W; ++m) r[m] = a[m - 1];
+  return r;
+#endif
 }
 }  // namespace detail
 #endif
