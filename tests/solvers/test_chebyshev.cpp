@@ -20,7 +20,7 @@ namespace test_chebyshev_cases {
 using test::TestExecSpace;
 using View = Kokkos::View<double*, test::TestMemSpace>;
 
-constexpr double pi = 3.14159265358979323846;
+using math::pi;
 
 using test::Laplacian1D;
 

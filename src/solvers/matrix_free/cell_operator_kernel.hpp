@@ -225,13 +225,13 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
     lattice.batch_cell(b0, cell);
     this->row_index(cell, ix);
     const long n = lattice.n_dofs();
+    const int k = lattice.degree;
     for (int b = b0; b < b1; ++b, cell[0] += lattice.width) {
       this->lane_index(cell, ix);
       const T* c = coefficients(b, s);
       // The next batch's source lines: W k entries further along the same rows, or at the end
       // of the row the first batch of the next row of the slab (its rows k node lines further
       // along direction 1; at the slab's last row, none).
-      const int k = lattice.degree;
       const bool next_in_row = b + 1 < b1, next_row = !next_in_row && cell[1] + 1 < lattice.cells[1];
       const long shift = next_in_row ? static_cast<long>(W) * k : static_cast<long>(k) * lattice.dofs[0] - ix.start;
       for (int comp = 0; comp < n_components; ++comp) {
