@@ -25,7 +25,8 @@
 //
 // GeometryModes/mode/p: Laplace (Gauss p+1) on ~2 million DoFs with each geometry mode (0
 // cartesian, 1 affine, 2 stored at points, 3 on the fly; curved cells for 2 and 3):
-// throughput against geometry bytes per DoF, the memory-for-flops trade.
+// throughput against geometry bytes per DoF, the memory-for-flops trade. (Cartesian and affine
+// boxes have equal cells, whose coefficients are kept once: their geometry bytes are ~0.)
 //
 // GenericKernel/p/generic: the run-time-size fallback against the compiled kernel (below).
 //

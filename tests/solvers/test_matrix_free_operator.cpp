@@ -213,6 +213,25 @@ TEST(MatrixFreeOperator, MassOfUnitCubeIsOneAndLaplacianOfConstantVanishes) {
   EXPECT_NEAR(blas1::sum(exec, y), 1.0, 1e-14);
 }
 
+// Equal cells (a uniform box, uniformly sheared) keep one set of per-cell coefficients, whatever
+// the mesh size; stored geometry grows with the cells. (The operators' values on such meshes are
+// checked against assembled matrices above.)
+TEST(MatrixFreeOperator, EqualCellsShareOneSetOfCoefficients) {
+  using Op = MatrixFreeOperator<3, TestExecSpace>;
+  const std::size_t simd = sizeof(sumfac::Simd<sumfac::simd_width_v<TestExecSpace>>);
+  for (const int n : {3, 8}) {
+    typename Op::Options o;
+    o.geometry = GeometryMode::cartesian;
+    const mesh::QkSpace<3, TestExecSpace> box(mixed_mesh<3>(n, n, n, "cartesian"), 2);
+    EXPECT_EQ(Op(box, o).geometry_bytes(), 3 * simd) << "cartesian Laplace, n " << n;  // G_00, G_11, G_22
+    o.geometry = GeometryMode::affine;
+    const mesh::QkSpace<3, TestExecSpace> sheared(mixed_mesh<3>(n, n, n, "affine"), 2);
+    EXPECT_EQ(Op(sheared, o).geometry_bytes(), 6 * simd) << "affine Laplace, n " << n;  // packed symmetric G
+    o.geometry = GeometryMode::stored;
+    EXPECT_GT(Op(sheared, o).geometry_bytes(), std::size_t(n * n) * 6 * simd) << "stored, n " << n;
+  }
+}
+
 TEST(MatrixFreeOperator, BadOptionsAreRefusedWithAReason) {
   const mesh::QkSpace<2, TestExecSpace> curved(mixed_mesh<2>(4, 4, 1, "curved"), 2);
   typename MatrixFreeOperator<2, TestExecSpace>::Options o;

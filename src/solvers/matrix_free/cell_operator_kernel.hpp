@@ -58,6 +58,9 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
   GeometryMode mode = GeometryMode::stored;
   int n_coef = 1;
   Kokkos::View<const T*, memory_space> batch_coef;  ///< [batch][coef] (cartesian, affine)
+  /// Entries between batches in batch_coef: n_coef, or 0 where every cell has the same
+  /// coefficients and batch_coef holds them once.
+  long batch_coef_stride = 0;
   Kokkos::View<const T*, memory_space> point_coef;  ///< [batch][coef][point] (stored)
   Kokkos::View<const double*, memory_space> coordinates;  ///< node lattice, blocked
   /// Coefficient a(x) (Laplace) or velocity b(x) (convection, dim blocked components) as a Q_k
@@ -123,7 +126,7 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
       point_coefficients(b, s);
       return s.jac;
     }
-    return batch_coef.data() + static_cast<long>(b) * n_coef;  // per-cell constants
+    return batch_coef.data() + b * batch_coef_stride;  // per-cell constants
   }
 
   /// u <- A_cell u for batch b, with coefficients `c` from coefficients().

@@ -17,6 +17,7 @@ template <int dim, class ExecSpace>
 struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   using T = sumfac::Simd<sumfac::simd_width_v<ExecSpace>>;
   Kokkos::View<T*, memory_space> batch_coef, point_coef;
+  long batch_coef_stride = 0;
   std::shared_ptr<void> shape;  // ShapeData<n_p, n_q>
   GenericCellKernel<dim, ExecSpace> generic;  // used when no compiled kernel fits
   void (*apply)(const MatrixFreeOperator&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
@@ -32,6 +33,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     k.mode = op.options_.geometry;
     k.n_coef = coefficient_count(op.options_);
     k.batch_coef = op.impl_->batch_coef;
+    k.batch_coef_stride = op.impl_->batch_coef_stride;
     k.point_coef = op.impl_->point_coef;
     k.coordinates = op.space_->coordinates();
     k.field = op.options_.field;
@@ -215,6 +217,32 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
                              }
                            });
       impl.batch_coef = bc;
+      impl.batch_coef_stride = n_keep;
+      // Cells of one shape (a uniform box, a uniformly sheared one) share their coefficients:
+      // kept once, as deal.II's MappingInfo compresses equal Jacobians, they need not be read
+      // per cell (24 bytes per cell for cartesian Laplace in 3D, as much as a DoF's source and
+      // destination at p = 1). Equal to 1e-12 of the largest coefficient: cell widths from node
+      // coordinates differ in the last bits.
+      const auto lat = op.space_->lattice();
+      int differing = 0;
+      Kokkos::parallel_reduce(
+          "amphora::MatrixFreeOperator::uniform_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
+          KOKKOS_LAMBDA(int b, int& acc) {
+            const int lanes = lat.active_lanes(b);
+            double scale = 0.0;
+            for (int e = 0; e < n_keep; ++e) scale = math::max(scale, math::abs(bc(e)[0]));
+            for (int e = 0; e < n_keep; ++e)
+              for (int l = 0; l < lanes; ++l)
+                acc += math::abs(bc(static_cast<long>(b) * n_keep + e)[l] - bc(e)[0]) > 1e-12 * scale;
+          },
+          differing);
+      if (differing == 0) {
+        Kokkos::View<T*, memory_space> once("amphora::MatrixFreeOperator::batch_coef", n_keep);
+        Kokkos::parallel_for("amphora::MatrixFreeOperator::uniform_geometry", RangePolicy<ExecSpace>(exec, 0, n_keep),
+                             KOKKOS_LAMBDA(int e) { once(e) = T(bc(e)[0]); });
+        impl.batch_coef = once;
+        impl.batch_coef_stride = 0;
+      }
     }
     exec.fence();
   }
