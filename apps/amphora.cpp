@@ -114,6 +114,10 @@ int main(int argc, char** argv) {
                   << " s stepping, " << r.rate << " " << r.work_unit << "/s";
         for (const auto& [k, v] : r.diagnostics) std::cout << ", " << k << "=" << v;
         std::cout << "\n";
+        // where the stepping time went, per phase (the slowest rank's), one greppable line each
+        for (const auto& [phase, seconds] : r.phase_seconds)
+          std::cout << "[timing] " << phase << " " << seconds << " s "
+                    << (r.wall_seconds > 0 ? 100.0 * seconds / r.wall_seconds : 0.0) << " %\n";
       }
       return 0;
     }

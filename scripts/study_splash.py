@@ -4,7 +4,8 @@ another splash scene, --scene) with uniform cells everywhere (optical_depth = 0)
 cells below several optical depths. For each run:
 pressure unknowns (mean over the run), wall time per step, and the surface-height error against
 the uniform run at the end (max over the columns of |eta - eta_uniform|, relative to the largest
-surface displacement of the uniform run). Writes output/study_splash/splash_study.csv and
+surface displacement of the uniform run), and where the time per step goes (the run's [timing]
+lines: advection, pressure setup and solve, ...). Writes output/study_splash/splash_study.csv and
 splash_study.png (error against time per step).
 
     /usr/bin/python3 scripts/study_splash.py [--depths 0,24,16,8] [--threads 2] [--scene FILE]
@@ -52,10 +53,12 @@ def run(depth, threads, base):
     log = subprocess.run([amphora, "run", scene], check=True, capture_output=True, text=True, env=env).stdout
     m = re.search(r"\[done\] (\d+) steps to t=\S+ in (\S+) s stepping", log)
     steps, seconds = int(m.group(1)), float(m.group(2))
+    # the module's own split of the stepping time ([timing] lines), per step
+    phases = {p: float(t) / steps for p, t in re.findall(r"\[timing\] (\S+) (\S+) s", log)}
     rows = list(csv.DictReader(open(os.path.join(d, "diagnostics.csv"))))
     unknowns = np.mean([float(r["pressure_unknowns"]) for r in rows[1:]])
     last = sorted(f for f in os.listdir(d) if f.startswith("fields_"))[-1]
-    return {"depth": depth, "unknowns": unknowns, "seconds_per_step": seconds / steps,
+    return {"depth": depth, "unknowns": unknowns, "seconds_per_step": seconds / steps, "phases": phases,
             "eta": surface(os.path.join(d, last))}
 
 
@@ -76,18 +79,19 @@ def main():
         r = run(depth, args.threads, base)
         runs.append(r)
         print(f"optical depth {depth:3d}: {r['unknowns']:9.0f} pressure unknowns, {r['seconds_per_step']:.3f} s/step",
-              flush=True)
+              "(" + ", ".join(f"{p} {t:.3f}" for p, t in r["phases"].items()) + ")", flush=True)
     ref = runs[0]
     amplitude = np.max(np.abs(ref["eta"] - pool))
     with open(os.path.join(out, "splash_study.csv"), "w", newline="") as f:
         w = csv.writer(f)
+        phase_names = list(ref["phases"])
         w.writerow(["optical_depth", "pressure_unknowns", "unknowns_ratio", "seconds_per_step", "time_ratio",
-                    "surface_error"])
+                    "surface_error"] + [f"seconds_per_step_{p}" for p in phase_names])
         for r in runs:
             r["error"] = np.max(np.abs(r["eta"] - ref["eta"])) / amplitude
             w.writerow([r["depth"], f"{r['unknowns']:.0f}", f"{ref['unknowns'] / r['unknowns']:.3f}",
                         f"{r['seconds_per_step']:.4f}", f"{ref['seconds_per_step'] / r['seconds_per_step']:.3f}",
-                        f"{r['error']:.4e}"])
+                        f"{r['error']:.4e}"] + [f"{r['phases'].get(p, 0.0):.4f}" for p in phase_names])
             print(f"optical depth {r['depth']:3d}: unknowns x{ref['unknowns'] / r['unknowns']:.2f} fewer, "
                   f"time per step x{ref['seconds_per_step'] / r['seconds_per_step']:.2f} less, "
                   f"surface error {100 * r['error']:.2f} % of the splash amplitude {amplitude:.4f} m")

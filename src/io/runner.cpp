@@ -213,6 +213,8 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   result.diagnostics = last_diagnostics.empty() ? module->diagnostics(t) : last_diagnostics;
   for (const auto& [name, v] : result.diagnostics)
     if (name == module->error_diagnostic()) result.error = v;
+  result.phase_seconds = module->phase_seconds();
+  for (auto& [name, seconds] : result.phase_seconds) seconds = comm.max(seconds);
   return result;
 }
 

@@ -35,6 +35,7 @@ struct RunResult {
   long long work_per_step = 0;
   std::string work_unit;
   Diagnostics diagnostics;    ///< at the final step
+  Diagnostics phase_seconds;  ///< Module::phase_seconds of this run, the largest over the ranks
   double error = 0.0;         ///< the module's error diagnostic at the final step
 };
 

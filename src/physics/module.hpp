@@ -70,6 +70,11 @@ class Module {
   virtual std::vector<StateBlock> state() const = 0;
   virtual void restore(const std::vector<StateBlock>& blocks) = 0;
   virtual std::vector<std::string> owned_blocks() const = 0;
+  /// Wall seconds this rank has spent in each phase of advance() so far, in the module's order
+  /// of its phases (empty: the module does not time them). For the run's closing [timing] lines
+  /// and the studies that chart where a step's time goes; never part of the diagnostics, which
+  /// must not depend on the machine.
+  virtual Diagnostics phase_seconds() const { return {}; }
 };
 
 }  // namespace amphora

@@ -114,6 +114,22 @@ assert abs(v1 - v0) <= 0.02 * v0, f"volume {v0} -> {v1}"
 print(f"dam break: front error {worst:.3f} at worst over T = 1.1..3.3, {final:.3f} at T = 3.3, "
       f"volume change {100*(v1-v0)/v0:.2f} %")
 PY
+# the closing [timing] lines split the stepping time over the module's phases, in order: laps
+# of advance(), which is part of the stepping, so together no more than it
+/usr/bin/python3 - run.txt <<'PY'
+import re, sys
+log = open(sys.argv[1]).read()
+stepping = float(re.search(r"\[done\] \d+ steps to t=\S+ in (\S+) s stepping", log).group(1))
+phases = re.findall(r"\[timing\] (\S+) (\S+) s (\S+) %", log)
+names = [p for p, _, _ in phases]
+assert names == ["step_control", "advection", "reinitialisation", "cell_types", "pressure_setup", "pressure_solve",
+                 "projection", "extrapolation"], names
+seconds = [float(t) for _, t, _ in phases]
+assert min(seconds) >= 0 and 0 < sum(seconds) <= stepping * 1.001 + 1e-3, (seconds, stepping)
+for _, t, pct in phases:
+    assert abs(float(pct) - 100 * float(t) / stepping) < 0.01 * float(pct) + 1e-6, (t, pct, stepping)
+print(f"dam break: phases {sum(seconds):.3f} s of {stepping:.3f} s stepping")
+PY
 # the same on 2 ranks (x halves: the front crosses into the second block near the end)
 sed 's|output_dir = "dam"|output_dir = "dam2"|; s/^output_every = 0/output_every = 12/' dam.toml > dam2.toml
 OMP_NUM_THREADS=1 "$MPIEXEC" -n 2 "$AMPHORA" run dam2.toml > dam2.log

@@ -18,6 +18,7 @@
 #include "mesh/box_decomposition.hpp"
 #include "mesh/mac/lattice_halo.hpp"
 #include "mesh/mac/tall_cell_grid.hpp"
+#include "physics/phase_times.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
 #include "solvers/mac/tall_cell_matrix.hpp"
@@ -159,6 +160,7 @@ class WaterMac final : public Module {
   }
 
   void advance(double, double dt) override {
+    phases_.start();
     double done = 0.0;
     while (done < dt * (1.0 - 1e-12)) {
       const double now = max_speed();
@@ -170,6 +172,7 @@ class WaterMac final : public Module {
         sub = std::min(sub, grid_.h / std::max(tall, 1e-12));
       }
       if (dt - done - sub < 1e-3 * sub) sub = dt - done;
+      phases_.lap(step_control);
       substep(sub);
       done += sub;
     }
@@ -275,6 +278,7 @@ class WaterMac final : public Module {
     classify();
   }
   std::vector<std::string> owned_blocks() const override { return {"water"}; }
+  Diagnostics phase_seconds() const override { return phases_.seconds(); }
 
  public:  // (CUDA: extended lambdas may not live in private member functions)
   /// The padded-lattice range of the whole grid this rank's block holds in the checkpoint:
@@ -440,6 +444,7 @@ class WaterMac final : public Module {
     kernels::mac::advect(exec, T, Staggering::z, W, w_tmp_, U, V, W, dt, P, reach, g, o);
     std::swap(phi_, phi_tmp_);
     std::swap(u_, u_tmp_), std::swap(v_, v_tmp_), std::swap(w_, w_tmp_);
+    phases_.lap(advection);
     // 2. reinitialisation towards a signed distance
     if (reinit_ > 0) {
       Kokkos::deep_copy(exec, phi0_, phi_);
@@ -449,6 +454,7 @@ class WaterMac final : public Module {
         std::swap(phi_, phi_tmp_);
       }
     }
+    phases_.lap(reinitialisation);
     classify();
     // the grid rebuilt to follow the surface: the velocity in its tall cells becomes linear in
     // height, keeping each column's momentum
@@ -465,9 +471,11 @@ class WaterMac final : public Module {
         "amphora::water::gravity",
         Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>(exec, {0, 1, 0}, {g.nz, g.ny, g.nx}),
         KOKKOS_LAMBDA(int k, int j, int i) { v(gg.index(i, j, k)) -= dv; });
+    phases_.lap(cell_types);
     // 4. projection
     project(dt);
     extrapolate_velocity();
+    phases_.lap(extrapolation);
     ++substeps_;
   }
 
@@ -487,7 +495,9 @@ class WaterMac final : public Module {
     solvers::SolverResult r;
     if (optical_depth_ == 0) {
       auto solver = solvers::mac::make_pressure_solver(backend_, exec, A, block_);
+      phases_.lap(pressure_setup);
       r = solver->solve(exec, b_, p_, control_);
+      phases_.lap(pressure_solve);
     } else {
       // tall cells: solve P^T A P y = P^T b, then p = P y on the lattice
       const auto H = kernels::mac::host_stencil(A);
@@ -502,7 +512,9 @@ class WaterMac final : public Module {
       kernels::mac::tall_cell_restrict(exec, layout, p_, y);
       kernels::mac::tall_cell_gram_solve(exec, layout, y);
       auto solver = solvers::mac::make_tall_cell_pressure_solver(backend_, exec, T, M, A);
+      phases_.lap(pressure_setup);
       r = solver->solve(exec, bt, y, control_);
+      phases_.lap(pressure_solve);
       kernels::mac::tall_cell_prolongate(exec, layout, y, p_);
       last_unknowns_ = T.global_unknowns();  // tall cells: the unknowns of the last solve
     }
@@ -516,6 +528,7 @@ class WaterMac final : public Module {
     kernels::mac::subtract_pressure_gradient(exec, g, 0, type_, phi_, p_, rho_, dt, u_, edges_);
     kernels::mac::subtract_pressure_gradient(exec, g, 1, type_, phi_, p_, rho_, dt, v_, edges_);
     kernels::mac::subtract_pressure_gradient(exec, g, 2, type_, phi_, p_, rho_, dt, w_, edges_);
+    phases_.lap(projection);
   }
 
   void extrapolate_velocity() {
@@ -660,6 +673,13 @@ class WaterMac final : public Module {
   Kokkos::View<std::uint8_t*, Mem> solid_, valid_;
   long substeps_ = 0;
   int last_iterations_ = 0;
+  /// Wall time per phase of a sub-step (the pressure's setup, on tall cells the tall-cell grid,
+  /// matrix and multigrid hierarchy; after the solve, the prolongation and the gradient in
+  /// `projection`).
+  enum Phase { step_control, advection, reinitialisation, cell_types, pressure_setup, pressure_solve, projection,
+               extrapolation };
+  PhaseTimes phases_{{"step_control", "advection", "reinitialisation", "cell_types", "pressure_setup",
+                      "pressure_solve", "projection", "extrapolation"}};
   long last_unknowns_ = 0;
 };
 
