@@ -673,6 +673,7 @@ class WaterMac final : public Module {
   Kokkos::View<std::uint8_t*, Mem> solid_, valid_;
   long substeps_ = 0;
   int last_iterations_ = 0;
+  long last_unknowns_ = 0;
   /// Wall time per phase of a sub-step (the pressure's setup, on tall cells the tall-cell grid,
   /// matrix and multigrid hierarchy; after the solve, the prolongation and the gradient in
   /// `projection`).
@@ -680,7 +681,6 @@ class WaterMac final : public Module {
                extrapolation };
   PhaseTimes phases_{{"step_control", "advection", "reinitialisation", "cell_types", "pressure_setup",
                       "pressure_solve", "projection", "extrapolation"}};
-  long last_unknowns_ = 0;
 };
 
 }  // namespace water_mac_kernels
