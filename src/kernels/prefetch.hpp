@@ -16,4 +16,13 @@ KOKKOS_FORCEINLINE_FUNCTION void prefetch_line(const void* p, bool write) {
 #endif
 }
 
+/// The line at p, to be read soon: into L1.
+KOKKOS_FORCEINLINE_FUNCTION void prefetch_line_l1(const void* p) {
+#if defined(__GNUC__) && !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
+  __builtin_prefetch(p, 0, 3);
+#else
+  (void)p;
+#endif
+}
+
 }  // namespace amphora
