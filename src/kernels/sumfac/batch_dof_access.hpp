@@ -83,10 +83,10 @@ struct BatchDofAccess {
           continue;
         }
         const double* p = src + ix.rows[r] + ix.start;
-        // from degree 5 the batch's rows come from L2 (prefetched there a batch ahead): asked
-        // into L1 four rows ahead of their loads (BPOperator/5/5-8 and LaplaceLarge/5-6, 1 and
-        // 2 threads: 5-15 % faster in medians of 3 paired rounds)
-        if constexpr (prefetch_rows) {
+        // each row's lines asked into L1 four rows ahead of their loads (from degree 5 they
+        // were prefetched to L2 a batch ahead): 2 threads, medians of 3-5 paired rounds,
+        // BPOperator/5/3-8 and LaplaceLarge/2-6 5-18 % faster, LaplaceDealii/2-5 6-16 %
+        if constexpr (n_p >= 3) {
           constexpr int ahead = 4;
           if (r + ahead < n_rows) {
             const double* q = src + ix.rows[r + ahead] + ix.start;
