@@ -88,10 +88,7 @@ struct BatchDofAccess {
         // BPOperator/5/3-8 and LaplaceLarge/2-6 5-18 % faster, LaplaceDealii/2-5 6-16 %
         if constexpr (n_p >= 3) {
           constexpr int ahead = 4;
-          if (r + ahead < n_rows) {
-            const double* q = src + ix.rows[r + ahead] + ix.start;
-            for (int m = 0; m < W * (n_p - 1) + 1; m += 8) prefetch_line_l1(q + m);
-          }
+          if (r + ahead < n_rows) prefetch_row<into_l1>(src + ix.rows[r + ahead] + ix.start, false);
         }
         // compile-time stride up to degree 3; above, the loop below measured faster
         // (perf samples of the gather/scatter against apply_local, LaplaceDealii, 1 thread)
@@ -157,12 +154,13 @@ struct BatchDofAccess {
   /// does nothing on devices (prefetch_line).
   KOKKOS_INLINE_FUNCTION void prefetch(const double* base, const BatchIndex& ix, bool write, long shift = 0) const {
     if (!ix.fast) return;
+    for (int r = 0; r < n_rows; ++r) prefetch_row<into_l2>(base + ix.rows[r] + ix.start + shift, write);
+  }
+  /// The lines of one fast row of a batch (its W cells' nodes, W k + 1 entries) from p.
+  template <int target>
+  KOKKOS_FORCEINLINE_FUNCTION void prefetch_row(const double* p, bool write) const {
     const int len = W * lattice.degree + 1;
-    for (int r = 0; r < n_rows; ++r) {
-      const double* p = base + ix.rows[r] + ix.start + shift;
-      // one step per 64-byte line: none is skipped
-      for (int m = 0; m < len; m += 8) prefetch_line(p + m, write);
-    }
+    for (int m = 0; m < len; m += 8) prefetch_line<target>(p + m, write);  // one per 64-byte line
   }
 
   template <bool atomic>
