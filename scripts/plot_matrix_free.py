@@ -43,7 +43,7 @@ if bp:
         bound = [r["bound_MDoF/s"] for r in bp if args(r)[0] == b]
         if bound:
             ax.axhline(bound[0], color="k", ls="--", lw=0.8,
-                       label="STREAM / 104 B" if b == 1 else None)
+                       label="STREAM / 80 B" if b == 1 else None)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(f"BP{b}")
@@ -67,7 +67,7 @@ if bp:
         b, p, e = args(r)
         if b == 5 and e == 7:
             lines.append(f"BP5 p={p} {r['DoFs'] / 1e6:.1f}M DoFs: {r['MDoF/s']:.1f} MDoF/s = "
-                         f"{100 * r['MDoF/s'] / r['bound_MDoF/s']:.0f}% of STREAM / 104 B ({r['bound_MDoF/s']:.0f})")
+                         f"{100 * r['MDoF/s'] / r['bound_MDoF/s']:.0f}% of STREAM / 80 B ({r['bound_MDoF/s']:.0f})")
     lines.append("BP MDoF/s at the largest size, 2 threads: " + "; ".join(
         f"BP{b}: " + " ".join(f"p{p}={best[(b, p)]:.0f}" for p in range(1, 9) if (b, p) in best) for b in range(1, 7)))
 

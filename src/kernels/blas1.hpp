@@ -52,6 +52,17 @@ void axpby(const ExecSpace& exec, typename Y::non_const_value_type a, const X& x
                        KOKKOS_LAMBDA(int i) { y(i) = a * x(i) + b * y(i); });
 }
 
+/// y(i) = x(i) + b y(i), and y = x where b is 0 (y is not read: it may be uninitialised). CG's
+/// new direction p = z + beta p.
+template <class ExecSpace, class X, class Y>
+void xpby(const ExecSpace& exec, const X& x, typename Y::non_const_value_type b, const Y& y) {
+  if (b == 0)
+    copy(exec, x, y);
+  else
+    Kokkos::parallel_for("amphora::blas1::xpby", detail::range(exec, y),
+                         KOKKOS_LAMBDA(int i) { y(i) = x(i) + b * y(i); });
+}
+
 /// sum_i x(i) y(i). Each work item sums a block of 8 entries as a tree: without reassociation a
 /// compiler adds one entry after the other, and the latency of that chain, not memory, bounds a
 /// plain loop (3x slower on 2M entries here).

@@ -20,6 +20,18 @@ template <class Inner>
 struct has_fused_update<Inner, std::void_t<decltype(Inner::fuses_cg_update)>>
     : std::bool_constant<Inner::fuses_cg_update> {};
 
+/// An operator with apply_direction(exec, z, beta, p, q, dot) (p = z + beta p, p = z if beta is
+/// 0; q = A p; returns p.q under `dot`) lets CG do the three in one sweep over its cells (see
+/// MatrixFreeOperator::apply_direction).
+template <class Operator, class ExecSpace, class View, class Inner, class = void>
+struct has_fused_direction : std::false_type {};
+template <class Operator, class ExecSpace, class View, class Inner>
+struct has_fused_direction<Operator, ExecSpace, View, Inner,
+                           std::void_t<decltype(std::declval<const Operator&>().apply_direction(
+                               std::declval<const ExecSpace&>(), std::declval<const View&>(), 0.0,
+                               std::declval<const View&>(), std::declval<const View&>(), std::declval<const Inner&>()))>>
+    : std::true_type {};
+
 struct SolverControl {
   int max_iterations = 1000;
   double relative_tolerance = 1e-8;  ///< stop when |r| <= rel * |b| ...
@@ -99,11 +111,17 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
     return result;
   }
   if (!unpreconditioned) M.apply(exec, r, z);
-  blas1::copy(exec, z, p);
   double rz = unpreconditioned ? rr : dot(exec, r, z);
+  double beta = 0.0;  // p = z + beta p: p = z on the first iteration
   for (int it = 1; it <= control.max_iterations; ++it) {
-    A.apply(exec, p, q);
-    const double pq = dot(exec, p, q);
+    double pq;
+    if constexpr (has_fused_direction<Operator, ExecSpace, View, Inner>::value) {
+      pq = A.apply_direction(exec, z, beta, p, q, dot);
+    } else {
+      blas1::xpby(exec, z, beta, p);
+      A.apply(exec, p, q);
+      pq = dot(exec, p, q);
+    }
     if (!(pq > 0.0)) break;  // not SPD (or breakdown): stop, not converged
     const double alpha = rz / pq;
     if constexpr (has_fused_update<Inner>::value) {
@@ -121,7 +139,7 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
     }
     if (!unpreconditioned) M.apply(exec, r, z);
     const double rz_new = unpreconditioned ? rr : dot(exec, r, z);
-    blas1::axpby(exec, 1.0, z, rz_new / rz, p);  // p = z + beta p
+    beta = rz_new / rz;
     rz = rz_new;
   }
   return result;

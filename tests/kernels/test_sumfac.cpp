@@ -1,10 +1,14 @@
 // Sum-factorisation building blocks: quadrature exactness, Lagrange bases, even–odd matrices
-// against dense products, and the tensor evaluator against direct evaluation of a polynomial.
+// against dense products, the tensor evaluator against direct evaluation of a polynomial, and
+// the DoFs a row of cell batches touches first and last in the coloured cell loop.
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
+#include "kernels/sumfac/qk_lattice.hpp"
 #include "kernels/sumfac/quadrature_1d.hpp"
+#include "kernels/sumfac/row_touch.hpp"
 #include "kernels/sumfac/shape_data.hpp"
 #include "kernels/sumfac/simd.hpp"
 #include "kernels/sumfac/tensor_product_evaluator.hpp"
@@ -142,6 +146,69 @@ TEST(TensorProductEvaluator, ValuesAndGradientsOfPolynomialsAreExact) {
   check_evaluator<3, 3, 5>();
   check_evaluator<3, 5, 6>();
   check_evaluator<3, 8, 10>();
+}
+
+// The cell loop (solvers/matrix_free for_each_batch_coloured) runs slabs by block colour, a
+// block's slabs in order and a slab's rows in order; blocks of one colour share no node. Every
+// DoF must lie in the first-touch range of the first row (in that order) whose cells hold it,
+// in the last-touch range of the last one, and in no other row's.
+template <int dim>
+void check_row_touch(int degree, const int* cells, const bool* periodic) {
+  const auto lat = QkLattice<dim>::create(degree, cells, periodic, 0, 8);
+  SCOPED_TRACE(std::to_string(dim) + "D k " + std::to_string(degree) + " slabs " + std::to_string(lat.n_slabs()));
+  const int slabs = lat.n_slabs(), rows = lat.rows_per_slab(), run = lat.slabs_per_block();
+  const long line = lat.dofs[0], layer = dim == 3 ? line * lat.dofs[1] : line, n = lat.n_dofs();
+  // the order of each (slab, row): colour, then block, then slab, then row
+  auto order = [&](int s, int r) {
+    return ((static_cast<long>(lat.slab_colour(s)) * slabs + s / run) * slabs + s) * rows + r;
+  };
+  std::vector<long> first(n, -1), last(n, -1);
+  std::vector<int> first_row(n, -1), last_row(n, -1);
+  for (int s = 0; s < slabs; ++s)
+    for (int r = 0; r < rows; ++r)
+      for (int a = 0; a <= degree; ++a)  // the row's node layers along the last direction
+        for (int b = 0; b <= (dim == 3 ? degree : 0); ++b) {  // ... and lines along direction 1
+          const long l = (s * degree + a) % lat.dofs[dim - 1];
+          const long m = dim == 3 ? (r * degree + b) % lat.dofs[1] : 0;
+          for (long i = 0; i < line; ++i) {
+            const long dof = l * layer + m * line + i, o = order(s, r);
+            if (first[dof] < 0 || o < first[dof]) first[dof] = o, first_row[dof] = s * rows + r;
+            if (last[dof] < 0 || o > last[dof]) last[dof] = o, last_row[dof] = s * rows + r;
+          }
+        }
+  for (const bool at_last : {false, true}) {
+    if (at_last && !lat.last_touch_ranges()) continue;
+    std::vector<int> covered(n, 0);
+    long wrong = 0;
+    for (int s = 0; s < slabs; ++s)
+      for (int r = 0; r < rows; ++r)
+        row_touch(lat, s, r, at_last).for_each_range([&](long begin, long end) {
+          for (long dof = begin; dof < end; ++dof) {
+            ++covered[dof];
+            wrong += (at_last ? last_row[dof] : first_row[dof]) != s * rows + r;
+          }
+        });
+    long not_once = 0;
+    for (long d = 0; d < n; ++d) not_once += covered[d] != 1;
+    EXPECT_EQ(not_once, 0) << (at_last ? "last" : "first") << " touches: DoFs not in exactly one row's range";
+    EXPECT_EQ(wrong, 0) << (at_last ? "last" : "first") << " touches: DoFs in the range of another row";
+  }
+}
+
+TEST(RowTouch, EveryDofIsTouchedFirstAndLastByTheRowsThatRunFirstAndLast) {
+  const bool open[3] = {false, false, false}, periodic_x[3] = {true, false, false};
+  const bool periodic_all[3] = {true, true, true};
+  for (int k : {1, 2, 4}) {
+    // slabs per block 1 (3 blocks), 2 (8 blocks; 9, an odd count), 5 (8 blocks)
+    for (int nz : {3, 16, 18, 40}) {
+      const int c3[3] = {10, 4, nz}, c2[2] = {10, nz};
+      check_row_touch<3>(k, c3, open);
+      check_row_touch<3>(k, c3, periodic_x);
+      check_row_touch<3>(k, c3, periodic_all);  // periodic: first touches only
+      check_row_touch<2>(k, c2, open);
+      check_row_touch<2>(k, c2, periodic_all);
+    }
+  }
 }
 
 }  // namespace

@@ -204,33 +204,4 @@ struct BatchDofAccess {
   }
 };
 
-/// Zeroes the nodes row `row` of slab `slab` writes first (every component), just before the
-/// row's batches run, so the lines they add into are still in cache (a whole slab, zeroed at
-/// once, is about 1 MB at degree 6): see for_each_batch_coloured.
-template <int dim>
-struct FirstTouchZero {
-  QkLattice<dim> lattice;
-  double* y;
-  int components;
-  KOKKOS_INLINE_FUNCTION void operator()(int slab, int row) const {
-    int first = 0, end = 0;
-    lattice.slab_first_layers(slab, first, end);
-    const long line = lattice.dofs[0];
-    const long layer = dim == 3 ? line * lattice.dofs[1] : line;
-    // The part of each of the slab's layers the row writes first: its lines along direction 1
-    // in 3D (row_first_layers); the whole layer in 2D, where a slab is one row.
-    long begin = 0, stop = layer;
-    if constexpr (dim == 3) {
-      int row_first = 0, row_end = 0;
-      lattice.row_first_layers(row, row_first, row_end);
-      begin = row_first * line;
-      stop = row_end * line;
-    }
-    const long n = lattice.n_dofs();
-    for (int c = 0; c < components; ++c)
-      for (int l = first; l < end; ++l)
-        for (long i = begin; i < stop; ++i) y[c * n + l * layer + i] = 0.0;
-  }
-};
-
 }  // namespace amphora::sumfac

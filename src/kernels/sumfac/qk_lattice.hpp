@@ -104,6 +104,26 @@ struct QkLattice {
     end = (periodic[1] && r == cells[1] - 1) ? (r + 1) * k : (r + 1) * k + 1;
   }
 
+  /// Whether the DoFs a row of batches writes last (slab_last_layers, row_last_layers) form
+  /// ranges of lines: not so across a periodic wrap of direction 1 or of the slab direction,
+  /// whose last layer is the first.
+  KOKKOS_INLINE_FUNCTION bool last_touch_ranges() const { return !periodic[dim - 1] && (dim == 2 || !periodic[1]); }
+  /// Node layers along the last direction that slab s writes last when slabs run by colour:
+  /// [first, end). A layer shared with a slab that runs later is left to that slab. Only where
+  /// last_touch_ranges().
+  KOKKOS_INLINE_FUNCTION void slab_last_layers(int s, int& first, int& end) const {
+    const int n = cells[dim - 1], k = degree;
+    first = (s == 0 || slab_runs_before(s - 1, s)) ? s * k : s * k + 1;
+    end = (s == n - 1 || slab_runs_before(s + 1, s)) ? (s + 1) * k + 1 : (s + 1) * k;
+  }
+  /// Node layers along direction 1 that row r of a slab (3D) writes last when rows run in
+  /// order: [first, end). Only where last_touch_ranges().
+  KOKKOS_INLINE_FUNCTION void row_last_layers(int r, int& first, int& end) const {
+    const int k = degree;
+    first = r * k;
+    end = r == cells[1] - 1 ? (r + 1) * k + 1 : (r + 1) * k;
+  }
+
   /// Cell coordinates of lane 0 of batch b: (bx * width, cy, cz).
   KOKKOS_INLINE_FUNCTION void batch_cell(int b, int* c) const {
     c[0] = (b % batches_x) * width;

@@ -15,6 +15,7 @@
 
 #include "kernels/spaces.hpp"
 #include "kernels/sumfac/batch_dof_access.hpp"
+#include "kernels/sumfac/row_touch.hpp"
 #include "kernels/sumfac/point_geometry.hpp"
 #include "kernels/sumfac/qk_lattice.hpp"
 #include "kernels/sumfac/simd.hpp"
@@ -276,16 +277,17 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
 };
 
 /// Runs body(b) for every batch b so that batches running at once share no node (see the top
-/// of this file), calling first_touch(slab, row) before each row of a slab's batches on host
-/// spaces (so a destination can be zeroed row by row while it is in cache:
-/// QkLattice::slab_first_layers and row_first_layers). A body taking two ints is called as
-/// body(b0, b1) for the batches b0 .. b1 - 1 of one row of cells instead (one batch at a time on
-/// devices), so it can form what the row's batches share once.
-/// Device spaces run all batches at once: body must add atomically, first_touch is not called.
-/// Returns whether first_touch was called.
-template <class ExecSpace, int dim, class FirstTouch, class Body>
-bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice,
-                             const char* label, const FirstTouch& first_touch, const Body& body) {
+/// of this file), calling first_touch(slab, row) before and last_touch(slab, row) after each
+/// row of a slab's batches on host spaces (so a destination can be zeroed row by row while it
+/// is in cache, and vector work done on the nodes a row reads first or writes last:
+/// sumfac/row_touch.hpp). A body taking two ints is called as body(b0, b1) for the batches
+/// b0 .. b1 - 1 of one row of cells instead (one batch at a time on devices), so it can form
+/// what the row's batches share once.
+/// Device spaces run all batches at once: body must add atomically, first_touch and last_touch
+/// are not called. Returns whether they were called.
+template <class ExecSpace, int dim, class FirstTouch, class Body, class LastTouch = sumfac::NoTouch>
+bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice, const char* label,
+                             const FirstTouch& first_touch, const Body& body, const LastTouch& last_touch = {}) {
   constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace,
                                                    typename ExecSpace::memory_space>::accessible;
   constexpr bool by_row = std::is_invocable_v<const Body&, int, int>;
@@ -316,6 +318,7 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
               body(b0, b0 + per_row);
             else
               for (int b = b0; b < b0 + per_row; ++b) body(b);
+            last_touch(slab, row);
           }
       });
     }

@@ -3,6 +3,7 @@
 // update of x and the compression of y, so y = A x holds on every owned DoF as on one rank.
 // x's ghost layer is overwritten with the owners' values (x is otherwise unchanged); y's ghost
 // layer holds this rank's partial sums afterwards and is not meaningful.
+#include "kernels/blas1.hpp"
 #include "mesh/hex/distributed_qk_space.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
@@ -22,6 +23,17 @@ class DistributedOperator {
     space_->update_ghosts(exec, x, components());
     local_.apply(exec, x, y);
     space_->compress_add(exec, y, components());
+  }
+  /// CG's direction step (MatrixFreeOperator::apply_direction): p = z + beta p, q = A p, returns
+  /// p.q summed over the ranks. In one sweep over the cells on a single rank; on several, in
+  /// passes around the ghost exchanges.
+  double apply_direction(const ExecSpace& exec, const Vector& z, double beta, const Vector& p, const Vector& q,
+                         const typename Space::InnerProduct& dot) const {
+    if (space_->communicator().size() == 1 && space_->n_owned() == space_->n_local())
+      return local_.apply_direction(exec, z, beta, p, q);
+    blas1::xpby(exec, z, beta, p);
+    apply(exec, p, q);
+    return dot(exec, p, q);
   }
   /// The diagonal on owned DoFs (constrained rows: 1).
   void compute_diagonal(const ExecSpace& exec, const Vector& diagonal) const {

@@ -4,6 +4,7 @@
 #include <type_traits>
 
 #include "kernels/sumfac/batch_dof_access.hpp"
+#include "kernels/sumfac/row_touch.hpp"
 #include "kernels/sumfac/shape_data.hpp"
 #include "kernels/sumfac/tensor_product_evaluator.hpp"
 #include "solvers/matrix_free/cell_operator_kernel.hpp"
