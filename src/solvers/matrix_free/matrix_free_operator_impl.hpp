@@ -80,39 +80,42 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   static double direction_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& z, double beta,
                                const Vector& p, const Vector& q) {
     constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
-    if constexpr (!host) return direction_in_passes(op, exec, z, beta, p, q);
-    const auto k = kernel<n_p, n_q>(op);
-    if (!k.lattice.last_touch_ranges()) return direction_in_passes(op, exec, z, beta, p, q);
-    const int comps = op.options_.components;
-    const int rows = k.lattice.n_slabs() * k.lattice.rows_per_slab();
-    Kokkos::View<double*, memory_space> partial(
-        Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::MatrixFreeOperator::partial_dots"), rows);
-    double* pp = p.data();
-    double* qq = q.data();
-    // row by row: batch by batch (the work interleaved with the cells') was 2x slower at p = 1,
-    // where a batch's part of its lines is a few cache lines, and no faster at p = 3 and 6
-    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::apply_direction",
-                            sumfac::FirstTouchDirection<dim>{k.lattice, z.data(), pp, qq, beta, comps},
-                            KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<false>(pp, qq, comps, b0, b1); },
-                            sumfac::LastTouchDot<dim>{k.lattice, pp, qq, partial.data(), comps});
-    // Constrained rows become q = p. The rows' sums took the loop's q there (zero, or what a
-    // fast batch added into a Dirichlet lane, as apply leaves to copy_constrained): corrected.
-    const auto cons = op.space_->constrained_dofs();
-    const long n = op.space_->n_dofs();
-    const int nc = static_cast<int>(cons.extent(0));
-    double constrained = 0.0;
-    Kokkos::parallel_reduce(
-        "amphora::MatrixFreeOperator::constrained_rows", RangePolicy<ExecSpace>(exec, 0, nc * comps),
-        KOKKOS_LAMBDA(int m, double& acc) {
-          const long i = (m / nc) * n + cons(m % nc);
-          acc += p(i) * (p(i) - q(i));
-          q(i) = p(i);
-        },
-        constrained);
-    exec.fence();
-    double pq = 0.0;
-    for (int r = 0; r < rows; ++r) pq += partial(r);
-    return pq + constrained;
+    if constexpr (!host) {
+      return direction_in_passes(op, exec, z, beta, p, q);
+    } else {  // (discarded on devices: the partial sums are read on the host)
+      const auto k = kernel<n_p, n_q>(op);
+      if (!k.lattice.last_touch_ranges()) return direction_in_passes(op, exec, z, beta, p, q);
+      const int comps = op.options_.components;
+      const int rows = k.lattice.n_slabs() * k.lattice.rows_per_slab();
+      Kokkos::View<double*, memory_space> partial(
+          Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::MatrixFreeOperator::partial_dots"), rows);
+      double* pp = p.data();
+      double* qq = q.data();
+      // row by row: batch by batch (the work interleaved with the cells') was 2x slower at p = 1,
+      // where a batch's part of its lines is a few cache lines, and no faster at p = 3 and 6
+      for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::apply_direction",
+                              sumfac::FirstTouchDirection<dim>{k.lattice, z.data(), pp, qq, beta, comps},
+                              KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<false>(pp, qq, comps, b0, b1); },
+                              sumfac::LastTouchDot<dim>{k.lattice, pp, qq, partial.data(), comps});
+      // Constrained rows become q = p. The rows' sums took the loop's q there (zero, or what a
+      // fast batch added into a Dirichlet lane, as apply leaves to copy_constrained): corrected.
+      const auto cons = op.space_->constrained_dofs();
+      const long n = op.space_->n_dofs();
+      const int nc = static_cast<int>(cons.extent(0));
+      double constrained = 0.0;
+      Kokkos::parallel_reduce(
+          "amphora::MatrixFreeOperator::constrained_rows", RangePolicy<ExecSpace>(exec, 0, nc * comps),
+          KOKKOS_LAMBDA(int m, double& acc) {
+            const long i = (m / nc) * n + cons(m % nc);
+            acc += p(i) * (p(i) - q(i));
+            q(i) = p(i);
+          },
+          constrained);
+      exec.fence();
+      double pq = 0.0;
+      for (int r = 0; r < rows; ++r) pq += partial(r);
+      return pq + constrained;
+    }
   }
 
   // The generic fallback (generic_cell_kernel.hpp): one cell at a time. mode 0: y = A x;
