@@ -32,6 +32,17 @@ struct has_fused_direction<Operator, ExecSpace, View, Inner,
                                std::declval<const View&>(), std::declval<const View&>(), std::declval<const Inner&>()))>>
     : std::true_type {};
 
+/// CG's direction step in three passes: p = z + beta p (p = z if beta is 0), q = A p; returns
+/// p.q under `dot`. What an operator without apply_direction gets, and what one with it falls
+/// back to where it cannot sweep.
+template <class ExecSpace, class Operator, class View, class Inner>
+double direction_in_passes(const ExecSpace& exec, const Operator& A, const View& z, double beta, const View& p,
+                           const View& q, const Inner& dot) {
+  blas1::xpby(exec, z, beta, p);
+  A.apply(exec, p, q);
+  return dot(exec, p, q);
+}
+
 struct SolverControl {
   int max_iterations = 1000;
   double relative_tolerance = 1e-8;  ///< stop when |r| <= rel * |b| ...
@@ -118,9 +129,7 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
     if constexpr (has_fused_direction<Operator, ExecSpace, View, Inner>::value) {
       pq = A.apply_direction(exec, z, beta, p, q, dot);
     } else {
-      blas1::xpby(exec, z, beta, p);
-      A.apply(exec, p, q);
-      pq = dot(exec, p, q);
+      pq = direction_in_passes(exec, A, z, beta, p, q, dot);
     }
     if (!(pq > 0.0)) break;  // not SPD (or breakdown): stop, not converged
     const double alpha = rz / pq;

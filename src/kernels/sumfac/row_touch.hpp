@@ -1,28 +1,25 @@
 #pragma once
 // Work on the DoFs a row of cell batches touches first or last, done by the cell loop
-// (for_each_batch_coloured) just before or just after the row, while its lines are in cache: zeroing a destination, and CG's vector updates and inner product
-// fused into an operator application (Kronbichler, Sashko & Munch 2023, "Enhancing data
-// locality of the conjugate gradient method for high-order matrix-free finite-element
-// implementations", IJHPCA 37(2), sec. 3).
+// (for_each_batch_coloured) just before or just after the row, while its lines are in cache:
+// zeroing a destination, and CG's vector updates and inner product fused into an operator
+// application (Kronbichler, Sashko & Munch 2023, "Enhancing data locality of the conjugate
+// gradient method for high-order matrix-free finite-element implementations", IJHPCA 37(2),
+// sec. 3).
 #include "kernels/sumfac/qk_lattice.hpp"
 
 namespace amphora::sumfac {
 
 /// DoFs a row touches first (or last) in the cell loop's order: in each node layer of
-/// [layer_first, layer_end) (along the last direction) and each line of [line_first, line_end)
-/// in it (along direction 1; one line, the layer, in 2D), the nodes [x_begin, x_end) along x.
-/// Last touches need lattice.last_touch_ranges().
+/// [layer_first, layer_end) (along the last direction), its lines [line_first, line_end) along
+/// direction 1 (the whole layer, one line, in 2D), which lie next to each other. Last touches
+/// need lattice.last_touch_ranges().
 struct TouchedDofs {
-  int layer_first = 0, layer_end = 0, line_first = 0, line_end = 1, x_begin = 0, x_end = 0;
+  int layer_first = 0, layer_end = 0, line_first = 0, line_end = 1;
   long layer = 0, line = 0;
-  /// f(begin, end) for each contiguous range of lattice indices.
+  /// f(begin, end) for the contiguous range of lattice indices in each layer.
   template <class F>
   KOKKOS_INLINE_FUNCTION void for_each_range(const F& f) const {
-    for (int l = layer_first; l < layer_end; ++l)
-      for (int m = line_first; m < line_end; ++m) {
-        const long o = l * layer + m * line;
-        f(o + x_begin, o + x_end);
-      }
+    for (int l = layer_first; l < layer_end; ++l) f(l * layer + line_first * line, l * layer + line_end * line);
   }
 };
 
@@ -43,7 +40,6 @@ KOKKOS_INLINE_FUNCTION TouchedDofs row_touch(const QkLattice<dim>& lattice, int 
     else
       lattice.row_first_layers(row, t.line_first, t.line_end);
   }
-  t.x_end = lattice.dofs[0];
   return t;
 }
 

@@ -3,8 +3,8 @@
 // update of x and the compression of y, so y = A x holds on every owned DoF as on one rank.
 // x's ghost layer is overwritten with the owners' values (x is otherwise unchanged); y's ghost
 // layer holds this rank's partial sums afterwards and is not meaningful.
-#include "kernels/blas1.hpp"
 #include "mesh/hex/distributed_qk_space.hpp"
+#include "solvers/conjugate_gradient.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
 namespace amphora::solvers {
@@ -31,9 +31,7 @@ class DistributedOperator {
                          const typename Space::InnerProduct& dot) const {
     if (space_->communicator().size() == 1 && space_->n_owned() == space_->n_local())
       return local_.apply_direction(exec, z, beta, p, q);
-    blas1::xpby(exec, z, beta, p);
-    apply(exec, p, q);
-    return dot(exec, p, q);
+    return direction_in_passes(exec, *this, z, beta, p, q, dot);
   }
   /// The diagonal on owned DoFs (constrained rows: 1).
   void compute_diagonal(const ExecSpace& exec, const Vector& diagonal) const {

@@ -69,9 +69,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   /// apply_direction as three passes: the update, the application, the product.
   static double direction_in_passes(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& z, double beta,
                                     const Vector& p, const Vector& q) {
-    blas1::xpby(exec, z, beta, p);
-    op.apply(exec, p, q);
-    return blas1::dot(exec, p, q);
+    return solvers::direction_in_passes(exec, op, z, beta, p, q, LocalInnerProduct());
   }
 
   /// apply_direction in one sweep (host spaces, no periodic wrap along the rows or slabs): the
