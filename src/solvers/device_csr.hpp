@@ -17,15 +17,17 @@ struct DeviceCsrMatrix {
   Vector values, inverse_diagonal;
 
   DeviceCsrMatrix() = default;
-  explicit DeviceCsrMatrix(const CsrMatrix& A) : n(static_cast<int>(A.n)) {
+  /// A copy of A; with_inverse_diagonal: also 1 / a_ii (zero where a_ii is; a square matrix).
+  explicit DeviceCsrMatrix(const CsrMatrix& A, bool with_inverse_diagonal = true) : n(static_cast<int>(A.n)) {
     std::vector<int> rp(A.row_ptr.begin(), A.row_ptr.end());
+    row_ptr = to_view<MemSpace>(rp, "amphora::csr::row_ptr");
+    cols = to_view<MemSpace>(A.cols, "amphora::csr::cols");
+    values = to_view<MemSpace>(A.values, "amphora::csr::values");
+    if (!with_inverse_diagonal) return;
     std::vector<double> inv(A.n, 0.0);
     for (long i = 0; i < A.n; ++i)
       for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e)
         if (A.cols[e] == i && A.values[e] != 0.0) inv[i] = 1.0 / A.values[e];
-    row_ptr = to_view<MemSpace>(rp, "amphora::csr::row_ptr");
-    cols = to_view<MemSpace>(A.cols, "amphora::csr::cols");
-    values = to_view<MemSpace>(A.values, "amphora::csr::values");
     inverse_diagonal = to_view<MemSpace>(inv, "amphora::csr::inverse_diagonal");
   }
 

@@ -500,9 +500,13 @@ class WaterMac final : public Module {
       phases_.lap(pressure_solve);
     } else {
       // tall cells: solve P^T A P y = P^T b, then p = P y on the lattice
+      Kokkos::Profiling::pushRegion("amphora::water::tall_cell_grid");
       const auto H = kernels::mac::host_stencil(A);
       const mesh::TallCellGrid T(H, optical_depth_, block_);
+      Kokkos::Profiling::popRegion();
+      Kokkos::Profiling::pushRegion("amphora::water::tall_cell_matrix");
       const solvers::CsrMatrix M = solvers::mac::assemble_tall_cell_matrix(T, H);
+      Kokkos::Profiling::popRegion();
       const auto layout = mesh::make_layout<Mem>(T);
       Vector bt("amphora::water::b_tall", T.unknowns()), y("amphora::water::p_tall", T.unknowns());
       kernels::mac::tall_cell_restrict(exec, layout, b_, bt);
@@ -511,7 +515,9 @@ class WaterMac final : public Module {
       // steps of the 64^3 splash with D = 8.
       kernels::mac::tall_cell_restrict(exec, layout, p_, y);
       kernels::mac::tall_cell_gram_solve(exec, layout, y);
+      Kokkos::Profiling::pushRegion("amphora::water::tall_cell_solver_setup");
       auto solver = solvers::mac::make_tall_cell_pressure_solver(backend_, exec, T, M, A);
+      Kokkos::Profiling::popRegion();
       phases_.lap(pressure_setup);
       r = solver->solve(exec, bt, y, control_);
       phases_.lap(pressure_solve);

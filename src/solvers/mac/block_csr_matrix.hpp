@@ -31,12 +31,14 @@ struct BlockCsrMatrix {
 
   BlockCsrMatrix() = default;
   /// M: this block's rows with global columns, the unknowns of T (assemble_tall_cell_matrix:
-  /// T's own rows; a level transfer: another grid's).
-  BlockCsrMatrix(const CsrMatrix& M, const mesh::TallCellGrid& T) : grid(T.grid()), halo(T.block()) {
+  /// T's own rows; a level transfer: another grid's, with_inverse_diagonal false as it has
+  /// none).
+  BlockCsrMatrix(const CsrMatrix& M, const mesh::TallCellGrid& T, bool with_inverse_diagonal = true)
+      : grid(T.grid()), halo(T.block()) {
     n = static_cast<int>(M.n);
     columns = static_cast<int>(T.unknowns());
     if (!halo.block().split()) {  // one block: global columns are local ones, apply() the plain product
-      local = DeviceCsrMatrix<MemSpace>(M);
+      local = DeviceCsrMatrix<MemSpace>(M, with_inverse_diagonal);
       inverse_diagonal = local.inverse_diagonal;
       return;
     }
@@ -62,7 +64,7 @@ struct BlockCsrMatrix {
       c = it->second;
     }
     ghosts = static_cast<int>(ghost.size());
-    local = DeviceCsrMatrix<MemSpace>(C);
+    local = DeviceCsrMatrix<MemSpace>(C, with_inverse_diagonal);
     inverse_diagonal = local.inverse_diagonal;
     own_cells = to_view<MemSpace>(T.unknown_cells(), "amphora::block_csr::own_cells");
     ghost_cells = to_view<MemSpace>(ghost, "amphora::block_csr::ghost_cells");

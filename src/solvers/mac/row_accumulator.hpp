@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "kernels/spaces.hpp"
 #include "solvers/csr_matrix.hpp"
 
 namespace amphora::solvers::mac {
@@ -56,18 +57,22 @@ class RowAccumulator {
     for (long r = 0; r < n; ++r) M.row_ptr[r + 1] = M.row_ptr[r] + count_[r] + static_cast<long>(overflow_[r].size());
     M.cols.resize(M.row_ptr[n]);
     M.values.resize(M.row_ptr[n]);
-    std::vector<std::pair<int, double>> row;
-    for (long r = 0; r < n; ++r) {
-      row.clear();
-      for (int e = 0; e < count_[r]; ++e) row.emplace_back(cols_[r * K + e], values_[r * K + e]);
-      row.insert(row.end(), overflow_[r].begin(), overflow_[r].end());
-      std::sort(row.begin(), row.end());
-      long at = M.row_ptr[r];
-      for (const auto& [c, v] : row) {
-        M.cols[at] = c;
-        M.values[at++] = v;
+    // each row alone (sorted in place): in parallel, the same for any number of threads
+    Kokkos::parallel_for("amphora::mac::rows_to_csr", Kokkos::RangePolicy<HostExecSpace>(0, n), [&](long r) {
+      const long at = M.row_ptr[r];
+      std::pair<int, double> row[K];
+      const int m = count_[r];
+      for (int e = 0; e < m; ++e) row[e] = {cols_[r * K + e], values_[r * K + e]};
+      if (overflow_[r].empty()) {
+        std::sort(row, row + m);
+        for (int e = 0; e < m; ++e) M.cols[at + e] = row[e].first, M.values[at + e] = row[e].second;
+        return;
       }
-    }
+      std::vector<std::pair<int, double>> all(row, row + m);
+      all.insert(all.end(), overflow_[r].begin(), overflow_[r].end());
+      std::sort(all.begin(), all.end());
+      for (std::size_t e = 0; e < all.size(); ++e) M.cols[at + e] = all[e].first, M.values[at + e] = all[e].second;
+    });
     return M;
   }
 

@@ -178,35 +178,72 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   std::vector<Rows> parts(chunks);
   Kokkos::parallel_for("amphora::tall_mg::transfer_rows", Kokkos::RangePolicy<HostExecSpace>(0, chunks),
                        [&](std::size_t c) { build(bound[c], bound[c + 1], parts[c]); });
-  std::vector<long> row_ptr{0};
-  std::vector<int> cols;
-  std::vector<double> values;
-  for (const Rows& part : parts) {
-    const long base = row_ptr.back();
-    for (const long end : part.ends) row_ptr.push_back(base + end);
-    cols.insert(cols.end(), part.cols.begin(), part.cols.end());
-    values.insert(values.end(), part.values.begin(), part.values.end());
+  // The parts one after the other (each copied in parallel to its place): Q's rows for all
+  // carriers.
+  std::vector<long> part_row(chunks + 1, 0), part_entry(chunks + 1, 0);
+  for (std::size_t c = 0; c < chunks; ++c) {
+    part_row[c + 1] = part_row[c] + static_cast<long>(parts[c].ends.size());
+    part_entry[c + 1] = part_entry[c] + static_cast<long>(parts[c].cols.size());
   }
+  std::vector<long> row_ptr(part_row[chunks] + 1);
+  std::vector<int> cols(part_entry[chunks]);
+  std::vector<double> values(part_entry[chunks]);
+  row_ptr[0] = 0;
+  Kokkos::parallel_for("amphora::tall_mg::transfer_merge", Kokkos::RangePolicy<HostExecSpace>(0, chunks),
+                       [&](std::size_t c) {
+                         const Rows& part = parts[c];
+                         for (std::size_t r = 0; r < part.ends.size(); ++r)
+                           row_ptr[part_row[c] + 1 + r] = part_entry[c] + part.ends[r];
+                         std::copy(part.cols.begin(), part.cols.end(), cols.begin() + part_entry[c]);
+                         std::copy(part.values.begin(), part.values.end(), values.begin() + part_entry[c]);
+                       });
+  parts.clear();
   TallCellLevelTransfer t;
-  // Q^T by counting: carriers come in increasing fine unknowns within the block and within
-  // the ring, so each coarse row lists its fine columns in that order
+  // Q^T by counting, in groups of carriers: each group counts its entries per coarse row, a
+  // row's groups follow one another in order, so each coarse row lists its fine columns in
+  // carrier order (increasing fine unknowns within the block and within the ring) whatever the
+  // threads.
   CsrMatrix& R = t.restriction;
   const long first = coarse.first_unknown();
   R.n = coarse.unknowns();
+  const std::size_t groups = std::min<std::size_t>(chunks, 2 * static_cast<std::size_t>(HostExecSpace().concurrency()));
+  std::vector<std::size_t> group_bound(groups + 1);
+  for (std::size_t q = 0; q <= groups; ++q) group_bound[q] = bound[q * chunks / groups];
+  std::vector<long> count(groups * (R.n + 1), 0);  // per group, per coarse row (+1 for the scan)
+  const auto own_row = [&](int U) { return U >= first && U < first + R.n ? U - first : -1L; };
+  Kokkos::parallel_for("amphora::tall_mg::transpose_count", Kokkos::RangePolicy<HostExecSpace>(0, groups),
+                       [&](std::size_t q) {
+                         long* n = count.data() + q * (R.n + 1);
+                         for (long e = row_ptr[group_bound[q]]; e < row_ptr[group_bound[q + 1]]; ++e) {
+                           const long U = own_row(cols[e]);
+                           if (U >= 0) ++n[U];
+                         }
+                       });
+  // count becomes each group's first position in each coarse row
   R.row_ptr.assign(R.n + 1, 0);
-  for (const int U : cols)
-    if (U >= first && U < first + R.n) ++R.row_ptr[U - first + 1];
-  for (long r = 0; r < R.n; ++r) R.row_ptr[r + 1] += R.row_ptr[r];
-  R.cols.resize(R.row_ptr[R.n]);
-  R.values.resize(R.row_ptr[R.n]);
-  std::vector<long> next(R.row_ptr.begin(), R.row_ptr.end() - 1);
-  for (std::size_t r = 0; r < carriers.size(); ++r)
-    for (long e = row_ptr[r]; e < row_ptr[r + 1]; ++e) {
-      const long U = cols[e] - first;
-      if (U < 0 || U >= R.n) continue;
-      R.cols[next[U]] = static_cast<int>(carriers[r].first);
-      R.values[next[U]++] = values[e];
+  long at = 0;
+  for (long U = 0; U < R.n; ++U) {
+    R.row_ptr[U] = at;
+    for (std::size_t q = 0; q < groups; ++q) {
+      const long n = count[q * (R.n + 1) + U];
+      count[q * (R.n + 1) + U] = at;
+      at += n;
     }
+  }
+  R.row_ptr[R.n] = at;
+  R.cols.resize(at);
+  R.values.resize(at);
+  Kokkos::parallel_for("amphora::tall_mg::transpose_fill", Kokkos::RangePolicy<HostExecSpace>(0, groups),
+                       [&](std::size_t q) {
+                         long* next = count.data() + q * (R.n + 1);
+                         for (std::size_t r = group_bound[q]; r < group_bound[q + 1]; ++r)
+                           for (long e = row_ptr[r]; e < row_ptr[r + 1]; ++e) {
+                             const long U = own_row(cols[e]);
+                             if (U < 0) continue;
+                             R.cols[next[U]] = static_cast<int>(carriers[r].first);
+                             R.values[next[U]++] = values[e];
+                           }
+                       });
   // Q: this block's rows, the first ones (the ring's follow them)
   CsrMatrix& Q = t.prolongation;
   Q.n = fine.unknowns();

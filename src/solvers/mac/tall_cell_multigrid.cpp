@@ -67,7 +67,9 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
   mesh::MacBlock level_block = block;
   for (int l = 0;; ++l) {
     auto L = std::make_unique<Level>();
+    Kokkos::Profiling::pushRegion("amphora::tall_mg::level_matrix");
     L->A_t = Csr(*level_matrix, *level_grid);
+    Kokkos::Profiling::popRegion();
     const int n = L->A_t.n;
     L->b = Vector("amphora::tall_mg::b", n);
     L->x = Vector("amphora::tall_mg::x", n);
@@ -81,7 +83,9 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     if (!on_every_rank(comm, halvable) || cells <= options.max_coarse_cells) {
       const CsrMatrix whole = block.split() ? gather_rows(comm, *level_matrix, coarse_counts_, coarse_displacements_)
                                             : *level_matrix;
+      Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_cholesky");
       coarse_ = std::make_unique<CoarseCholesky>(whole);
+      Kokkos::Profiling::popRegion();
       coarse_first_ = level_grid->first_unknown();
       coarse_host_.resize(whole.n);
       coarse_local_.resize(n);
@@ -91,6 +95,7 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     // The smoothed interval ends at Gershgorin's bound of lambda_max(D^-1 A) over all blocks'
     // rows: 3.01-3.06 on the levels of the deep splash, where 12 Lanczos steps estimated 2.91-2.95
     // (so 1.2 lambda = 3.5 was the end before), at no operator applications.
+    Kokkos::Profiling::pushRegion("amphora::tall_mg::smoother");
     ChebyshevOptions smoothing;
     smoothing.degree = options.chebyshev_degree;
     smoothing.smoothing_range = options.smoothing_range;
@@ -98,7 +103,9 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     MPI_Allreduce(MPI_IN_PLACE, &smoothing.lambda_max_bound, 1, MPI_DOUBLE, MPI_MAX, comm);
     L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Csr, Vector, BlockInnerProduct>>(
         exec, L->A_t, L->A_t.inverse_diagonal, smoothing, inner);
+    Kokkos::Profiling::popRegion();
     // the next level: the same optical depth in metres on the coarser lattice
+    Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_grid");
     Stencil coarse = kernels::mac::coarsen_stencil(exec, level_A);
     complete_block_stencil(exec, halo_, &level_A, coarse);
     level_A = coarse;
@@ -106,13 +113,20 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     const int depth = (T.optical_depth() + (2 << l) - 1) >> (l + 1);
     const auto host_A = kernels::mac::host_stencil(level_A);
     mesh::TallCellGrid coarse_grid(host_A, std::max(depth, 1), level_block);
+    Kokkos::Profiling::popRegion();
+    Kokkos::Profiling::pushRegion("amphora::tall_mg::transfer");
     const TallCellLevelTransfer transfer = tall_cell_level_transfer(*level_grid, coarse_grid, host_A);
-    L->prolongation = Csr(transfer.prolongation, coarse_grid);
-    L->restriction = Csr(transfer.restriction, *level_grid);
+    Kokkos::Profiling::popRegion();
+    Kokkos::Profiling::pushRegion("amphora::tall_mg::transfer_matrices");
+    L->prolongation = Csr(transfer.prolongation, coarse_grid, false);
+    L->restriction = Csr(transfer.restriction, *level_grid, false);
+    Kokkos::Profiling::popRegion();
     levels_.push_back(std::move(L));
     coarse_level_grid.emplace(std::move(coarse_grid));  // the finer one is done with
     level_grid = &*coarse_level_grid;
+    Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_matrix");
     coarse_matrix = assemble_tall_cell_matrix(*level_grid, host_A);
+    Kokkos::Profiling::popRegion();
     level_matrix = &coarse_matrix;
   }
 }
