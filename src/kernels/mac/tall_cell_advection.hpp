@@ -8,7 +8,11 @@
 // - in tall cells the velocity is advected by first-order upwind in flux form (a control volume
 //   per face sample, face velocities averaged onto its faces): the fluxes telescope, so momentum
 //   moves between samples without being created, and the scheme is stable for a Courant sum
-//   dt (|u| + |v| + |w|) / h <= 1 there, which tall_cell_speed() lets the caller keep;
+//   dt (|u| + |v| + |w|) / h <= 1 there, which tall_cell_speed() lets the caller keep; the
+//   step is followed by the linear fit, which needs only each sample column's sum and first
+//   moment: for fields linear in height these come in closed form from the fluxes' end values,
+//   so a tall cell's flux work does not grow with its height, its rows are only written
+//   (tall_range_upwind_fit);
 //   semi-Lagrangian tracing stays in the uniform cells, where the surface is;
 // - the level set is neither advected nor reinitialised inside tall cells: they lie at least
 //   the optical depth below the surface, where only its sign is used.
@@ -46,12 +50,156 @@ KOKKOS_INLINE_FUNCTION double conservative_upwind_sample(const mesh::MacGrid& g,
   return q(c) - dt / g.h * net;
 }
 
+namespace detail {
+/// sum_{x = x0}^{x1 - 1} (a0 + a1 x)(b0 + b1 x)(w0 + w1 x), by the power sums of x^0..x^3.
+KOKKOS_INLINE_FUNCTION double cubic_sum(double a0, double a1, double b0, double b1, double w0, double w1, int x0,
+                                        int x1) {
+  if (x1 <= x0) return 0.0;
+  const auto powers = [](double n, double S[4]) {  // sum_{x=0}^{n-1} x^k
+    const double t = 0.5 * n * (n - 1.0);
+    S[0] = n, S[1] = t, S[2] = t * (2.0 * n - 1.0) / 3.0, S[3] = t * t;
+  };
+  double S1[4], S0[4];
+  powers(x1, S1);
+  powers(x0, S0);
+  const double p0 = a0 * b0, p1 = a0 * b1 + a1 * b0, p2 = a1 * b1;
+  const double c[4] = {p0 * w0, p0 * w1 + p1 * w0, p1 * w1 + p2 * w0, p2 * w1};
+  double sum = 0.0;
+  for (int m = 0; m < 4; ++m) sum += c[m] * (S1[m] - S0[m]);
+  return sum;
+}
+
+/// Rows (in the rows j of the sample column that reads it) where the sample of component e at
+/// column offset (di, dk) and row offset dj is linear in height: inside its tall cell(s).
+template <class MemSpace>
+KOKKOS_INLINE_FUNCTION void linear_rows(const mesh::TallCellColumns<MemSpace>& T, int e, int i, int k, int& lo,
+                                        int& hi) {
+  const mesh::MacGrid& g = T.grid;
+  const bool inside = i >= (e == 0 ? 0 : -1) && i <= g.nx && k >= (e == 2 ? 0 : -1) && k <= g.nz;
+  lo = hi = 0;
+  if (inside) T.tall_rows(e, i, k, lo, hi);
+}
+}  // namespace detail
+
+/// The sums over rows [lo, hi) of one upwind flux F(j) = U(j) q_upwind(j) of the conservative
+/// scheme, and of (j - mid) F(j): U = (a + b) / 2 from two samples of component e, q_upwind =
+/// q at l where U > 0, at r elsewhere (lattice indices at row 0; row j adds j stride_y). Where
+/// all four samples are linear in height (rows [lin_lo, lin_hi)) the sums come in closed form
+/// from each sample's two end values, split where U changes sign; elsewhere row by row.
+template <class Q, class U, class V, class W>
+KOKKOS_INLINE_FUNCTION void upwind_flux_sums(const mesh::MacGrid& g, int e, int a, int b, int l, int r, int lo, int hi,
+                                             int lin_lo, int lin_hi, double mid, const Q& q, const U& u, const V& v,
+                                             const W& w, double& sum, double& moment) {
+  const int sy = g.stride_y();
+  const int s0 = math::max(lo, lin_lo), s1 = math::min(hi, lin_hi);
+  const auto row_flux = [&](int j) {
+    const double Uj = 0.5 * (component(e, u, v, w, a + j * sy) + component(e, u, v, w, b + j * sy));
+    return Uj * (Uj > 0.0 ? double(q(l + j * sy)) : double(q(r + j * sy)));
+  };
+  if (s1 - s0 < 2) {
+    for (int j = lo; j < hi; ++j) {
+      const double F = row_flux(j);
+      sum += F, moment += (j - mid) * F;
+    }
+    return;
+  }
+  for (int j = lo; j < s0; ++j) {
+    const double F = row_flux(j);
+    sum += F, moment += (j - mid) * F;
+  }
+  for (int j = s1; j < hi; ++j) {
+    const double F = row_flux(j);
+    sum += F, moment += (j - mid) * F;
+  }
+  // x = j - s0 in [0, n): each sample f0 + f1 x from its values at both ends
+  const int n = s1 - s0, top = (n - 1) * sy;
+  const auto line = [&](double at0, double at1, double& f0, double& f1) { f0 = at0, f1 = (at1 - at0) / (n - 1); };
+  double U0, U1, L0, L1, R0, R1;
+  line(0.5 * (component(e, u, v, w, a + s0 * sy) + component(e, u, v, w, b + s0 * sy)),
+       0.5 * (component(e, u, v, w, a + s0 * sy + top) + component(e, u, v, w, b + s0 * sy + top)), U0, U1);
+  line(q(l + s0 * sy), q(l + s0 * sy + top), L0, L1);
+  line(q(r + s0 * sy), q(r + s0 * sy + top), R0, R1);
+  // the rows [x_pos, x_end) where U > 0 (a prefix or a suffix of [0, n))
+  int x_pos = 0, x_end = 0;
+  if (U1 == 0.0) {
+    if (U0 > 0.0) x_end = n;
+  } else {
+    const double root = math::min(math::max(-U0 / U1, -1.0), double(n));
+    if (U1 > 0.0)
+      x_pos = math::min(static_cast<int>(math::floor(root)) + 1, n), x_end = n;
+    else
+      x_end = math::max(static_cast<int>(math::ceil(root)), 0);
+  }
+  const double t0 = s0 - mid;  // j - mid = t0 + x
+  const int neg_lo = x_pos > 0 ? 0 : x_end, neg_hi = x_pos > 0 ? x_pos : n;  // the other rows
+  sum += detail::cubic_sum(U0, U1, L0, L1, 1.0, 0.0, x_pos, x_end) +
+         detail::cubic_sum(U0, U1, R0, R1, 1.0, 0.0, neg_lo, neg_hi);
+  moment += detail::cubic_sum(U0, U1, L0, L1, t0, 1.0, x_pos, x_end) +
+            detail::cubic_sum(U0, U1, R0, R1, t0, 1.0, neg_lo, neg_hi);
+}
+
+/// The shortest tall range of a sample column that tall_range_upwind_fit updates as a whole
+/// (shorter ones are linear already; fit_linear_in_tall_cells leaves them too).
+constexpr int min_tall_sample_rows = 3;
+
+/// Face samples [lo, hi) of component d in sample column (i, k) of a tall cell: the conservative
+/// upwind step of every row (conservative_upwind_sample) followed by the momentum-keeping
+/// linear fit (fit_linear_in_tall_cells), done at once. The fit needs only the column's sum and
+/// first moment; the fluxes of fields linear in height have them in closed form, so the cost is
+/// per tall cell, not per lattice row inside it. The fields must be linear in height in the
+/// tall cells of T (fit_linear_in_tall_cells; the pressure projection keeps them so). Writes
+/// q_new at o0 + j stride_y (o0: row 0 of the column in q_new's lattice).
+template <class MemSpace, class Q, class QN, class U, class V, class W>
+KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const mesh::TallCellColumns<MemSpace>& T, int d, int i, int k,
+                                                  int lo, int hi, const Q& q, const QN& q_new, int o0, int out_sy,
+                                                  const U& u, const V& v, const W& w, double dt) {
+  const mesh::MacGrid& g = T.grid;
+  const int sy = g.stride_y(), c0 = g.index(i, 0, k);
+  const int stride[3] = {1, sy, g.stride_z()};
+  const double mid = 0.5 * (lo + hi - 1);
+  double sum = 0.0, moment = 0.0;  // of the net outflow over the rows
+  for (int e = 0; e < 3; ++e)
+    for (int side = 0; side < 2; ++side) {
+      // the control volume's face at +e (side 0) or -e (side 1): offsets (di, dj, dk) of the two
+      // velocity samples averaged onto it (a, b) and of q upwind of it (l, r), as in
+      // conservative_upwind_sample
+      int off[4][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+      if (side == 0 && e == d) {
+        off[1][d] = 1, off[3][d] = 1;
+      } else if (side == 0) {
+        off[0][e] = 1, off[1][e] = 1, off[1][d] = -1, off[3][e] = 1;
+      } else if (e == d) {
+        off[0][d] = -1, off[2][d] = -1;
+      } else {
+        off[1][d] = -1, off[2][e] = -1;
+      }
+      int idx[4], lin_lo = lo, lin_hi = hi;
+      for (int m = 0; m < 4; ++m) {
+        idx[m] = c0 + off[m][0] * stride[0] + off[m][1] * stride[1] + off[m][2] * stride[2];
+        int a, b;
+        detail::linear_rows(T, m < 2 ? e : d, i + off[m][0], k + off[m][2], a, b);
+        lin_lo = math::max(lin_lo, a - off[m][1]), lin_hi = math::min(lin_hi, b - off[m][1]);
+      }
+      double S = 0.0, M = 0.0;
+      upwind_flux_sums(g, e, idx[0], idx[1], idx[2], idx[3], lo, hi, lin_lo, lin_hi, mid, q, u, v, w, S, M);
+      sum += side == 0 ? S : -S, moment += side == 0 ? M : -M;
+    }
+  // q itself is linear here: its sum and first moment from its end values
+  const double n = hi - lo, tt = n * (n * n - 1.0) / 12.0;
+  const double q_lo = q(c0 + lo * sy), q_hi = q(c0 + (hi - 1) * sy);
+  const double mean = 0.5 * (q_lo + q_hi) - dt / g.h * sum / n;
+  const double slope = (q_hi - q_lo) / (n - 1.0) - dt / g.h * moment / tt;
+  for (int j = lo; j < hi; ++j) q_new(o0 + j * out_sy) = mean + slope * (j - mid);
+}
+
 /// q_new = q advected over dt: semi-Lagrangian in uniform cells, conservative upwind for face
-/// samples in tall cells, unchanged for cell samples in tall cells. Face samples whose cells
-/// both have phi >= reach are only copied: for reach at least the distance the surface can move
-/// in dt plus the cells the next classification looks at, such a face lies in the air after the
-/// step, where the caller discards the velocity (it is extrapolated afresh). q_new must not
-/// alias q.
+/// samples in tall cells (a tall range of at least min_tall_sample_rows as a whole, with the
+/// fit: tall_range_upwind_fit), unchanged for cell samples in tall cells. Face samples whose
+/// cells both have phi >= reach are only copied: for reach at least the distance the surface can
+/// move in dt plus the cells the next classification looks at, such a face lies in the air
+/// after the step, where the caller discards the velocity (it is extrapolated afresh). q_new
+/// must not alias q. One work item per sample column: its rows outside the tall cell one by
+/// one, its tall range at once.
 ///
 /// q, u, v, w, phi and T live on T.grid; q_new on `out`, whose sample (i, j, k) is T.grid's
 /// (i + out_offset[0], j, k + out_offset[2]) (a block inside its widened grid: the traces near
@@ -65,16 +213,23 @@ void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Sta
   const int ex = go.nx + (d == 0), ey = go.ny + (d == 1), ez = go.nz + (d == 2);
   const int below = d == 0 ? 1 : d == 1 ? g.stride_y() : d == 2 ? g.stride_z() : 0;
   Kokkos::parallel_for(
-      "amphora::mac::advect_tall_cells",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
-      KOKKOS_LAMBDA(int k, int j, int i) {
-        const int I = i + oi, K = k + ok, c = g.index(I, j, K), o = go.index(i, j, k);
-        if (d >= 0 && math::min(phi(c), phi(c - below)) >= reach)
-          q_new(o) = q(c);
-        else if (!T.in_tall_cell(d, I, j, K))
-          q_new(o) = semi_lagrangian_sample(g, s, I, j, K, q, u, v, w, dt);
-        else
-          q_new(o) = d < 0 ? double(q(c)) : conservative_upwind_sample(g, d, c, q, u, v, w, dt);
+      "amphora::mac::advect_tall_cells", RangePolicy<ExecSpace>(exec, 0, ex * ez), KOKKOS_LAMBDA(int m) {
+        const int i = m % ex, k = m / ex, I = i + oi, K = k + ok;
+        int lo, hi;
+        T.tall_rows(d, I, K, lo, hi);
+        const bool whole = d >= 0 && hi - lo >= min_tall_sample_rows;
+        if (whole) tall_range_upwind_fit(T, d, I, K, lo, hi, q, q_new, go.index(i, 0, k), go.stride_y(), u, v, w, dt);
+        for (int j = 0; j < ey; ++j) {
+          if (whole && j == lo) j = hi;
+          if (j >= ey) break;
+          const int c = g.index(I, j, K), o = go.index(i, j, k);
+          if (d >= 0 && math::min(phi(c), phi(c - below)) >= reach)
+            q_new(o) = q(c);
+          else if (j < lo || j >= hi)
+            q_new(o) = semi_lagrangian_sample(g, s, I, j, K, q, u, v, w, dt);
+          else
+            q_new(o) = d < 0 ? double(q(c)) : conservative_upwind_sample(g, d, c, q, u, v, w, dt);
+        }
       });
 }
 

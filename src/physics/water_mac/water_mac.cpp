@@ -398,7 +398,17 @@ class WaterMac final : public Module {
     Kokkos::deep_copy(solid_, to_view<Mem>(solid));
     halo_.exchange(Exec(), grid_, solid_);
     classify();
+    fit_velocity_in_tall_cells();
     extrapolate_velocity();
+  }
+
+  /// The velocity in the tall cells linear in height, keeping each column's momentum (after the
+  /// grid follows the surface; the tall-cell advection relies on it).
+  void fit_velocity_in_tall_cells() {
+    if (optical_depth_ == 0) return;
+    kernels::mac::fit_linear_in_tall_cells(Exec(), tall_, 0, u_);
+    kernels::mac::fit_linear_in_tall_cells(Exec(), tall_, 1, v_);
+    kernels::mac::fit_linear_in_tall_cells(Exec(), tall_, 2, w_);
   }
 
   /// Cell types from the level set (the level set's and the types' ghost cells from the
@@ -458,11 +468,7 @@ class WaterMac final : public Module {
     classify();
     // the grid rebuilt to follow the surface: the velocity in its tall cells becomes linear in
     // height, keeping each column's momentum
-    if (optical_depth_ > 0) {
-      kernels::mac::fit_linear_in_tall_cells(exec, tall_, 0, u_);
-      kernels::mac::fit_linear_in_tall_cells(exec, tall_, 1, v_);
-      kernels::mac::fit_linear_in_tall_cells(exec, tall_, 2, w_);
-    }
+    fit_velocity_in_tall_cells();
     // 3. gravity, on the y faces inside the box
     const double dv = gravity_ * dt;
     const auto v = v_;
