@@ -1,6 +1,7 @@
 #pragma once
 // An assembled CSR matrix in a memory space, with y = A x as a kernel (one row per work item)
 // and 1/diag(A) for Jacobi-type smoothers.
+#include <memory>
 #include <vector>
 
 #include "kernels/host_vector.hpp"
@@ -19,16 +20,24 @@ struct DeviceCsrMatrix {
   DeviceCsrMatrix() = default;
   /// A copy of A; with_inverse_diagonal: also 1 / a_ii (zero where a_ii is; a square matrix).
   explicit DeviceCsrMatrix(const CsrMatrix& A, bool with_inverse_diagonal = true) : n(static_cast<int>(A.n)) {
-    std::vector<int> rp(A.row_ptr.begin(), A.row_ptr.end());
-    row_ptr = to_view<MemSpace>(rp, "amphora::csr::row_ptr");
     cols = to_view<MemSpace>(A.cols, "amphora::csr::cols");
     values = to_view<MemSpace>(A.values, "amphora::csr::values");
-    if (!with_inverse_diagonal) return;
-    std::vector<double> inv(A.n, 0.0);
-    for (long i = 0; i < A.n; ++i)
-      for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e)
-        if (A.cols[e] == i && A.values[e] != 0.0) inv[i] = 1.0 / A.values[e];
-    inverse_diagonal = to_view<MemSpace>(inv, "amphora::csr::inverse_diagonal");
+    finish(A, with_inverse_diagonal);
+  }
+  /// A itself, where the host can read MemSpace: its columns and values are kept and viewed,
+  /// not copied (the multigrid's transfers are assembled every sub-step); elsewhere a copy.
+  DeviceCsrMatrix(CsrMatrix&& A, bool with_inverse_diagonal) : n(static_cast<int>(A.n)) {
+    if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible) {
+      auto kept = std::make_shared<CsrMatrix>(std::move(A));
+      cols = Kokkos::View<int*, MemSpace>(kept->cols.data(), kept->cols.size());
+      values = Vector(kept->values.data(), kept->values.size());
+      finish(*kept, with_inverse_diagonal);
+      kept_ = std::move(kept);
+    } else {
+      cols = to_view<MemSpace>(A.cols, "amphora::csr::cols");
+      values = to_view<MemSpace>(A.values, "amphora::csr::values");
+      finish(A, with_inverse_diagonal);
+    }
   }
 
   template <class ExecSpace, class X, class Y>
@@ -43,6 +52,19 @@ struct DeviceCsrMatrix {
           y(i) = s;
         });
   }
+
+ private:
+  void finish(const CsrMatrix& A, bool with_inverse_diagonal) {
+    std::vector<int> rp(A.row_ptr.begin(), A.row_ptr.end());
+    row_ptr = to_view<MemSpace>(rp, "amphora::csr::row_ptr");
+    if (!with_inverse_diagonal) return;
+    std::vector<double> inv(A.n, 0.0);
+    for (long i = 0; i < A.n; ++i)
+      for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e)
+        if (A.cols[e] == i && A.values[e] != 0.0) inv[i] = 1.0 / A.values[e];
+    inverse_diagonal = to_view<MemSpace>(inv, "amphora::csr::inverse_diagonal");
+  }
+  std::shared_ptr<const CsrMatrix> kept_;  ///< the arrays cols and values view, if kept
 };
 
 }  // namespace amphora::solvers

@@ -7,6 +7,7 @@
 // block it is the plain CSR product.
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "mesh/mac/lattice_halo.hpp"
@@ -34,15 +35,18 @@ struct BlockCsrMatrix {
   /// T's own rows; a level transfer: another grid's, with_inverse_diagonal false as it has
   /// none).
   BlockCsrMatrix(const CsrMatrix& M, const mesh::TallCellGrid& T, bool with_inverse_diagonal = true)
+      : BlockCsrMatrix(CsrMatrix(M), T, with_inverse_diagonal) {}
+  /// The same, keeping M's arrays where it can (DeviceCsrMatrix).
+  BlockCsrMatrix(CsrMatrix&& M, const mesh::TallCellGrid& T, bool with_inverse_diagonal)
       : grid(T.grid()), halo(T.block()) {
     n = static_cast<int>(M.n);
     columns = static_cast<int>(T.unknowns());
     if (!halo.block().split()) {  // one block: global columns are local ones, apply() the plain product
-      local = DeviceCsrMatrix<MemSpace>(M, with_inverse_diagonal);
+      local = DeviceCsrMatrix<MemSpace>(std::move(M), with_inverse_diagonal);
       inverse_diagonal = local.inverse_diagonal;
       return;
     }
-    CsrMatrix C = M;
+    CsrMatrix C = std::move(M);
     const long first = T.first_unknown();
     std::unordered_map<long, int> ring;  // global unknown -> lattice cell
     for (const auto& [u, cell] : T.ring_unknown_cells()) ring.emplace(u, cell);
@@ -64,7 +68,7 @@ struct BlockCsrMatrix {
       c = it->second;
     }
     ghosts = static_cast<int>(ghost.size());
-    local = DeviceCsrMatrix<MemSpace>(C, with_inverse_diagonal);
+    local = DeviceCsrMatrix<MemSpace>(std::move(C), with_inverse_diagonal);
     inverse_diagonal = local.inverse_diagonal;
     own_cells = to_view<MemSpace>(T.unknown_cells(), "amphora::block_csr::own_cells");
     ghost_cells = to_view<MemSpace>(ghost, "amphora::block_csr::ghost_cells");

@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "solvers/mac/tall_cell_level_transfer.hpp"
@@ -115,11 +116,11 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     mesh::TallCellGrid coarse_grid(host_A, std::max(depth, 1), level_block);
     Kokkos::Profiling::popRegion();
     Kokkos::Profiling::pushRegion("amphora::tall_mg::transfer");
-    const TallCellLevelTransfer transfer = tall_cell_level_transfer(*level_grid, coarse_grid, host_A);
+    TallCellLevelTransfer transfer = tall_cell_level_transfer(*level_grid, coarse_grid, host_A);
     Kokkos::Profiling::popRegion();
     Kokkos::Profiling::pushRegion("amphora::tall_mg::transfer_matrices");
-    L->prolongation = Csr(transfer.prolongation, coarse_grid, false);
-    L->restriction = Csr(transfer.restriction, *level_grid, false);
+    L->prolongation = Csr(std::move(transfer.prolongation), coarse_grid, false);
+    L->restriction = Csr(std::move(transfer.restriction), *level_grid, false);
     Kokkos::Profiling::popRegion();
     levels_.push_back(std::move(L));
     coarse_level_grid.emplace(std::move(coarse_grid));  // the finer one is done with
