@@ -20,9 +20,7 @@ struct DeviceCsrMatrix {
   DeviceCsrMatrix() = default;
   /// A copy of A; with_inverse_diagonal: also 1 / a_ii (zero where a_ii is; a square matrix).
   explicit DeviceCsrMatrix(const CsrMatrix& A, bool with_inverse_diagonal = true) : n(static_cast<int>(A.n)) {
-    cols = to_view<MemSpace>(A.cols, "amphora::csr::cols");
-    values = to_view<MemSpace>(A.values, "amphora::csr::values");
-    finish(A, with_inverse_diagonal);
+    copy(A, with_inverse_diagonal);
   }
   /// A itself, where the host can read MemSpace: its columns and values are kept and viewed,
   /// not copied (the multigrid's transfers are assembled every sub-step); elsewhere a copy.
@@ -34,9 +32,7 @@ struct DeviceCsrMatrix {
       finish(*kept, with_inverse_diagonal);
       kept_ = std::move(kept);
     } else {
-      cols = to_view<MemSpace>(A.cols, "amphora::csr::cols");
-      values = to_view<MemSpace>(A.values, "amphora::csr::values");
-      finish(A, with_inverse_diagonal);
+      copy(A, with_inverse_diagonal);
     }
   }
 
@@ -54,6 +50,12 @@ struct DeviceCsrMatrix {
   }
 
  private:
+  void copy(const CsrMatrix& A, bool with_inverse_diagonal) {
+    cols = to_view<MemSpace>(A.cols, "amphora::csr::cols");
+    values = to_view<MemSpace>(A.values, "amphora::csr::values");
+    finish(A, with_inverse_diagonal);
+  }
+  /// The row pointers (as int) and the inverse diagonal.
   void finish(const CsrMatrix& A, bool with_inverse_diagonal) {
     std::vector<int> rp(A.row_ptr.begin(), A.row_ptr.end());
     row_ptr = to_view<MemSpace>(rp, "amphora::csr::row_ptr");

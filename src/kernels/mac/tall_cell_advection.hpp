@@ -69,8 +69,8 @@ KOKKOS_INLINE_FUNCTION double cubic_sum(double a0, double a1, double b0, double 
   return sum;
 }
 
-/// Rows (in the rows j of the sample column that reads it) where the sample of component e at
-/// column offset (di, dk) and row offset dj is linear in height: inside its tall cell(s).
+/// The rows [lo, hi) where the samples of component e in sample column (i, k) are linear in
+/// height (its tall rows; none for a column outside the block and its ghost ring).
 template <class MemSpace>
 KOKKOS_INLINE_FUNCTION void linear_rows(const mesh::TallCellColumns<MemSpace>& T, int e, int i, int k, int& lo,
                                         int& hi) {
@@ -145,8 +145,8 @@ constexpr int min_tall_sample_rows = 3;
 /// Face samples [lo, hi) of component d in sample column (i, k) of a tall cell: the conservative
 /// upwind step of every row (conservative_upwind_sample) followed by the momentum-keeping
 /// linear fit (fit_linear_in_tall_cells), done at once. The fit needs only the column's sum and
-/// first moment; the fluxes of fields linear in height have them in closed form, so the cost is
-/// per tall cell, not per lattice row inside it. The fields must be linear in height in the
+/// first moment; the fluxes of fields linear in height have them in closed form, so the flux
+/// work is per tall cell, not per lattice row inside it. The fields must be linear in height in the
 /// tall cells of T (fit_linear_in_tall_cells; the pressure projection keeps them so). Writes
 /// q_new at o0 + j stride_y (o0: row 0 of the column in q_new's lattice).
 template <class MemSpace, class Q, class QN, class U, class V, class W>
