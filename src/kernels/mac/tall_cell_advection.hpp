@@ -91,26 +91,16 @@ KOKKOS_INLINE_FUNCTION void upwind_flux_sums(const mesh::MacGrid& g, int e, int 
                                              int lin_lo, int lin_hi, double mid, const Q& q, const U& u, const V& v,
                                              const W& w, double& sum, double& moment) {
   const int sy = g.stride_y();
-  const int s0 = math::max(lo, lin_lo), s1 = math::min(hi, lin_hi);
-  const auto row_flux = [&](int j) {
+  int s0 = math::max(lo, lin_lo), s1 = math::min(hi, lin_hi);
+  if (s1 - s0 < 2) s0 = s1 = hi;  // no closed form for fewer than two rows: all row by row
+  const auto add_row = [&](int j) {
     const double Uj = 0.5 * (component(e, u, v, w, a + j * sy) + component(e, u, v, w, b + j * sy));
-    return Uj * (Uj > 0.0 ? double(q(l + j * sy)) : double(q(r + j * sy)));
+    const double F = Uj * (Uj > 0.0 ? double(q(l + j * sy)) : double(q(r + j * sy)));
+    sum += F, moment += (j - mid) * F;
   };
-  if (s1 - s0 < 2) {
-    for (int j = lo; j < hi; ++j) {
-      const double F = row_flux(j);
-      sum += F, moment += (j - mid) * F;
-    }
-    return;
-  }
-  for (int j = lo; j < s0; ++j) {
-    const double F = row_flux(j);
-    sum += F, moment += (j - mid) * F;
-  }
-  for (int j = s1; j < hi; ++j) {
-    const double F = row_flux(j);
-    sum += F, moment += (j - mid) * F;
-  }
+  for (int j = lo; j < s0; ++j) add_row(j);
+  for (int j = s1; j < hi; ++j) add_row(j);
+  if (s1 == s0) return;
   // x = j - s0 in [0, n): each sample f0 + f1 x from its values at both ends
   const int n = s1 - s0, top = (n - 1) * sy;
   const auto line = [&](double at0, double at1, double& f0, double& f1) { f0 = at0, f1 = (at1 - at0) / (n - 1); };

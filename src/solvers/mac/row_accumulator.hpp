@@ -59,19 +59,19 @@ class RowAccumulator {
     M.values.resize(M.row_ptr[n]);
     // each row alone (sorted in place): in parallel, the same for any number of threads
     Kokkos::parallel_for("amphora::mac::rows_to_csr", Kokkos::RangePolicy<HostExecSpace>(0, n), [&](long r) {
-      const long at = M.row_ptr[r];
-      std::pair<int, double> row[K];
+      std::pair<int, double> inline_row[K];
       const int m = count_[r];
-      for (int e = 0; e < m; ++e) row[e] = {cols_[r * K + e], values_[r * K + e]};
-      if (overflow_[r].empty()) {
-        std::sort(row, row + m);
-        for (int e = 0; e < m; ++e) M.cols[at + e] = row[e].first, M.values[at + e] = row[e].second;
-        return;
+      for (int e = 0; e < m; ++e) inline_row[e] = {cols_[r * K + e], values_[r * K + e]};
+      std::vector<std::pair<int, double>> long_row;  // only a row with overflow allocates
+      std::pair<int, double>* row = inline_row;
+      long length = m;
+      if (!overflow_[r].empty()) {
+        long_row.assign(inline_row, inline_row + m);
+        long_row.insert(long_row.end(), overflow_[r].begin(), overflow_[r].end());
+        row = long_row.data(), length = static_cast<long>(long_row.size());
       }
-      std::vector<std::pair<int, double>> all(row, row + m);
-      all.insert(all.end(), overflow_[r].begin(), overflow_[r].end());
-      std::sort(all.begin(), all.end());
-      for (std::size_t e = 0; e < all.size(); ++e) M.cols[at + e] = all[e].first, M.values[at + e] = all[e].second;
+      std::sort(row, row + length);
+      for (long e = 0; e < length; ++e) M.cols[M.row_ptr[r] + e] = row[e].first, M.values[M.row_ptr[r] + e] = row[e].second;
     });
     return M;
   }

@@ -209,11 +209,11 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   const std::size_t groups = std::min<std::size_t>(chunks, 2 * static_cast<std::size_t>(HostExecSpace().concurrency()));
   std::vector<std::size_t> group_bound(groups + 1);
   for (std::size_t q = 0; q <= groups; ++q) group_bound[q] = bound[q * chunks / groups];
-  std::vector<long> count(groups * (R.n + 1), 0);  // per group, per coarse row (+1 for the scan)
+  std::vector<long> count(groups * R.n, 0);  // per group, per coarse row
   const auto own_row = [&](int U) { return U >= first && U < first + R.n ? U - first : -1L; };
   Kokkos::parallel_for("amphora::tall_mg::transpose_count", Kokkos::RangePolicy<HostExecSpace>(0, groups),
                        [&](std::size_t q) {
-                         long* n = count.data() + q * (R.n + 1);
+                         long* n = count.data() + q * R.n;
                          for (long e = row_ptr[group_bound[q]]; e < row_ptr[group_bound[q + 1]]; ++e) {
                            const long U = own_row(cols[e]);
                            if (U >= 0) ++n[U];
@@ -225,8 +225,8 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   for (long U = 0; U < R.n; ++U) {
     R.row_ptr[U] = at;
     for (std::size_t q = 0; q < groups; ++q) {
-      const long n = count[q * (R.n + 1) + U];
-      count[q * (R.n + 1) + U] = at;
+      const long n = count[q * R.n + U];
+      count[q * R.n + U] = at;
       at += n;
     }
   }
@@ -235,7 +235,7 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   R.values.resize(at);
   Kokkos::parallel_for("amphora::tall_mg::transpose_fill", Kokkos::RangePolicy<HostExecSpace>(0, groups),
                        [&](std::size_t q) {
-                         long* next = count.data() + q * (R.n + 1);
+                         long* next = count.data() + q * R.n;
                          for (std::size_t r = group_bound[q]; r < group_bound[q + 1]; ++r)
                            for (long e = row_ptr[r]; e < row_ptr[r + 1]; ++e) {
                              const long U = own_row(cols[e]);
