@@ -24,6 +24,10 @@
 // BPOperator/bp/p: the bare operator of BP bp, y = A x, on ~4e7 DoFs (components counted;
 // vectors of 320 MB, beyond the last-level cache). Bound: STREAM / 16 bytes per DoF.
 //
+// StoredGeometryLarge/op/p: LaplaceLarge's operator (op 0) and BP5's (op 5) on a curved box of
+// ~4e7 DoFs with the geometry stored at the points: the memory-bound form. Bound: STREAM / (16 B
+// + the stored geometry's bytes per DoF).
+//
 // GeometryModes/mode/p: Laplace (Gauss p+1) on ~2 million DoFs with each geometry mode (0
 // cartesian, 1 affine, 2 stored at points, 3 on the fly; curved cells for 2 and 3):
 // throughput against geometry bytes per DoF, the memory-for-flops trade. (Cartesian and affine
@@ -220,6 +224,30 @@ void BPOperator(benchmark::State& state) {
   state.counters["ranks"] = space.communicator().size();
 }
 BENCHMARK(BPOperator)->ArgsProduct({{1, 2, 3, 4, 5, 6}, {1, 2, 3, 4, 5, 6, 7, 8}})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The bare operator with the geometry stored at the points (CEED's "qdata": the 6 entries of
+/// the symmetric metric per point) on a curved box, ~4e7 DoFs: the memory-bound form of the
+/// same operators. op 0: Laplace with Gauss p+1 (LaplaceLarge's); op 5: BP5 (Gauss–Lobatto p+1,
+/// collocated). Bound: STREAM / (16 B + the stored geometry's bytes per DoF). From p = 2: at
+/// p = 1 the geometry of 4e7 DoFs would take 15 GB (384 B/DoF).
+void StoredGeometryLarge(benchmark::State& state) {
+  const int which = static_cast<int>(state.range(0)), p = static_cast<int>(state.range(1));
+  Op::Options o = which == 5 ? bp_options(5, p) : Op::Options{};
+  o.kind = amphora::solvers::OperatorKind::laplace;
+  o.geometry = amphora::solvers::GeometryMode::stored;
+  auto m = mesh::unit_cube<3>(cells_for(4e7, p));
+  m.deformation = mesh::sinusoidal_deformation(3, 0.05);
+  const DistributedSpace space(m, p, amphora::Communicator());
+  const DistributedOp op(space, o);
+  Vector x = random_vector(op.size(), 1), y("y", op.size());
+  time_applications(state, op, x, y);
+  const double n = static_cast<double>(space.n_global());
+  const double geometry = space.communicator().sum(static_cast<double>(op.local().geometry_bytes()));
+  report(state, n, 16.0 + geometry / n);
+  state.counters["geometry_B/DoF"] = geometry / n;
+  state.counters["ranks"] = space.communicator().size();
+}
+BENCHMARK(StoredGeometryLarge)->ArgsProduct({{0, 5}, {2, 3, 4, 5, 6, 7, 8}})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void GeometryModes(benchmark::State& state) {
   using amphora::solvers::GeometryMode;

@@ -5,7 +5,8 @@
 #   matrix_free_bp.png        CEED BP1-6 throughput against degree and problem size (2 threads)
 #   matrix_free_geometry.png  Laplace throughput against geometry bytes per DoF (the modes)
 # and a table of the deal.II comparison, the large-size bandwidth fractions (LaplaceLarge and
-# the bare BP operators, BPOperator) and the multigrid-vs-BoomerAMG solve in
+# the bare BP operators, BPOperator, and both with geometry stored at the points,
+# StoredGeometryLarge) and the multigrid-vs-BoomerAMG solve in
 # output/bench/matrix_free_summary.txt.
 #   scripts/bench_matrix_free.sh [quick]   (quick: BP sizes up to 1e6, no Poisson solves)
 set -euo pipefail
@@ -27,7 +28,7 @@ run() {  # name threads filter [extra args]; RANKS=n for an MPI run (one core pe
   echo "== $name, $threads thread(s), $ranks rank(s)"
   OMP_NUM_THREADS=$threads "${launch[@]}" "$bench" --benchmark_filter="$filter" \
     --benchmark_out="$out/matrix_free_${name}_${tag}.json" --benchmark_out_format=json "$@" \
-    | grep -E "^(LaplaceDealii|LaplaceLarge|BP|BPOperator|GeometryModes|PoissonSolve)" | grep -v "_mean\|_stddev\|_cv" || true
+    | grep -E "^(LaplaceDealii|LaplaceLarge|BP|BPOperator|StoredGeometryLarge|GeometryModes|PoissonSolve)" | grep -v "_mean\|_stddev\|_cv" || true
 }
 bp_filter='^BP/'
 [ "${1:-}" = quick ] && bp_filter='^BP/[1-6]/[1-8]/[4-6]/'
@@ -40,4 +41,5 @@ done
 RANKS=2 run dealii 1 '^LaplaceDealii' --benchmark_repetitions=5 --benchmark_min_time=2 --benchmark_report_aggregates_only=true
 run bp 2 "$bp_filter"
 run bpop 2 '^BPOperator/' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+run stored 2 '^StoredGeometryLarge/' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 /usr/bin/python3 scripts/plot_matrix_free.py "$out"

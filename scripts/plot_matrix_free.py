@@ -99,6 +99,14 @@ for r in medians(load(f"{out}/matrix_free_bpop_2threads.json")):
     lines.append(f"BPOperator BP{b} p={p} {r['DoFs'] / 1e6:.1f}M DoFs, 2 threads: {r['MDoF/s']:.1f} MDoF/s, "
                  f"{100 * r['MDoF/s'] / r['bound_MDoF/s']:.0f}% of the STREAM bound (16 B/DoF)")
 
+for r in medians(load(f"{out}/matrix_free_stored_2threads.json")):
+    if not r["name"].startswith("StoredGeometryLarge/"):
+        continue
+    op, p = args(r)[:2]
+    lines.append(f"StoredGeometryLarge {'BP5' if op == 5 else 'Laplace Gauss p+1'} p={p} {r['DoFs'] / 1e6:.1f}M DoFs, "
+                 f"2 threads: {r['MDoF/s']:.1f} MDoF/s, {100 * r['MDoF/s'] / r['bound_MDoF/s']:.0f}% of the STREAM bound "
+                 f"({16 + r['geometry_B/DoF']:.0f} B/DoF with the stored geometry)")
+
 for t in (1, 2):
     for r in medians(load(f"{out}/matrix_free_dealii_{t}threads.json")):
         p = args(r)[0]
