@@ -178,6 +178,9 @@ TEST(MatrixFreeOperator, CollocatedVectorVariableCoefficientAndConvectionOperato
     check<2>({K::convection, G::stored, "curved", k, 1}, 9, 3, 1);
     check<3>({K::convection, G::on_the_fly, "affine", k}, 9, 3, 2);
   }
+  // 3D collocation through the points: from n_q = 6 the point sweeps run in place and the
+  // integration goes straight into the nodal values
+  for (int k : {2, 5, 7}) check<3>({K::laplace, G::stored, "curved", k, 0, true}, 3, 2, 2);
 }
 
 TEST(MatrixFreeOperator, MassOfUnitCubeIsOneAndLaplacianOfConstantVanishes) {

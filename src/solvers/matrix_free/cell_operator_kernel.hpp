@@ -168,6 +168,11 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
           s.grad[a * n_points + q] = per_cell ? w * f : f;
         }
       }
+      if constexpr (n_p == n_q)
+        if (shape.collocated) {  // the points are the nodes: integrate straight into u
+          Eval::template integrate_gradients<false>(shape, s.grad, u);
+          return;
+        }
       Eval::template integrate_gradients<false>(shape, s.grad, s.v);
     } else {  // convection: v = c . grad u
       const long stride = per_cell ? 1 : n_points;
