@@ -256,7 +256,7 @@ void fit_linear_in_tall_cells(const ExecSpace& exec, const mesh::TallCellColumns
         const int i = m % ex, k = m / ex;
         int lo, hi;
         T.tall_rows(d, i, k, lo, hi);
-        if (hi - lo < 3) return;  // one or two samples are linear already
+        if (hi - lo < min_tall_sample_rows) return;  // one or two samples are linear already
         // centred heights t = j - mid keep the normal equations diagonal
         const double mid = 0.5 * (lo + hi - 1);
         const int c0 = g.index(i, lo, k);

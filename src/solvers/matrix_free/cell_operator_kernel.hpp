@@ -155,6 +155,11 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
       return;
     }
     Eval::gradients(shape, v, s.grad);
+    // The point values to integrate: where the points are the nodes (collocation) they are the
+    // result itself, so they go straight into u (read no more), not through s.v.
+    bool collocated = false;
+    if constexpr (n_p == n_q) collocated = shape.collocated;
+    T* const out = collocated ? u : s.v;
     if (kind == OperatorKind::laplace) {
       const long stride = per_cell ? 1 : n_points;  // [coef] per cell, [coef][point] stored
       for (int q = 0; q < n_points; ++q) {
@@ -168,22 +173,17 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
           s.grad[a * n_points + q] = per_cell ? w * f : f;
         }
       }
-      if constexpr (n_p == n_q)
-        if (shape.collocated) {  // the points are the nodes: integrate straight into u
-          Eval::template integrate_gradients<false>(shape, s.grad, u);
-          return;
-        }
-      Eval::template integrate_gradients<false>(shape, s.grad, s.v);
+      Eval::template integrate_gradients<false>(shape, s.grad, out);
     } else {  // convection: v = c . grad u
       const long stride = per_cell ? 1 : n_points;
       for (int q = 0; q < n_points; ++q) {
         const long qc = per_cell ? 0 : q;
         T f = T(0.0);
         for (int a = 0; a < dim; ++a) f += c[a * stride + qc] * s.grad[a * n_points + q];
-        s.v[q] = per_cell ? T(Eval::weight(shape, q)) * f : f;
+        out[q] = per_cell ? T(Eval::weight(shape, q)) * f : f;
       }
     }
-    Eval::integrate_values(shape, s.v, u, s.tmp);
+    if (!collocated) Eval::integrate_values(shape, s.v, u, s.tmp);
   }
 
   /// Entry e of the point coefficients at point q (per-cell modes: times the weight; the
