@@ -58,14 +58,38 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
     std::vector<int> cols;
     std::vector<double> values;
   };
+  // What each coarse cell of the block and its ring contributes to the interpolation, looked up
+  // once per cell rather than once per fine row that reads it: its (one or two) coarse unknowns
+  // and weights, none for air (zero pressure), solid = -1 for a solid cell (its weight is spread
+  // over the others).
+  struct CoarseCell {
+    int n;
+    int id[2];
+    double w[2];
+  };
+  std::vector<CoarseCell> coarse_cells(static_cast<std::size_t>(gc.padded_size()), CoarseCell{0, {0, 0}, {0.0, 0.0}});
+  Kokkos::parallel_for("amphora::tall_mg::transfer_coarse_cells", Kokkos::RangePolicy<HostExecSpace>(0, gc.nz + 2),
+                       [&](int kk) {
+                         const int k = kk - 1;
+                         for (int j = -1; j <= gc.ny; ++j)
+                           for (int i = -1; i <= gc.nx; ++i) {
+                             CoarseCell& cell = coarse_cells[gc.index(i, j, k)];
+                             const int C = gc.index(i, j, k);
+                             if (coarse_A.solid(C))
+                               cell.n = -1;
+                             else if (coarse_A.inverse_diag(C) != 0.0 && j >= 0 && j < gc.ny)
+                               cell.n = coarse.weights(i, j, k, cell.id, cell.w);
+                           }
+                       });
   const auto build = [&](std::size_t r_begin, std::size_t r_end, Rows& out) {
-    // the terms of the row(s) under construction: coarse unknown, which fine sample (a tall cell
-    // fits its two together), weight
+    // the terms of the row(s) under construction: coarse unknown and the weights of the fine
+    // samples (a tall cell fits its two together), one term per coarse unknown
     struct Term {
-      int id, side;
-      double w;
+      int id;
+      double w[2];
     };
-    std::vector<Term> terms;
+    std::vector<Term> terms(64);  // grown if a tall cell's rows need more
+    std::size_t n_terms = 0;
     // about 8 coarse unknowns per row (trilinear), so no regrowth copies of the row arrays
     out.ends.reserve(r_end - r_begin);
     out.cols.reserve(10 * (r_end - r_begin));
@@ -77,42 +101,49 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       const int nx = axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw);
       const int ny = axis_weights(j, gc.ny, edge[2], edge[3], wall[2], wall[3], yi, yw);
       const int nz = axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw);
-      const std::size_t first = terms.size();
+      // the (up to 16) weights first, then the share of the solid cells' weight
+      int ids[16];
+      double ws[16];
+      int m = 0;
       double total = 0.0, solid = 0.0;
       for (int c = 0; c < nz; ++c)
         for (int b = 0; b < ny; ++b)
           for (int a = 0; a < nx; ++a) {
             const double w = xw[a] * yw[b] * zw[c];
             total += w;
-            const int C = gc.index(xi[a], yi[b], zi[c]);
-            if (coarse_A.solid(C)) {
+            const CoarseCell& cell = coarse_cells[gc.index(xi[a], yi[b], zi[c])];
+            if (cell.n < 0) {
               solid += w;
               continue;
             }
-            if (coarse_A.inverse_diag(C) == 0.0) continue;  // air: zero pressure
-            int U[2];
-            double W[2];
-            const int m = coarse.weights(xi[a], yi[b], zi[c], U, W);
-            for (int e = 0; e < m; ++e) terms.push_back({U[e], side, w * W[e]});
+            for (int e = 0; e < cell.n; ++e) ids[m] = cell.id[e], ws[m++] = w * cell.w[e];
           }
       const double share = total - solid > 0.0 ? scale * total / (total - solid) : 0.0;
-      for (std::size_t e = first; e < terms.size(); ++e) terms[e].w *= share;
+      for (int e = 0; e < m; ++e) {
+        const double v = ws[e] * share;
+        std::size_t t = 0;
+        while (t < n_terms && terms[t].id != ids[e]) ++t;
+        if (t == n_terms) {
+          if (n_terms == terms.size()) terms.resize(2 * n_terms);
+          terms[n_terms++] = {ids[e], {0.0, 0.0}};
+        }
+        terms[t].w[side] += v;
+      }
     };
     // the row of one uniform sample, or the rows G^-1 [sum_0; sum_1] of a tall cell's two
     auto emit = [&](const kernels::mac::TallCellGram* G) {
       const int samples = G ? 2 : 1;
-      std::sort(terms.begin(), terms.end(), [](const Term& x, const Term& y) { return x.id < y.id; });
+      // insertion sort: a row has about 8 terms
+      for (std::size_t a = 1; a < n_terms; ++a)
+        for (std::size_t b = a; b > 0 && terms[b - 1].id > terms[b].id; --b) std::swap(terms[b - 1], terms[b]);
       for (int sample = 0; sample < samples; ++sample) {
-        for (std::size_t e = 0; e < terms.size();) {
-          const int id = terms[e].id;
-          double v[2] = {0.0, 0.0};
-          for (; e < terms.size() && terms[e].id == id; ++e) v[terms[e].side] += terms[e].w;
-          out.cols.push_back(id);
-          out.values.push_back(!G ? v[0] : G->solve(v[sample], v[1 - sample]));
+        for (std::size_t e = 0; e < n_terms; ++e) {
+          out.cols.push_back(terms[e].id);
+          out.values.push_back(!G ? terms[e].w[0] : G->solve(terms[e].w[sample], terms[e].w[1 - sample]));
         }
         out.ends.push_back(static_cast<long>(out.cols.size()));
       }
-      terms.clear();
+      n_terms = 0;
     };
     for (std::size_t r = r_begin; r < r_end; ++r) {
       int i, j, k;
@@ -145,23 +176,30 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
             hi = std::min(hi, 2 * C.band - 2);
           }
       }
-      double ends[2][2] = {{0.0, 0.0}, {0.0, 0.0}};  // [sample][lo or hi end]
-      for (int jj = t; jj < column.band; ++jj) {
+      // the rows outside [lo, hi] one by one
+      const auto row_by_row = [&](int jj) {
         const double s = double(jj - t) / double(L - 1);
-        if (jj >= lo && jj <= hi) {
-          const double lambda = hi > lo ? double(jj - lo) / double(hi - lo) : 0.0;
-          ends[0][0] += (1.0 - s) * (1.0 - lambda), ends[0][1] += (1.0 - s) * lambda;
-          ends[1][0] += s * (1.0 - lambda), ends[1][1] += s * lambda;
-          continue;
-        }
         if (s < 1.0) interpolate(i, jj, k, 0, 1.0 - s);
         if (s > 0.0) interpolate(i, jj, k, 1, s);
-      }
-      if (lo <= hi)
+      };
+      const bool linear = lo <= hi;
+      for (int jj = t; jj < (linear ? lo : column.band); ++jj) row_by_row(jj);
+      if (linear) {
+        // sum over x = jj - lo in [0, n) of the sample weights (1 - s, s), s = a + b x, times the
+        // ends' weights (1 - lambda, lambda), lambda = c x: power sums of x, so a tall cell
+        // costs the same whatever its height
+        const double n = hi - lo + 1, a = double(lo - t) / double(L - 1), b = 1.0 / double(L - 1);
+        const double c = hi > lo ? 1.0 / double(hi - lo) : 0.0;
+        const double sx = 0.5 * n * (n - 1.0), sxx = sx * (2.0 * n - 1.0) / 3.0;
+        const double s_sum = a * n + b * sx, l_sum = c * sx, sl_sum = a * c * sx + b * c * sxx;
+        const double ends[2][2] = {{n - s_sum - l_sum + sl_sum, l_sum - sl_sum},  // [sample][lo or hi end]
+                                   {s_sum - sl_sum, sl_sum}};
         for (int side = 0; side < 2; ++side) {
           interpolate(i, lo, k, side, ends[side][0]);
           if (hi > lo) interpolate(i, hi, k, side, ends[side][1]);
         }
+        for (int jj = hi + 1; jj < column.band; ++jj) row_by_row(jj);
+      }
       const kernels::mac::TallCellGram G(L);
       emit(&G);
       ++r;  // the top sample's row is done
