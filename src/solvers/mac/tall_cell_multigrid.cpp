@@ -98,7 +98,7 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     // (so 1.2 lambda = 3.5 was the end before), at no operator applications.
     Kokkos::Profiling::pushRegion("amphora::tall_mg::smoother");
     ChebyshevOptions smoothing;
-    smoothing.degree = options.chebyshev_degree;
+    smoothing.degree = l == 0 ? options.fine_chebyshev_degree : options.chebyshev_degree;
     smoothing.smoothing_range = options.smoothing_range;
     smoothing.lambda_max_bound = jacobi_gershgorin_bound(*level_matrix, level_grid->first_unknown());
     MPI_Allreduce(MPI_IN_PLACE, &smoothing.lambda_max_bound, 1, MPI_DOUBLE, MPI_MAX, comm);
