@@ -1,41 +1,90 @@
 #include "solvers/mac/tall_cell_matrix.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "solvers/mac/row_accumulator.hpp"
 
 namespace amphora::solvers::mac {
 
+namespace {
+/// (P^T A P)'s row of the uniform cell (i, j, k) with unknown u (global), gathered: A's row
+/// (its diagonal d, -c towards each neighbour) times P, the neighbour's unknowns weighted as
+/// T.weights gives them (a neighbour in a tall cell to its two samples). No two neighbours share
+/// an unknown, so every entry is one product; a zero weight (the top sample's partner at a
+/// tall cell's top row) adds no entry. Entries sorted by column; returns their number (<= 13).
+int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A, int i, int j, int k,
+                int u, std::pair<int, double> row[13]) {
+  const mesh::MacGrid& g = T.grid();
+  const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
+  int n = 0;
+  row[n++] = {u, A.diag(c)};
+  const int di[6] = {-1, 1, 0, 0, 0, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {0, 0, 0, 0, -1, 1};
+  const double cond[6] = {A.cx(c - 1), A.cx(c), A.cy(c - sy), A.cy(c), A.cz(c - sz), A.cz(c)};
+  for (int f = 0; f < 6; ++f) {
+    if (cond[f] == 0.0) continue;
+    int ids[2];
+    double w[2];
+    const int m = T.weights(i + di[f], j + dj[f], k + dk[f], ids, w);
+    for (int e = 0; e < m; ++e)
+      if (w[e] != 0.0) row[n++] = {ids[e], -(cond[f] * w[e])};
+  }
+  std::sort(row, row + n);
+  return n;
+}
+}  // namespace
+
 CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A) {
   const mesh::MacGrid& g = T.grid();
   const int sy = g.stride_y(), sz = g.stride_z();
-  RowAccumulator<8> rows(T.unknowns(), T.first_unknown());
-  // c (p_P - p_Q)^2 for lattice cells P and Q, whatever they map to
+  const long n = T.unknowns(), first = T.first_unknown();
+
+  // The tall cells' rows, from the quadratic form p^T A p = sum_faces c (p_P - p_Q)^2 +
+  // sum_cells D p^2 over the faces and cells that touch a tall cell (the uniform rows come
+  // gathered below). Accumulated per tall sample: slot[u] is u's accumulator row (-1 for a
+  // uniform unknown).
+  std::vector<int> slot(n, -1);
+  long tall_rows = 0;
+  for (const mesh::TallCellColumn& col : T.columns())
+    if (col.has_tall_cell()) slot[col.first_unknown] = static_cast<int>(tall_rows++), slot[col.first_unknown + 1] = static_cast<int>(tall_rows++);
+  RowAccumulator<16> rows(tall_rows, 0);
+  const auto tall_slot = [&](int global) {
+    const long u = global - first;
+    return u >= 0 && u < n ? slot[u] : -1;
+  };
+  // += scale v v^T in the tall rows among ids
+  const auto add_outer = [&](const int* ids, const double* v, int m, double scale) {
+    for (int a = 0; a < m; ++a) {
+      const int s = tall_slot(ids[a]);
+      if (s < 0) continue;
+      for (int b = 0; b < m; ++b) rows.add(s, ids[b], scale * v[a] * v[b]);
+    }
+  };
+  // c (p_P - p_Q)^2 for lattice cells P and Q, whatever they map to (zero weights left out)
   auto add_face = [&](int iP, int jP, int kP, int iQ, int jQ, int kQ, double c) {
-    int ids[4];
-    double v[4];
-    double w[2];
-    int n = T.weights(iP, jP, kP, ids, w);
-    for (int m = 0; m < n; ++m) v[m] = w[m];
-    const int nQ = T.weights(iQ, jQ, kQ, ids + n, w);
-    for (int m = 0; m < nQ; ++m) v[n + m] = -w[m];
-    rows.add_outer(ids, v, n + nQ, c);
+    int ids[4], cell_ids[2];
+    double v[4], w[2];
+    int m = 0;
+    const int nP = T.weights(iP, jP, kP, cell_ids, w);
+    for (int e = 0; e < nP; ++e)
+      if (w[e] != 0.0) ids[m] = cell_ids[e], v[m++] = w[e];
+    const int nQ = T.weights(iQ, jQ, kQ, cell_ids, w);
+    for (int e = 0; e < nQ; ++e)
+      if (w[e] != 0.0) ids[m] = cell_ids[e], v[m++] = -w[e];
+    add_outer(ids, v, m, c);
   };
   auto tall_step = [](const mesh::TallCellColumn& c) {
     return c.has_tall_cell() ? 1.0 / (c.band - 1 - c.terrain) : 0.0;
   };
   const auto& d = A.diag;
   const auto &cx = A.cx, &cy = A.cy, &cz = A.cz;
-  // Rows of a column take terms from its own cells and vertical faces, from the x faces to the
-  // columns of its x line and from the z faces to the neighbouring lines: lines run in parallel
-  // (host threads), the z faces in two passes over lines of one parity, so no row is written by
-  // two threads and each row sums its terms in an order fixed by the grid, not the threads.
+  // A column's tall cell: the free-surface terms D p^2 of its rows (D = d - sum c: nonzero
+  // only where a row meets air beside it), its inner vertical faces in one block, its top face.
   auto column_terms = [&](int i, int k) {
     const mesh::TallCellColumn& col = T.column(i, k);
-    const double dt = tall_step(col);
+    if (!col.has_tall_cell()) return;
     const int bot = static_cast<int>(T.global_first_unknown(i, k));
-    // free-surface / open-face terms D p^2
-    for (int j = col.terrain; j < g.ny; ++j) {
+    for (int j = col.terrain; j < col.band; ++j) {
       const int c = g.index(i, j, k);
       if (d(c) == 0.0) continue;
       const double D = d(c) - (double(cx(c - 1)) + double(cx(c)) + double(cy(c - sy)) + double(cy(c)) +
@@ -43,37 +92,34 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
       if (D == 0.0) continue;
       int ids[2];
       double w[2];
-      const int n = T.weights(i, j, k, ids, w);
-      rows.add_outer(ids, w, n, D);
+      const int m = T.weights(i, j, k, ids, w);
+      add_outer(ids, w, m, D);
     }
-    // vertical faces: inside the tall cell in one block, the rest one by one
     double inside = 0.0;
-    for (int j = col.terrain; j + 1 < g.ny; ++j) {
-      const double c = cy(g.index(i, j, k));
-      if (c == 0.0) continue;
-      if (j + 1 < col.band)
-        inside += c;
-      else
-        add_face(i, j, k, i, j + 1, k, c);
-    }
+    for (int j = col.terrain; j + 1 < col.band; ++j) inside += cy(g.index(i, j, k));
     if (inside != 0.0) {
+      const double dt = tall_step(col);
       const int ids[2] = {bot, bot + 1};
       const double v[2] = {dt, -dt};
-      rows.add_outer(ids, v, 2, inside);
+      add_outer(ids, v, 2, inside);
     }
+    const double top = cy(g.index(i, col.band - 1, k));
+    if (top != 0.0 && col.band < g.ny) add_face(i, col.band - 1, k, i, col.band, k, top);
   };
-  const auto& nb = T.block().neighbours;
-  // the terms of the face between column (i, k) and its +x (dir 0) or +z (dir 1) neighbour
+  // The face between column (i, k) and its +x (dir 0) or +z (dir 1) neighbour, over the rows
+  // where either side is in a tall cell (above them both are uniform: gathered rows).
   auto face_terms = [&](int dir, int i, int k) {
     const auto& cond = dir == 0 ? cx : cz;
     const int in = i + (dir == 0), kn = k + (dir == 1);
     const mesh::TallCellColumn &col = T.column(i, k), &next = T.column(in, kn);
+    if (!col.has_tall_cell() && !next.has_tall_cell()) return;
     const double dc = tall_step(col), dn = tall_step(next);
     // tall against tall: sum_j c_j v(j) v(j)^T with v = (1 - t, t, -(1 - s), -s) linear in
     // j, so from the moments sum c, sum c x, sum c x^2 (x = j - j0, small for accuracy)
     const int j0 = std::max(col.terrain, next.terrain), j_tall = std::min(col.band, next.band);
+    const int j_end = std::max(col.band, next.band);
     double m0 = 0.0, m1 = 0.0, m2 = 0.0;
-    for (int j = j0; j < g.ny; ++j) {
+    for (int j = j0; j < j_end; ++j) {
       const double c = cond(g.index(i, j, k));
       if (c == 0.0) continue;
       if (j < j_tall) {
@@ -90,30 +136,80 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
       const int bot = static_cast<int>(T.global_first_unknown(i, k));
       const int nbot = static_cast<int>(T.global_first_unknown(in, kn));
       const int ids[4] = {bot, bot + 1, nbot, nbot + 1};
-      for (int a = 0; a < 4; ++a)
-        for (int b = a; b < 4; ++b) {  // one value for (a, b) and (b, a): exactly symmetric
-          const double v = p[a] * p[b] * m0 + (p[a] * q[b] + q[a] * p[b]) * m1 + q[a] * q[b] * m2;
-          rows.add(ids[a], ids[b], v);
-          if (b != a) rows.add(ids[b], ids[a], v);
+      for (int a = 0; a < 4; ++a) {
+        const int s = tall_slot(ids[a]);
+        if (s < 0) continue;
+        for (int b = 0; b < 4; ++b) {  // (a, b) and (b, a) the same expression: exactly symmetric
+          const int lo = std::min(a, b), hi = std::max(a, b);
+          rows.add(s, ids[b], p[lo] * p[hi] * m0 + (p[lo] * q[hi] + q[lo] * p[hi]) * m1 + q[lo] * q[hi] * m2);
         }
+      }
     }
   };
+  // Rows of a column take terms from its own cells and vertical faces, from the x faces to the
+  // columns of its x line and from the z faces to the neighbouring lines: lines run in parallel
+  // (host threads), the z faces in two passes over lines of one parity, so no row is written by
+  // two threads and each row sums its terms in an order fixed by the grid, not the threads.
   // x faces between a column and its +x neighbour, where either is this block's (on a split
-  // grid the faces to the ghost ring too: their terms in this block's rows); likewise z faces
+  // grid the faces to the ghost ring too: their terms in this block's rows); likewise z faces.
+  const auto& nb = T.block().neighbours;
   const int i_lo = nb[0] >= 0 ? -1 : 0, i_hi = nb[1] >= 0 ? g.nx : g.nx - 1;  // lower column's range
   const int k_lo = nb[4] >= 0 ? -1 : 0, k_hi = nb[5] >= 0 ? g.nz : g.nz - 1;
-  Kokkos::parallel_for("amphora::tall::assemble_lines", Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
-    for (int i = 0; i < g.nx; ++i) column_terms(i, k);
-    for (int i = i_lo; i < i_hi; ++i) face_terms(0, i, k);
-  });
-  for (int parity = 0; parity < 2; ++parity) {
-    const int first = k_lo + ((parity - k_lo) % 2 + 2) % 2, lines = (k_hi - first + 1) / 2;
-    Kokkos::parallel_for("amphora::tall::assemble_z_faces", Kokkos::RangePolicy<HostExecSpace>(0, std::max(lines, 0)),
-                         [&](int m) {
-                           for (int i = 0; i < g.nx; ++i) face_terms(1, i, first + 2 * m);
-                         });
+  if (tall_rows > 0) {
+    Kokkos::parallel_for("amphora::tall::assemble_lines", Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
+      for (int i = 0; i < g.nx; ++i) column_terms(i, k);
+      for (int i = i_lo; i < i_hi; ++i) face_terms(0, i, k);
+    });
+    for (int parity = 0; parity < 2; ++parity) {
+      const int first_line = k_lo + ((parity - k_lo) % 2 + 2) % 2, lines = (k_hi - first_line + 1) / 2;
+      Kokkos::parallel_for("amphora::tall::assemble_z_faces",
+                           Kokkos::RangePolicy<HostExecSpace>(0, std::max(lines, 0)), [&](int m) {
+                             for (int i = 0; i < g.nx; ++i) face_terms(1, i, first_line + 2 * m);
+                           });
+    }
   }
-  return rows.to_csr();
+  const CsrMatrix tall = rows.to_csr();
+
+  // Every row's length (a uniform row gathered, a tall row from the accumulator), then the rows
+  // in place (the uniform ones gathered again: cheaper than a scratch of 13 entries per unknown,
+  // whose fresh pages cost more than the gather).
+  CsrMatrix M;
+  M.n = n;
+  M.row_ptr.assign(n + 1, 0);
+  const auto& cell_unknown = T.cell_unknown();
+  const auto for_each_row = [&](const char* name, const auto& f) {
+    Kokkos::parallel_for(name, Kokkos::RangePolicy<HostExecSpace>(0, g.nx * g.nz), [&](int col) {
+      const int i = col % g.nx, k = col / g.nx;
+      const mesh::TallCellColumn& column = T.column(i, k);
+      if (column.has_tall_cell())
+        for (int s = 0; s < 2; ++s) {
+          const int u = column.first_unknown + s;
+          const long from = tall.row_ptr[slot[u]], length = tall.row_ptr[slot[u] + 1] - from;
+          f(u, length, tall.cols.data() + from, tall.values.data() + from, nullptr);
+        }
+      std::pair<int, double> row[13];
+      for (int j = column.band; j < g.ny; ++j) {
+        const int u = cell_unknown[g.index(i, j, k)];
+        if (u >= 0) f(u, uniform_row(T, A, i, j, k, static_cast<int>(first + u), row), nullptr, nullptr, row);
+      }
+    });
+  };
+  for_each_row("amphora::tall::row_lengths",
+               [&](int u, long length, const int*, const double*, const std::pair<int, double>*) {
+                 M.row_ptr[u + 1] = length;
+               });
+  for (long u = 0; u < n; ++u) M.row_ptr[u + 1] += M.row_ptr[u];
+  M.cols.resize(M.row_ptr[n]);
+  M.values.resize(M.row_ptr[n]);
+  for_each_row("amphora::tall::rows", [&](int u, long length, const int* cols, const double* values,
+                                          const std::pair<int, double>* row) {
+    const long at = M.row_ptr[u];
+    for (long e = 0; e < length; ++e) {
+      M.cols[at + e] = row ? row[e].first : cols[e];
+      M.values[at + e] = row ? row[e].second : values[e];
+    }
+  });
+  return M;
 }
 
 }  // namespace amphora::solvers::mac
