@@ -511,7 +511,7 @@ class WaterMac final : public Module {
       const mesh::TallCellGrid T(H, optical_depth_, block_);
       Kokkos::Profiling::popRegion();
       Kokkos::Profiling::pushRegion("amphora::water::tall_cell_matrix");
-      const solvers::CsrMatrix M = solvers::mac::assemble_tall_cell_matrix(T, H);
+      solvers::CsrMatrix M = solvers::mac::assemble_tall_cell_matrix(T, H);
       Kokkos::Profiling::popRegion();
       const auto layout = mesh::make_layout<Mem>(T);
       Vector bt("amphora::water::b_tall", T.unknowns()), y("amphora::water::p_tall", T.unknowns());
@@ -522,7 +522,7 @@ class WaterMac final : public Module {
       kernels::mac::tall_cell_restrict(exec, layout, p_, y);
       kernels::mac::tall_cell_gram_solve(exec, layout, y);
       Kokkos::Profiling::pushRegion("amphora::water::tall_cell_solver_setup");
-      auto solver = solvers::mac::make_tall_cell_pressure_solver(backend_, exec, T, M, A);
+      auto solver = solvers::mac::make_tall_cell_pressure_solver(backend_, exec, T, std::move(M), A);
       Kokkos::Profiling::popRegion();
       phases_.lap(pressure_setup);
       r = solver->solve(exec, bt, y, control_);

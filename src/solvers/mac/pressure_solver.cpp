@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "solvers/hypre_struct_pfmg.hpp"
@@ -67,7 +68,7 @@ class MultigridPressureSolver final : public PressureSolver<ExecSpace> {
  public:
   using typename PressureSolver<ExecSpace>::Vector;
   template <class... Args>
-  explicit MultigridPressureSolver(const ExecSpace& exec, const Args&... args) : mg_(exec, args...) {}
+  explicit MultigridPressureSolver(const ExecSpace& exec, Args&&... args) : mg_(exec, std::forward<Args>(args)...) {}
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
     return mg_.solve(exec, b, x, c);
   }
@@ -187,7 +188,7 @@ class CsrMic0PressureSolver final : public PressureSolver<ExecSpace> {
 
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
-    PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t,
+    PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
   if (T.block().split() && backend == PressureBackend::mic0)
     throw std::invalid_argument(std::string("pressure back end '") + to_string(backend) +
@@ -195,7 +196,7 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
                                 "or 'hypre'");
   switch (backend) {
     case PressureBackend::multigrid:
-      return std::make_unique<MultigridPressureSolver<ExecSpace, TallCellMultigrid<ExecSpace>>>(exec, T, A_t, A);
+      return std::make_unique<MultigridPressureSolver<ExecSpace, TallCellMultigrid<ExecSpace>>>(exec, T, std::move(A_t), A);
     case PressureBackend::hypre:
       return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(A_t, T.block().comm, T.first_unknown());
     case PressureBackend::mic0: return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(A_t);
@@ -227,13 +228,13 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
 template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_pressure_solver(
     PressureBackend, const DefaultExecSpace&, const kernels::mac::PoissonStencil<DefaultMemSpace>&, const MacBlock&);
 template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_tall_cell_pressure_solver(
-    PressureBackend, const DefaultExecSpace&, const mesh::TallCellGrid&, const CsrMatrix&,
+    PressureBackend, const DefaultExecSpace&, const mesh::TallCellGrid&, CsrMatrix,
     const kernels::mac::PoissonStencil<DefaultMemSpace>&);
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_pressure_solver(
     PressureBackend, const Kokkos::Serial&, const kernels::mac::PoissonStencil<Kokkos::HostSpace>&, const MacBlock&);
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_tall_cell_pressure_solver(
-    PressureBackend, const Kokkos::Serial&, const mesh::TallCellGrid&, const CsrMatrix&,
+    PressureBackend, const Kokkos::Serial&, const mesh::TallCellGrid&, CsrMatrix,
     const kernels::mac::PoissonStencil<Kokkos::HostSpace>&);
 #endif
 

@@ -53,10 +53,10 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
     const MacBlock& block = {});
 
 /// A_t = P^T A P of the tall-cell grid T over the uniform stencil A (on a split grid: this
-/// block's rows; MIC(0) refuses one).
+/// block's rows; MIC(0) refuses one). Taken by value: the multigrid keeps a moved A_t's arrays.
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
-    PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t,
+    PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A);
 
 }  // namespace amphora::solvers::mac

@@ -52,29 +52,31 @@ CsrMatrix gather_rows(MPI_Comm comm, const CsrMatrix& M, std::vector<int>& count
 
 template <class ExecSpace>
 TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T,
-                                                const CsrMatrix& A_t, const Stencil& A,
+                                                CsrMatrix A_t, const Stencil& A,
                                                 const TallCellMultigridOptions& options)
     : halo_(T.block()) {
   const mesh::MacBlock& block = T.block();
   const MPI_Comm comm = block.comm;
   const BlockInnerProduct inner{comm};
-  // the level's matrix and grid: A_t and T themselves on the finest (not copied)
-  const CsrMatrix* level_matrix = &A_t;
+  // the level's matrix (moved into the level's operator once read) and grid (T itself on the
+  // finest)
+  CsrMatrix level_matrix = std::move(A_t);
   const mesh::TallCellGrid* level_grid = &T;
-  CsrMatrix coarse_matrix;
   std::optional<mesh::TallCellGrid> coarse_level_grid;
   Stencil level_A = A;
   complete_block_stencil(exec, halo_, static_cast<const Stencil*>(nullptr), level_A);
   mesh::MacBlock level_block = block;
   for (int l = 0;; ++l) {
     auto L = std::make_unique<Level>();
-    Kokkos::Profiling::pushRegion("amphora::tall_mg::level_matrix");
-    L->A_t = Csr(*level_matrix, *level_grid);
-    Kokkos::Profiling::popRegion();
-    const int n = L->A_t.n;
+    const int n = static_cast<int>(level_matrix.n);
     L->b = Vector("amphora::tall_mg::b", n);
     L->x = Vector("amphora::tall_mg::x", n);
     L->r = Vector("amphora::tall_mg::r", n);
+    const auto make_operator = [&] {
+      Kokkos::Profiling::pushRegion("amphora::tall_mg::level_matrix");
+      L->A_t = Csr(std::move(level_matrix), *level_grid, true);
+      Kokkos::Profiling::popRegion();
+    };
     // every rank decides together (a block's first cell must stay on the coarse grid)
     const mesh::MacGrid g = level_A.grid;
     long cells = g.cells();
@@ -82,26 +84,28 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     const bool halvable = g.nx % 2 == 0 && g.ny % 2 == 0 && g.nz % 2 == 0 && level_block.global_lower[0] % 2 == 0 &&
                           level_block.global_lower[2] % 2 == 0;
     if (!on_every_rank(comm, halvable) || cells <= options.max_coarse_cells) {
-      const CsrMatrix whole = block.split() ? gather_rows(comm, *level_matrix, coarse_counts_, coarse_displacements_)
-                                            : *level_matrix;
+      const CsrMatrix whole = block.split() ? gather_rows(comm, level_matrix, coarse_counts_, coarse_displacements_)
+                                            : level_matrix;
       Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_cholesky");
       coarse_ = std::make_unique<CoarseCholesky>(whole);
       Kokkos::Profiling::popRegion();
       coarse_first_ = level_grid->first_unknown();
       coarse_host_.resize(whole.n);
       coarse_local_.resize(n);
+      make_operator();
       levels_.push_back(std::move(L));
       break;
     }
     // The smoothed interval ends at Gershgorin's bound of lambda_max(D^-1 A) over all blocks'
     // rows: 3.01-3.06 on the levels of the deep splash, where 12 Lanczos steps estimated 2.91-2.95
     // (so 1.2 lambda = 3.5 was the end before), at no operator applications.
-    Kokkos::Profiling::pushRegion("amphora::tall_mg::smoother");
     ChebyshevOptions smoothing;
     smoothing.degree = l == 0 ? options.fine_chebyshev_degree : options.chebyshev_degree;
     smoothing.smoothing_range = options.smoothing_range;
-    smoothing.lambda_max_bound = jacobi_gershgorin_bound(*level_matrix, level_grid->first_unknown());
+    smoothing.lambda_max_bound = jacobi_gershgorin_bound(level_matrix, level_grid->first_unknown());
     MPI_Allreduce(MPI_IN_PLACE, &smoothing.lambda_max_bound, 1, MPI_DOUBLE, MPI_MAX, comm);
+    make_operator();
+    Kokkos::Profiling::pushRegion("amphora::tall_mg::smoother");
     L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Csr, Vector, BlockInnerProduct>>(
         exec, L->A_t, L->A_t.inverse_diagonal, smoothing, inner);
     Kokkos::Profiling::popRegion();
@@ -126,9 +130,8 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     coarse_level_grid.emplace(std::move(coarse_grid));  // the finer one is done with
     level_grid = &*coarse_level_grid;
     Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_matrix");
-    coarse_matrix = assemble_tall_cell_matrix(*level_grid, host_A);
+    level_matrix = assemble_tall_cell_matrix(*level_grid, host_A);
     Kokkos::Profiling::popRegion();
-    level_matrix = &coarse_matrix;
   }
 }
 

@@ -44,8 +44,9 @@ class TallCellMultigrid {
   using Csr = BlockCsrMatrix<MemSpace>;
 
   /// T and A_t = P^T A P of the uniform stencil A (on a split grid: this block's rows, and A's
-  /// ghost conductances exchanged). Collective over T.block()'s ranks.
-  TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T, const CsrMatrix& A_t, const Stencil& A,
+  /// ghost conductances exchanged). Collective over T.block()'s ranks. A_t by value: a moved
+  /// one's arrays are kept as the finest level's matrix where the host can read them.
+  TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t, const Stencil& A,
                     const TallCellMultigridOptions& options = {});
   TallCellMultigrid(const TallCellMultigrid&) = delete;  // the smoothers point at the matrices
   TallCellMultigrid& operator=(const TallCellMultigrid&) = delete;
