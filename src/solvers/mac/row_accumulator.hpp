@@ -1,6 +1,6 @@
 #pragma once
-// A host accumulator for the rows of a sparse matrix (solvers/mac assembly of tall-cell
-// matrices and transfers), with global row numbers: a block keeps its own rows.
+// A host accumulator for the rows of a sparse matrix (solvers/mac: the tall cells' rows of the
+// tall-cell matrix), with global row numbers: a block keeps its own rows.
 #include <algorithm>
 #include <utility>
 #include <vector>
@@ -42,11 +42,6 @@ class RowAccumulator {
         return;
       }
     overflow_[r].emplace_back(c, v);
-  }
-  /// += scale v v^T for the n entries (ids, v).
-  void add_outer(const int* ids, const double* v, int n, double scale) {
-    for (int a = 0; a < n; ++a)
-      for (int b = 0; b < n; ++b) add(ids[a], ids[b], scale * v[a] * v[b]);
   }
   CsrMatrix to_csr() const {
     const long n = static_cast<long>(count_.size());

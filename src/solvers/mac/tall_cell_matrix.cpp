@@ -46,7 +46,8 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
   std::vector<int> slot(n, -1);
   long tall_rows = 0;
   for (const mesh::TallCellColumn& col : T.columns())
-    if (col.has_tall_cell()) slot[col.first_unknown] = static_cast<int>(tall_rows++), slot[col.first_unknown + 1] = static_cast<int>(tall_rows++);
+    if (col.has_tall_cell())
+      for (int s = 0; s < 2; ++s) slot[col.first_unknown + s] = static_cast<int>(tall_rows++);
   RowAccumulator<16> rows(tall_rows, 0);
   const auto tall_slot = [&](int global) {
     const long u = global - first;
