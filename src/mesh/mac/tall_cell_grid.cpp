@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace amphora::mesh {
@@ -10,6 +11,35 @@ TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, 
                            const MacBlock& block)
     : grid_(A.grid), block_(block), optical_depth_(optical_depth) {
   if (optical_depth < 1) throw std::invalid_argument("tall cells: the optical depth must be at least one cell");
+  build(A, [&](int i, int k, int, int) {
+    int terrain, band;  // the rule of the water module's columns (TallCellColumns)
+    tall_cell_rows(grid_.ny, optical_depth, [&](int j) { return A.diag(grid_.index(i, j, k)) != 0.0; }, terrain, band);
+    return band;
+  });
+}
+
+TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, const TallCellGrid& finer,
+                           const MacBlock& block)
+    : grid_(A.grid), block_(block), optical_depth_((finer.optical_depth() + 1) / 2) {
+  const MacGrid& f = finer.grid();
+  if (f.nx != 2 * grid_.nx || f.ny != 2 * grid_.ny || f.nz != 2 * grid_.nz)
+    throw std::invalid_argument("tall cells: a coarser level's lattice must have half the finer one's cells");
+  build(A, [&](int i, int k, int terrain, int fluid_top) {
+    // the lowest band of the four finer columns, all with a tall cell (else none here)
+    int lowest = f.ny;
+    for (int c = 0; c < 2; ++c)
+      for (int a = 0; a < 2; ++a) {
+        const TallCellColumn& child = finer.column(2 * i + a, 2 * k + c);
+        if (!child.has_tall_cell()) return terrain;
+        lowest = std::min(lowest, child.band);
+      }
+    const int band = std::min((lowest + 1) / 2, fluid_top);
+    return band - terrain < 2 ? terrain : band;
+  });
+}
+
+template <class Band>
+void TallCellGrid::build(const kernels::mac::PoissonStencil<HostMemSpace>& A, const Band& band_of) {
   const MacGrid& g = grid_;
   const auto& d = A.diag;
   columns_.resize(static_cast<std::size_t>(g.nx) * g.nz);
@@ -18,8 +48,13 @@ TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, 
   for (int k = 0; k < g.nz; ++k)
     for (int i = 0; i < g.nx; ++i) {
       TallCellColumn& col = columns_[i + g.nx * k];
-      // a fluid cell is one with a diagonal
-      tall_cell_rows(g.ny, optical_depth, [&](int j) { return d(g.index(i, j, k)) != 0.0; }, col.terrain, col.band);
+      // a fluid cell is one with a diagonal: the column's lowest run of them
+      int terrain = 0;
+      while (terrain < g.ny && d(g.index(i, terrain, k)) == 0.0) ++terrain;
+      int top = terrain;
+      while (top < g.ny && d(g.index(i, top, k)) != 0.0) ++top;
+      col.terrain = terrain;
+      col.band = band_of(i, k, terrain, top);
       col.first_unknown = static_cast<int>(next);
       if (col.has_tall_cell()) {
         next += 2;

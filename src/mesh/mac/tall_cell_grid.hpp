@@ -39,6 +39,14 @@ class TallCellGrid {
   /// uniform). A is on the host. On a split grid (block.split()) every rank of block.comm
   /// constructs its block's grid together (collective).
   TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth, const MacBlock& block = {});
+  /// The next coarser multigrid level's grid over A, whose lattice has cells twice as wide as
+  /// finer's: a column has a tall cell where the four finer columns under it all have one, and
+  /// its band is the coarse row holding the lowest of their bands (rounded up), so the coarse
+  /// tall cells follow the finer ones (0.5 coarse rows at most apart) rather than A's surface.
+  /// In the deep splash (D = 20) 103 CG iterations over the last solves of 10 steps, against 116
+  /// with the bands from A's surface at half the optical depth. Collective on a split grid.
+  TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, const TallCellGrid& finer,
+               const MacBlock& block = {});
 
   const MacGrid& grid() const { return grid_; }
   const MacBlock& block() const { return block_; }
@@ -95,6 +103,10 @@ class TallCellGrid {
   void restrict_to_unknowns(const double* lattice, double* y) const;
 
  private:
+  /// Columns (terrain: the lowest fluid row; band = band_of(i, k, terrain, top of the fluid run
+  /// above it)), numbering and ghost ring.
+  template <class Band>
+  void build(const kernels::mac::PoissonStencil<HostMemSpace>& A, const Band& band_of);
   void learn_ghost_ring();
 
   MacGrid grid_;

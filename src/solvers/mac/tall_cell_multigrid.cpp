@@ -109,15 +109,14 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Csr, Vector, BlockInnerProduct>>(
         exec, L->A_t, L->A_t.inverse_diagonal, smoothing, inner);
     Kokkos::Profiling::popRegion();
-    // the next level: the same optical depth in metres on the coarser lattice
+    // the next level: the coarser lattice, its tall cells following this level's
     Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_grid");
     Stencil coarse = kernels::mac::coarsen_stencil(exec, level_A);
     complete_block_stencil(exec, halo_, &level_A, coarse);
     level_A = coarse;
     for (int d : {0, 2}) level_block.global_lower[d] /= 2;
-    const int depth = (T.optical_depth() + (2 << l) - 1) >> (l + 1);
     const auto host_A = kernels::mac::host_stencil(level_A);
-    mesh::TallCellGrid coarse_grid(host_A, std::max(depth, 1), level_block);
+    mesh::TallCellGrid coarse_grid(host_A, *level_grid, level_block);
     Kokkos::Profiling::popRegion();
     Kokkos::Profiling::pushRegion("amphora::tall_mg::transfer");
     TallCellLevelTransfer transfer = tall_cell_level_transfer(*level_grid, coarse_grid, host_A);

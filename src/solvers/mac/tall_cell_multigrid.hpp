@@ -1,8 +1,9 @@
 #pragma once
 // Multigrid for the tall-cell pressure matrix A_t = P^T A P, as a CG preconditioner: a
-// hierarchy of tall-cell grids over lattices with cells twice as wide, the same optical depth
-// in metres (in the spirit of the restricted tall-cell grids of Chentanez & Müller 2011), each
-// level's matrix assembled as P_l^T A_l P_l from the rediscretised lattice matrix A_l. Between
+// hierarchy of tall-cell grids over lattices with cells twice as wide, each coarse tall cell
+// ending where the finer ones under it end (mesh::TallCellGrid's coarser-level constructor; in
+// the spirit of the restricted tall-cell grids of Chentanez & Müller 2011), each level's matrix
+// assembled as P_l^T A_l P_l from the rediscretised lattice matrix A_l. Between
 // tall-cell levels the prolongation Q interpolates the coarse tall-cell pressure at the fine
 // unknowns (trilinear between cells, linear in height inside tall cells) and the restriction
 // is Q^T, both assembled (tall_cell_level_transfer.hpp), so a V-cycle costs work in proportion
