@@ -37,17 +37,34 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   const mesh::MacGrid &gf = fine.grid(), &gc = coarse.grid();
   const auto edge = coarse_A.edges();
   const auto wall = coarse_A.walls();
-  // every fine unknown whose row of Q this block needs: its own (for Q) and its ring's (for the
-  // coarse rows of Q^T), with the cell that carries it
-  std::vector<std::pair<long, int>> carriers;
-  const std::vector<int> own = fine.unknown_cells();
-  for (std::size_t u = 0; u < own.size(); ++u) carriers.emplace_back(fine.first_unknown() + long(u), own[u]);
-  for (const auto& ring : fine.ring_unknown_cells()) carriers.push_back(ring);
-  const auto is_tall_top = [&](int cell) {
+  // every fine unknown whose row of Q this block needs: its own (for Q; in their order, column
+  // by column) and its ring's (for the coarse rows of Q^T), with the cell that carries it
+  struct Carrier {
+    long unknown;
     int i, j, k;
-    gf.ijk(cell, i, j, k);
-    const mesh::TallCellColumn& column = fine.column(i, k);
-    return j < column.band && j == column.terrain + 1;
+  };
+  std::vector<Carrier> carriers;
+  carriers.reserve(fine.unknowns());
+  const std::vector<int>& cell_unknown = fine.cell_unknown();
+  for (int k = 0; k < gf.nz; ++k)
+    for (int i = 0; i < gf.nx; ++i) {
+      const mesh::TallCellColumn& column = fine.column(i, k);
+      const long first = fine.first_unknown();
+      if (column.has_tall_cell())
+        for (int s = 0; s < 2; ++s) carriers.push_back({first + column.first_unknown + s, i, column.terrain + s, k});
+      for (int j = column.band; j < gf.ny; ++j) {
+        const int u = cell_unknown[gf.index(i, j, k)];
+        if (u >= 0) carriers.push_back({first + u, i, j, k});
+      }
+    }
+  for (const auto& [u, cell] : fine.ring_unknown_cells()) {
+    Carrier c{u, 0, 0, 0};
+    gf.ijk(cell, c.i, c.j, c.k);
+    carriers.push_back(c);
+  }
+  const auto is_tall_top = [&](const Carrier& c) {
+    const mesh::TallCellColumn& column = fine.column(c.i, c.k);
+    return c.j < column.band && c.j == column.terrain + 1;
   };
 
   // The rows of Q for all of them, merged, built in chunks of carriers in parallel (each row
@@ -145,11 +162,32 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       }
       n_terms = 0;
     };
+    // A uniform cell whose eight coarse cells are all uniform fluid cells (no edge, solid, air
+    // or tall cell among them): the trilinear weights themselves, one entry each. Else false.
+    auto plain_row = [&](int i, int j, int k) {
+      int xi[2], yi[2], zi[2];
+      double xw[2], yw[2], zw[2];
+      if (axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw) < 2 ||
+          axis_weights(j, gc.ny, edge[2], edge[3], wall[2], wall[3], yi, yw) < 2 ||
+          axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw) < 2)
+        return false;
+      const CoarseCell* cell[8];
+      for (int m = 0; m < 8; ++m) {
+        cell[m] = &coarse_cells[gc.index(xi[m & 1], yi[(m >> 1) & 1], zi[m >> 2])];
+        if (cell[m]->n != 1 || cell[m]->w[0] != 1.0) return false;
+      }
+      for (int m = 0; m < 8; ++m) {
+        out.cols.push_back(cell[m]->id[0]);
+        out.values.push_back(xw[m & 1] * yw[(m >> 1) & 1] * zw[m >> 2]);
+      }
+      out.ends.push_back(static_cast<long>(out.cols.size()));
+      return true;
+    };
     for (std::size_t r = r_begin; r < r_end; ++r) {
-      int i, j, k;
-      gf.ijk(carriers[r].second, i, j, k);
+      const int i = carriers[r].i, j = carriers[r].j, k = carriers[r].k;
       const mesh::TallCellColumn& column = fine.column(i, k);
       if (j >= column.band) {  // a uniform cell
+        if (plain_row(i, j, k)) continue;
         interpolate(i, j, k, 0, 1.0);
         emit(nullptr);
         continue;
@@ -210,7 +248,7 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   std::vector<std::size_t> bound(chunks + 1, n_carriers);
   for (std::size_t c = 0; c < chunks; ++c) {
     std::size_t r = c * n_carriers / chunks;
-    while (r > 0 && r < n_carriers && is_tall_top(carriers[r].second)) ++r;
+    while (r > 0 && r < n_carriers && is_tall_top(carriers[r])) ++r;
     bound[c] = r;
   }
   std::vector<Rows> parts(chunks);
@@ -278,7 +316,7 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
                            for (long e = row_ptr[r]; e < row_ptr[r + 1]; ++e) {
                              const long U = own_row(cols[e]);
                              if (U < 0) continue;
-                             R.cols[next[U]] = static_cast<int>(carriers[r].first);
+                             R.cols[next[U]] = static_cast<int>(carriers[r].unknown);
                              R.values[next[U]++] = values[e];
                            }
                        });
