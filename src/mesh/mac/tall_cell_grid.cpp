@@ -111,29 +111,11 @@ void TallCellGrid::learn_ghost_ring() {
     }
 }
 
-namespace {
-/// f(unknown, cell) for every unknown of column (i, k) and the lattice cell that carries it: a
-/// tall cell's samples its lowest two cells, a uniform unknown (`uniform`, per padded cell) its
-/// cell. Unknowns as the column and `uniform` number them.
-template <class F>
-void for_each_carrier(const MacGrid& g, const TallCellColumn& col, const std::vector<int>& uniform, int i, int k,
-                      const F& f) {
-  if (col.has_tall_cell()) {
-    f(col.first_unknown, g.index(i, col.terrain, k));
-    f(col.first_unknown + 1, g.index(i, col.terrain + 1, k));
-  }
-  for (int j = col.band; j < g.ny; ++j) {
-    const int c = g.index(i, j, k);
-    if (uniform[c] >= 0) f(uniform[c], c);
-  }
-}
-}  // namespace
-
 std::vector<int> TallCellGrid::unknown_cells() const {
   std::vector<int> cell(unknowns_, -1);
   for (int k = 0; k < grid_.nz; ++k)
     for (int i = 0; i < grid_.nx; ++i)
-      for_each_carrier(grid_, column(i, k), cell_unknown_, i, k, [&](int u, int c) { cell[u] = c; });
+      for_each_unknown_in_column(i, k, [&](int u, int ci, int cj, int ck) { cell[u] = grid_.index(ci, cj, ck); });
   return cell;
 }
 
@@ -143,7 +125,8 @@ std::vector<std::pair<long, int>> TallCellGrid::ring_unknown_cells() const {
   for (int k = -1; k <= grid_.nz; ++k)
     for (int i = -1; i <= grid_.nx; ++i) {
       if (i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz) continue;
-      for_each_carrier(grid_, column(i, k), ring_unknown_, i, k, [&](int u, int c) { out.emplace_back(u, c); });
+      for_each_carrier(column(i, k), ring_unknown_, i, k,
+                       [&](int u, int ci, int cj, int ck) { out.emplace_back(u, grid_.index(ci, cj, ck)); });
     }
   return out;
 }

@@ -72,9 +72,15 @@ class TallCellGrid {
     return (own ? first_unknown_ : 0) + column(i, k).first_unknown;
   }
 
+  /// f(u, i, j, k) for the unknowns u of this block's column (i, k) in their order (this block's
+  /// numbering) and the lattice cell (i, j, k) that carries each: a tall cell's bottom and top
+  /// samples its lowest two cells, then the uniform fluid cells upwards.
+  template <class F>
+  void for_each_unknown_in_column(int i, int k, const F& f) const {
+    for_each_carrier(columns_[i + grid_.nx * k], cell_unknown_, i, k, f);
+  }
   /// The lattice cell (padded index) that carries each of this block's unknowns in a ghost
-  /// exchange: a uniform unknown its cell, a tall cell's bottom and top samples its lowest two
-  /// cells.
+  /// exchange (as for_each_unknown_in_column).
   std::vector<int> unknown_cells() const;
   /// The same for the ghost ring's unknowns: (global unknown, padded index) pairs.
   std::vector<std::pair<long, int>> ring_unknown_cells() const;
@@ -108,6 +114,19 @@ class TallCellGrid {
   template <class Band>
   void build(const kernels::mac::PoissonStencil<HostMemSpace>& A, const Band& band_of);
   void learn_ghost_ring();
+  /// f(u, i, j, k) for the unknowns of column (i, k) as `uniform` (per padded cell) and the
+  /// column number them.
+  template <class F>
+  void for_each_carrier(const TallCellColumn& col, const std::vector<int>& uniform, int i, int k, const F& f) const {
+    if (col.has_tall_cell()) {
+      f(col.first_unknown, i, col.terrain, k);
+      f(col.first_unknown + 1, i, col.terrain + 1, k);
+    }
+    for (int j = col.band; j < grid_.ny; ++j) {
+      const int u = uniform[grid_.index(i, j, k)];
+      if (u >= 0) f(u, i, j, k);
+    }
+  }
 
   MacGrid grid_;
   MacBlock block_;

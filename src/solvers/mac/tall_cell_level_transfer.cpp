@@ -45,18 +45,11 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   };
   std::vector<Carrier> carriers;
   carriers.reserve(fine.unknowns());
-  const std::vector<int>& cell_unknown = fine.cell_unknown();
   for (int k = 0; k < gf.nz; ++k)
-    for (int i = 0; i < gf.nx; ++i) {
-      const mesh::TallCellColumn& column = fine.column(i, k);
-      const long first = fine.first_unknown();
-      if (column.has_tall_cell())
-        for (int s = 0; s < 2; ++s) carriers.push_back({first + column.first_unknown + s, i, column.terrain + s, k});
-      for (int j = column.band; j < gf.ny; ++j) {
-        const int u = cell_unknown[gf.index(i, j, k)];
-        if (u >= 0) carriers.push_back({first + u, i, j, k});
-      }
-    }
+    for (int i = 0; i < gf.nx; ++i)
+      fine.for_each_unknown_in_column(i, k, [&](int u, int ci, int cj, int ck) {
+        carriers.push_back({fine.first_unknown() + u, ci, cj, ck});
+      });
   for (const auto& [u, cell] : fine.ring_unknown_cells()) {
     Carrier c{u, 0, 0, 0};
     gf.ijk(cell, c.i, c.j, c.k);

@@ -177,22 +177,17 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
   CsrMatrix M;
   M.n = n;
   M.row_ptr.assign(n + 1, 0);
-  const auto& cell_unknown = T.cell_unknown();
   const auto for_each_row = [&](const char* name, const auto& f) {
     Kokkos::parallel_for(name, Kokkos::RangePolicy<HostExecSpace>(0, g.nx * g.nz), [&](int col) {
-      const int i = col % g.nx, k = col / g.nx;
-      const mesh::TallCellColumn& column = T.column(i, k);
-      if (column.has_tall_cell())
-        for (int s = 0; s < 2; ++s) {
-          const int u = column.first_unknown + s;
-          const long from = tall.row_ptr[slot[u]], length = tall.row_ptr[slot[u] + 1] - from;
-          f(u, length, tall.cols.data() + from, tall.values.data() + from, nullptr);
-        }
       std::pair<int, double> row[13];
-      for (int j = column.band; j < g.ny; ++j) {
-        const int u = cell_unknown[g.index(i, j, k)];
-        if (u >= 0) f(u, uniform_row(T, A, i, j, k, static_cast<int>(first + u), row), nullptr, nullptr, row);
-      }
+      T.for_each_unknown_in_column(col % g.nx, col / g.nx, [&](int u, int i, int j, int k) {
+        if (slot[u] < 0) {
+          f(u, uniform_row(T, A, i, j, k, static_cast<int>(first + u), row), nullptr, nullptr, row);
+          return;
+        }
+        const long from = tall.row_ptr[slot[u]], length = tall.row_ptr[slot[u] + 1] - from;
+        f(u, length, tall.cols.data() + from, tall.values.data() + from, nullptr);
+      });
     });
   };
   for_each_row("amphora::tall::row_lengths",
