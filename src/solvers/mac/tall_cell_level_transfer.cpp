@@ -104,24 +104,32 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
     out.ends.reserve(r_end - r_begin);
     out.cols.reserve(10 * (r_end - r_begin));
     out.values.reserve(10 * (r_end - r_begin));
-    // += scale * (the coarse pressure interpolated at fine cell (i, j, k)), for sample `side`
-    auto interpolate = [&](int i, int j, int k, int side, double scale) {
-      int xi[2], yi[2], zi[2];
-      double xw[2], yw[2], zw[2];
-      const int nx = axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw);
-      const int ny = axis_weights(j, gc.ny, edge[2], edge[3], wall[2], wall[3], yi, yw);
-      const int nz = axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw);
+    // The coarse cells (one or two per axis) and weights interpolating at fine cell (i, j, k)
+    struct Trilinear {
+      int n[3], index[3][2];
+      double weight[3][2];
+    };
+    auto trilinear = [&](int i, int j, int k) {
+      Trilinear t;
+      const int f[3] = {i, j, k}, nc[3] = {gc.nx, gc.ny, gc.nz};
+      for (int d = 0; d < 3; ++d)
+        t.n[d] = axis_weights(f[d], nc[d], edge[2 * d], edge[2 * d + 1], wall[2 * d], wall[2 * d + 1], t.index[d],
+                              t.weight[d]);
+      return t;
+    };
+    // += scale * (the coarse pressure interpolated with tri), for sample `side`
+    auto interpolate_at = [&](const Trilinear& tri, int side, double scale) {
       // the (up to 16) weights first, then the share of the solid cells' weight
       int ids[16];
       double ws[16];
       int m = 0;
       double total = 0.0, solid = 0.0;
-      for (int c = 0; c < nz; ++c)
-        for (int b = 0; b < ny; ++b)
-          for (int a = 0; a < nx; ++a) {
-            const double w = xw[a] * yw[b] * zw[c];
+      for (int c = 0; c < tri.n[2]; ++c)
+        for (int b = 0; b < tri.n[1]; ++b)
+          for (int a = 0; a < tri.n[0]; ++a) {
+            const double w = tri.weight[0][a] * tri.weight[1][b] * tri.weight[2][c];
             total += w;
-            const CoarseCell& cell = coarse_cells[gc.index(xi[a], yi[b], zi[c])];
+            const CoarseCell& cell = coarse_cells[gc.index(tri.index[0][a], tri.index[1][b], tri.index[2][c])];
             if (cell.n < 0) {
               solid += w;
               continue;
@@ -140,6 +148,9 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
         terms[t].w[side] += v;
       }
     };
+    auto interpolate = [&](int i, int j, int k, int side, double scale) {
+      interpolate_at(trilinear(i, j, k), side, scale);
+    };
     // the row of one uniform sample, or the rows G^-1 [sum_0; sum_1] of a tall cell's two
     auto emit = [&](const kernels::mac::TallCellGram* G) {
       const int samples = G ? 2 : 1;
@@ -156,22 +167,18 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       n_terms = 0;
     };
     // A uniform cell whose eight coarse cells are all uniform fluid cells (no edge, solid, air
-    // or tall cell among them): the trilinear weights themselves, one entry each. Else false.
-    auto plain_row = [&](int i, int j, int k) {
-      int xi[2], yi[2], zi[2];
-      double xw[2], yw[2], zw[2];
-      if (axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw) < 2 ||
-          axis_weights(j, gc.ny, edge[2], edge[3], wall[2], wall[3], yi, yw) < 2 ||
-          axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw) < 2)
-        return false;
+    // or tall cell among them): the trilinear weights themselves, one entry each (what
+    // interpolate and emit give, without the accumulation). Else false.
+    auto plain_row = [&](const Trilinear& tri) {
+      if (tri.n[0] < 2 || tri.n[1] < 2 || tri.n[2] < 2) return false;
       const CoarseCell* cell[8];
       for (int m = 0; m < 8; ++m) {
-        cell[m] = &coarse_cells[gc.index(xi[m & 1], yi[(m >> 1) & 1], zi[m >> 2])];
+        cell[m] = &coarse_cells[gc.index(tri.index[0][m & 1], tri.index[1][(m >> 1) & 1], tri.index[2][m >> 2])];
         if (cell[m]->n != 1 || cell[m]->w[0] != 1.0) return false;
       }
       for (int m = 0; m < 8; ++m) {
         out.cols.push_back(cell[m]->id[0]);
-        out.values.push_back(xw[m & 1] * yw[(m >> 1) & 1] * zw[m >> 2]);
+        out.values.push_back(tri.weight[0][m & 1] * tri.weight[1][(m >> 1) & 1] * tri.weight[2][m >> 2]);
       }
       out.ends.push_back(static_cast<long>(out.cols.size()));
       return true;
@@ -180,8 +187,9 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       const int i = carriers[r].i, j = carriers[r].j, k = carriers[r].k;
       const mesh::TallCellColumn& column = fine.column(i, k);
       if (j >= column.band) {  // a uniform cell
-        if (plain_row(i, j, k)) continue;
-        interpolate(i, j, k, 0, 1.0);
+        const Trilinear tri = trilinear(i, j, k);
+        if (plain_row(tri)) continue;
+        interpolate_at(tri, 0, 1.0);
         emit(nullptr);
         continue;
       }
@@ -195,13 +203,10 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       // scalar work only.
       int lo = t, hi = column.band - 1;
       {
-        int xi[2], zi[2];
-        double xw[2], zw[2];
-        const int nx = axis_weights(i, gc.nx, edge[0], edge[1], wall[0], wall[1], xi, xw);
-        const int nz = axis_weights(k, gc.nz, edge[4], edge[5], wall[4], wall[5], zi, zw);
-        for (int c = 0; c < nz; ++c)
-          for (int a = 0; a < nx; ++a) {
-            const mesh::TallCellColumn& C = coarse.column(xi[a], zi[c]);
+        const Trilinear tr = trilinear(i, t, k);  // its coarse columns
+        for (int c = 0; c < tr.n[2]; ++c)
+          for (int a = 0; a < tr.n[0]; ++a) {
+            const mesh::TallCellColumn& C = coarse.column(tr.index[0][a], tr.index[2][c]);
             if (!C.has_tall_cell()) hi = lo - 1;
             lo = std::max(lo, 2 * C.terrain + 1);
             hi = std::min(hi, 2 * C.band - 2);
