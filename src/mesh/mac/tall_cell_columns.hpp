@@ -17,18 +17,27 @@
 
 namespace amphora::mesh {
 
+/// The lowest run of fluid rows of a column, [terrain, top).
+template <class IsFluid>
+KOKKOS_INLINE_FUNCTION void fluid_run(int ny, const IsFluid& fluid, int& terrain, int& top) {
+  terrain = 0;
+  while (terrain < ny && !fluid(terrain)) ++terrain;
+  top = terrain;
+  while (top < ny && fluid(top)) ++top;
+}
+
+/// A column's band for a tall cell from the terrain up to `band`: band itself, or the terrain
+/// (no tall cell) if that leaves fewer than the two rows its two samples need.
+KOKKOS_INLINE_FUNCTION int tall_cell_band(int terrain, int band) { return band - terrain < 2 ? terrain : band; }
+
 /// Rows of one column from its fluid cells: terrain = the lowest fluid row, band = the lowest
-/// uniform row, optical_depth uniform rows below the lowest non-fluid row above the terrain; a
-/// tall cell needs at least two rows for its two samples, else band = terrain (no tall cell).
+/// uniform row, optical_depth uniform rows below the lowest non-fluid row above the terrain
+/// (tall_cell_band: no tall cell of fewer than two rows).
 template <class IsFluid>
 KOKKOS_INLINE_FUNCTION void tall_cell_rows(int ny, int optical_depth, const IsFluid& fluid, int& terrain, int& band) {
-  int j0 = 0;
-  while (j0 < ny && !fluid(j0)) ++j0;
-  int j1 = j0;
-  while (j1 < ny && fluid(j1)) ++j1;
-  terrain = j0;
-  band = j1 - optical_depth;
-  if (band - j0 < 2) band = j0;
+  int top;
+  fluid_run(ny, fluid, terrain, top);
+  band = tall_cell_band(terrain, top - optical_depth);
 }
 
 template <class MemSpace>

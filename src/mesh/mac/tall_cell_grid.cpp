@@ -11,11 +11,8 @@ TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, 
                            const MacBlock& block)
     : grid_(A.grid), block_(block), optical_depth_(optical_depth) {
   if (optical_depth < 1) throw std::invalid_argument("tall cells: the optical depth must be at least one cell");
-  build(A, [&](int i, int k, int, int) {
-    int terrain, band;  // the rule of the water module's columns (TallCellColumns)
-    tall_cell_rows(grid_.ny, optical_depth, [&](int j) { return A.diag(grid_.index(i, j, k)) != 0.0; }, terrain, band);
-    return band;
-  });
+  // the rule of the water module's columns (TallCellColumns: tall_cell_rows)
+  build(A, [&](int, int, int terrain, int fluid_top) { return tall_cell_band(terrain, fluid_top - optical_depth); });
 }
 
 TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, const TallCellGrid& finer,
@@ -33,8 +30,7 @@ TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, 
         if (!child.has_tall_cell()) return terrain;
         lowest = std::min(lowest, child.band);
       }
-    const int band = std::min((lowest + 1) / 2, fluid_top);
-    return band - terrain < 2 ? terrain : band;
+    return tall_cell_band(terrain, std::min((lowest + 1) / 2, fluid_top));
   });
 }
 
@@ -49,10 +45,8 @@ void TallCellGrid::build(const kernels::mac::PoissonStencil<HostMemSpace>& A, co
     for (int i = 0; i < g.nx; ++i) {
       TallCellColumn& col = columns_[i + g.nx * k];
       // a fluid cell is one with a diagonal: the column's lowest run of them
-      int terrain = 0;
-      while (terrain < g.ny && d(g.index(i, terrain, k)) == 0.0) ++terrain;
-      int top = terrain;
-      while (top < g.ny && d(g.index(i, top, k)) != 0.0) ++top;
+      int terrain, top;
+      fluid_run(g.ny, [&](int j) { return d(g.index(i, j, k)) != 0.0; }, terrain, top);
       col.terrain = terrain;
       col.band = band_of(i, k, terrain, top);
       col.first_unknown = static_cast<int>(next);
