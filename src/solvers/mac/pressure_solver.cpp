@@ -142,8 +142,8 @@ class BoomerAMGPressureSolver final : public PressureSolver<ExecSpace> {
  public:
   using typename PressureSolver<ExecSpace>::Vector;
   /// Rows first_row.. of A_t, distributed over comm (one rank: MPI_COMM_SELF, 0).
-  BoomerAMGPressureSolver(const CsrMatrix& A_t, MPI_Comm comm, long first_row)
-      : A_(A_t), comm_(comm), first_row_(first_row) {}
+  BoomerAMGPressureSolver(CsrMatrix A_t, MPI_Comm comm, long first_row)
+      : A_(std::move(A_t)), comm_(comm), first_row_(first_row) {}
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
       const BoomerAMG amg(comm_, first_row_, A_);
@@ -171,7 +171,7 @@ class CsrMic0PressureSolver final : public PressureSolver<ExecSpace> {
   // No modification (tau = 0): P^T A P is not an M-matrix (the linear weights couple a tall
   // cell's samples to its neighbours' with positive entries), and the row-sum compensation of
   // MIC then hurts: 1091 CG iterations against 128 on a 32^3 basin with tall cells.
-  explicit CsrMic0PressureSolver(const CsrMatrix& A_t) : A_(A_t), mic_(A_, 0.0) {}
+  explicit CsrMic0PressureSolver(CsrMatrix A_t) : A_(std::move(A_t)), mic_(A_, 0.0) {}
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
       return conjugate_gradient(SequentialSpace(), CsrOperator{&A_}, bh, xh, c, mic_);
@@ -198,8 +198,8 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
     case PressureBackend::multigrid:
       return std::make_unique<MultigridPressureSolver<ExecSpace, TallCellMultigrid<ExecSpace>>>(exec, T, std::move(A_t), A);
     case PressureBackend::hypre:
-      return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(A_t, T.block().comm, T.first_unknown());
-    case PressureBackend::mic0: return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(A_t);
+      return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(std::move(A_t), T.block().comm, T.first_unknown());
+    case PressureBackend::mic0: return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(std::move(A_t));
   }
   throw std::invalid_argument("make_tall_cell_pressure_solver: unknown back end");
 }

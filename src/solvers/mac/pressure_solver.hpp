@@ -53,7 +53,7 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
     const MacBlock& block = {});
 
 /// A_t = P^T A P of the tall-cell grid T over the uniform stencil A (on a split grid: this
-/// block's rows; MIC(0) refuses one). Taken by value: the multigrid keeps a moved A_t's arrays.
+/// block's rows; MIC(0) refuses one). Taken by value: each back end keeps a moved A_t, not a copy.
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
     PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t,
