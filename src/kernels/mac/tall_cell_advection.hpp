@@ -268,17 +268,27 @@ void reinitialise_step(const ExecSpace& exec, const mesh::TallCellColumns<MemSpa
 }
 
 /// Replaces the samples of face component d inside tall cells by their least-squares linear
-/// fit in height, per sample column (sum and first moment kept).
+/// fit in height, per sample column (sum and first moment kept). With `fitted` (columns on whose
+/// tall cells f is linear already, as the tall-cell advection leaves it), a sample column whose
+/// tall rows are the same under T and `fitted` is left alone: refitting a line changes it only
+/// at round-off. Most columns keep their rows from one sub-step to the next.
 template <class ExecSpace, class MemSpace, class F>
-void fit_linear_in_tall_cells(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, int d, const F& f) {
+void fit_linear_in_tall_cells(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, int d, const F& f,
+                              const mesh::TallCellColumns<MemSpace>& fitted = {}) {
   const mesh::MacGrid g = T.grid;
   const int ex = g.nx + (d == 0), ez = g.nz + (d == 2), sy = g.stride_y();
+  const bool skip_fitted = fitted.terrain.extent(0) > 0;
   Kokkos::parallel_for(
       "amphora::mac::fit_linear_in_tall_cells", RangePolicy<ExecSpace>(exec, 0, ex * ez), KOKKOS_LAMBDA(int m) {
         const int i = m % ex, k = m / ex;
         int lo, hi;
         T.tall_rows(d, i, k, lo, hi);
         if (hi - lo < min_tall_sample_rows) return;  // one or two samples are linear already
+        if (skip_fitted) {
+          int flo, fhi;
+          fitted.tall_rows(d, i, k, flo, fhi);
+          if (flo == lo && fhi == hi) return;
+        }
         // centred heights t = j - mid keep the normal equations diagonal
         const double mid = 0.5 * (lo + hi - 1);
         const int c0 = g.index(i, lo, k);
@@ -296,7 +306,10 @@ void fit_linear_in_tall_cells(const ExecSpace& exec, const mesh::TallCellColumns
 
 /// The largest |u| + |v| + |w| (each the larger of a cell's two faces) over the tall cells of
 /// the block: the upwind step there is stable for dt <= h / tall_cell_speed (on a split grid the
-/// caller takes the largest over the blocks).
+/// caller takes the largest over the blocks). The faces must be linear in height in their tall
+/// rows (fit_linear_in_tall_cells; advection and projection keep them so): where all six of a
+/// cell's are, the sum is convex in height (a sum of maxima of |linear|), so only the ends of
+/// those rows are read, whatever the tall cell's height.
 template <class ExecSpace, class MemSpace, class U, class V, class W>
 double tall_cell_speed(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, const U& u, const V& v,
                        const W& w) {
@@ -307,7 +320,20 @@ double tall_cell_speed(const ExecSpace& exec, const mesh::TallCellColumns<MemSpa
       "amphora::mac::tall_cell_speed", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz),
       KOKKOS_LAMBDA(int m, double& acc) {
         const int i = m % g.nx, k = m / g.nx, col = T.column(i, k);
-        for (int j = T.terrain(col); j < T.band(col); ++j) {
+        const int t = T.terrain(col), b = T.band(col);
+        if (b <= t) return;
+        // rows [lo, hi) where all six faces are linear: u at i and i + 1, v at j and j + 1, w at
+        // k and k + 1
+        int lo = t + 1, hi = b - 1;
+        const auto within = [&](int d, int fi, int fk) {
+          int a, z;
+          T.tall_rows(d, fi, fk, a, z);
+          lo = math::max(lo, a), hi = math::min(hi, z);
+        };
+        within(0, i, k), within(0, i + 1, k), within(2, i, k), within(2, i, k + 1);
+        if (hi - lo < 3) lo = hi = b;  // nothing to skip
+        for (int j = t; j < b; ++j) {
+          if (j == lo + 1) j = hi - 1;  // inside: below the larger of the ends
           const int c = g.index(i, j, k);
           const double s = math::max(math::abs(u(c)), math::abs(u(c + 1))) +
                            math::max(math::abs(v(c)), math::abs(v(c + sy))) +

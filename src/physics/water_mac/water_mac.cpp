@@ -336,6 +336,7 @@ class WaterMac final : public Module {
     b_ = Vector("amphora::water::b", n);
     type_ = Types("amphora::water::type", n);
     tall_ = mesh::TallCellColumns<Mem>(grid_, block_.edges());
+    fitted_tall_ = mesh::TallCellColumns<Mem>(grid_, block_.edges());
     solid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::solid", n);
     valid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::valid", n);
     if (block_.split()) {
@@ -406,9 +407,9 @@ class WaterMac final : public Module {
   /// grid follows the surface; the tall-cell advection relies on it).
   void fit_velocity_in_tall_cells() {
     if (optical_depth_ == 0) return;
-    kernels::mac::fit_linear_in_tall_cells(Exec(), tall_, 0, u_);
-    kernels::mac::fit_linear_in_tall_cells(Exec(), tall_, 1, v_);
-    kernels::mac::fit_linear_in_tall_cells(Exec(), tall_, 2, w_);
+    kernels::mac::fit_linear_in_tall_cells(Exec(), tall_, 0, u_, fitted_tall_);
+    kernels::mac::fit_linear_in_tall_cells(Exec(), tall_, 1, v_, fitted_tall_);
+    kernels::mac::fit_linear_in_tall_cells(Exec(), tall_, 2, w_, fitted_tall_);
   }
 
   /// Cell types from the level set (the level set's and the types' ghost cells from the
@@ -419,6 +420,9 @@ class WaterMac final : public Module {
     halo_.exchange(Exec(), grid_, type_);
     // without tall cells the columns stay as allocated: terrain = band = 0, no tall rows
     if (optical_depth_ > 0) {
+      // the columns the velocity is linear on so far (nothing before the first fit)
+      Kokkos::deep_copy(fitted_tall_.terrain, tall_.terrain);
+      Kokkos::deep_copy(fitted_tall_.band, tall_.band);
       mesh::find_tall_cell_columns(Exec(), type_, optical_depth_, tall_);
       if (block_.split()) {
         halo_.fill_widened(Exec(), grid_, type_, wide_, wide_type_);
@@ -682,6 +686,8 @@ class WaterMac final : public Module {
   Vector phi_, phi_tmp_, phi0_, u_, v_, w_, u_tmp_, v_tmp_, w_tmp_, p_, b_;
   Types type_;
   mesh::TallCellColumns<Mem> tall_;
+  /// tall_ before the last classify(): the velocity's tall cells until it is fitted to tall_
+  mesh::TallCellColumns<Mem> fitted_tall_;
   Kokkos::View<std::uint8_t*, Mem> solid_, valid_;
   long substeps_ = 0;
   int last_iterations_ = 0;
