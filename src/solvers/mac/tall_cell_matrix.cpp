@@ -13,12 +13,14 @@ namespace {
 /// T.weights gives them (a neighbour in a tall cell to its two samples). No two neighbours share
 /// an unknown, so every entry is one product; a zero weight (the top sample's partner at a
 /// tall cell's top row) adds no entry. Entries sorted by column; returns their number (<= 13).
+/// Without `row`, only the number (no entries, no sort).
 int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A, int i, int j, int k,
-                int u, std::pair<int, double> row[13]) {
+                int u, std::pair<int, double>* row) {
   const mesh::MacGrid& g = T.grid();
   const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
   int n = 0;
-  row[n++] = {u, A.diag(c)};
+  if (row) row[n] = {u, A.diag(c)};
+  ++n;
   const int di[6] = {-1, 1, 0, 0, 0, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {0, 0, 0, 0, -1, 1};
   const double cond[6] = {A.cx(c - 1), A.cx(c), A.cy(c - sy), A.cy(c), A.cz(c - sz), A.cz(c)};
   for (int f = 0; f < 6; ++f) {
@@ -27,9 +29,12 @@ int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<
     double w[2];
     const int m = T.weights(i + di[f], j + dj[f], k + dk[f], ids, w);
     for (int e = 0; e < m; ++e)
-      if (w[e] != 0.0) row[n++] = {ids[e], -(cond[f] * w[e])};
+      if (w[e] != 0.0) {
+        if (row) row[n] = {ids[e], -(cond[f] * w[e])};
+        ++n;
+      }
   }
-  std::sort(row, row + n);
+  if (row) std::sort(row, row + n);
   return n;
 }
 }  // namespace
@@ -171,18 +176,19 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
   }
   const CsrMatrix tall = rows.to_csr();
 
-  // Every row's length (a uniform row gathered, a tall row from the accumulator), then the rows
-  // in place (the uniform ones gathered again: cheaper than a scratch of 13 entries per unknown,
-  // whose fresh pages cost more than the gather).
+  // Every row's length (a uniform row's counted, a tall row's from the accumulator), then the
+  // rows in place (the uniform ones gathered: cheaper than a scratch of 13 entries per unknown
+  // filled in the first pass, whose fresh pages cost more than the second walk).
   CsrMatrix M;
   M.n = n;
   M.row_ptr.assign(n + 1, 0);
-  const auto for_each_row = [&](const char* name, const auto& f) {
+  // (the first pass counts a uniform row's entries without making them)
+  const auto for_each_row = [&](const char* name, bool entries, const auto& f) {
     Kokkos::parallel_for(name, Kokkos::RangePolicy<HostExecSpace>(0, g.nx * g.nz), [&](int col) {
       std::pair<int, double> row[13];
       T.for_each_unknown_in_column(col % g.nx, col / g.nx, [&](int u, int i, int j, int k) {
         if (slot[u] < 0) {
-          f(u, uniform_row(T, A, i, j, k, static_cast<int>(first + u), row), nullptr, nullptr, row);
+          f(u, uniform_row(T, A, i, j, k, static_cast<int>(first + u), entries ? row : nullptr), nullptr, nullptr, row);
           return;
         }
         const long from = tall.row_ptr[slot[u]], length = tall.row_ptr[slot[u] + 1] - from;
@@ -190,14 +196,14 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
       });
     });
   };
-  for_each_row("amphora::tall::row_lengths",
+  for_each_row("amphora::tall::row_lengths", false,
                [&](int u, long length, const int*, const double*, const std::pair<int, double>*) {
                  M.row_ptr[u + 1] = length;
                });
   for (long u = 0; u < n; ++u) M.row_ptr[u + 1] += M.row_ptr[u];
   M.cols.resize(M.row_ptr[n]);
   M.values.resize(M.row_ptr[n]);
-  for_each_row("amphora::tall::rows", [&](int u, long length, const int* cols, const double* values,
+  for_each_row("amphora::tall::rows", true, [&](int u, long length, const int* cols, const double* values,
                                           const std::pair<int, double>* row) {
     const long at = M.row_ptr[u];
     for (long e = 0; e < length; ++e) {
