@@ -40,8 +40,10 @@ void TallCellGrid::build(const kernels::mac::PoissonStencil<HostMemSpace>& A, co
   const auto& d = A.diag;
   columns_.resize(static_cast<std::size_t>(g.nx) * g.nz);
   cell_unknown_.assign(static_cast<std::size_t>(g.padded_size()), -1);
-  long next = 0;
-  for (int k = 0; k < g.nz; ++k)
+  // Lines of columns in parallel: each column's rows and its number of unknowns, then (after the
+  // running sum, in column order) its unknowns' numbers, so the numbering is the serial one.
+  std::vector<int> count(columns_.size());
+  Kokkos::parallel_for("amphora::tall::grid_columns", Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
     for (int i = 0; i < g.nx; ++i) {
       TallCellColumn& col = columns_[i + g.nx * k];
       // a fluid cell is one with a diagonal: the column's lowest run of them
@@ -49,14 +51,25 @@ void TallCellGrid::build(const kernels::mac::PoissonStencil<HostMemSpace>& A, co
       fluid_run(g.ny, [&](int j) { return d(g.index(i, j, k)) != 0.0; }, terrain, top);
       col.terrain = terrain;
       col.band = band_of(i, k, terrain, top);
-      col.first_unknown = static_cast<int>(next);
-      if (col.has_tall_cell()) {
-        next += 2;
-        ++tall_cells_;
-      }
-      for (int j = col.band; j < g.ny; ++j)
-        if (d(g.index(i, j, k)) != 0.0) cell_unknown_[g.index(i, j, k)] = static_cast<int>(next++);
+      int n = col.has_tall_cell() ? 2 : 0;
+      for (int j = col.band; j < g.ny; ++j) n += d(g.index(i, j, k)) != 0.0;
+      count[i + g.nx * k] = n;
     }
+  });
+  long next = 0;
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    columns_[c].first_unknown = static_cast<int>(next);
+    next += count[c];
+    tall_cells_ += columns_[c].has_tall_cell();
+  }
+  Kokkos::parallel_for("amphora::tall::grid_numbering", Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
+    for (int i = 0; i < g.nx; ++i) {
+      const TallCellColumn& col = columns_[i + g.nx * k];
+      int u = col.first_unknown + (col.has_tall_cell() ? 2 : 0);
+      for (int j = col.band; j < g.ny; ++j)
+        if (d(g.index(i, j, k)) != 0.0) cell_unknown_[g.index(i, j, k)] = u++;
+    }
+  });
   unknowns_ = next;
   global_unknowns_ = unknowns_;
   if (block_.split()) {
