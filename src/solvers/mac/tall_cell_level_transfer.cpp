@@ -43,14 +43,16 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
     long unknown;
     int i, j, k;
   };
-  std::vector<Carrier> carriers;
-  carriers.reserve(fine.unknowns());
-  for (int k = 0; k < gf.nz; ++k)
+  const auto ring = fine.ring_unknown_cells();
+  std::vector<Carrier> carriers(static_cast<std::size_t>(fine.unknowns()));
+  carriers.reserve(carriers.size() + ring.size());
+  Kokkos::parallel_for("amphora::tall_mg::transfer_carriers", Kokkos::RangePolicy<HostExecSpace>(0, gf.nz), [&](int k) {
     for (int i = 0; i < gf.nx; ++i)
       fine.for_each_unknown_in_column(i, k, [&](int u, int ci, int cj, int ck) {
-        carriers.push_back({fine.first_unknown() + u, ci, cj, ck});
+        carriers[u] = {fine.first_unknown() + u, ci, cj, ck};
       });
-  for (const auto& [u, cell] : fine.ring_unknown_cells()) {
+  });
+  for (const auto& [u, cell] : ring) {
     Carrier c{u, 0, 0, 0};
     gf.ijk(cell, c.i, c.j, c.k);
     carriers.push_back(c);
