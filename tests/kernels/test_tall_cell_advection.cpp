@@ -87,6 +87,116 @@ TEST(TallCellVelocity, LinearFitKeepsEachColumnsMomentumAndLinearProfiles) {
   EXPECT_GT(fitted, 60);  // the test sees many fitted columns
 }
 
+/// Random face samples of component d on g's lattice.
+std::vector<double> random_faces(const MacGrid& g, std::mt19937& rng) {
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  std::vector<double> f(g.padded_size(), 0.0);
+  for (int k = 0; k < g.nz + 1; ++k)
+    for (int j = 0; j < g.ny + 1; ++j)
+      for (int i = 0; i < g.nx + 1; ++i) f[g.index(i, j, k)] = U(rng);
+  return f;
+}
+
+TEST(TallCellVelocity, FitSkipsOnlyTheColumnsWhoseTallRowsAreFitted) {
+  // the grid moved: some columns' bands rose by one, some terrains by one
+  const MacGrid g{9, 14, 7, 0.1, {0, 0, 0}};
+  std::vector<int> terrain, band, old_terrain, old_band;
+  for (int k = 0; k < g.nz; ++k)
+    for (int i = 0; i < g.nx; ++i) {
+      terrain.push_back((i + 2 * k) % 3);
+      band.push_back(5 + (i + k) % 6);
+      old_terrain.push_back(terrain.back() + ((i + k) % 7 == 0));
+      old_band.push_back(band.back() + ((i * 3 + k) % 4 == 0));
+    }
+  const auto T = columns(g, terrain, band), old = columns(g, old_terrain, old_band);
+  const auto th = columns<HostMemSpace>(g, terrain, band), oh = columns<HostMemSpace>(g, old_terrain, old_band);
+  std::mt19937 rng(5);
+  long skipped = 0, refitted = 0;
+  for (int d = 0; d < 3; ++d) {
+    const auto random = random_faces(g, rng);
+    auto all = to_view<Mem>(random), changed = to_view<Mem>(random);
+    fit_linear_in_tall_cells(Exec(), T, d, all);
+    fit_linear_in_tall_cells(Exec(), T, d, changed, old);
+    const auto a = to_std_vector(all), c = to_std_vector(changed);
+    for (int k = 0; k < g.nz + (d == 2); ++k)
+      for (int i = 0; i < g.nx + (d == 0); ++i) {
+        int lo, hi, olo, ohi;
+        th.tall_rows(d, i, k, lo, hi);
+        oh.tall_rows(d, i, k, olo, ohi);
+        const bool same = lo == olo && hi == ohi;
+        for (int j = 0; j < g.ny + (d == 1); ++j) {
+          const int m = g.index(i, j, k);
+          if (same)
+            EXPECT_EQ(c[m], random[m]) << "a column whose tall rows did not change is left alone";
+          else
+            EXPECT_EQ(c[m], a[m]) << "a column whose tall rows changed is fitted as without `fitted`";
+        }
+        if (hi - lo >= 3) (same ? skipped : refitted) += 1;
+      }
+  }
+  EXPECT_GT(skipped, 20);
+  EXPECT_GT(refitted, 20);
+}
+
+TEST(TallCellVelocity, CourantSpeedFromTheEndsEqualsEveryRow) {
+  // faces linear in their tall rows (fitted), random elsewhere: the largest |u| + |v| + |w| over
+  // the tall cells, as read from the ends of linear rows, against every row. One column's six
+  // faces at a time (the others zero), and the samples outside linear rows scaled up (a row
+  // wrongly skipped holds the largest) or down (a wrongly read end is no bound), so a wrong row
+  // in any column shows. Bands vary differently along x and z.
+  const MacGrid g{9, 14, 7, 0.1, {0, 0, 0}};
+  std::vector<int> terrain, band;
+  for (int k = 0; k < g.nz; ++k)
+    for (int i = 0; i < g.nx; ++i) {
+      terrain.push_back((i + 2 * k) % 3);
+      band.push_back(6 + (2 * i + 3 * k) % 7);
+    }
+  const auto T = columns(g, terrain, band);
+  const auto th = columns<HostMemSpace>(g, terrain, band);
+  std::mt19937 rng(11);
+  std::vector<double> f[3];
+  for (int d = 0; d < 3; ++d) {
+    auto view = to_view<Mem>(random_faces(g, rng));
+    fit_linear_in_tall_cells(Exec(), T, d, view);
+    f[d] = to_std_vector(view);
+  }
+  const int sy = g.stride_y(), sz = g.stride_z();
+  long skipping = 0;
+  for (double scale : {10.0, 0.1})
+    for (int k0 = 0; k0 < g.nz; ++k0)
+      for (int i0 = 0; i0 < g.nx; ++i0) {
+        std::vector<double> m[3];
+        for (int d = 0; d < 3; ++d) {
+          m[d].assign(g.padded_size(), 0.0);
+          for (int s = 0; s < (d == 1 ? 1 : 2); ++s) {
+            const int fi = i0 + (d == 0) * s, fk = k0 + (d == 2) * s;
+            int lo, hi;
+            th.tall_rows(d, fi, fk, lo, hi);
+            for (int j = 0; j <= g.ny; ++j) {
+              const int c = g.index(fi, j, fk);
+              m[d][c] = f[d][c] * (j >= lo && j < hi ? 1.0 : scale);
+            }
+          }
+        }
+        double every_row = 0.0;
+        for (int k = 0; k < g.nz; ++k)
+          for (int i = 0; i < g.nx; ++i) {
+            const int col = th.column(i, k);
+            for (int j = th.terrain(col); j < th.band(col); ++j) {
+              const int c = g.index(i, j, k);
+              every_row = std::max(every_row, std::max(std::abs(m[0][c]), std::abs(m[0][c + 1])) +
+                                                  std::max(std::abs(m[1][c]), std::abs(m[1][c + sy])) +
+                                                  std::max(std::abs(m[2][c]), std::abs(m[2][c + sz])));
+            }
+          }
+        const double speed = tall_cell_speed(Exec(), T, to_view<Mem>(m[0]), to_view<Mem>(m[1]), to_view<Mem>(m[2]));
+        EXPECT_NEAR(speed, every_row, 1e-14 * every_row) << "column " << i0 << ", " << k0 << ", scale " << scale;
+        const int col = th.column(i0, k0);
+        skipping += th.band(col) - th.terrain(col) >= 6;
+      }
+  EXPECT_GT(skipping, 10);  // columns with rows the kernel need not read
+}
+
 /// A smooth bump vanishing within two cells of the box.
 double bump(const MacGrid& g, double x, double y, double z) {
   const double L[3] = {g.nx * g.h, g.ny * g.h, g.nz * g.h}, p[3] = {x, y, z};
