@@ -191,8 +191,9 @@ KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const mesh::TallCellColumns<Me
 ///
 /// Two passes: one work item per sample column does its rows outside the tall cell one by one
 /// and its tall range's line at once; then the tall ranges' rows are written (the line, or q
-/// itself for cell samples) x-row by x-row, contiguously. Writing them down each column instead
-/// strode through memory and cost more than all the tall cells' flux work (about 9 ns a sample).
+/// itself for cell samples) x-row by x-row, contiguously. Written down each column instead, they
+/// strode through memory: 10 steps of the splash in water 3.6 m deep took 0.63 s of advection
+/// that way, 0.58 s this way.
 ///
 /// q, u, v, w, phi and T live on T.grid; q_new on `out`, whose sample (i, j, k) is T.grid's
 /// (i + out_offset[0], j, k + out_offset[2]) (a block inside its widened grid: the traces near
