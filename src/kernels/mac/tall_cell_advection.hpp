@@ -191,7 +191,7 @@ KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const mesh::TallCellColumns<Me
 ///
 /// Two passes: one work item per sample column does its rows outside the tall cell one by one
 /// and its tall range's line at once; then the tall ranges' rows are written (the line, or q
-/// itself for cell samples) x-row by x-row, contiguously. Written down each column instead, they
+/// itself for cell samples) over the lattice, x fastest. Written down each column instead, they
 /// strode through memory: 10 steps of the splash in water 3.6 m deep took 0.63 s of advection
 /// that way, 0.58 s this way.
 ///
@@ -234,15 +234,13 @@ void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Sta
         }
       });
   Kokkos::parallel_for(
-      "amphora::mac::advect_tall_cells::write_ranges", RangePolicy<ExecSpace>(exec, 0, ey * ez),
-      KOKKOS_LAMBDA(int r) {
-        const int j = r % ey, k = r / ey;
-        for (int i = 0; i < ex; ++i) {
-          const int m = i + ex * k, lo = rows(m, 0), hi = rows(m, 1);
-          if (j < lo || j >= hi) continue;
-          const int o = go.index(i, j, k);
-          q_new(o) = d < 0 ? double(q(g.index(i + oi, j, k + ok))) : line(m, 0) + line(m, 1) * (j - 0.5 * (lo + hi - 1));
-        }
+      "amphora::mac::advect_tall_cells::write_ranges",
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
+      KOKKOS_LAMBDA(int k, int j, int i) {
+        const int m = i + ex * k, lo = rows(m, 0), hi = rows(m, 1);
+        if (j < lo || j >= hi) return;
+        const int o = go.index(i, j, k);
+        q_new(o) = d < 0 ? double(q(g.index(i + oi, j, k + ok))) : line(m, 0) + line(m, 1) * (j - 0.5 * (lo + hi - 1));
       });
 }
 
