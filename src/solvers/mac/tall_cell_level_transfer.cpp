@@ -85,8 +85,8 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
                          const int k = kk - 1;
                          for (int j = -1; j <= gc.ny; ++j)
                            for (int i = -1; i <= gc.nx; ++i) {
-                             CoarseCell& cell = coarse_cells[gc.index(i, j, k)];
                              const int C = gc.index(i, j, k);
+                             CoarseCell& cell = coarse_cells[C];
                              if (coarse_A.solid(C))
                                cell.n = -1;
                              else if (coarse_A.inverse_diag(C) != 0.0 && j >= 0 && j < gc.ny)

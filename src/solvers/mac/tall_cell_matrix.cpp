@@ -182,7 +182,6 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
   CsrMatrix M;
   M.n = n;
   M.row_ptr.assign(n + 1, 0);
-  // (the first pass counts a uniform row's entries without making them)
   const auto for_each_row = [&](const char* name, bool entries, const auto& f) {
     Kokkos::parallel_for(name, Kokkos::RangePolicy<HostExecSpace>(0, g.nx * g.nz), [&](int col) {
       std::pair<int, double> row[13];
