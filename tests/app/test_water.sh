@@ -94,9 +94,10 @@ grep -q "ranks 1 .*(restart)" rs.log || fail "the 2-rank checkpoint did not rest
 same_csv s1/diagnostics.csv rs/diagnostics.csv 1e-8
 
 # The documented dam break against the experiment: inviscid, without the gate and without wall
-# friction the simulated front runs ahead of Martin & Moyce's, by 11 % near T = 1.1 falling to 6 %
-# at T = 3.3 (the issue's 5 % is not met; see the README). Bounded here so that it cannot drift
-# unnoticed; water volume kept to 2 %.
+# friction the simulated front runs ahead of Martin & Moyce's, by 13.5 % near T = 1.2 falling to
+# 11 % at T = 3.3, and further ahead on finer grids (the issue's 5 % is not met; see the README).
+# Bounded here so that it cannot drift unnoticed; the water volume is kept to 0.5 % at every step
+# (the reinitialisation's subcell fix; without it 1 % is lost by the end).
 sed 's|output_dir = "output/water_dam_break"|output_dir = "dam"|; s/^output_every = 4/output_every = 0/' \
   "$AMPHORA_SOURCE_DIR/scenes/water_dam_break.toml" > dam.toml
 OMP_NUM_THREADS=2 "$AMPHORA" run dam.toml > run.txt
@@ -107,10 +108,12 @@ checked = [r for r in rows if 1.1 <= float(r["front_T"]) <= 3.34]
 assert len(checked) >= 20, len(checked)
 worst = max(abs(float(r["front_error"])) for r in checked)
 final = float(rows[-1]["front_error"])
-assert worst <= 0.12, f"front error {worst:.3f} > 0.12"
-assert abs(final) <= 0.065, f"front error at T = 3.3: {final:.3f} > 0.065"
-v0, v1 = float(rows[0]["volume"]), float(rows[-1]["volume"])
-assert abs(v1 - v0) <= 0.02 * v0, f"volume {v0} -> {v1}"
+assert worst <= 0.145, f"front error {worst:.3f} > 0.145"
+assert abs(final) <= 0.12, f"front error at T = 3.3: {final:.3f} > 0.12"
+v0 = float(rows[0]["volume"])
+for r in rows:
+    assert abs(float(r["volume"]) - v0) <= 0.005 * v0, f"volume {v0} -> {r['volume']} at step {r['step']}"
+v1 = float(rows[-1]["volume"])
 print(f"dam break: front error {worst:.3f} at worst over T = 1.1..3.3, {final:.3f} at T = 3.3, "
       f"volume change {100*(v1-v0)/v0:.2f} %")
 PY

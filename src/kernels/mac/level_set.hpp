@@ -3,6 +3,10 @@
 // Reinitialisation solves phi_tau + S(phi_0) (|grad phi| - 1) = 0 to steady state near the
 // interface (Sussman, Smereka & Osher 1994, eq. 2.5) with Godunov's upwind gradient (Osher &
 // Fedkiw, Level Set Methods, sec. 7.4), explicit pseudo-time, Jacobi-style (two buffers).
+// Cells next to the interface take Russo & Smereka's subcell fix (JCP 163, 2000, eq. 19-20):
+// they relax towards phi0 / |grad phi0|, so the zero level set stays where phi0 put it. Without
+// it every pseudo-step moves the interface by O(h) in thin sheets and the water shrinks with the
+// number of sub-steps (dam break at h = a/8: 2 % of the volume lost at CFL 1, 12 % at CFL 0.25).
 #include "mesh/mac/mac_grid.hpp"
 
 namespace amphora::kernels::mac {
@@ -15,8 +19,24 @@ KOKKOS_INLINE_FUNCTION double reinitialised_value(const mesh::MacGrid& g, const 
                                                   const P& phi, int i, int j, int k) {
   const int c = g.index(i, j, k);
   const double p = phi(c), s0 = phi0(c);
-  const double sign = s0 / math::sqrt(s0 * s0 + g.h * g.h);
   const int idx[3] = {i, j, k}, n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
+  // next to the interface (phi0 changes sign towards a neighbour): the distance phi0 / |grad phi0|
+  // with each direction's largest difference (Russo & Smereka, eq. 20), a box face counting none
+  bool interface = false;
+  double spread2 = 0.0;
+  for (int d = 0; d < 3; ++d) {
+    const bool has_minus = idx[d] > 0 || !edges[2 * d], has_plus = idx[d] < n[d] - 1 || !edges[2 * d + 1];
+    const double minus = has_minus ? phi0(c - stride[d]) : s0, plus = has_plus ? phi0(c + stride[d]) : s0;
+    interface = interface || (has_minus && s0 * minus <= 0.0) || (has_plus && s0 * plus <= 0.0);
+    const double delta =
+        math::max(math::max(0.5 * math::abs(plus - minus), math::abs(plus - s0)), math::abs(s0 - minus));
+    spread2 += delta * delta;
+  }
+  if (interface && spread2 > 0.0) {
+    const double distance = g.h * s0 / math::sqrt(spread2);
+    return p - 0.5 * ((s0 < 0.0 ? -math::abs(p) : math::abs(p)) - distance);
+  }
+  const double sign = s0 / math::sqrt(s0 * s0 + g.h * g.h);
   double grad2 = 0.0;
   for (int d = 0; d < 3; ++d) {
     // one-sided differences; at the box the missing side copies the cell (zero slope)

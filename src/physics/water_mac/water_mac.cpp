@@ -461,9 +461,10 @@ class WaterMac final : public Module {
     phases_.lap(advection);
     // 2. reinitialisation towards a signed distance
     if (reinit_ > 0) {
-      Kokkos::deep_copy(exec, phi0_, phi_);
       for (int it = 0; it < reinit_; ++it) {
         halo_.exchange(exec, g, phi_);
+        // phi0 with its ghost layer: the subcell fix reads it across block faces
+        if (it == 0) Kokkos::deep_copy(exec, phi0_, phi_);
         kernels::mac::reinitialise_step(exec, tall_, phi0_, phi_, phi_tmp_, edges_);
         std::swap(phi_, phi_tmp_);
       }
