@@ -22,19 +22,24 @@ KOKKOS_INLINE_FUNCTION double reinitialised_value(const mesh::MacGrid& g, const 
   const int idx[3] = {i, j, k}, n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
   // next to the interface (phi0 changes sign towards a neighbour): the distance phi0 / |grad phi0|
   // with each direction's largest difference (Russo & Smereka, eq. 20), a box face counting none
+  double minus[3], plus[3];
   bool interface = false;
-  double spread2 = 0.0;
   for (int d = 0; d < 3; ++d) {
     const bool has_minus = idx[d] > 0 || !edges[2 * d], has_plus = idx[d] < n[d] - 1 || !edges[2 * d + 1];
-    const double minus = has_minus ? phi0(c - stride[d]) : s0, plus = has_plus ? phi0(c + stride[d]) : s0;
-    interface = interface || (has_minus && s0 * minus <= 0.0) || (has_plus && s0 * plus <= 0.0);
-    const double delta =
-        math::max(math::max(0.5 * math::abs(plus - minus), math::abs(plus - s0)), math::abs(s0 - minus));
-    spread2 += delta * delta;
+    minus[d] = has_minus ? phi0(c - stride[d]) : s0, plus[d] = has_plus ? phi0(c + stride[d]) : s0;
+    interface = interface || (has_minus && s0 * minus[d] <= 0.0) || (has_plus && s0 * plus[d] <= 0.0);
   }
-  if (interface && spread2 > 0.0) {
-    const double distance = g.h * s0 / math::sqrt(spread2);
-    return p - 0.5 * ((s0 < 0.0 ? -math::abs(p) : math::abs(p)) - distance);
+  if (interface) {  // few cells: the spread only here
+    double spread2 = 0.0;
+    for (int d = 0; d < 3; ++d) {
+      const double delta = math::max(math::max(0.5 * math::abs(plus[d] - minus[d]), math::abs(plus[d] - s0)),
+                                     math::abs(s0 - minus[d]));
+      spread2 += delta * delta;
+    }
+    if (spread2 > 0.0) {
+      const double distance = g.h * s0 / math::sqrt(spread2);
+      return p - 0.5 * ((s0 < 0.0 ? -math::abs(p) : math::abs(p)) - distance);
+    }
   }
   const double sign = s0 / math::sqrt(s0 * s0 + g.h * g.h);
   double grad2 = 0.0;
