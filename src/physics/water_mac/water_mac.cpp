@@ -268,6 +268,7 @@ class WaterMac final : public Module {
     return {b};
   }
   void restore(const std::vector<StateBlock>& blocks) override {
+    speed_ = -1.0;
     for (const auto& b : blocks)
       for (const auto& [name, a] : b.arrays) {
         if (name == "substeps") substeps_ = static_cast<long>(a.at(0));
@@ -434,6 +435,7 @@ class WaterMac final : public Module {
   void substep(double dt) {
     const Exec exec;
     const mesh::MacGrid& g = grid_;
+    speed_ = -1.0;  // the velocity changes from here on
     // 1. advection of the level set and the velocity (all from the old velocity; on the
     //    tall-cell grid of the last sub-step, uniform everywhere without tall cells)
     //    velocity only where the water can be after the step: the surface moves at most
@@ -589,8 +591,13 @@ class WaterMac final : public Module {
     return static_cast<long>(comm_.sum(static_cast<long long>(n)));
   }
 
-  /// The largest velocity component over every block's faces (not its ghost layer).
+  /// The largest velocity component over every block's faces (not its ghost layer). Measured
+  /// once per velocity state: the step control, stable_dt() and the diagnostics all ask for it.
   double max_speed() const {
+    if (speed_ < 0.0) speed_ = measured_max_speed();
+    return speed_;
+  }
+  double measured_max_speed() const {
     const auto u = u_, v = v_, w = w_;
     const mesh::MacGrid g = grid_;
     double m = 0.0;
@@ -684,6 +691,7 @@ class WaterMac final : public Module {
   solvers::mac::PressureBackend backend_ = solvers::mac::PressureBackend::multigrid;
   solvers::SolverControl control_;
   int reinit_ = 2, optical_depth_ = 0, extrapolation_layers_ = 3;
+  mutable double speed_ = -1.0;  ///< max_speed() of the current velocity; negative: not measured yet
   Vector phi_, phi_tmp_, phi0_, u_, v_, w_, u_tmp_, v_tmp_, w_tmp_, p_, b_;
   Types type_;
   mesh::TallCellColumns<Mem> tall_;
