@@ -22,18 +22,18 @@ KOKKOS_INLINE_FUNCTION double reinitialised_value(const mesh::MacGrid& g, const 
   const int idx[3] = {i, j, k}, n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
   // next to the interface (phi0 changes sign towards a neighbour): the distance phi0 / |grad phi0|
   // with each direction's largest difference (Russo & Smereka, eq. 20), a box face counting none
-  double minus[3], plus[3];
+  double below0[3], above0[3];  // phi0's neighbours (the Godunov differences below read phi's)
   bool interface = false;
   for (int d = 0; d < 3; ++d) {
     const bool has_minus = idx[d] > 0 || !edges[2 * d], has_plus = idx[d] < n[d] - 1 || !edges[2 * d + 1];
-    minus[d] = has_minus ? phi0(c - stride[d]) : s0, plus[d] = has_plus ? phi0(c + stride[d]) : s0;
-    interface = interface || (has_minus && s0 * minus[d] <= 0.0) || (has_plus && s0 * plus[d] <= 0.0);
+    below0[d] = has_minus ? phi0(c - stride[d]) : s0, above0[d] = has_plus ? phi0(c + stride[d]) : s0;
+    interface = interface || (has_minus && s0 * below0[d] <= 0.0) || (has_plus && s0 * above0[d] <= 0.0);
   }
   if (interface) {  // few cells: the spread only here
     double spread2 = 0.0;
     for (int d = 0; d < 3; ++d) {
-      const double delta = math::max(math::max(0.5 * math::abs(plus[d] - minus[d]), math::abs(plus[d] - s0)),
-                                     math::abs(s0 - minus[d]));
+      const double delta = math::max(math::max(0.5 * math::abs(above0[d] - below0[d]), math::abs(above0[d] - s0)),
+                                     math::abs(s0 - below0[d]));
       spread2 += delta * delta;
     }
     if (spread2 > 0.0) {
