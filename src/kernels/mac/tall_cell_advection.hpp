@@ -189,11 +189,11 @@ KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const mesh::TallCellColumns<Me
 /// after the step, where the caller discards the velocity (it is extrapolated afresh). q_new
 /// must not alias q.
 ///
-/// Two passes: one work item per sample column does its rows outside the tall cell one by one
-/// and its tall range's line at once; then the tall ranges' rows are written (the line, or q
-/// itself for cell samples) over the lattice, x fastest. Written down each column instead, they
-/// strode through memory: 10 steps of the splash in water 3.6 m deep took 0.63 s of advection
-/// that way, 0.58 s this way.
+/// Two passes: one work item per sample column finds its tall rows and, for a tall range taken
+/// as a whole, its line (closed form, so the work is per column); then one work item per sample
+/// of the lattice (x fastest) writes its value: the line, the semi-Lagrangian trace, the upwind
+/// step or a copy. Done down each column in the first pass instead, the samples gave a GPU one
+/// work item per column and strode through memory on the host.
 ///
 /// q, u, v, w, phi and T live on T.grid; q_new on `out`, whose sample (i, j, k) is T.grid's
 /// (i + out_offset[0], j, k + out_offset[2]) (a block inside its widened grid: the traces near
@@ -206,41 +206,38 @@ void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Sta
   const int d = static_cast<int>(s), oi = out_offset[0], ok = out_offset[2];
   const int ex = go.nx + (d == 0), ey = go.ny + (d == 1), ez = go.nz + (d == 2);
   const int below = d == 0 ? 1 : d == 1 ? g.stride_y() : d == 2 ? g.stride_z() : 0;
-  // per sample column: the tall rows [lo, hi) the second pass writes, and their line
-  Kokkos::View<int* [2], MemSpace> rows(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::mac::tall_rows"),
+  // per sample column: its tall rows [lo, hi), the rows [wlo, whi) written from the line (or
+  // copied, for cell samples), and the line
+  Kokkos::View<int* [4], MemSpace> rows(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::mac::tall_rows"),
                                         ex * ez);
   Kokkos::View<double* [2], MemSpace> line(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::mac::tall_line"),
                                            ex * ez);
   Kokkos::parallel_for(
-      "amphora::mac::advect_tall_cells", RangePolicy<ExecSpace>(exec, 0, ex * ez), KOKKOS_LAMBDA(int m) {
-        const int i = m % ex, k = m / ex, I = i + oi, K = k + ok;
+      "amphora::mac::advect::tall_lines", RangePolicy<ExecSpace>(exec, 0, ex * ez), KOKKOS_LAMBDA(int m) {
+        const int I = m % ex + oi, K = m / ex + ok;
         int lo, hi;
         T.tall_rows(d, I, K, lo, hi);
         // cell samples keep their tall rows; face samples take a long enough range as a whole
         const bool whole = d < 0 || hi - lo >= min_tall_sample_rows;
-        const int wlo = whole ? lo : 0, whi = whole ? hi : 0;  // the rows of the second pass
-        rows(m, 0) = wlo, rows(m, 1) = whi;
-        if (d >= 0 && whi > wlo) tall_range_upwind_fit(T, d, I, K, lo, hi, q, u, v, w, dt, line(m, 0), line(m, 1));
-        for (int j = 0; j < ey; ++j) {
-          if (j == wlo) j = whi;
-          if (j >= ey) break;
+        rows(m, 0) = lo, rows(m, 1) = hi, rows(m, 2) = whole ? lo : 0, rows(m, 3) = whole ? hi : 0;
+        if (d >= 0 && whole && hi > lo) tall_range_upwind_fit(T, d, I, K, lo, hi, q, u, v, w, dt, line(m, 0), line(m, 1));
+      });
+  Kokkos::parallel_for(
+      "amphora::mac::advect::samples", RangePolicy<ExecSpace>(exec, 0, ey * ez), KOKKOS_LAMBDA(int row) {
+        const int j = row % ey, k = row / ey, K = k + ok;
+        for (int i = 0; i < ex; ++i) {
+          const int m = i + ex * k, I = i + oi;
+          const int lo = rows(m, 0), hi = rows(m, 1), wlo = rows(m, 2), whi = rows(m, 3);
           const int c = g.index(I, j, K), o = go.index(i, j, k);
-          if (d >= 0 && math::min(phi(c), phi(c - below)) >= reach)
+          if (j >= wlo && j < whi)
+            q_new(o) = d < 0 ? double(q(c)) : line(m, 0) + line(m, 1) * (j - 0.5 * (wlo + whi - 1));
+          else if (d >= 0 && math::min(phi(c), phi(c - below)) >= reach)
             q_new(o) = q(c);
           else if (j < lo || j >= hi)
             q_new(o) = semi_lagrangian_sample(g, s, I, j, K, q, u, v, w, dt);
           else
             q_new(o) = conservative_upwind_sample(g, d, c, q, u, v, w, dt);
         }
-      });
-  Kokkos::parallel_for(
-      "amphora::mac::advect_tall_cells::write_ranges",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
-      KOKKOS_LAMBDA(int k, int j, int i) {
-        const int m = i + ex * k, lo = rows(m, 0), hi = rows(m, 1);
-        if (j < lo || j >= hi) return;
-        const int o = go.index(i, j, k);
-        q_new(o) = d < 0 ? double(q(g.index(i + oi, j, k + ok))) : line(m, 0) + line(m, 1) * (j - 0.5 * (lo + hi - 1));
       });
 }
 
