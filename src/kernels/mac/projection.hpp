@@ -95,15 +95,15 @@ void subtract_pressure_gradient(const ExecSpace& exec, const mesh::MacGrid& g, i
 }
 
 /// valid(face) = 1 where the face of component d touches fluid and no solid (its velocity is
-/// known after the projection), else 0.
+/// known after the projection), else 0; on the faces of rows first_row.. (the others keep theirs).
 template <class ExecSpace, class T, class M>
 void mark_fluid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const M& valid,
-                      const mesh::MacEdges& edges = mesh::box_edges()) {
+                      const mesh::MacEdges& edges = mesh::box_edges(), int first_row = 0) {
   using mesh::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   Kokkos::parallel_for(
       "amphora::mac::mark_fluid_faces",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::min(first_row, ey), 0}, {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         int L, R;
         const bool inside = detail::face_cells(g, edges, d, i, j, k, L, R);

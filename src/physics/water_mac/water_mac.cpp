@@ -555,16 +555,20 @@ class WaterMac final : public Module {
     const mesh::MacGrid& g = grid_;
     const Vector faces[3] = {u_, v_, w_};
     const int first_row = kernels::mac::lowest_air_row(exec, g, type_);
+    // The layers read the marks from one row below the lowest air row of any block (across a
+    // block face, the neighbour's): below it every face is between fluid and solid cells, known,
+    // or touches a solid or the box, zero already. Under deep water most rows are skipped.
+    const int marked_from = std::max(static_cast<int>(comm_.min(double(first_row))) - 1, 0);
     for (int d = 0; d < 3; ++d) {
       // faces next to fluid keep their values; solid and box faces are zero (the projection
       // set them), the rest are filled layer by layer from known neighbours
-      kernels::mac::mark_fluid_faces(exec, g, d, type_, valid_, edges_);
+      kernels::mac::mark_fluid_faces(exec, g, d, type_, valid_, edges_, marked_from);
       const auto f = faces[d];
       const auto valid = valid_;
       const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
       Kokkos::parallel_for(
           "amphora::water::clear_unknown_faces",
-          Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
+          Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>(exec, {0, std::min(marked_from, ey), 0}, {ez, ey, ex}),
           KOKKOS_LAMBDA(int k, int j, int i) {
             const int c = g.index(i, j, k);
             if (!valid(c)) f(c) = 0.0;
