@@ -555,9 +555,10 @@ class WaterMac final : public Module {
     const mesh::MacGrid& g = grid_;
     const Vector faces[3] = {u_, v_, w_};
     const int first_row = kernels::mac::lowest_air_row(exec, g, type_);
-    // The layers read the marks from one row below the lowest air row of any block (across a
-    // block face, the neighbour's): below it every face is between fluid and solid cells, known,
-    // or touches a solid or the box, zero already. Under deep water most rows are skipped.
+    // The layers read the marks from one row below the lowest air row of any block on (across a
+    // block face, the neighbour's too). Below that row a face lies between fluid cells (known) or
+    // touches a solid or the box (zero already), so the marks there are never needed and nothing
+    // is cleared: under deep water most rows are skipped.
     const int marked_from = std::max(static_cast<int>(comm_.min(double(first_row))) - 1, 0);
     for (int d = 0; d < 3; ++d) {
       // faces next to fluid keep their values; solid and box faces are zero (the projection
