@@ -84,8 +84,10 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     const bool halvable = g.nx % 2 == 0 && g.ny % 2 == 0 && g.nz % 2 == 0 && level_block.global_lower[0] % 2 == 0 &&
                           level_block.global_lower[2] % 2 == 0;
     if (!on_every_rank(comm, halvable) || cells <= options.max_coarse_cells) {
-      const CsrMatrix whole = block.split() ? gather_rows(comm, level_matrix, coarse_counts_, coarse_displacements_)
-                                            : level_matrix;
+      // every block's rows on a split grid; on one block the level's matrix itself (not a copy)
+      CsrMatrix gathered;
+      if (block.split()) gathered = gather_rows(comm, level_matrix, coarse_counts_, coarse_displacements_);
+      const CsrMatrix& whole = block.split() ? gathered : level_matrix;
       Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_cholesky");
       coarse_ = std::make_unique<CoarseCholesky>(whole);
       Kokkos::Profiling::popRegion();
