@@ -199,14 +199,17 @@ KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const mesh::TallCellColumns<Me
 ///
 /// q, u, v, w, phi and T live on T.grid; q_new on `out`, whose sample (i, j, k) is T.grid's
 /// (i + out_offset[0], j, k + out_offset[2]) (a block inside its widened grid: the traces near
-/// the block's faces read the neighbours' cells).
+/// the block's faces read the neighbours' cells). Cell samples (s == centre) in rows below
+/// first_row are not written: pass mesh::lowest_band(), below which they all lie in tall cells or
+/// under the terrain, with q_new holding q there already.
 template <class ExecSpace, class MemSpace, class Q, class QN, class U, class V, class W, class P>
 void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Staggering s, const Q& q, const QN& q_new,
             const U& u, const V& v, const W& w, double dt, const P& phi, double reach, const mesh::MacGrid& out,
-            const int out_offset[3]) {
+            const int out_offset[3], int first_row = 0) {
   const mesh::MacGrid g = T.grid, go = out;
   const int d = static_cast<int>(s), oi = out_offset[0], ok = out_offset[2];
   const int ex = go.nx + (d == 0), ey = go.ny + (d == 1), ez = go.nz + (d == 2);
+  const int j0 = d < 0 ? math::min(math::max(first_row, 0), ey) : 0, rows_written = ey - j0;
   const int below = d == 0 ? 1 : d == 1 ? g.stride_y() : d == 2 ? g.stride_z() : 0;
   // per sample column: its tall rows [lo, hi), the rows [wlo, whi) written from the line (or
   // copied, for cell samples), and the line
@@ -226,8 +229,8 @@ void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Sta
           tall_range_upwind_fit(T, d, I, K, lo, hi, q, u, v, w, dt, line(m, 0), line(m, 1));
       });
   Kokkos::parallel_for(
-      "amphora::mac::advect::samples", RangePolicy<ExecSpace>(exec, 0, ey * ez), KOKKOS_LAMBDA(int row) {
-        const int j = row % ey, k = row / ey, K = k + ok;
+      "amphora::mac::advect::samples", RangePolicy<ExecSpace>(exec, 0, rows_written * ez), KOKKOS_LAMBDA(int row) {
+        const int j = j0 + row % rows_written, k = row / rows_written, K = k + ok;
         for (int i = 0; i < ex; ++i) {
           const int m = i + ex * k, I = i + oi;
           const int lo = rows(m, 0), hi = rows(m, 1), wlo = rows(m, 2), whi = rows(m, 3);
@@ -252,14 +255,17 @@ void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Sta
   advect(exec, T, s, q, q_new, u, v, w, dt, phi, reach, T.grid, none);
 }
 
-/// One pseudo-time step of reinitialisation in the uniform cells (tall cells keep phi).
+/// One pseudo-time step of reinitialisation in the uniform cells (tall cells keep phi). Rows
+/// below first_row are not written (as in advect: pass mesh::lowest_band(), phi_new holding phi
+/// there already).
 template <class ExecSpace, class MemSpace, class P0, class P, class PN>
 void reinitialise_step(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, const P0& phi0, const P& phi,
-                       const PN& phi_new, const mesh::MacEdges& edges = mesh::box_edges()) {
+                       const PN& phi_new, const mesh::MacEdges& edges = mesh::box_edges(), int first_row = 0) {
   const mesh::MacGrid g = T.grid;
   Kokkos::parallel_for(
       "amphora::mac::reinitialise_step_tall_cells",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::min(math::max(first_row, 0), g.ny), 0},
+                                                        {g.nz, g.ny, g.nx}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         const int c = g.index(i, j, k);
         phi_new(c) = T.in_tall_cell(-1, i, j, k) ? double(phi(c)) : reinitialised_value(g, edges, phi0, phi, i, j, k);
@@ -342,6 +348,29 @@ double tall_cell_speed(const ExecSpace& exec, const mesh::TallCellColumns<MemSpa
       },
       Kokkos::Max<double>(speed));
   return speed;
+}
+
+/// The largest |f| over the samples of face component d in T's tall rows below row `below`. f
+/// must be linear in height there (as for tall_cell_speed), so only the ends of each sample
+/// column's rows are read: the caller measures the lattice from `below` up.
+template <class ExecSpace, class MemSpace, class F>
+double tall_rows_max_abs(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, int d, const F& f,
+                         int below) {
+  const mesh::MacGrid g = T.grid;
+  const int ex = g.nx + (d == 0), ez = g.nz + (d == 2);
+  double largest = 0.0;
+  Kokkos::parallel_reduce(
+      "amphora::mac::tall_rows_max_abs", RangePolicy<ExecSpace>(exec, 0, ex * ez),
+      KOKKOS_LAMBDA(int m, double& acc) {
+        const int i = m % ex, k = m / ex;
+        int lo, hi;
+        T.tall_rows(d, i, k, lo, hi);
+        hi = math::min(hi, below);
+        if (hi <= lo) return;
+        acc = math::max(acc, math::max(math::abs(double(f(g.index(i, lo, k)))), math::abs(double(f(g.index(i, hi - 1, k))))));
+      },
+      Kokkos::Max<double>(largest));
+  return largest;
 }
 
 }  // namespace amphora::kernels::mac

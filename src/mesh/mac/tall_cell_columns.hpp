@@ -104,4 +104,24 @@ void find_tall_cell_columns(const ExecSpace& exec, const Types& type, int optica
       });
 }
 
+/// The lowest band over the block's own columns: below this row every cell of the block lies in
+/// a tall cell or is solid, so kernels that leave tall cells unchanged can start their rows there
+/// (a deep pool keeps about a fifth of its rows). 0 if a column has no tall cell or a non-solid
+/// cell under its tall cell.
+template <class ExecSpace, class MemSpace, class Types>
+int lowest_band(const ExecSpace& exec, const TallCellColumns<MemSpace>& T, const Types& type) {
+  const MacGrid g = T.grid;
+  int lowest = g.ny;
+  Kokkos::parallel_reduce(
+      "amphora::mac::lowest_band", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz),
+      KOKKOS_LAMBDA(int m, int& acc) {
+        const int i = m % g.nx, k = m / g.nx, col = T.column(i, k), t = T.terrain(col), b = T.band(col);
+        int j = 0;
+        while (j < t && type(g.index(i, j, k)) == MacCellType::solid) ++j;
+        acc = math::min(acc, b > t && j == t ? b : 0);
+      },
+      Kokkos::Min<int>(lowest));
+  return lowest;
+}
+
 }  // namespace amphora::mesh

@@ -269,6 +269,7 @@ class WaterMac final : public Module {
   }
   void restore(const std::vector<StateBlock>& blocks) override {
     speed_ = -1.0;
+    phi_buffers_match_below_ = 0;
     for (const auto& b : blocks)
       for (const auto& [name, a] : b.arrays) {
         if (name == "substeps") substeps_ = static_cast<long>(a.at(0));
@@ -454,7 +455,12 @@ class WaterMac final : public Module {
     const Vector P = split ? wide_phi_ : phi_, U = split ? wide_u_ : u_, V = split ? wide_v_ : v_,
                  W = split ? wide_w_ : w_;
     const int* o = wide_.offset;
-    kernels::mac::advect(exec, T, Staggering::centre, P, phi_tmp_, U, V, W, dt, P, reach, g, o);
+    // the level set below the lowest band lies in tall cells (kept) or under the terrain: its
+    // kernels start there, phi_ and phi_tmp_ holding the same rows below (deep splash 3.6 m,
+    // D = 20: rows 195.. of 256)
+    const int first_row = optical_depth_ > 0 ? mesh::lowest_band(exec, tall_, type_) : 0;
+    match_phi_buffers_below(first_row);
+    kernels::mac::advect(exec, T, Staggering::centre, P, phi_tmp_, U, V, W, dt, P, reach, g, o, first_row);
     kernels::mac::advect(exec, T, Staggering::x, U, u_tmp_, U, V, W, dt, P, reach, g, o);
     kernels::mac::advect(exec, T, Staggering::y, V, v_tmp_, U, V, W, dt, P, reach, g, o);
     kernels::mac::advect(exec, T, Staggering::z, W, w_tmp_, U, V, W, dt, P, reach, g, o);
@@ -467,7 +473,7 @@ class WaterMac final : public Module {
         halo_.exchange(exec, g, phi_);
         // phi0 with its ghost layer: the subcell fix reads it across block faces
         if (it == 0) Kokkos::deep_copy(exec, phi0_, phi_);
-        kernels::mac::reinitialise_step(exec, tall_, phi0_, phi_, phi_tmp_, edges_);
+        kernels::mac::reinitialise_step(exec, tall_, phi0_, phi_, phi_tmp_, edges_, first_row);
         std::swap(phi_, phi_tmp_);
       }
     }
@@ -585,6 +591,23 @@ class WaterMac final : public Module {
     }
   }
 
+  /// Makes phi_tmp_ equal phi_ in the rows below first_row (copying the rows that differ), so a
+  /// level-set kernel writing phi_tmp_ from first_row up and the swap after it leave phi_ whole.
+  void match_phi_buffers_below(int first_row) {
+    const int from = phi_buffers_match_below_;
+    phi_buffers_match_below_ = first_row;
+    if (first_row <= from) return;
+    const mesh::MacGrid g = grid_;
+    const auto phi = phi_, tmp = phi_tmp_;
+    Kokkos::parallel_for(
+        "amphora::water::match_phi_rows",
+        Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, from, 0}, {g.nz + 2, first_row, g.nx + 2}),
+        KOKKOS_LAMBDA(int k, int j, int i) {  // the ghost columns too (i, k = -1 .. n)
+          const int c = g.index(i - 1, j, k - 1);
+          tmp(c) = phi(c);
+        });
+  }
+
   /// Fluid cells (pressure unknowns) over all blocks.
   long count_fluid() const {
     const auto type = type_;
@@ -605,9 +628,17 @@ class WaterMac final : public Module {
   double measured_max_speed() const {
     const auto u = u_, v = v_, w = w_;
     const mesh::MacGrid g = grid_;
+    // below the lowest band the faces lie in tall rows, where the velocity is linear in height
+    // (only the ends are read), or touch a solid (zero)
+    const int below = optical_depth_ > 0 ? mesh::lowest_band(Exec(), tall_, type_) : 0;
     double m = 0.0;
+    if (below > 0)
+      for (int d = 0; d < 3; ++d)
+        m = std::max(m, kernels::mac::tall_rows_max_abs(Exec(), tall_, d, d == 0 ? u : d == 1 ? v : w, below));
+    double above = 0.0;
     Kokkos::parallel_reduce(
-        "amphora::water::max_speed", Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz + 1, g.ny + 1, g.nx + 1}),
+        "amphora::water::max_speed",
+        Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, below, 0}, {g.nz + 1, g.ny + 1, g.nx + 1}),
         KOKKOS_LAMBDA(int k, int j, int i, double& acc) {
           const int c = g.index(i, j, k);
           const bool in_x = i < g.nx, in_y = j < g.ny, in_z = k < g.nz;
@@ -615,8 +646,8 @@ class WaterMac final : public Module {
           if (in_x && in_z) acc = math::max(acc, math::abs(v(c)));
           if (in_x && in_y) acc = math::max(acc, math::abs(w(c)));
         },
-        Kokkos::Max<double>(m));
-    return comm_.max(m);
+        Kokkos::Max<double>(above));
+    return comm_.max(std::max(m, above));
   }
 
   /// Water volume: the cells' water fractions from the level set (smeared over one cell).
@@ -698,6 +729,8 @@ class WaterMac final : public Module {
   int reinit_ = 2, optical_depth_ = 0, extrapolation_layers_ = 3;
   mutable double speed_ = -1.0;  ///< max_speed() of the current velocity; negative: not measured yet
   Vector phi_, phi_tmp_, phi0_, u_, v_, w_, u_tmp_, v_tmp_, w_tmp_, p_, b_;
+  /// phi_ and phi_tmp_ hold the same values in the rows below this one (match_phi_buffers_below)
+  int phi_buffers_match_below_ = 0;
   Types type_;
   mesh::TallCellColumns<Mem> tall_;
   /// tall_ before the last classify(): the velocity's tall cells until it is fitted to tall_
