@@ -26,22 +26,57 @@ KOKKOS_INLINE_FUNCTION bool face_cells(const mesh::MacGrid& g, const mesh::MacEd
 }
 }  // namespace detail
 
-/// Faces of component d that touch a solid cell or the box take the solid's (zero) normal
-/// velocity: before the divergence is taken, so the right-hand side sees the walls.
+/// The faces of component d that touch a solid cell or the box (padded indices, in lattice
+/// order). Solids that do not move keep the list: the water module makes it once, and zeroing it
+/// costs per listed face, not per face of the lattice (3.6 m pool: the terrain's rows and the
+/// walls, 4 % of the faces).
+template <class ExecSpace, class T>
+Kokkos::View<int*, typename ExecSpace::memory_space> solid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d,
+                                                                 const T& type,
+                                                                 const mesh::MacEdges& edges = mesh::box_edges()) {
+  using mesh::MacCellType;
+  const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
+  const auto touches_solid = KOKKOS_LAMBDA(int n, int& c) {
+    const int i = n % ex, j = (n / ex) % ey, k = n / (ex * ey);
+    int L, R;
+    c = g.index(i, j, k);
+    return !detail::face_cells(g, edges, d, i, j, k, L, R) || type(L) == MacCellType::solid ||
+           type(R) == MacCellType::solid;
+  };
+  int count = 0;
+  Kokkos::parallel_reduce(
+      "amphora::mac::count_solid_faces", RangePolicy<ExecSpace>(exec, 0, ex * ey * ez),
+      KOKKOS_LAMBDA(int n, int& acc) {
+        int c;
+        acc += touches_solid(n, c);
+      },
+      count);
+  Kokkos::View<int*, typename ExecSpace::memory_space> list("amphora::mac::solid_faces", count);
+  Kokkos::parallel_scan(
+      "amphora::mac::list_solid_faces", RangePolicy<ExecSpace>(exec, 0, ex * ey * ez),
+      KOKKOS_LAMBDA(int n, int& at, bool final) {
+        int c;
+        if (!touches_solid(n, c)) return;
+        if (final) list(at) = c;
+        ++at;
+      });
+  return list;
+}
+
+/// The listed faces (solid_faces) take the solid's (zero) normal velocity: before the divergence
+/// is taken, so the right-hand side sees the walls.
+template <class ExecSpace, class L, class F>
+void enforce_solid_faces(const ExecSpace& exec, const L& list, const F& face) {
+  Kokkos::parallel_for(
+      "amphora::mac::enforce_solid_faces", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(list.extent(0))),
+      KOKKOS_LAMBDA(int n) { face(list(n)) = 0.0; });
+}
+
+/// The same for the faces of component d that touch a solid cell or the box now.
 template <class ExecSpace, class T, class F>
 void enforce_solid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const F& face,
                          const mesh::MacEdges& edges = mesh::box_edges()) {
-  using mesh::MacCellType;
-  const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
-  Kokkos::parallel_for(
-      "amphora::mac::enforce_solid_faces",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {ez, ey, ex}),
-      KOKKOS_LAMBDA(int k, int j, int i) {
-        int L, R;
-        if (!detail::face_cells(g, edges, d, i, j, k, L, R) || type(L) == MacCellType::solid ||
-            type(R) == MacCellType::solid)
-          face(g.index(i, j, k)) = 0.0;
-      });
+  enforce_solid_faces(exec, solid_faces(exec, g, d, type, edges), face);
 }
 
 /// b = -(rho h / dt) (sum of outward face velocities) on fluid cells, zero elsewhere.

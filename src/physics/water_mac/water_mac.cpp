@@ -401,6 +401,8 @@ class WaterMac final : public Module {
     Kokkos::deep_copy(solid_, to_view<Mem>(solid));
     halo_.exchange(Exec(), grid_, solid_);
     classify();
+    // the solids do not move: their faces are listed once (classify() gave the ghost cells' types)
+    for (int d = 0; d < 3; ++d) solid_faces_[d] = kernels::mac::solid_faces(Exec(), grid_, d, type_, edges_);
     fit_velocity_in_tall_cells();
     extrapolate_velocity();
   }
@@ -507,9 +509,9 @@ class WaterMac final : public Module {
     const Stencil A = kernels::mac::build_poisson_stencil<Exec, Mem>(exec, g, type_, phi_, block_.faces(box));
     halo_.exchange(exec, g, A.cx);  // the ghost cells' + faces: this block's - faces
     halo_.exchange(exec, g, A.cz);
-    kernels::mac::enforce_solid_faces(exec, g, 0, type_, u_, edges_);
-    kernels::mac::enforce_solid_faces(exec, g, 1, type_, v_, edges_);
-    kernels::mac::enforce_solid_faces(exec, g, 2, type_, w_, edges_);
+    kernels::mac::enforce_solid_faces(exec, solid_faces_[0], u_);
+    kernels::mac::enforce_solid_faces(exec, solid_faces_[1], v_);
+    kernels::mac::enforce_solid_faces(exec, solid_faces_[2], w_);
     kernels::mac::pressure_rhs(exec, g, type_, u_, v_, w_, rho_, dt, b_);
     solvers::SolverResult r;
     if (optical_depth_ == 0) {
@@ -736,6 +738,7 @@ class WaterMac final : public Module {
   /// tall_ before the last classify(): the velocity's tall cells until it is fitted to tall_
   mesh::TallCellColumns<Mem> fitted_tall_;
   Kokkos::View<std::uint8_t*, Mem> solid_, valid_;
+  Kokkos::View<int*, Mem> solid_faces_[3];  ///< per component, the faces touching a solid or the box
   long substeps_ = 0;
   int last_iterations_ = 0;
   long last_unknowns_ = 0;
