@@ -459,7 +459,7 @@ class WaterMac final : public Module {
     const int* o = wide_.offset;
     // the level set below the lowest band lies in tall cells (kept) or under the terrain: its
     // kernels start there, phi_ and phi_tmp_ holding the same rows below (deep splash 3.6 m,
-    // D = 20: rows 195.. of 256)
+    // D = 20: rows 210.. of 256)
     const int first_row = optical_depth_ > 0 ? mesh::lowest_band(exec, tall_, type_) : 0;
     match_phi_buffers_below(first_row);
     kernels::mac::advect(exec, T, Staggering::centre, P, phi_tmp_, U, V, W, dt, P, reach, g, o, first_row);
