@@ -367,7 +367,8 @@ double tall_rows_max_abs(const ExecSpace& exec, const mesh::TallCellColumns<MemS
         T.tall_rows(d, i, k, lo, hi);
         hi = math::min(hi, below);
         if (hi <= lo) return;
-        acc = math::max(acc, math::max(math::abs(double(f(g.index(i, lo, k)))), math::abs(double(f(g.index(i, hi - 1, k))))));
+        const double bottom = f(g.index(i, lo, k)), top = f(g.index(i, hi - 1, k));
+        acc = math::max(acc, math::max(math::abs(bottom), math::abs(top)));
       },
       Kokkos::Max<double>(largest));
   return largest;
