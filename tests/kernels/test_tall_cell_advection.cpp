@@ -1,6 +1,9 @@
 // The tall-cell velocity kernels (Irving et al. 2006): the momentum-conserving linear fit that
 // transfers velocity onto a rebuilt tall-cell grid, and the conservative upwind advection inside
-// tall cells: momentum kept to round-off, linear fields fitted and translated exactly.
+// tall cells: momentum kept to round-off, linear fields fitted and translated exactly. Speeds
+// read from the ends of linear rows equal those of every row, and the level-set kernels started
+// at a first row equal the whole-lattice ones above it.
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -195,6 +198,97 @@ TEST(TallCellVelocity, CourantSpeedFromTheEndsEqualsEveryRow) {
         skipping += th.band(col) - th.terrain(col) >= 6;
       }
   EXPECT_GT(skipping, 10);  // columns with rows the kernel need not read
+  // no tall cell at all: no speed limit from them
+  const auto uniform = columns(g, terrain, terrain);
+  EXPECT_EQ(tall_cell_speed(Exec(), uniform, to_view<Mem>(f[0]), to_view<Mem>(f[1]), to_view<Mem>(f[2])), 0.0);
+}
+
+TEST(TallCellVelocity, MaxAbsFromTheEndsOfLinearRowsEqualsEveryRow) {
+  // faces linear in their tall rows, random and ten times larger elsewhere (a row read outside
+  // the tall rows would win): the largest |f| over the tall rows below `below`, read from the
+  // ends, against every such row, for cuts below, inside and above the tall cells
+  const MacGrid g{9, 14, 7, 0.1, {0, 0, 0}};
+  const auto T = uneven_columns(g);
+  const auto th = uneven_columns<HostMemSpace>(g);
+  std::mt19937 rng(5);
+  long cut = 0;
+  for (int d = 0; d < 3; ++d) {
+    auto view = to_view<Mem>(random_faces(g, rng));
+    fit_linear_in_tall_cells(Exec(), T, d, view);
+    auto f = to_std_vector(view);
+    for (int k = 0; k < g.nz + (d == 2); ++k)
+      for (int i = 0; i < g.nx + (d == 0); ++i) {
+        int lo, hi;
+        th.tall_rows(d, i, k, lo, hi);
+        for (int j = 0; j <= g.ny; ++j)
+          if (j < lo || j >= hi) f[g.index(i, j, k)] *= 10.0;
+      }
+    const auto scaled = to_view<Mem>(f);
+    for (int below : {0, 3, 6, 8, 11, g.ny + 1}) {
+      double every_row = 0.0;
+      for (int k = 0; k < g.nz + (d == 2); ++k)
+        for (int i = 0; i < g.nx + (d == 0); ++i) {
+          int lo, hi;
+          th.tall_rows(d, i, k, lo, hi);
+          for (int j = lo; j < std::min(hi, below); ++j) every_row = std::max(every_row, std::abs(f[g.index(i, j, k)]));
+          cut += lo < below && below < hi - 1;
+        }
+      EXPECT_EQ(tall_rows_max_abs(Exec(), T, d, scaled, below), every_row) << "component " << d << ", below " << below;
+    }
+  }
+  EXPECT_GT(cut, 50);  // cuts through tall rows, so the top end read is not the rows' own
+}
+
+TEST(TallCellVelocity, LevelSetKernelsFromTheFirstRowEqualTheWholeLatticeAbove) {
+  // the level set's advection and reinitialisation started at first_row write exactly what the
+  // whole-lattice kernels write in the rows from first_row up, and nothing below it
+  const MacGrid g{9, 16, 7, 0.1, {0, 0, 0}};
+  const auto T = uneven_columns(g);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> R(-1.0, 1.0);
+  std::vector<double> phi(g.padded_size()), vel[3];
+  for (int k = -1; k <= g.nz; ++k)
+    for (int j = -1; j <= g.ny; ++j)
+      for (int i = -1; i <= g.nx; ++i) {
+        const auto x = g.cell_centre(i, j, k);
+        phi[g.index(i, j, k)] = x[1] - 0.9 + 0.2 * std::sin(4 * x[0]) * std::cos(3 * x[2]) + 0.02 * R(rng);
+      }
+  for (auto& v : vel) {
+    v.resize(g.padded_size());
+    for (auto& x : v) x = 0.5 * R(rng);
+  }
+  const auto P = to_view<Mem>(phi), U = to_view<Mem>(vel[0]), V = to_view<Mem>(vel[1]), W = to_view<Mem>(vel[2]);
+  const double sentinel = 7.0;
+  const auto run = [&](int first_row, bool advection) {
+    const Kokkos::View<double*, Mem> out("out", g.padded_size());
+    Kokkos::deep_copy(out, sentinel);
+    const int none[3] = {0, 0, 0};
+    if (advection)
+      advect(Exec(), T, Staggering::centre, P, out, U, V, W, 0.05, P, 1.0, g, none, first_row);
+    else
+      reinitialise_step(Exec(), T, P, P, out, mesh::box_edges(), first_row);
+    return to_std_vector(out);
+  };
+  for (bool advection : {true, false}) {
+    const auto whole = run(0, advection);
+    for (int first_row : {4, 9}) {
+      const auto part = run(first_row, advection);
+      long changed = 0;
+      for (int k = 0; k < g.nz; ++k)
+        for (int j = 0; j < g.ny; ++j)
+          for (int i = 0; i < g.nx; ++i) {
+            const int c = g.index(i, j, k);
+            if (j < first_row) {
+              EXPECT_EQ(part[c], sentinel) << "row " << j << " below " << first_row;
+            } else {
+              EXPECT_EQ(part[c], whole[c]) << (advection ? "advection" : "reinitialisation") << " at (" << i << ", "
+                                           << j << ", " << k << ")";
+              changed += whole[c] != phi[c];
+            }
+          }
+      EXPECT_GT(changed, 100);  // the kernels did change the rows they wrote
+    }
+  }
 }
 
 /// A smooth bump vanishing within two cells of the box.

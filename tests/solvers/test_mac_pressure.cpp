@@ -311,6 +311,43 @@ TEST(MacProjection, ProjectedVelocityIsDiscretelyDivergenceFree) {
   }
 }
 
+TEST(MacProjection, SolidFacesListsEveryFaceTouchingASolidOrTheBoxInOrder) {
+  // random solid cells (ghost ring included), on a box whose -x and +z faces are another
+  // block's (edges false there): the list names the faces with a solid cell on either side or
+  // on an edge of the box, each once, in lattice order, and zeroing it touches no other face
+  const MacGrid g{6, 5, 7, 0.1, {0, 0, 0}};
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<double> R(0.0, 1.0);
+  std::vector<MacCellType> t(g.padded_size());
+  for (auto& c : t) c = R(rng) < 0.2 ? MacCellType::solid : R(rng) < 0.5 ? MacCellType::fluid : MacCellType::air;
+  mesh::MacEdges edges = mesh::box_edges();
+  edges[0] = edges[5] = false;
+  const auto type = to_view<TestMemSpace>(t);
+  for (int d = 0; d < 3; ++d) {
+    const int n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
+    std::vector<int> expected;
+    for (int k = 0; k < g.nz + (d == 2); ++k)
+      for (int j = 0; j < g.ny + (d == 1); ++j)
+        for (int i = 0; i < g.nx + (d == 0); ++i) {
+          const int idx[3] = {i, j, k}, c = g.index(i, j, k);
+          const bool edge = (idx[d] == 0 && edges[2 * d]) || (idx[d] == n[d] && edges[2 * d + 1]);
+          if (edge || t[c] == MacCellType::solid || t[c - stride[d]] == MacCellType::solid) expected.push_back(c);
+        }
+    const auto list = to_std_vector(kernels::mac::solid_faces(TestExecSpace(), g, d, type, edges));
+    EXPECT_EQ(list, std::vector<double>(expected.begin(), expected.end())) << "component " << d;
+    EXPECT_GT(expected.size(), 50u);
+    std::vector<double> f(g.padded_size(), 1.0);
+    const auto face = to_view<TestMemSpace>(f);
+    kernels::mac::enforce_solid_faces(TestExecSpace(), kernels::mac::solid_faces(TestExecSpace(), g, d, type, edges),
+                                      face);
+    const auto zeroed = to_std_vector(face);
+    long zeros = 0;
+    for (double v : zeroed) zeros += v == 0.0;
+    EXPECT_EQ(zeros, static_cast<long>(expected.size())) << "component " << d;
+    for (int c : expected) EXPECT_EQ(zeroed[c], 0.0);
+  }
+}
+
 TEST(MacMultigrid, RefusesGridsItCannotCoarsenNamingValidSizes) {
   const MacGrid g{100, 64, 64, 0.01, {0, 0, 0}};
   const std::string e = multigrid_size_error(g, 64);

@@ -347,7 +347,7 @@ double tall_cell_speed(const ExecSpace& exec, const mesh::TallCellColumns<MemSpa
         }
       },
       Kokkos::Max<double>(speed));
-  return speed;
+  return math::max(speed, 0.0);  // no tall cell: the reducer's identity is the lowest double
 }
 
 /// The largest |f| over the samples of face component d in T's tall rows below row `below`. f
@@ -371,7 +371,7 @@ double tall_rows_max_abs(const ExecSpace& exec, const mesh::TallCellColumns<MemS
         acc = math::max(acc, math::max(math::abs(bottom), math::abs(top)));
       },
       Kokkos::Max<double>(largest));
-  return largest;
+  return math::max(largest, 0.0);  // no tall rows below `below`: zero, not the reducer's identity
 }
 
 }  // namespace amphora::kernels::mac
