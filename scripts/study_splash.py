@@ -8,11 +8,14 @@ relative to the largest surface displacement of the uniform run), and where the 
 (the run's [timing] lines: advection, pressure setup and solve, ...). One more uniform run, at the
 CFL number times --noise-cfl (default 0.95; 0 skips it), measures how far the uniform surface itself
 moves under a change that is no error: its substeps differ, and the central jet that rises out of the
-crater leaves at a slightly different time. Writes output/study_splash/splash_study.csv and
-splash_study.png (error against time per step).
+crater leaves at a slightly different time. With --reference-refine N (N > 1) one more uniform run
+on a grid N times finer along each axis (its surface averaged over each coarse column's N x N
+columns) gives every run's error against a better solution too: whether the tall cells' departure
+from the uniform run matters beside the uniform run's own discretisation error. Writes
+output/study_splash/splash_study.csv and splash_study.png (error against time per step).
 
     /usr/bin/python3 scripts/study_splash.py [--depths 0,24,16,8] [--threads 2] [--scene FILE]
-                                             [--noise-cfl 0.95]
+                                             [--noise-cfl 0.95] [--reference-refine 2]
 """
 import argparse
 import csv
@@ -46,12 +49,16 @@ def surface(fields):
     return eta
 
 
-def run(depth, threads, base, cfl_factor=1.0):
+def run(depth, threads, base, cfl_factor=1.0, refine=1):
     name = f"depth_{depth}" if cfl_factor == 1.0 else f"depth_{depth}_cfl_x{cfl_factor:g}"
+    if refine != 1:
+        name += f"_refined_x{refine}"
     d = os.path.join(out, name)
     scene = os.path.join(out, f"splash_{name}.toml")
     text = re.sub(r'output_dir = ".*"', f'output_dir = "{d}"', base)
     text = re.sub(r"optical_depth = \d+", f"optical_depth = {depth}", text)
+    for axis in "xyz":
+        text = re.sub(rf"^cells_{axis} = (\d+)", lambda m: f"cells_{axis} = {int(m.group(1)) * refine}", text, flags=re.M)
     if cfl_factor != 1.0:
         cfl = float(re.search(r"^cfl = (\S+)", text, re.M).group(1))
         text = re.sub(r"^cfl = \S+", f"cfl = {cfl * cfl_factor:g}", text, flags=re.M)
@@ -66,8 +73,11 @@ def run(depth, threads, base, cfl_factor=1.0):
     rows = list(csv.DictReader(open(os.path.join(d, "diagnostics.csv"))))
     unknowns = np.mean([float(r["pressure_unknowns"]) for r in rows[1:]])
     last = sorted(f for f in os.listdir(d) if f.startswith("fields_"))[-1]
+    eta = surface(os.path.join(d, last))
+    if refine != 1:  # the mean over each coarse column's refine x refine fine columns
+        eta = eta.reshape(eta.shape[0] // refine, refine, eta.shape[1] // refine, refine).mean(axis=(1, 3))
     return {"depth": depth, "cfl_factor": cfl_factor, "unknowns": unknowns, "seconds_per_step": seconds / steps, "phases": phases,
-            "eta": surface(os.path.join(d, last))}
+            "eta": eta}
 
 
 def main():
@@ -76,6 +86,7 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--scene", default=os.path.join(here, "scenes", "water_splash_deep.toml"))
     ap.add_argument("--noise-cfl", type=float, default=0.95)
+    ap.add_argument("--reference-refine", type=int, default=0)
     args = ap.parse_args()
     os.makedirs(out, exist_ok=True)
     base = open(args.scene).read()
@@ -93,42 +104,60 @@ def main():
         runs.append(run(0, args.threads, base, args.noise_cfl))
     ref = runs[0]
     amplitude = np.max(np.abs(ref["eta"] - pool))
+    fine = None
+    if args.reference_refine > 1:
+        fine = run(0, args.threads, base, refine=args.reference_refine)
+        print(f"uniform, {args.reference_refine}x finer: {fine['unknowns']:9.0f} pressure unknowns, "
+              f"{fine['seconds_per_step']:.3f} s/step", flush=True)
     with open(os.path.join(out, "splash_study.csv"), "w", newline="") as f:
         w = csv.writer(f)
         phase_names = list(ref["phases"])
         w.writerow(["optical_depth", "pressure_unknowns", "unknowns_ratio", "seconds_per_step", "time_ratio",
-                    "surface_error", "surface_error_rms", "cfl_factor"] + [f"seconds_per_step_{p}" for p in phase_names])
+                    "surface_error", "surface_error_rms", "cfl_factor"] + [f"seconds_per_step_{p}" for p in phase_names] +
+                   ["surface_error_vs_finer", "surface_error_vs_finer_rms"])
         for r in runs:
             r["error"] = np.max(np.abs(r["eta"] - ref["eta"])) / amplitude
             r["error_rms"] = np.sqrt(np.mean((r["eta"] - ref["eta"]) ** 2)) / amplitude
+            if fine:
+                r["error_fine"] = np.max(np.abs(r["eta"] - fine["eta"])) / amplitude
+                r["error_fine_rms"] = np.sqrt(np.mean((r["eta"] - fine["eta"]) ** 2)) / amplitude
             w.writerow([r["depth"], f"{r['unknowns']:.0f}", f"{ref['unknowns'] / r['unknowns']:.3f}",
                         f"{r['seconds_per_step']:.4f}", f"{ref['seconds_per_step'] / r['seconds_per_step']:.3f}",
                         f"{r['error']:.4e}", f"{r['error_rms']:.4e}", f"{r['cfl_factor']:g}"] +
-                       [f"{r['phases'].get(p, 0.0):.4f}" for p in phase_names])
+                       [f"{r['phases'].get(p, 0.0):.4f}" for p in phase_names] +
+                       ([f"{r['error_fine']:.4e}", f"{r['error_fine_rms']:.4e}"] if fine else ["", ""]))
             label = f"optical depth {r['depth']:3d}" + ("" if r["cfl_factor"] == 1.0 else f", CFL x{r['cfl_factor']:g}")
             print(f"{label}: unknowns x{ref['unknowns'] / r['unknowns']:.2f} fewer, "
                   f"time per step x{ref['seconds_per_step'] / r['seconds_per_step']:.2f} less, "
                   f"surface error {100 * r['error']:.2f} % (max), {100 * r['error_rms']:.2f} % (rms) "
-                  f"of the splash amplitude {amplitude:.4f} m")
+                  f"of the splash amplitude {amplitude:.4f} m" +
+                  (f"; against the {args.reference_refine}x finer uniform run {100 * r['error_fine']:.2f} % (max), "
+                   f"{100 * r['error_fine_rms']:.2f} % (rms)" if fine else ""))
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    # against the uniform run; with a finer run, against it too (a second panel)
+    panels = [("error", "surface error vs uniform, max [% of amplitude]")]
+    if fine:
+        panels.append(("error_fine", f"surface error vs {args.reference_refine}x finer uniform, max [% of amplitude]"))
+    fig, axes = plt.subplots(1, len(panels), figsize=(6.4 * len(panels), 4.4), squeeze=False)
     # labels right and left of their points in turn, in order of time per step, so neighbours do not overlap
     order = sorted(range(len(runs)), key=lambda m: runs[m]["seconds_per_step"])
-    for n, r in enumerate(runs[m] for m in order):
-        ax.plot(r["seconds_per_step"], 100 * r["error"], "o" if r["cfl_factor"] == 1.0 else "s",
-                color="C0" if r["depth"] else "C3")
-        label = (f"D = {r['depth']}" if r["depth"] else "uniform") + \
-            ("" if r["cfl_factor"] == 1.0 else f", CFL x{r['cfl_factor']:g}")
-        ax.annotate(f"{label}\n{r['unknowns'] / 1e3:.0f}k unknowns", (r["seconds_per_step"], 100 * r["error"]),
-                    textcoords="offset points", xytext=(-7 if n % 2 else 7, -9), fontsize=8,
-                    ha="right" if n % 2 else "left")
-    ax.axhline(5, color="grey", lw=0.8, ls="--")
-    ax.margins(0.2)
-    ax.set_xlabel("wall time per step [s]")
-    ax.set_ylabel("surface error vs uniform, max [% of amplitude]")
-    ax.set_title("Splash: tall cells below optical depth D (pressure on tall cells)")
+    for ax, (key, ylabel) in zip(axes[0], panels):
+        for n, r in enumerate(runs[m] for m in order):
+            ax.plot(r["seconds_per_step"], 100 * r[key], "o" if r["cfl_factor"] == 1.0 else "s",
+                    color="C0" if r["depth"] else "C3")
+            label = (f"D = {r['depth']}" if r["depth"] else "uniform") + \
+                ("" if r["cfl_factor"] == 1.0 else f", CFL x{r['cfl_factor']:g}")
+            ax.annotate(f"{label}\n{r['unknowns'] / 1e3:.0f}k unknowns", (r["seconds_per_step"], 100 * r[key]),
+                        textcoords="offset points", xytext=(-7 if n % 2 else 7, -9), fontsize=8,
+                        ha="right" if n % 2 else "left")
+        if key == "error":
+            ax.axhline(5, color="grey", lw=0.8, ls="--")
+        ax.margins(0.2)
+        ax.set_xlabel("wall time per step [s]")
+        ax.set_ylabel(ylabel)
+    axes[0][0].set_title("Splash: tall cells below optical depth D (pressure on tall cells)")
     fig.tight_layout()
     fig.savefig(os.path.join(out, "splash_study.png"), dpi=120)
     print("wrote", os.path.join(out, "splash_study.csv"), "and splash_study.png")
