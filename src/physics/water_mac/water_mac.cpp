@@ -428,6 +428,7 @@ class WaterMac final : public Module {
       Kokkos::deep_copy(fitted_tall_.terrain, tall_.terrain);
       Kokkos::deep_copy(fitted_tall_.band, tall_.band);
       mesh::find_tall_cell_columns(Exec(), type_, optical_depth_, tall_);
+      lowest_band_ = mesh::lowest_band(Exec(), tall_, type_);
       if (block_.split()) {
         halo_.fill_widened(Exec(), grid_, type_, wide_, wide_type_);
         mesh::find_tall_cell_columns(Exec(), wide_type_, optical_depth_, wide_tall_);
@@ -460,7 +461,7 @@ class WaterMac final : public Module {
     // the level set below the lowest band lies in tall cells (kept) or under the terrain: its
     // kernels start there, phi_ and phi_tmp_ holding the same rows below (deep splash 3.6 m,
     // D = 20: rows 210.. of 256)
-    const int first_row = optical_depth_ > 0 ? mesh::lowest_band(exec, tall_, type_) : 0;
+    const int first_row = lowest_band_;
     match_phi_buffers_below(first_row);
     kernels::mac::advect(exec, T, Staggering::centre, P, phi_tmp_, U, V, W, dt, P, reach, g, o, first_row);
     kernels::mac::advect(exec, T, Staggering::x, U, u_tmp_, U, V, W, dt, P, reach, g, o);
@@ -632,7 +633,7 @@ class WaterMac final : public Module {
     const mesh::MacGrid g = grid_;
     // below the lowest band the faces lie in tall rows, where the velocity is linear in height
     // (only the ends are read), or touch a solid (zero)
-    const int below = optical_depth_ > 0 ? mesh::lowest_band(Exec(), tall_, type_) : 0;
+    const int below = lowest_band_;
     double m = 0.0;
     if (below > 0)
       for (int d = 0; d < 3; ++d)
@@ -735,6 +736,8 @@ class WaterMac final : public Module {
   int phi_buffers_match_below_ = 0;
   Types type_;
   mesh::TallCellColumns<Mem> tall_;
+  /// mesh::lowest_band of tall_ and type_ (0 without tall cells), found with them in classify()
+  int lowest_band_ = 0;
   /// tall_ before the last classify(): the velocity's tall cells until it is fitted to tall_
   mesh::TallCellColumns<Mem> fitted_tall_;
   Kokkos::View<std::uint8_t*, Mem> solid_, valid_;
