@@ -11,11 +11,14 @@ moves under a change that is no error: its substeps differ, and the central jet 
 crater leaves at a slightly different time. With --reference-refine N (N > 1) one more uniform run
 on a grid N times finer along each axis (its surface averaged over each coarse column's N x N
 columns) gives every run's error against a better solution too: whether the tall cells' departure
-from the uniform run matters beside the uniform run's own discretisation error. Writes
-output/study_splash/splash_study.csv and splash_study.png (error against time per step).
+from the uniform run matters beside the uniform run's own discretisation error. The surfaces are
+compared every --every steps as well (default 5; the fields written then), not only at the end,
+so an error that comes and goes (the jet) is told from one that grows. Writes
+output/study_splash/splash_study.csv and splash_study.png (error against time per step, and the
+error over the run), and splash_error_history.csv (every run's error at every compared step).
 
     /usr/bin/python3 scripts/study_splash.py [--depths 0,24,16,8] [--threads 2] [--scene FILE]
-                                             [--noise-cfl 0.95] [--reference-refine 2]
+                                             [--noise-cfl 0.95] [--reference-refine 2] [--every 5]
 """
 import argparse
 import csv
@@ -49,7 +52,7 @@ def surface(fields):
     return eta
 
 
-def run(depth, threads, base, cfl_factor=1.0, refine=1):
+def run(depth, threads, base, every, cfl_factor=1.0, refine=1):
     name = f"depth_{depth}" if cfl_factor == 1.0 else f"depth_{depth}_cfl_x{cfl_factor:g}"
     if refine != 1:
         name += f"_refined_x{refine}"
@@ -62,8 +65,12 @@ def run(depth, threads, base, cfl_factor=1.0, refine=1):
     if cfl_factor != 1.0:
         cfl = float(re.search(r"^cfl = (\S+)", text, re.M).group(1))
         text = re.sub(r"^cfl = \S+", f"cfl = {cfl * cfl_factor:g}", text, flags=re.M)
-    text = re.sub(r"output_every = \d+", "output_every = 1000", text)
+    text = re.sub(r"output_every = \d+", f"output_every = {every}", text)
     open(scene, "w").write(text)
+    if os.path.isdir(d):  # fields of an earlier run with other output steps would be read as this run's
+        for f in os.listdir(d):
+            if re.fullmatch(r"fields_\d+\.h5", f):
+                os.remove(os.path.join(d, f))
     env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND="spread", OMP_PLACES="threads")
     log = subprocess.run([amphora, "run", scene], check=True, capture_output=True, text=True, env=env).stdout
     m = re.search(r"\[done\] (\d+) steps to t=\S+ in (\S+) s stepping", log)
@@ -72,12 +79,15 @@ def run(depth, threads, base, cfl_factor=1.0, refine=1):
     phases = {p: float(t) / steps for p, t in re.findall(r"\[timing\] (\S+) (\S+) s", log)}
     rows = list(csv.DictReader(open(os.path.join(d, "diagnostics.csv"))))
     unknowns = np.mean([float(r["pressure_unknowns"]) for r in rows[1:]])
-    last = sorted(f for f in os.listdir(d) if f.startswith("fields_"))[-1]
-    eta = surface(os.path.join(d, last))
-    if refine != 1:  # the mean over each coarse column's refine x refine fine columns
-        eta = eta.reshape(eta.shape[0] // refine, refine, eta.shape[1] // refine, refine).mean(axis=(1, 3))
+    # the surface at every written step (fields_<step>.h5), the last one the run's end
+    etas = {}
+    for f in sorted(f for f in os.listdir(d) if re.fullmatch(r"fields_\d+\.h5", f)):
+        eta = surface(os.path.join(d, f))
+        if refine != 1:  # the mean over each coarse column's refine x refine fine columns
+            eta = eta.reshape(eta.shape[0] // refine, refine, eta.shape[1] // refine, refine).mean(axis=(1, 3))
+        etas[int(f[7:-3])] = eta
     return {"depth": depth, "cfl_factor": cfl_factor, "unknowns": unknowns, "seconds_per_step": seconds / steps, "phases": phases,
-            "eta": eta}
+            "eta": etas[max(etas)], "etas": etas}
 
 
 def main():
@@ -87,7 +97,10 @@ def main():
     ap.add_argument("--scene", default=os.path.join(here, "scenes", "water_splash_deep.toml"))
     ap.add_argument("--noise-cfl", type=float, default=0.95)
     ap.add_argument("--reference-refine", type=int, default=0)
+    ap.add_argument("--every", type=int, default=5, help="compare the surfaces every this many steps too")
     args = ap.parse_args()
+    if args.every < 1:
+        sys.exit("--every must be at least 1")
     os.makedirs(out, exist_ok=True)
     base = open(args.scene).read()
     pool = float(re.search(r"pool_depth = (\S+)", base).group(1))
@@ -96,17 +109,17 @@ def main():
         sys.exit("the first depth must be 0 (the uniform reference)")
     runs = []
     for depth in depths:
-        r = run(depth, args.threads, base)
+        r = run(depth, args.threads, base, args.every)
         runs.append(r)
         print(f"optical depth {depth:3d}: {r['unknowns']:9.0f} pressure unknowns, {r['seconds_per_step']:.3f} s/step",
               "(" + ", ".join(f"{p} {t:.3f}" for p, t in r["phases"].items()) + ")", flush=True)
     if args.noise_cfl > 0:
-        runs.append(run(0, args.threads, base, args.noise_cfl))
+        runs.append(run(0, args.threads, base, args.every, args.noise_cfl))
     ref = runs[0]
     amplitude = np.max(np.abs(ref["eta"] - pool))
     fine = None
     if args.reference_refine > 1:
-        fine = run(0, args.threads, base, refine=args.reference_refine)
+        fine = run(0, args.threads, base, args.every, refine=args.reference_refine)
         print(f"uniform, {args.reference_refine}x finer: {fine['unknowns']:9.0f} pressure unknowns, "
               f"{fine['seconds_per_step']:.3f} s/step", flush=True)
     with open(os.path.join(out, "splash_study.csv"), "w", newline="") as f:
@@ -133,6 +146,29 @@ def main():
                   f"of the splash amplitude {amplitude:.4f} m" +
                   (f"; against the {args.reference_refine}x finer uniform run {100 * r['error_fine']:.2f} % (max), "
                    f"{100 * r['error_fine_rms']:.2f} % (rms)" if fine else ""))
+    # the error at every compared step (the initial state, the same in every run, left out)
+    dt = float(re.search(r"^dt = (\S+)", base, re.M).group(1))
+    steps = [n for n in sorted(ref["etas"]) if n > 0]
+    with open(os.path.join(out, "splash_error_history.csv"), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["optical_depth", "cfl_factor", "step", "time", "surface_error", "surface_error_rms"] +
+                   (["surface_error_vs_finer", "surface_error_vs_finer_rms"] if fine else []))
+        for r in runs:
+            r["history"] = []
+            for n in steps:
+                diff = r["etas"][n] - ref["etas"][n]
+                e, e_rms = np.max(np.abs(diff)) / amplitude, np.sqrt(np.mean(diff ** 2)) / amplitude
+                r["history"].append((n * dt, e))
+                row = [r["depth"], f"{r['cfl_factor']:g}", n, f"{n * dt:g}", f"{e:.4e}", f"{e_rms:.4e}"]
+                if fine:
+                    diff = r["etas"][n] - fine["etas"][n]
+                    row += [f"{np.max(np.abs(diff)) / amplitude:.4e}", f"{np.sqrt(np.mean(diff ** 2)) / amplitude:.4e}"]
+                w.writerow(row)
+    print("surface error vs uniform, max over the columns [% of amplitude], at t =",
+          " ".join(f"{n * dt:g}" for n in steps))
+    for r in runs[1:]:
+        label = f"optical depth {r['depth']:3d}" + ("" if r["cfl_factor"] == 1.0 else f", CFL x{r['cfl_factor']:g}")
+        print(f"  {label}:", " ".join(f"{100 * e:.2f}" for _, e in r["history"]))
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -140,7 +176,7 @@ def main():
     panels = [("error", "surface error vs uniform, max [% of amplitude]")]
     if fine:
         panels.append(("error_fine", f"surface error vs {args.reference_refine}x finer uniform, max [% of amplitude]"))
-    fig, axes = plt.subplots(1, len(panels), figsize=(6.4 * len(panels), 4.4), squeeze=False)
+    fig, axes = plt.subplots(1, len(panels) + 1, figsize=(6.4 * (len(panels) + 1), 4.4), squeeze=False)
     # labels right and left of their points in turn, in order of time per step, so neighbours do not overlap
     order = sorted(range(len(runs)), key=lambda m: runs[m]["seconds_per_step"])
     for ax, (key, ylabel) in zip(axes[0], panels):
@@ -158,6 +194,17 @@ def main():
         ax.set_xlabel("wall time per step [s]")
         ax.set_ylabel(ylabel)
     axes[0][0].set_title("Splash: tall cells below optical depth D (pressure on tall cells)")
+    ax = axes[0][len(panels)]  # the error over the run
+    for n, r in enumerate(runs[1:]):
+        t, e = zip(*r["history"])
+        ax.plot(t, 100 * np.array(e), "o-" if r["cfl_factor"] == 1.0 else "s--", color=f"C{n}",
+                label=(f"D = {r['depth']}" if r["depth"] else "uniform") +
+                ("" if r["cfl_factor"] == 1.0 else f", CFL x{r['cfl_factor']:g}"))
+    ax.axhline(5, color="grey", lw=0.8, ls="--")
+    ax.set_xlabel("time [s]")
+    ax.set_ylabel("surface error vs uniform, max [% of amplitude]")
+    ax.set_title("over the run")
+    ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(os.path.join(out, "splash_study.png"), dpi=120)
     print("wrote", os.path.join(out, "splash_study.csv"), "and splash_study.png")
