@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include <Kokkos_Core.hpp>
+
 namespace amphora::solvers {
 
 struct CsrMatrix {
@@ -16,18 +18,22 @@ struct CsrMatrix {
 
 /// An upper bound of the eigenvalues of D^-1 A (D = diag A) by Gershgorin's theorem on its
 /// rows: max_i (1 + sum_{j != i} |a_ij| / a_ii), over the rows with a positive diagonal. No
-/// iterations, and every row alone: the same for any split of the rows. Row i's diagonal is in
-/// column first_column + i (a block's rows with global columns).
+/// iterations, and every row alone: the same for any split of the rows (so the rows go to the
+/// host threads). Row i's diagonal is in column first_column + i (a block's rows with global
+/// columns).
 inline double jacobi_gershgorin_bound(const CsrMatrix& A, long first_column = 0) {
   double bound = 0.0;
-  for (long i = 0; i < A.n; ++i) {
-    double diag = 0.0, off = 0.0;
-    for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e)
-      if (A.cols[e] == first_column + i) diag = A.values[e];
-      else off += std::abs(A.values[e]);
-    if (diag > 0.0) bound = std::max(bound, 1.0 + off / diag);
-  }
-  return bound;
+  Kokkos::parallel_reduce(
+      "amphora::csr::gershgorin_bound", Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, A.n),
+      [&](long i, double& acc) {
+        double diag = 0.0, off = 0.0;
+        for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e)
+          if (A.cols[e] == first_column + i) diag = A.values[e];
+          else off += std::abs(A.values[e]);
+        if (diag > 0.0) acc = std::max(acc, 1.0 + off / diag);
+      },
+      Kokkos::Max<double>(bound));
+  return std::max(bound, 0.0);  // no row with a positive diagonal: 0, as before
 }
 
 }  // namespace amphora::solvers

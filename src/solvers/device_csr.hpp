@@ -56,15 +56,25 @@ struct DeviceCsrMatrix {
     finish(A, with_inverse_diagonal);
   }
   /// The row pointers (as int) and the inverse diagonal.
+  /// Both filled on the host threads, a row each (set up every sub-step by the tall-cell
+  /// multigrid, whose finest matrix has about 650k entries in the deep splash).
   void finish(const CsrMatrix& A, bool with_inverse_diagonal) {
-    std::vector<int> rp(A.row_ptr.begin(), A.row_ptr.end());
-    row_ptr = to_view<MemSpace>(rp, "amphora::csr::row_ptr");
+    using HostPolicy = Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>;
+    Kokkos::View<int*, Kokkos::HostSpace> rp(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::csr::row_ptr"),
+                                             A.row_ptr.size());
+    Kokkos::parallel_for("amphora::csr::row_ptr", HostPolicy(0, rp.extent(0)),
+                         [&](std::size_t i) { rp(i) = static_cast<int>(A.row_ptr[i]); });
+    row_ptr = Kokkos::create_mirror_view_and_copy(MemSpace(), rp);
     if (!with_inverse_diagonal) return;
-    std::vector<double> inv(A.n, 0.0);
-    for (long i = 0; i < A.n; ++i)
+    Kokkos::View<double*, Kokkos::HostSpace> inv(
+        Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::csr::inverse_diagonal"), A.n);
+    Kokkos::parallel_for("amphora::csr::inverse_diagonal", HostPolicy(0, A.n), [&](long i) {
+      double v = 0.0;
       for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e)
-        if (A.cols[e] == i && A.values[e] != 0.0) inv[i] = 1.0 / A.values[e];
-    inverse_diagonal = to_view<MemSpace>(inv, "amphora::csr::inverse_diagonal");
+        if (A.cols[e] == i && A.values[e] != 0.0) v = 1.0 / A.values[e];
+      inv(i) = v;
+    });
+    inverse_diagonal = Kokkos::create_mirror_view_and_copy(MemSpace(), inv);
   }
   std::shared_ptr<const CsrMatrix> kept_;  ///< the arrays cols and values view, if kept
 };

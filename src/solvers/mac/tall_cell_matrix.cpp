@@ -13,17 +13,22 @@ namespace {
 /// T.weights gives them (a neighbour in a tall cell to its two samples). No two neighbours share
 /// an unknown, so every entry is one product; a zero weight (the top sample's partner at a
 /// tall cell's top row) adds no entry. Entries sorted by column; returns their number (<= 13).
-/// Without `row`, only the number (no entries, no sort).
+/// Without `row`, only the number (no entries, no sort). The neighbours are visited in the
+/// order of the numbering (columns x fastest, each column upwards: -z, -x, -y, the cell, +y,
+/// +x, +z), so on one block the entries come sorted and the sort only checks them.
 int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A, int i, int j, int k,
                 int u, std::pair<int, double>* row) {
   const mesh::MacGrid& g = T.grid();
   const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
   int n = 0;
-  if (row) row[n] = {u, A.diag(c)};
-  ++n;
-  const int di[6] = {-1, 1, 0, 0, 0, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {0, 0, 0, 0, -1, 1};
-  const double cond[6] = {A.cx(c - 1), A.cx(c), A.cy(c - sy), A.cy(c), A.cz(c - sz), A.cz(c)};
-  for (int f = 0; f < 6; ++f) {
+  const int di[7] = {0, -1, 0, 0, 0, 1, 0}, dj[7] = {0, 0, -1, 0, 1, 0, 0}, dk[7] = {-1, 0, 0, 0, 0, 0, 1};
+  const double cond[7] = {A.cz(c - sz), A.cx(c - 1), A.cy(c - sy), 0.0, A.cy(c), A.cx(c), A.cz(c)};
+  for (int f = 0; f < 7; ++f) {
+    if (f == 3) {  // the cell itself
+      if (row) row[n] = {u, A.diag(c)};
+      ++n;
+      continue;
+    }
     if (cond[f] == 0.0) continue;
     int ids[2];
     double w[2];
