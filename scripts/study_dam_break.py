@@ -3,8 +3,10 @@
 spacings (h = a/8, a/16, a/32 by default: --cells 64,128,256 along x, the height scaled alike) and
 CFL numbers (--cfl 1): the front Z = x/a against T = t sqrt(2g/a), its error against the
 experiment (the run's own front_error diagnostic, so the experiment's table lives only in the
-module) and the water volume. Prints, per run, the largest error over T = 1.1-3.3, the error at
-the end and the volume's largest change; writes output/study_dam_break/dam_break_study.csv (one row
+module) and the water volume, with the shallow-water estimate beside them (Ritter 1892: the front
+of a dam break on a dry bed runs at 2 sqrt(g H), H = 2a, so Z = 1 + 2T). Prints, per run, the
+largest error over T = 1.1-3.3, the error at the end (against the experiment and the shallow-water
+estimate) and the volume's largest change; writes output/study_dam_break/dam_break_study.csv (one row
 per run) and dam_break_study.png (Z(T) per run with the experiment, and the error).
 
     /usr/bin/python3 scripts/study_dam_break.py [--cells 64,128,256] [--cfl 1] [--threads 2]
@@ -18,6 +20,11 @@ import subprocess
 here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 amphora = os.path.join(here, "build", "release", "apps", "amphora")
 out = os.path.join(here, "output", "study_dam_break")
+
+
+def shallow_water_front(T):
+    """Ritter's front Z = x/a at T = t sqrt(2g/a): x = a + 2 sqrt(g 2a) t."""
+    return 1.0 + 2.0 * T
 
 
 def run(base, cells, cfl, threads):
@@ -45,7 +52,8 @@ def run(base, cells, cfl, threads):
     a = float(re.search(r"^column_width = (\S+)", text, re.M).group(1))
     lx = float(re.search(r"^length_x = (\S+)", text, re.M).group(1))
     return {"cells": cells, "cfl": cfl, "h_over_a": lx / cells / a, "T": T, "Z": Z, "err": err, "exp": exp,
-            "worst": max(checked, key=abs), "final": err[-1], "volume": max(vol, key=abs),
+            "worst": max(checked, key=abs), "final": err[-1], "final_swe": Z[-1] / shallow_water_front(T[-1]) - 1,
+            "volume": max(vol, key=abs),
             "substeps": int(rows[-1]["substeps"])}
 
 
@@ -64,14 +72,14 @@ def main():
             runs.append(r)
             print(f"h = a/{1 / r['h_over_a']:.0f}, CFL {cfl:g} ({r['substeps']} sub-steps): front error "
                   f"{100 * r['worst']:+.1f} % at worst over T = 1.1-3.3, {100 * r['final']:+.1f} % at T = "
-                  f"{r['T'][-1]:.2f}; volume changed by {100 * r['volume']:+.2f} % at most", flush=True)
+                  f"{r['T'][-1]:.2f} ({100 * r['final_swe']:+.1f} % against the shallow-water front); volume changed by {100 * r['volume']:+.2f} % at most", flush=True)
     with open(os.path.join(out, "dam_break_study.csv"), "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(["cells_x", "h_over_a", "cfl", "substeps", "worst_front_error", "final_front_error",
-                    "largest_volume_change"])
+                    "largest_volume_change", "final_front_error_vs_shallow_water"])
         for r in runs:
             w.writerow([r["cells"], f"{r['h_over_a']:.5f}", f"{r['cfl']:g}", r["substeps"], f"{r['worst']:.4e}",
-                        f"{r['final']:.4e}", f"{r['volume']:.4e}"])
+                        f"{r['final']:.4e}", f"{r['volume']:.4e}", f"{r['final_swe']:.4e}"])
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -84,6 +92,7 @@ def main():
     finest = min(runs, key=lambda r: r["h_over_a"])
     ax.plot([t for t, z in zip(finest["T"], finest["exp"]) if z], [z for z in finest["exp"] if z], "k--",
             label="Martin & Moyce (1952)")
+    ax.plot(finest["T"], [shallow_water_front(t) for t in finest["T"]], "k:", label="shallow water (Ritter): Z = 1 + 2T")
     ax.set_xlabel("T = t sqrt(2g/a)")
     ax.set_ylabel("front Z = x/a")
     ax.legend(fontsize=8)
