@@ -348,6 +348,105 @@ TEST(MacProjection, SolidFacesListsEveryFaceTouchingASolidOrTheBoxInOrder) {
   }
 }
 
+// The water module keeps its stencil and rebuilds it from the row under the lowest band: a
+// rebuild from row r - 1 after the cells changed only from row r up equals a full build of the
+// new state bit for bit, and writes no coefficient below row r - 1.
+TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
+  const SphereScene scene(16, true);
+  const MacGrid& g = scene.grid;
+  mesh::MacBoxBoundaries box;
+  box.fill(mesh::MacBoundary::wall);
+  box[3] = mesh::MacBoundary::open;
+  const int r = 9;
+  // the new state: from row r up the level set moves by up to half a cell and the cell types
+  // follow it (solids kept)
+  // a copy (create_mirror_view would alias scene.type on the host)
+  auto types = Kokkos::create_mirror(scene.type);
+  Kokkos::deep_copy(types, scene.type);
+  auto phi = to_std_vector(scene.phi);
+  long changed = 0;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = r; j < g.ny; ++j)
+      for (int i = 0; i < g.nx; ++i) {
+        const int c = g.index(i, j, k);
+        phi[c] += 0.5 * g.h * std::sin(1.3 * i + 0.7 * k + 0.4 * j);
+        if (types(c) == MacCellType::solid) continue;
+        const MacCellType now = phi[c] < 0 ? MacCellType::fluid : MacCellType::air;
+        changed += now != types(c);
+        types(c) = now;
+      }
+  EXPECT_GT(changed, 10);
+  Kokkos::View<MacCellType*, TestMemSpace> type2("type2", g.padded_size());
+  Kokkos::deep_copy(type2, types);
+  const Vector phi2 = to_view<TestMemSpace>(phi, "phi2");
+  const auto full = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, type2, phi2,
+                                                                                     box);
+  const auto same = [&](const auto& a, const auto& b, int from_row, const char* name) {
+    const auto ha = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), a);
+    const auto hb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b);
+    long differ = 0;
+    for (int k = -1; k <= g.nz; ++k)
+      for (int j = std::max(from_row, -1); j <= g.ny; ++j)
+        for (int i = -1; i <= g.nx; ++i) differ += ha(g.index(i, j, k)) != hb(g.index(i, j, k));
+    EXPECT_EQ(differ, 0) << name;
+  };
+  // from a full build of the old state
+  auto A = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, scene.type, scene.phi,
+                                                                            box);
+  kernels::mac::build_poisson_stencil(TestExecSpace(), g, type2, phi2, box, A, r - 1);
+  same(A.diag, full.diag, -1, "diag");
+  same(A.inverse_diag, full.inverse_diag, -1, "inverse_diag");
+  same(A.cx, full.cx, -1, "cx");
+  same(A.cy, full.cy, -1, "cy");
+  same(A.cz, full.cz, -1, "cz");
+  same(A.solid, full.solid, -1, "solid");
+  same(A.solid_share, full.solid_share, -1, "solid_share");
+  EXPECT_EQ(A.any_solid, full.any_solid);
+  // rows below r - 1 are not written: marked coefficients there stay marked
+  auto B = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, scene.type, scene.phi,
+                                                                            box);
+  const auto cy_marked = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), B.cy);
+  const auto d_marked = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), B.diag);
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < r - 1; ++j)
+      for (int i = 0; i < g.nx; ++i) cy_marked(g.index(i, j, k)) = 7.0f, d_marked(g.index(i, j, k)) = 7.0;
+  Kokkos::deep_copy(B.cy, cy_marked);
+  Kokkos::deep_copy(B.diag, d_marked);
+  kernels::mac::build_poisson_stencil(TestExecSpace(), g, type2, phi2, box, B, r - 1);
+  const auto cy_after = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), B.cy);
+  const auto d_after = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), B.diag);
+  long kept = 0;
+  for (int k = 0; k < g.nz; ++k)
+    for (int j = 0; j < r - 1; ++j)
+      for (int i = 0; i < g.nx; ++i) kept += cy_after(g.index(i, j, k)) == 7.0f && d_after(g.index(i, j, k)) == 7.0;
+  EXPECT_EQ(kept, static_cast<long>(g.nx) * g.nz * (r - 1));
+  same(B.diag, full.diag, r - 1, "diag from row r - 1");
+  same(B.cy, full.cy, r - 1, "cy from row r - 1");
+
+  // A solid cell's share reads the cell above it: fluid cells on top of the terrain turn to air
+  // at row q, and a rebuild from row q (the rows below are a build of the new state already:
+  // the cells under the changed ones are solid) gives the solid cells of row q - 1 their new
+  // shares too.
+  const int q = 4;
+  Kokkos::deep_copy(types, scene.type);
+  long flipped = 0;
+  for (int k = 0; k < g.nz; ++k)
+    for (int i = 0; i < g.nx; ++i)
+      if (types(g.index(i, q - 1, k)) == MacCellType::solid && types(g.index(i, q, k)) == MacCellType::fluid) {
+        types(g.index(i, q, k)) = MacCellType::air;
+        ++flipped;
+      }
+  EXPECT_GT(flipped, 3);
+  Kokkos::deep_copy(type2, types);
+  const auto full_q = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, type2,
+                                                                                       scene.phi, box);
+  auto C = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, scene.type, scene.phi,
+                                                                            box);
+  kernels::mac::build_poisson_stencil(TestExecSpace(), g, type2, scene.phi, box, C, q);
+  same(C.solid_share, full_q.solid_share, -1, "solid_share after a change above the terrain");
+  same(C.diag, full_q.diag, -1, "diag after a change above the terrain");
+}
+
 TEST(MacMultigrid, RefusesGridsItCannotCoarsenNamingValidSizes) {
   const MacGrid g{100, 64, 64, 0.01, {0, 0, 0}};
   const std::string e = multigrid_size_error(g, 64);

@@ -183,8 +183,9 @@ int count_solid(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
 /// solid_share = 1 / (fluid face neighbours) on the interior solid cells (zero without any),
 /// from the ghost layer as it is (zero diagonals beyond a box face, the owners' across a block
 /// face once exchanged).
+/// Rows below first_row are left as they are.
 template <class ExecSpace, class MemSpace, class S>
-void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
+void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, int first_row = 0) {
   const mesh::MacGrid g = A.grid;
   const auto active = A.inverse_diag;
   const auto solid = A.solid;
@@ -192,7 +193,8 @@ void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, 
   const int sy = g.stride_y(), sz = g.stride_z();
   Kokkos::parallel_for(
       "amphora::mac::compute_solid_shares",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::min(math::max(first_row, 0), g.ny), 0},
+                                                        {g.nz, g.ny, g.nx}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         const int c = g.index(i, j, k);
         int n = 0;
@@ -210,11 +212,15 @@ void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, 
 /// `neighbour` face the ghost cells (type and phi filled by a halo exchange) are treated as
 /// interior; the conductances of the ghost cells' own + faces (towards this block's first layer)
 /// are then filled by exchanging cx/cy/cz.
+///
+/// Into A (allocated on g; its ghost entries as an earlier build and exchange left them), the
+/// rows from first_row up: every interior cell of them written (zero off the fluid). The rows
+/// below keep what A holds, which must be what a build would give there: a caller passes a row
+/// below which nothing that the stencil reads has changed since A was built (the water module
+/// on tall cells: the row under the lowest band, below which every cell is fluid or solid).
 template <class ExecSpace, class MemSpace, class Types, class Phi>
-PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g,
-                                               const Types& type, const Phi& phi,
-                                               const mesh::MacBoxBoundaries& box) {
-  PoissonStencil<MemSpace> A(g);
+void build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g, const Types& type, const Phi& phi,
+                           const mesh::MacBoxBoundaries& box, PoissonStencil<MemSpace>& A, int first_row) {
   A.box = box;
   const auto d = A.diag, inv = A.inverse_diag;
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
@@ -230,9 +236,10 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
   // and z. An MDRange over the cells, testing every neighbour against the box, took three times
   // as long on the host (3.6 m pool, 20 builds: 0.18-0.20 s against 0.062-0.068 s).
   const int sy = g.stride_y(), sz = g.stride_z();
+  const int j0 = math::min(math::max(first_row, 0), g.ny), rows = g.ny - j0;
   Kokkos::parallel_for(
-      "amphora::mac::build_poisson_stencil", RangePolicy<ExecSpace>(exec, 0, g.ny * g.nz), KOKKOS_LAMBDA(int row) {
-        const int j = row % g.ny, k = row / g.ny;
+      "amphora::mac::build_poisson_stencil", RangePolicy<ExecSpace>(exec, 0, rows * g.nz), KOKKOS_LAMBDA(int row) {
+        const int j = j0 + row % rows, k = row / rows;
         // per direction -x, +x, -y, +y, -z, +z: the neighbour lies beyond a box face (not
         // another block's), and that face is open
         bool beyond[6] = {false, false, j == 0, j + 1 == g.ny, k == 0, k + 1 == g.nz};
@@ -243,7 +250,11 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
           const int c = first + i;
           const MacCellType t = type(c);
           solid(c) = t == MacCellType::solid;
-          if (t != MacCellType::fluid) continue;
+          if (t != MacCellType::fluid) {
+            cx(c) = cy(c) = cz(c) = 0.0f;
+            d(c) = inv(c) = 0.0;
+            continue;
+          }
           beyond[0] = i == 0 && !neighbour_face[0], beyond[1] = i + 1 == g.nx && !neighbour_face[1];
           double diag = 0.0;
           float conductance[6];
@@ -268,7 +279,17 @@ PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh
         }
       });
   A.any_solid = count_solid(exec, A) > 0;
-  compute_solid_shares(exec, A);
+  // a solid cell's share reads the cells beside it: from the row under the first rebuilt one
+  compute_solid_shares(exec, A, j0 - 1);
+}
+
+/// A new stencil, every row built.
+template <class ExecSpace, class MemSpace, class Types, class Phi>
+PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g,
+                                               const Types& type, const Phi& phi,
+                                               const mesh::MacBoxBoundaries& box) {
+  PoissonStencil<MemSpace> A(g);
+  build_poisson_stencil(exec, g, type, phi, box, A, 0);
   return A;
 }
 
