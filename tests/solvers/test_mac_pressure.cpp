@@ -290,7 +290,7 @@ TEST(MacProjection, ProjectedVelocityIsDiscretelyDivergenceFree) {
   Vector u = to_view<TestMemSpace>(uh), v = to_view<TestMemSpace>(vh), w = to_view<TestMemSpace>(wh);
   const double rho = 1000.0, dt = 0.01;
   const auto A = s.stencil();
-  for (auto [d, f] : {std::pair{0, u}, {1, v}, {2, w}}) kernels::mac::enforce_solid_faces(exec, g, d, s.type, f);
+  for (auto [d, f] : {std::pair{0, u}, {1, v}, {2, w}}) kernels::mac::enforce_solid_faces(exec, kernels::mac::solid_faces(exec, g, d, s.type), f);
   Vector b("b", g.padded_size()), p("p", g.padded_size()), after("after", g.padded_size());
   kernels::mac::pressure_rhs(exec, g, s.type, u, v, w, rho, dt, b);
   for (const char* backend : {"multigrid", "hypre", "mic0"}) {

@@ -72,13 +72,6 @@ void enforce_solid_faces(const ExecSpace& exec, const L& list, const F& face) {
       KOKKOS_LAMBDA(int n) { face(list(n)) = 0.0; });
 }
 
-/// The same for the faces of component d that touch a solid cell or the box now.
-template <class ExecSpace, class T, class F>
-void enforce_solid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const F& face,
-                         const mesh::MacEdges& edges = mesh::box_edges()) {
-  enforce_solid_faces(exec, solid_faces(exec, g, d, type, edges), face);
-}
-
 /// b = -(rho h / dt) (sum of outward face velocities) on fluid cells, zero elsewhere.
 template <class ExecSpace, class T, class U, class V, class W, class B>
 void pressure_rhs(const ExecSpace& exec, const mesh::MacGrid& g, const T& type, const U& u, const V& v, const W& w,

@@ -209,7 +209,7 @@ void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Sta
   const mesh::MacGrid g = T.grid, go = out;
   const int d = static_cast<int>(s), oi = out_offset[0], ok = out_offset[2];
   const int ex = go.nx + (d == 0), ey = go.ny + (d == 1), ez = go.nz + (d == 2);
-  const int j0 = d < 0 ? math::min(math::max(first_row, 0), ey) : 0, rows_written = ey - j0;
+  const int j0 = d < 0 ? math::clamp(first_row, 0, ey) : 0, rows_written = ey - j0;
   const int below = d == 0 ? 1 : d == 1 ? g.stride_y() : d == 2 ? g.stride_z() : 0;
   // per sample column: its tall rows [lo, hi), the rows [wlo, whi) written from the line (or
   // copied, for cell samples), and the line
@@ -264,7 +264,7 @@ void reinitialise_step(const ExecSpace& exec, const mesh::TallCellColumns<MemSpa
   const mesh::MacGrid g = T.grid;
   Kokkos::parallel_for(
       "amphora::mac::reinitialise_step_tall_cells",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::min(math::max(first_row, 0), g.ny), 0},
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::clamp(first_row, 0, g.ny), 0},
                                                         {g.nz, g.ny, g.nx}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         const int c = g.index(i, j, k);

@@ -270,6 +270,7 @@ class WaterMac final : public Module {
   void restore(const std::vector<StateBlock>& blocks) override {
     speed_ = -1.0;
     phi_buffers_match_below_ = 0;
+    stencil_built_from_ = 0;  // the kept stencil's rows are the old state's
     for (const auto& b : blocks)
       for (const auto& [name, a] : b.arrays) {
         if (name == "substeps") substeps_ = static_cast<long>(a.at(0));
@@ -514,7 +515,7 @@ class WaterMac final : public Module {
     // solid now and was at the last build, so its rows are what a build gives (tall cells; all
     // rows without them). Deep splash, 7.6 m pool: a fifth of the rows. On a split grid the
     // lowest band of all blocks: the cells beside a block face read the neighbour's.
-    const int from = optical_depth_ > 0 ? std::max(static_cast<int>(comm_.min(double(lowest_band_))) - 1, 0) : 0;
+    const int from = optical_depth_ > 0 ? row_under_on_every_block(lowest_band_) : 0;
     kernels::mac::build_poisson_stencil(exec, g, type_, phi_, block_.faces(box), stencil_,
                                         std::min(from, stencil_built_from_));
     stencil_built_from_ = from;
@@ -579,7 +580,7 @@ class WaterMac final : public Module {
     // block face, the neighbour's too). Below that row a face lies between fluid cells (known) or
     // touches a solid or the box (zero already), so the marks there are never needed and nothing
     // is cleared: under deep water most rows are skipped.
-    const int marked_from = std::max(static_cast<int>(comm_.min(double(first_row))) - 1, 0);
+    const int marked_from = row_under_on_every_block(first_row);
     for (int d = 0; d < 3; ++d) {
       // faces next to fluid keep their values; solid and box faces are zero (the projection
       // set them), the rest are filled layer by layer from known neighbours
@@ -604,6 +605,10 @@ class WaterMac final : public Module {
       }
     }
   }
+
+  /// The row under the lowest of every block's `row` (0 at the bottom): kernels starting there
+  /// see, across a block face, the neighbour's rows that may differ too.
+  int row_under_on_every_block(int row) const { return std::max(static_cast<int>(comm_.min(double(row))) - 1, 0); }
 
   /// Makes phi_tmp_ equal phi_ in the rows below first_row (copying the rows that differ), so a
   /// level-set kernel writing phi_tmp_ from first_row up and the swap after it leave phi_ whole.
