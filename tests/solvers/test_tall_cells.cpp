@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "kernels/host_vector.hpp"
+#include "kernels/mac/grid_transfer.hpp"
 #include "kernels/mac/tall_cell_transfer.hpp"
 #include "solvers/hypre_boomeramg.hpp"
 #include "solvers/mac/pressure_solver.hpp"
@@ -107,6 +108,77 @@ TEST(TallCellMatrix, IsSymmetricAndEqualsPtAPWithTallCells) {
     EXPECT_LT((Me - PtAP).norm(), 1e-12 * Me.norm()) << "depth " << depth;
     std::printf("optical depth %d: %ld tall-cell unknowns for %ld uniform (%.1fx fewer), %ld tall cells\n", depth,
                 T.unknowns(), U.n, double(U.n) / T.unknowns(), T.tall_cells());
+  }
+}
+
+/// The stencil without what a build or coarsening knows of its values: every row read.
+HostStencil without_hints(const HostStencil& A) {
+  HostStencil B = kernels::mac::copy_stencil<HostMemSpace>(A);
+  Kokkos::deep_copy(B.surface_free_rows, std::uint8_t(0));
+  B.unit_fluid_faces = false;
+  return B;
+}
+
+void expect_same_matrix(const CsrMatrix& M, const CsrMatrix& R) {
+  ASSERT_EQ(M.n, R.n);
+  EXPECT_EQ(M.row_ptr, R.row_ptr);
+  EXPECT_EQ(M.cols, R.cols);
+  EXPECT_EQ(M.values, R.values);  // bit for bit
+}
+
+// The assembly leaves unread the rows a build marks free of free-surface terms and sums the
+// faces between fluid cells (c = 1) in closed form: the same matrix as reading every row, on
+// the built lattice and on a coarsened one (its marks from the finer one's). The surface steps
+// down by 6 cells halfway along x, so air lies beside the tall cells of the deeper columns.
+TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
+  const Basin b(16, 32, 0.8);
+  std::vector<MacCellType> type = b.type;
+  std::vector<double> phi(b.grid.padded_size(), 1.0);
+  for (int k = 0; k < b.grid.nz; ++k)
+    for (int j = 0; j < b.grid.ny; ++j)
+      for (int i = 0; i < b.grid.nx; ++i) {
+        const auto x = b.grid.cell_centre(i, j, k);
+        const int c = b.grid.index(i, j, k);
+        phi[c] = x[1] - (x[0] < 0.5 ? b.eta : b.eta - 0.375) - 0.03 * std::sin(7 * x[0]) * std::sin(5 * x[2]);
+        if (type[c] != MacCellType::solid) type[c] = phi[c] < 0 ? MacCellType::fluid : MacCellType::air;
+      }
+  mesh::MacBoxBoundaries faces;
+  faces.fill(mesh::MacBoundary::wall);
+  faces[3] = mesh::MacBoundary::open;
+  const HostStencil A = kernels::mac::build_poisson_stencil<HostExecSpace, HostMemSpace>(
+      HostExecSpace(), b.grid, to_view<HostMemSpace>(type), to_view<HostMemSpace>(phi), faces);
+  ASSERT_TRUE(A.unit_fluid_faces);
+  // the marks: set exactly where no cell of the row has D != 0 (the built stencil is exact)
+  int free_rows = 0, surface_rows = 0;
+  const int sy = b.grid.stride_y(), sz = b.grid.stride_z();
+  for (int k = 0; k < b.grid.nz; ++k)
+    for (int j = 0; j < b.grid.ny; ++j) {
+      bool surface = false;
+      for (int i = 0; i < b.grid.nx; ++i) {
+        const int c = b.grid.index(i, j, k);
+        const double D = A.diag(c) - (double(A.cx(c - 1)) + double(A.cx(c)) + double(A.cy(c - sy)) +
+                                      double(A.cy(c)) + double(A.cz(c - sz)) + double(A.cz(c)));
+        surface = surface || (A.diag(c) != 0.0 && D != 0.0);
+      }
+      const bool marked = A.surface_free_rows(A.surface_free_row(j, k)) != 0;
+      EXPECT_EQ(marked, !surface) << "row " << j << ", line " << k;
+      (marked ? free_rows : surface_rows)++;
+    }
+  EXPECT_GT(free_rows, 0);
+  EXPECT_GT(surface_rows, 0);
+  for (int depth : {2, 4}) {
+    const mesh::TallCellGrid T(A, depth);
+    EXPECT_GT(T.tall_cells(), 100);
+    expect_same_matrix(assemble_tall_cell_matrix(T, A), assemble_tall_cell_matrix(T, without_hints(A)));
+    // the next multigrid level
+    const HostStencil C = kernels::mac::coarsen_stencil(HostExecSpace(), A);
+    EXPECT_FALSE(C.unit_fluid_faces);
+    long coarse_free = 0;
+    for (std::size_t r = 0; r < C.surface_free_rows.extent(0); ++r) coarse_free += C.surface_free_rows(r);
+    EXPECT_GT(coarse_free, 0);
+    const mesh::TallCellGrid Tc(C, T);
+    EXPECT_GT(Tc.tall_cells(), 10);
+    expect_same_matrix(assemble_tall_cell_matrix(Tc, C), assemble_tall_cell_matrix(Tc, without_hints(C)));
   }
 }
 

@@ -270,6 +270,18 @@ PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonSte
         ccz(c) = 0.5f * sz_;
       });
   coarse_diagonal(exec, fine_A, coarse_A);
+  // A coarse cell's free-surface term is half its children's (coarse_diagonal): zero on a row
+  // whose four child rows are all known free of them.
+  const auto ffree = fine_A.surface_free_rows, cfree = coarse_A.surface_free_rows;
+  Kokkos::parallel_for(
+      "amphora::mac::coarsen_stencil::surface_free_rows", RangePolicy<ExecSpace>(exec, 0, gc.ny * gc.nz),
+      KOKKOS_LAMBDA(int row) {
+        const int J = row % gc.ny, K = row / gc.ny;
+        std::uint8_t all = 1;
+        for (int c3 = 0; c3 < 2; ++c3)
+          for (int b = 0; b < 2; ++b) all = all & ffree((2 * J + b) + gf.ny * (2 * K + c3));
+        cfree(row) = all;
+      });
   coarse_A.any_solid = fine_A.any_solid && count_solid(exec, coarse_A) > 0;
   compute_solid_shares(exec, coarse_A);
   return coarse_A;

@@ -43,6 +43,15 @@ struct PoissonStencil {
   /// into solids (grid_transfer.hpp); stored so a ghost solid cell carries its owner's value.
   Kokkos::View<double*, MemSpace> solid_share;
   bool any_solid = false;  ///< some cell is solid (else the multigrid skips the extension)
+  /// What a build or a coarsening knows of the values, for an assembler that can then leave
+  /// lattice rows unread (the tall-cell matrix, whose tall cells span most rows of a deep pool):
+  /// 1 where every cell of the x-row (j, k), at surface_free_row(j, k), has D = 0 (no
+  /// free-surface face, no open box face), 0 where that is not known.
+  Kokkos::View<std::uint8_t*, MemSpace> surface_free_rows;
+  /// Every face between two fluid cells has c = 1 (a build; not a coarsened stencil).
+  bool unit_fluid_faces = false;
+
+  KOKKOS_INLINE_FUNCTION int surface_free_row(int j, int k) const { return j + grid.ny * k; }
 
   /// sum_j c_ij x_j over the six neighbours of cell c (x zero where a cell is not fluid).
   template <class X>
@@ -74,7 +83,8 @@ struct PoissonStencil {
         cy("amphora::mac::cy", g.padded_size()),
         cz("amphora::mac::cz", g.padded_size()),
         solid("amphora::mac::solid", g.padded_size()),
-        solid_share("amphora::mac::solid_share", g.padded_size()) {}
+        solid_share("amphora::mac::solid_share", g.padded_size()),
+        surface_free_rows("amphora::mac::surface_free_rows", static_cast<std::size_t>(g.ny) * g.nz) {}
 };
 
 /// v = 0 on the ghost planes k = -1 and k = nz, which the flat stencil loops do not visit (the
@@ -225,6 +235,7 @@ void build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g, const 
   const auto d = A.diag, inv = A.inverse_diag;
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
   const auto solid = A.solid;
+  const auto free_rows = A.surface_free_rows;
   const bool has_phi = phi.extent(0) > 0;
   Kokkos::Array<bool, 6> open_face, neighbour_face;
   for (int f = 0; f < 6; ++f) {
@@ -246,6 +257,7 @@ void build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g, const 
         for (int f = 2; f < 6; ++f) beyond[f] = beyond[f] && !neighbour_face[f];
         const int offset[6] = {-1, 1, -sy, sy, -sz, sz};
         const int first = g.index(0, j, k);
+        bool surface = false;  // some cell of the row has a free-surface or open-face term
         for (int i = 0; i < g.nx; ++i) {
           const int c = first + i;
           const MacCellType t = type(c);
@@ -261,7 +273,7 @@ void build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g, const 
           for (int f = 0; f < 6; ++f) {
             conductance[f] = 0.0f;
             if (beyond[f]) {
-              if (open_face[f]) diag += 2.0;  // p = 0 on the box face, h/2 away
+              if (open_face[f]) diag += 2.0, surface = true;  // p = 0 on the box face, h/2 away
               continue;
             }
             const int n = c + offset[f];
@@ -271,13 +283,16 @@ void build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g, const 
               diag += 1.0;
             } else if (tn == MacCellType::air) {
               diag += has_phi ? ghost_fluid_weight(phi(c), phi(n)) : 1.0;
+              surface = true;
             }
           }
           cx(c) = conductance[1], cy(c) = conductance[3], cz(c) = conductance[5];
           d(c) = diag;
           inv(c) = diag > 0.0 ? 1.0 / diag : 0.0;
         }
+        free_rows(j + g.ny * k) = surface ? 0 : 1;
       });
+  A.unit_fluid_faces = true;
   A.any_solid = count_solid(exec, A) > 0;
   // a solid cell's share reads the cells beside it: from the row under the first rebuilt one
   compute_solid_shares(exec, A, j0 - 1);
@@ -311,6 +326,8 @@ PoissonStencil<DstMemSpace, S> copy_stencil(const PoissonStencil<MemSpace, S>& A
   B.cx = copy(A.cx), B.cy = copy(A.cy), B.cz = copy(A.cz);
   B.solid = copy(A.solid);
   B.solid_share = copy(A.solid_share);
+  B.surface_free_rows = copy(A.surface_free_rows);
+  B.unit_fluid_faces = A.unit_fluid_faces;
   return B;
 }
 
@@ -334,6 +351,8 @@ PoissonStencil<MemSpace, Scalar> convert_stencil(const ExecSpace& exec, const Po
   B.solid = A.solid;
   B.solid_share = A.solid_share;
   B.any_solid = A.any_solid;
+  B.surface_free_rows = A.surface_free_rows;
+  B.unit_fluid_faces = A.unit_fluid_faces;
   B.diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::diag", A.diag.extent(0));
   B.inverse_diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::inverse_diag", A.diag.extent(0));
   const auto d = A.diag, inv = A.inverse_diag, bd = B.diag, binv = B.inverse_diag;

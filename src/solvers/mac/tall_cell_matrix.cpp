@@ -89,6 +89,11 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
   };
   const auto& d = A.diag;
   const auto &cx = A.cx, &cy = A.cy, &cz = A.cz;
+  // What the stencil knows of its values lets most rows of a tall cell go unread (their sums
+  // are the same): rows known free of free-surface terms, and faces between fluid cells with
+  // c = 1 exactly, whose sums over rows are sums of small integers, exact in closed form.
+  const bool unit = A.unit_fluid_faces;
+  const auto surface_free = [&](int j, int k) { return A.surface_free_rows(A.surface_free_row(j, k)) != 0; };
   // A column's tall cell: the free-surface terms D p^2 of its rows (D = d - sum c: nonzero
   // only where a row meets air beside it), its inner vertical faces in one block, its top face.
   auto column_terms = [&](int i, int k) {
@@ -96,6 +101,7 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
     if (!col.has_tall_cell()) return;
     const int bot = static_cast<int>(T.global_first_unknown(i, k));
     for (int j = col.terrain; j < col.band; ++j) {
+      if (surface_free(j, k)) continue;
       const int c = g.index(i, j, k);
       if (d(c) == 0.0) continue;
       const double D = d(c) - (double(cx(c - 1)) + double(cx(c)) + double(cy(c - sy)) + double(cy(c)) +
@@ -106,8 +112,10 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
       const int m = T.weights(i, j, k, ids, w);
       add_outer(ids, w, m, D);
     }
-    double inside = 0.0;
-    for (int j = col.terrain; j + 1 < col.band; ++j) inside += cy(g.index(i, j, k));
+    // the faces between its rows: all between fluid cells
+    double inside = unit ? double(col.band - 1 - col.terrain) : 0.0;
+    if (!unit)
+      for (int j = col.terrain; j + 1 < col.band; ++j) inside += cy(g.index(i, j, k));
     if (inside != 0.0) {
       const double dt = tall_step(col);
       const int ids[2] = {bot, bot + 1};
@@ -130,7 +138,13 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
     const int j0 = std::max(col.terrain, next.terrain), j_tall = std::min(col.band, next.band);
     const int j_end = std::max(col.band, next.band);
     double m0 = 0.0, m1 = 0.0, m2 = 0.0;
-    for (int j = j0; j < j_end; ++j) {
+    int j_from = j0;
+    if (unit && j_tall > j0) {  // c = 1 on [j0, j_tall), fluid on both sides
+      const long long n = j_tall - j0;
+      m0 = double(n), m1 = double(n * (n - 1) / 2), m2 = double((n - 1) * n * (2 * n - 1) / 6);
+      j_from = j_tall;
+    }
+    for (int j = j_from; j < j_end; ++j) {
       const double c = cond(g.index(i, j, k));
       if (c == 0.0) continue;
       if (j < j_tall) {
