@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kernels/host_vector.hpp"
+#include "kernels/mac/grid_transfer.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
 #include "kernels/mac/level_set.hpp"
@@ -351,15 +352,11 @@ TEST(MacProjection, SolidFacesListsEveryFaceTouchingASolidOrTheBoxInOrder) {
 // The water module keeps its stencil and rebuilds it from the row under the lowest band: a
 // rebuild from row r - 1 after the cells changed only from row r up equals a full build of the
 // new state bit for bit, and writes no coefficient below row r - 1.
-TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
-  const SphereScene scene(16, true);
+/// A new state of the scene: from row r up the level set moves by up to half a cell and the
+/// cell types follow it (solids kept). Returns how many cells changed type.
+long move_surface_from_row(const SphereScene& scene, int r, Kokkos::View<MacCellType*, TestMemSpace>& type2,
+                           Vector& phi2) {
   const MacGrid& g = scene.grid;
-  mesh::MacBoxBoundaries box;
-  box.fill(mesh::MacBoundary::wall);
-  box[3] = mesh::MacBoundary::open;
-  const int r = 9;
-  // the new state: from row r up the level set moves by up to half a cell and the cell types
-  // follow it (solids kept)
   // a copy (create_mirror_view would alias scene.type on the host)
   auto types = Kokkos::create_mirror(scene.type);
   Kokkos::deep_copy(types, scene.type);
@@ -375,10 +372,23 @@ TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
         changed += now != types(c);
         types(c) = now;
       }
-  EXPECT_GT(changed, 10);
-  Kokkos::View<MacCellType*, TestMemSpace> type2("type2", g.padded_size());
+  type2 = Kokkos::View<MacCellType*, TestMemSpace>("type2", g.padded_size());
   Kokkos::deep_copy(type2, types);
-  const Vector phi2 = to_view<TestMemSpace>(phi, "phi2");
+  phi2 = to_view<TestMemSpace>(phi, "phi2");
+  return changed;
+}
+
+TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
+  const SphereScene scene(16, true);
+  const MacGrid& g = scene.grid;
+  mesh::MacBoxBoundaries box;
+  box.fill(mesh::MacBoundary::wall);
+  box[3] = mesh::MacBoundary::open;
+  const int r = 9;
+  Kokkos::View<MacCellType*, TestMemSpace> type2;
+  Vector phi2;
+  EXPECT_GT(move_surface_from_row(scene, r, type2, phi2), 10);
+  auto types = Kokkos::create_mirror(scene.type);
   const auto full = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, type2, phi2,
                                                                                      box);
   const auto same = [&](const auto& a, const auto& b, int from_row, const char* name) {
@@ -445,6 +455,70 @@ TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
   kernels::mac::build_poisson_stencil(TestExecSpace(), g, type2, scene.phi, box, C, q);
   same(C.solid_share, full_q.solid_share, -1, "solid_share after a change above the terrain");
   same(C.diag, full_q.diag, -1, "diag after a change above the terrain");
+}
+
+// A coarse stencil kept from the old fine one and coarsened again from the first coarse row
+// that the fine rebuild (from row r - 1) can reach equals a coarsening of the new fine stencil
+// in every array, and leaves the coarse rows below unwritten.
+TEST(MacPoissonStencil, CoarseningFromARowEqualsAFullCoarsening) {
+  const SphereScene scene(32, true);
+  const MacGrid& g = scene.grid;
+  mesh::MacBoxBoundaries box;
+  box.fill(mesh::MacBoundary::wall);
+  box[3] = mesh::MacBoundary::open;
+  const int r = 17;  // the fine stencil changes from row r - 1 up
+  Kokkos::View<MacCellType*, TestMemSpace> type2;
+  Vector phi2;
+  EXPECT_GT(move_surface_from_row(scene, r, type2, phi2), 10);
+  const TestExecSpace exec;
+  using kernels::mac::coarsen_stencil;
+  auto fine = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(exec, g, scene.type, scene.phi, box);
+  auto kept = coarsen_stencil(exec, fine);
+  const auto old_coarse = coarsen_stencil(exec, fine);
+  kernels::mac::build_poisson_stencil(exec, g, type2, phi2, box, fine, r - 1);
+  const auto full = coarsen_stencil(exec, fine);
+  const int J0 = kernels::mac::first_coarse_row_changed(r - 1);
+  // mark the kept rows below J0 to see that they are not written
+  // a copy (create_mirror_view would alias kept.diag on the host)
+  const auto d_marked = Kokkos::create_mirror(kept.diag);
+  Kokkos::deep_copy(d_marked, kept.diag);
+  const MacGrid gc = kept.grid;
+  for (int k = 0; k < gc.nz; ++k)
+    for (int j = 0; j < J0; ++j)
+      for (int i = 0; i < gc.nx; ++i) d_marked(gc.index(i, j, k)) += 1000.0;
+  Kokkos::deep_copy(kept.diag, d_marked);
+  coarsen_stencil(exec, fine, kept, J0);
+  const auto count_differ = [&](const auto& a, const auto& b, int from_row) {
+    const auto ha = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), a);
+    const auto hb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b);
+    long differ = 0;
+    for (int k = -1; k <= gc.nz; ++k)
+      for (int j = std::max(from_row, -1); j <= gc.ny; ++j)
+        for (int i = -1; i <= gc.nx; ++i) differ += ha(gc.index(i, j, k)) != hb(gc.index(i, j, k));
+    return differ;
+  };
+  // the new fine state differs from the old in the coarse rows from J0 (else the test proves nothing)
+  EXPECT_GT(count_differ(full.diag, old_coarse.diag, J0), 0);
+  EXPECT_EQ(count_differ(kept.diag, full.diag, J0), 0);
+  EXPECT_EQ(count_differ(kept.inverse_diag, full.inverse_diag, -1), 0);
+  EXPECT_EQ(count_differ(kept.cx, full.cx, -1), 0);
+  EXPECT_EQ(count_differ(kept.cy, full.cy, -1), 0);
+  EXPECT_EQ(count_differ(kept.cz, full.cz, -1), 0);
+  EXPECT_EQ(count_differ(kept.solid, full.solid, -1), 0);
+  EXPECT_EQ(count_differ(kept.solid_share, full.solid_share, -1), 0);
+  EXPECT_EQ(kept.any_solid, full.any_solid);
+  const auto free_kept = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), kept.surface_free_rows);
+  const auto free_full = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), full.surface_free_rows);
+  long free_differ = 0;
+  for (std::size_t m = 0; m < free_kept.extent(0); ++m) free_differ += free_kept(m) != free_full(m);
+  EXPECT_EQ(free_differ, 0);
+  // below J0 the marked diagonal stays
+  const auto d_after = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), kept.diag);
+  long marked = 0;
+  for (int k = 0; k < gc.nz; ++k)
+    for (int j = 0; j < J0; ++j)
+      for (int i = 0; i < gc.nx; ++i) marked += d_after(gc.index(i, j, k)) == d_marked(gc.index(i, j, k));
+  EXPECT_EQ(marked, static_cast<long>(gc.nx) * gc.nz * J0);
 }
 
 TEST(MacMultigrid, RefusesGridsItCannotCoarsenNamingValidSizes) {

@@ -209,9 +209,10 @@ void prolongate_correction(const ExecSpace& exec, const PoissonStencil<MemSpace,
 }
 
 /// Pass 2 of coarsen_stencil: diagonal = half the children's free-surface terms + the coarse
-/// conductances (again after a block's ghost conductances arrive).
+/// conductances (again after a block's ghost conductances arrive), from coarse row first_row up.
 template <class ExecSpace, class MemSpace>
-void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A, const PoissonStencil<MemSpace>& coarse_A) {
+void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A, const PoissonStencil<MemSpace>& coarse_A,
+                     int first_row = 0) {
   const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto fd = fine_A.diag, fcx = fine_A.cx, fcy = fine_A.cy, fcz = fine_A.cz;
   const auto cd = coarse_A.diag, cinv = coarse_A.inverse_diag, ccx = coarse_A.cx, ccy = coarse_A.cy, ccz = coarse_A.cz;
@@ -220,7 +221,8 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
   const int csy = gc.stride_y(), csz = gc.stride_z();
   Kokkos::parallel_for(
       "amphora::mac::coarsen_stencil::diagonal",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gc.nz, gc.ny, gc.nx}),
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::clamp(first_row, 0, gc.ny), 0},
+                                                        {gc.nz, gc.ny, gc.nx}),
       KOKKOS_LAMBDA(int K, int J, int I) {
         double dirichlet = 0.0;
         bool any_fluid = false, all_solid = true;
@@ -244,18 +246,27 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
       });
 }
 
-/// The coarse matrix of a fine one (grid dimensions even): see the header comment.
+/// The first coarse row that a change of the fine stencil from fine row `first_row` up can
+/// reach: a coarse row reads the fine rows 2J - 1 (the -y faces) to 2J + 1.
+inline int first_coarse_row_changed(int first_row) { return math::max(first_row, 0) / 2; }
+
+/// The coarse matrix of a fine one (grid dimensions even; see the header comment) into
+/// coarse_A (allocated on the coarsened grid), from coarse row first_row up. The rows below
+/// keep what coarse_A holds, which must be what a coarsening gives there: pass
+/// first_coarse_row_changed(the fine row from which the fine stencil changed since coarse_A was
+/// coarsened from it).
 template <class ExecSpace, class MemSpace>
-PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A) {
-  const mesh::MacGrid gf = fine_A.grid, gc = gf.coarsened();
-  PoissonStencil<MemSpace> coarse_A(gc);
+void coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A, PoissonStencil<MemSpace>& coarse_A,
+                     int first_row) {
+  const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
+  const int J0 = math::clamp(first_row, 0, gc.ny);
   coarse_A.box = fine_A.box;
   const auto fcx = fine_A.cx, fcy = fine_A.cy, fcz = fine_A.cz;
   const auto ccx = coarse_A.cx, ccy = coarse_A.cy, ccz = coarse_A.cz;
   // Pass 1: conductances of the + faces of every coarse cell.
   Kokkos::parallel_for(
       "amphora::mac::coarsen_stencil::faces",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {gc.nz, gc.ny, gc.nx}),
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, J0, 0}, {gc.nz, gc.ny, gc.nx}),
       KOKKOS_LAMBDA(int K, int J, int I) {
         float sx = 0, sy_ = 0, sz_ = 0;
         for (int b = 0; b < 2; ++b)
@@ -269,21 +280,31 @@ PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonSte
         ccy(c) = 0.5f * sy_;
         ccz(c) = 0.5f * sz_;
       });
-  coarse_diagonal(exec, fine_A, coarse_A);
+  coarse_diagonal(exec, fine_A, coarse_A, J0);
   // A coarse cell's free-surface term is half its children's (coarse_diagonal): zero on a row
   // whose four child rows are all known free of them.
   const auto ffree = fine_A.surface_free_rows, cfree = coarse_A.surface_free_rows;
+  const int rows = gc.ny - J0;
   Kokkos::parallel_for(
-      "amphora::mac::coarsen_stencil::surface_free_rows", RangePolicy<ExecSpace>(exec, 0, gc.ny * gc.nz),
-      KOKKOS_LAMBDA(int row) {
-        const int J = row % gc.ny, K = row / gc.ny;
+      "amphora::mac::coarsen_stencil::surface_free_rows", RangePolicy<ExecSpace>(exec, 0, rows * gc.nz),
+      KOKKOS_LAMBDA(int m) {
+        const int J = J0 + m % rows, K = m / rows;
         std::uint8_t all = 1;
         for (int c3 = 0; c3 < 2; ++c3)
           for (int b = 0; b < 2; ++b) all = all & ffree((2 * J + b) + gf.ny * (2 * K + c3));
-        cfree(row) = all;
+        cfree(J + gc.ny * K) = all;
       });
+  coarse_A.unit_fluid_faces = false;
   coarse_A.any_solid = fine_A.any_solid && count_solid(exec, coarse_A) > 0;
-  compute_solid_shares(exec, coarse_A);
+  // a solid cell's share reads the cells beside it: from the row under the first coarsened one
+  compute_solid_shares(exec, coarse_A, J0 - 1);
+}
+
+/// A new coarse matrix of a fine one, every row coarsened.
+template <class ExecSpace, class MemSpace>
+PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A) {
+  PoissonStencil<MemSpace> coarse_A(fine_A.grid.coarsened());
+  coarsen_stencil(exec, fine_A, coarse_A, 0);
   return coarse_A;
 }
 

@@ -22,6 +22,7 @@
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
 #include "solvers/mac/tall_cell_matrix.hpp"
+#include "solvers/mac/tall_cell_multigrid.hpp"
 
 namespace amphora::water_mac {
 
@@ -516,9 +517,10 @@ class WaterMac final : public Module {
     // rows without them). Deep splash, 7.6 m pool: a fifth of the rows. On a split grid the
     // lowest band of all blocks: the cells beside a block face read the neighbour's.
     const int from = optical_depth_ > 0 ? row_under_on_every_block(lowest_band_) : 0;
-    kernels::mac::build_poisson_stencil(exec, g, type_, phi_, block_.faces(box), stencil_,
-                                        std::min(from, stencil_built_from_));
+    const int rebuilt_from = std::min(from, stencil_built_from_);
+    kernels::mac::build_poisson_stencil(exec, g, type_, phi_, block_.faces(box), stencil_, rebuilt_from);
     stencil_built_from_ = from;
+    coarse_stencils_.unchanged_below = rebuilt_from;  // the multigrid's coarse levels likewise
     const Stencil& A = stencil_;
     halo_.exchange(exec, g, A.cx);  // the ghost cells' + faces: this block's - faces
     halo_.exchange(exec, g, A.cz);
@@ -550,7 +552,7 @@ class WaterMac final : public Module {
       kernels::mac::tall_cell_restrict(exec, layout, p_, y);
       kernels::mac::tall_cell_gram_solve(exec, layout, y);
       Kokkos::Profiling::pushRegion("amphora::water::tall_cell_solver_setup");
-      auto solver = solvers::mac::make_tall_cell_pressure_solver(backend_, exec, T, std::move(M), A);
+      auto solver = solvers::mac::make_tall_cell_pressure_solver(backend_, exec, T, std::move(M), A, &coarse_stencils_);
       Kokkos::Profiling::popRegion();
       phases_.lap(pressure_setup);
       r = solver->solve(exec, bt, y, control_);
@@ -758,6 +760,9 @@ class WaterMac final : public Module {
   /// rebuilt last (project())
   Stencil stencil_;
   int stencil_built_from_ = 0;
+  /// the tall-cell multigrid's coarse lattice stencils, kept with stencil_ and coarsened again
+  /// from the rows it was rebuilt in
+  solvers::mac::KeptCoarseStencils<Mem> coarse_stencils_;
   /// tall_ before the last classify(): the velocity's tall cells until it is fitted to tall_
   mesh::TallCellColumns<Mem> fitted_tall_;
   Kokkos::View<std::uint8_t*, Mem> solid_, valid_;

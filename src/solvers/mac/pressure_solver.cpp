@@ -189,14 +189,16 @@ class CsrMic0PressureSolver final : public PressureSolver<ExecSpace> {
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
     PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t,
-    const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A) {
+    const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
+    KeptCoarseStencils<typename ExecSpace::memory_space>* kept) {
   if (T.block().split() && backend == PressureBackend::mic0)
     throw std::invalid_argument(std::string("pressure back end '") + to_string(backend) +
                                 "' solves tall cells on one rank; for tall cells split over ranks use 'multigrid' "
                                 "or 'hypre'");
   switch (backend) {
     case PressureBackend::multigrid:
-      return std::make_unique<MultigridPressureSolver<ExecSpace, TallCellMultigrid<ExecSpace>>>(exec, T, std::move(A_t), A);
+      return std::make_unique<MultigridPressureSolver<ExecSpace, TallCellMultigrid<ExecSpace>>>(
+          exec, T, std::move(A_t), A, TallCellMultigridOptions{}, kept);
     case PressureBackend::hypre:
       return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(std::move(A_t), T.block().comm, T.first_unknown());
     case PressureBackend::mic0: return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(std::move(A_t));
@@ -229,13 +231,13 @@ template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_pressure_solver(
     PressureBackend, const DefaultExecSpace&, const kernels::mac::PoissonStencil<DefaultMemSpace>&, const MacBlock&);
 template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_tall_cell_pressure_solver(
     PressureBackend, const DefaultExecSpace&, const mesh::TallCellGrid&, CsrMatrix,
-    const kernels::mac::PoissonStencil<DefaultMemSpace>&);
+    const kernels::mac::PoissonStencil<DefaultMemSpace>&, KeptCoarseStencils<DefaultMemSpace>*);
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_pressure_solver(
     PressureBackend, const Kokkos::Serial&, const kernels::mac::PoissonStencil<Kokkos::HostSpace>&, const MacBlock&);
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_tall_cell_pressure_solver(
     PressureBackend, const Kokkos::Serial&, const mesh::TallCellGrid&, CsrMatrix,
-    const kernels::mac::PoissonStencil<Kokkos::HostSpace>&);
+    const kernels::mac::PoissonStencil<Kokkos::HostSpace>&, KeptCoarseStencils<Kokkos::HostSpace>*);
 #endif
 
 }  // namespace amphora::solvers::mac

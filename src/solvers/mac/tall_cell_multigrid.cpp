@@ -53,7 +53,8 @@ CsrMatrix gather_rows(MPI_Comm comm, const CsrMatrix& M, std::vector<int>& count
 template <class ExecSpace>
 TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T,
                                                 CsrMatrix A_t, const Stencil& A,
-                                                const TallCellMultigridOptions& options)
+                                                const TallCellMultigridOptions& options,
+                                                KeptCoarseStencils<MemSpace>* kept)
     : halo_(T.block()) {
   const mesh::MacBlock& block = T.block();
   const MPI_Comm comm = block.comm;
@@ -66,6 +67,7 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
   Stencil level_A = A;
   complete_block_stencil(exec, halo_, static_cast<const Stencil*>(nullptr), level_A);
   mesh::MacBlock level_block = block;
+  int unchanged_below = kept ? kept->unchanged_below : 0;  // on this level's lattice
   for (int l = 0;; ++l) {
     auto L = std::make_unique<Level>();
     const int n = static_cast<int>(level_matrix.n);
@@ -113,8 +115,16 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     Kokkos::Profiling::popRegion();
     // the next level: the coarser lattice, its tall cells following this level's
     Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_grid");
-    Stencil coarse = kernels::mac::coarsen_stencil(exec, level_A);
+    // the coarser lattice's stencil: a kept one coarsened again from the rows that can differ
+    const bool keeps = kept && static_cast<std::size_t>(l) < kept->levels.size();
+    Stencil coarse = keeps ? kept->levels[l] : Stencil(level_A.grid.coarsened());
+    unchanged_below = keeps ? kernels::mac::first_coarse_row_changed(unchanged_below) : 0;
+    kernels::mac::coarsen_stencil(exec, level_A, coarse, unchanged_below);
     complete_block_stencil(exec, halo_, &level_A, coarse);
+    if (keeps)
+      kept->levels[l] = coarse;
+    else if (kept)
+      kept->levels.push_back(coarse);
     level_A = coarse;
     for (int d : {0, 2}) level_block.global_lower[d] /= 2;
     const auto host_A = kernels::mac::host_stencil(level_A);

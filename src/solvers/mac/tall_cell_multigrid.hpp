@@ -36,6 +36,18 @@ struct TallCellMultigridOptions {
   long max_coarse_cells = 4096;  ///< coarsest lattice size (the tall-cell system on it is factorised)
 };
 
+/// The coarse levels' lattice stencils, kept by a caller between multigrids built over a finest
+/// stencil that changes from some row up only (the water module's, rebuilt from under the
+/// lowest band): each level's is then coarsened again only from the first row its finer one can
+/// have changed in (kernels::mac::first_coarse_row_changed). For one grid and block.
+template <class MemSpace>
+struct KeptCoarseStencils {
+  std::vector<kernels::mac::PoissonStencil<MemSpace>> levels;  ///< empty at first
+  /// The finest stencil's rows below this are what they were at the last multigrid built with
+  /// these (0: none known, every row coarsened); set by the caller before each.
+  int unchanged_below = 0;
+};
+
 template <class ExecSpace>
 class TallCellMultigrid {
  public:
@@ -47,8 +59,9 @@ class TallCellMultigrid {
   /// T and A_t = P^T A P of the uniform stencil A (on a split grid: this block's rows, and A's
   /// ghost conductances exchanged). Collective over T.block()'s ranks. A_t by value: a moved
   /// one's arrays are kept as the finest level's matrix where the host can read them.
+  /// With `kept`, the coarse lattice stencils are taken from and left in it.
   TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t, const Stencil& A,
-                    const TallCellMultigridOptions& options = {});
+                    const TallCellMultigridOptions& options = {}, KeptCoarseStencils<MemSpace>* kept = nullptr);
   TallCellMultigrid(const TallCellMultigrid&) = delete;  // the smoothers point at the matrices
   TallCellMultigrid& operator=(const TallCellMultigrid&) = delete;
 
