@@ -2,17 +2,47 @@
 // A host CSR matrix: the assembled form handed to hypre (coarse grids, comparisons).
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <Kokkos_Core.hpp>
 
 namespace amphora::solvers {
 
+/// std::allocator, except that a vector's resize leaves new elements default-initialised (a
+/// number: unset) rather than zeroed. The CSR arrays are sized and then written entry by entry,
+/// on the host threads; zeroed first, on one thread, they cost the tall-cell multigrid's set-up
+/// of a deep pool tens of MB of writes per sub-step for nothing.
+template <class T>
+struct uninitialised_allocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = uninitialised_allocator<U>;
+  };
+  uninitialised_allocator() = default;
+  template <class U>
+  uninitialised_allocator(const uninitialised_allocator<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+template <class T>
+using csr_vector = std::vector<T, uninitialised_allocator<T>>;
+
 struct CsrMatrix {
   long n = 0;
-  std::vector<long> row_ptr;  ///< n + 1
-  std::vector<int> cols;
-  std::vector<double> values;
+  csr_vector<long> row_ptr;  ///< n + 1
+  csr_vector<int> cols;
+  csr_vector<double> values;
   long nnz() const { return static_cast<long>(values.size()); }
 };
 

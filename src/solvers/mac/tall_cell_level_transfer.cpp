@@ -44,7 +44,7 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
     int i, j, k;
   };
   const auto ring = fine.ring_unknown_cells();
-  std::vector<Carrier> carriers(static_cast<std::size_t>(fine.unknowns()));
+  csr_vector<Carrier> carriers(static_cast<std::size_t>(fine.unknowns()));  // each written below
   carriers.reserve(carriers.size() + ring.size());
   Kokkos::parallel_for("amphora::tall_mg::transfer_carriers", Kokkos::RangePolicy<HostExecSpace>(0, gf.nz), [&](int k) {
     for (int i = 0; i < gf.nx; ++i)
@@ -79,7 +79,7 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
     int id[2];
     double w[2];
   };
-  std::vector<CoarseCell> coarse_cells(static_cast<std::size_t>(gc.padded_size()), CoarseCell{0, {0, 0}, {0.0, 0.0}});
+  csr_vector<CoarseCell> coarse_cells(static_cast<std::size_t>(gc.padded_size()));  // each written below
   Kokkos::parallel_for("amphora::tall_mg::transfer_coarse_cells", Kokkos::RangePolicy<HostExecSpace>(0, gc.nz + 2),
                        [&](int kk) {
                          const int k = kk - 1;
@@ -87,6 +87,7 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
                            for (int i = -1; i <= gc.nx; ++i) {
                              const int C = gc.index(i, j, k);
                              CoarseCell& cell = coarse_cells[C];
+                             cell = CoarseCell{0, {0, 0}, {0.0, 0.0}};
                              if (coarse_A.solid(C))
                                cell.n = -1;
                              else if (coarse_A.inverse_diag(C) != 0.0 && j >= 0 && j < gc.ny)
@@ -261,9 +262,9 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
     part_row[c + 1] = part_row[c] + static_cast<long>(parts[c].ends.size());
     part_entry[c + 1] = part_entry[c] + static_cast<long>(parts[c].cols.size());
   }
-  std::vector<long> row_ptr(part_row[chunks] + 1);
-  std::vector<int> cols(part_entry[chunks]);
-  std::vector<double> values(part_entry[chunks]);
+  csr_vector<long> row_ptr(part_row[chunks] + 1);
+  csr_vector<int> cols(part_entry[chunks]);
+  csr_vector<double> values(part_entry[chunks]);
   row_ptr[0] = 0;
   Kokkos::parallel_for("amphora::tall_mg::transfer_merge", Kokkos::RangePolicy<HostExecSpace>(0, chunks),
                        [&](std::size_t c) {
