@@ -1,6 +1,7 @@
 #include "solvers/mac/tall_cell_matrix.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <utility>
 
 #include "solvers/mac/row_accumulator.hpp"
@@ -12,10 +13,10 @@ namespace {
 /// (its diagonal d, -c towards each neighbour) times P, the neighbour's unknowns weighted as
 /// T.weights gives them (a neighbour in a tall cell to its two samples). No two neighbours share
 /// an unknown, so every entry is one product; a zero weight (the top sample's partner at a
-/// tall cell's top row) adds no entry. Entries sorted by column; returns their number (<= 13).
-/// Without `row`, only the number (no entries, no sort). The neighbours are visited in the
-/// order of the numbering (columns x fastest, each column upwards: -z, -x, -y, the cell, +y,
-/// +x, +z), so on one block the entries come sorted and the sort only checks them.
+/// tall cell's top row) adds no entry. Entries sorted by column; returns their number (<= 13,
+/// as uniform_row_length counts them). The neighbours are visited in the order of the
+/// numbering (columns x fastest, each column upwards: -z, -x, -y, the cell, +y, +x, +z), so on
+/// one block the entries come sorted and the sort only checks them.
 int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A, int i, int j, int k,
                 int u, std::pair<int, double>* row) {
   const mesh::MacGrid& g = T.grid();
@@ -25,8 +26,7 @@ int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<
   const double cond[7] = {A.cz(c - sz), A.cx(c - 1), A.cy(c - sy), 0.0, A.cy(c), A.cx(c), A.cz(c)};
   for (int f = 0; f < 7; ++f) {
     if (f == 3) {  // the cell itself
-      if (row) row[n] = {u, A.diag(c)};
-      ++n;
+      row[n++] = {u, A.diag(c)};
       continue;
     }
     if (cond[f] == 0.0) continue;
@@ -34,12 +34,29 @@ int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<
     double w[2];
     const int m = T.weights(i + di[f], j + dj[f], k + dk[f], ids, w);
     for (int e = 0; e < m; ++e)
-      if (w[e] != 0.0) {
-        if (row) row[n] = {ids[e], -(cond[f] * w[e])};
-        ++n;
-      }
+      if (w[e] != 0.0) row[n++] = {ids[e], -(cond[f] * w[e])};
   }
-  if (row) std::sort(row, row + n);
+  std::sort(row, row + n);
+  return n;
+}
+
+/// The number of entries uniform_row gives, from the columns alone: the cell, and per neighbour
+/// across a face with c != 0 (a fluid cell, so an unknown or a tall cell's row) one entry, or two
+/// for a tall cell's inner row (at its bottom and top rows one sample's weight is zero).
+int uniform_row_length(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A, int i,
+                       int j, int k) {
+  const mesh::MacGrid& g = T.grid();
+  const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
+  const int di[6] = {0, -1, 0, 0, 1, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {-1, 0, 0, 0, 0, 1};
+  const float cond[6] = {A.cz(c - sz), A.cx(c - 1), A.cy(c - sy), A.cy(c), A.cx(c), A.cz(c)};
+  int n = 1;
+  for (int f = 0; f < 6; ++f) {
+    if (cond[f] == 0.0f) continue;
+    const mesh::TallCellColumn& col = T.column(i + di[f], k + dk[f]);
+    const int jj = j + dj[f];
+    const bool inner = jj > col.terrain && jj + 1 < col.band;  // tall, and neither end row
+    n += inner ? 2 : 1;
+  }
   return n;
 }
 }  // namespace
@@ -206,7 +223,8 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
       std::pair<int, double> row[13];
       T.for_each_unknown_in_column(col % g.nx, col / g.nx, [&](int u, int i, int j, int k) {
         if (slot[u] < 0) {
-          f(u, uniform_row(T, A, i, j, k, static_cast<int>(first + u), entries ? row : nullptr), nullptr, nullptr, row);
+          f(u, entries ? uniform_row(T, A, i, j, k, static_cast<int>(first + u), row) : uniform_row_length(T, A, i, j, k),
+            nullptr, nullptr, row);
           return;
         }
         const long from = tall.row_ptr[slot[u]], length = tall.row_ptr[slot[u] + 1] - from;
@@ -221,14 +239,20 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
   for (long u = 0; u < n; ++u) M.row_ptr[u + 1] += M.row_ptr[u];
   M.cols.resize(M.row_ptr[n]);
   M.values.resize(M.row_ptr[n]);
+  bool lengths_agree = true;
   for_each_row("amphora::tall::rows", true, [&](int u, long length, const int* cols, const double* values,
                                           const std::pair<int, double>* row) {
     const long at = M.row_ptr[u];
+    if (at + length != M.row_ptr[u + 1]) {  // never: the lengths pass counts what this writes
+      lengths_agree = false;
+      return;
+    }
     for (long e = 0; e < length; ++e) {
       M.cols[at + e] = row ? row[e].first : cols[e];
       M.values[at + e] = row ? row[e].second : values[e];
     }
   });
+  if (!lengths_agree) throw std::logic_error("assemble_tall_cell_matrix: a row's entries differ from its counted length");
   return M;
 }
 
