@@ -378,12 +378,31 @@ long move_surface_from_row(const SphereScene& scene, int r, Kokkos::View<MacCell
   return changed;
 }
 
-TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
-  const SphereScene scene(16, true);
-  const MacGrid& g = scene.grid;
+/// Walls all round, the top open.
+mesh::MacBoxBoundaries open_top_box() {
   mesh::MacBoxBoundaries box;
   box.fill(mesh::MacBoundary::wall);
   box[3] = mesh::MacBoundary::open;
+  return box;
+}
+
+/// How many entries of two fields on the padded lattice of g differ, in the rows from from_row
+/// up (the ghost ring included).
+template <class A, class B>
+long lattice_differences(const MacGrid& g, const A& a, const B& b, int from_row) {
+  const auto ha = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), a);
+  const auto hb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b);
+  long differ = 0;
+  for (int k = -1; k <= g.nz; ++k)
+    for (int j = std::max(from_row, -1); j <= g.ny; ++j)
+      for (int i = -1; i <= g.nx; ++i) differ += ha(g.index(i, j, k)) != hb(g.index(i, j, k));
+  return differ;
+}
+
+TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
+  const SphereScene scene(16, true);
+  const MacGrid& g = scene.grid;
+  const mesh::MacBoxBoundaries box = open_top_box();
   const int r = 9;
   Kokkos::View<MacCellType*, TestMemSpace> type2;
   Vector phi2;
@@ -392,13 +411,7 @@ TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
   const auto full = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, type2, phi2,
                                                                                      box);
   const auto same = [&](const auto& a, const auto& b, int from_row, const char* name) {
-    const auto ha = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), a);
-    const auto hb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b);
-    long differ = 0;
-    for (int k = -1; k <= g.nz; ++k)
-      for (int j = std::max(from_row, -1); j <= g.ny; ++j)
-        for (int i = -1; i <= g.nx; ++i) differ += ha(g.index(i, j, k)) != hb(g.index(i, j, k));
-    EXPECT_EQ(differ, 0) << name;
+    EXPECT_EQ(lattice_differences(g, a, b, from_row), 0) << name;
   };
   // from a full build of the old state
   auto A = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, scene.type, scene.phi,
@@ -463,9 +476,7 @@ TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
 TEST(MacPoissonStencil, CoarseningFromARowEqualsAFullCoarsening) {
   const SphereScene scene(32, true);
   const MacGrid& g = scene.grid;
-  mesh::MacBoxBoundaries box;
-  box.fill(mesh::MacBoundary::wall);
-  box[3] = mesh::MacBoundary::open;
+  const mesh::MacBoxBoundaries box = open_top_box();
   const int r = 17;  // the fine stencil changes from row r - 1 up
   Kokkos::View<MacCellType*, TestMemSpace> type2;
   Vector phi2;
@@ -489,13 +500,7 @@ TEST(MacPoissonStencil, CoarseningFromARowEqualsAFullCoarsening) {
   Kokkos::deep_copy(kept.diag, d_marked);
   coarsen_stencil(exec, fine, kept, J0);
   const auto count_differ = [&](const auto& a, const auto& b, int from_row) {
-    const auto ha = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), a);
-    const auto hb = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b);
-    long differ = 0;
-    for (int k = -1; k <= gc.nz; ++k)
-      for (int j = std::max(from_row, -1); j <= gc.ny; ++j)
-        for (int i = -1; i <= gc.nx; ++i) differ += ha(gc.index(i, j, k)) != hb(gc.index(i, j, k));
-    return differ;
+    return lattice_differences(gc, a, b, from_row);
   };
   // the new fine state differs from the old in the coarse rows from J0 (else the test proves nothing)
   EXPECT_GT(count_differ(full.diag, old_coarse.diag, J0), 0);

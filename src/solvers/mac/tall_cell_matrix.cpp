@@ -1,6 +1,7 @@
 #include "solvers/mac/tall_cell_matrix.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 #include <utility>
 
@@ -110,7 +111,10 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
   // are the same): rows known free of free-surface terms, and faces between fluid cells with
   // c = 1 exactly, whose sums over rows are sums of small integers, exact in closed form.
   const bool unit = A.unit_fluid_faces;
-  const auto surface_free = [&](int j, int k) { return A.surface_free_rows(A.surface_free_row(j, k)) != 0; };
+  const bool marked = A.surface_free_rows.extent(0) == static_cast<std::size_t>(g.ny) * g.nz;
+  const auto surface_free = [&](int j, int k) {
+    return marked && A.surface_free_rows(A.surface_free_row(j, k)) != 0;
+  };
   // A column's tall cell: the free-surface terms D p^2 of its rows (D = d - sum c: nonzero
   // only where a row meets air beside it), its inner vertical faces in one block, its top face.
   auto column_terms = [&](int i, int k) {
@@ -239,7 +243,7 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
   for (long u = 0; u < n; ++u) M.row_ptr[u + 1] += M.row_ptr[u];
   M.cols.resize(M.row_ptr[n]);
   M.values.resize(M.row_ptr[n]);
-  bool lengths_agree = true;
+  std::atomic<bool> lengths_agree{true};
   for_each_row("amphora::tall::rows", true, [&](int u, long length, const int* cols, const double* values,
                                           const std::pair<int, double>* row) {
     const long at = M.row_ptr[u];
