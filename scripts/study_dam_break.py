@@ -19,6 +19,8 @@ import os
 import re
 import subprocess
 
+import numpy as np
+
 here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 amphora = os.path.join(here, "build", "release", "apps", "amphora")
 out = os.path.join(here, "output", "study_dam_break")
@@ -29,23 +31,13 @@ def shallow_water_front(T):
     return 1.0 + 2.0 * T
 
 
-def interpolate(x, xs, ys):
-    """Piecewise-linear y(x) through the points (xs increasing), clamped at the ends."""
-    if x <= xs[0]:
-        return ys[0]
-    for m in range(1, len(xs)):
-        if x <= xs[m]:
-            return ys[m - 1] + (x - xs[m - 1]) / (xs[m] - xs[m - 1]) * (ys[m] - ys[m - 1])
-    return ys[-1]
-
-
 def best_lag(T, Z, exp, lags):
     """The lag dT (of those given) for which the run's front at T - dT is closest to the experiment's
     at T over T = 1.1-3.34 (largest relative error), with that error."""
     measured = [(t, z) for t, z in zip(T, exp) if z and 1.1 <= t <= 3.34]
     best = None
     for lag in lags:
-        worst = max(abs(interpolate(t - lag, T, Z) / z - 1) for t, z in measured)
+        worst = max(abs(np.interp(t - lag, T, Z) / z - 1) for t, z in measured)
         if best is None or worst < best[1]:
             best = (lag, worst)
     return best
@@ -120,7 +112,7 @@ def main():
         measured = [(t, 100 * e) for t, e, z in zip(r["T"], r["err"], r["exp"]) if z]  # from T = 0.83 on
         bx.plot([t for t, _ in measured], [e for _, e in measured], color=f"C{n}", label=label)
         # the same run behind its best lag: the experiment at T against the run at T - lag
-        lagged = [(t, 100 * (interpolate(t - r["lag"], r["T"], r["Z"]) / z - 1)) for t, z in zip(r["T"], r["exp"])
+        lagged = [(t, 100 * (np.interp(t - r["lag"], r["T"], r["Z"]) / z - 1)) for t, z in zip(r["T"], r["exp"])
                   if z and t >= r["lag"]]
         bx.plot([t for t, _ in lagged], [e for _, e in lagged], color=f"C{n}", ls=":",
                 label=f"{label}, run {r['lag_ms']:.1f} ms later")

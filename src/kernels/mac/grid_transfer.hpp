@@ -291,8 +291,8 @@ void coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
         const int J = J0 + m % rows, K = m / rows;
         std::uint8_t all = 1;
         for (int c3 = 0; c3 < 2; ++c3)
-          for (int b = 0; b < 2; ++b) all = all & ffree((2 * J + b) + gf.ny * (2 * K + c3));
-        cfree(J + gc.ny * K) = all;
+          for (int b = 0; b < 2; ++b) all = all & ffree(x_row(gf, 2 * J + b, 2 * K + c3));
+        cfree(x_row(gc, J, K)) = all;
       });
   coarse_A.unit_fluid_faces = false;
   coarse_A.any_solid = fine_A.any_solid && count_solid(exec, coarse_A) > 0;

@@ -29,6 +29,9 @@ KOKKOS_INLINE_FUNCTION double ghost_fluid_weight(double phi_fluid, double phi_ai
   return 1.0 / math::max(theta, min_ghost_fluid_theta);
 }
 
+/// The index of the interior x-row (j, k) among g's ny * nz x-rows (per-row data of a lattice).
+KOKKOS_INLINE_FUNCTION int x_row(const mesh::MacGrid& g, int j, int k) { return j + g.ny * k; }
+
 template <class MemSpace, class Scalar = double>
 struct PoissonStencil {
   using scalar_type = Scalar;
@@ -51,7 +54,7 @@ struct PoissonStencil {
   /// Every face between two fluid cells has c = 1 (a build; not a coarsened stencil).
   bool unit_fluid_faces = false;
 
-  KOKKOS_INLINE_FUNCTION int surface_free_row(int j, int k) const { return j + grid.ny * k; }
+  KOKKOS_INLINE_FUNCTION int surface_free_row(int j, int k) const { return x_row(grid, j, k); }
 
   /// sum_j c_ij x_j over the six neighbours of cell c (x zero where a cell is not fluid).
   template <class X>
@@ -290,7 +293,7 @@ void build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g, const 
           d(c) = diag;
           inv(c) = diag > 0.0 ? 1.0 / diag : 0.0;
         }
-        free_rows(j + g.ny * k) = surface ? 0 : 1;
+        free_rows(x_row(g, j, k)) = surface ? 0 : 1;
       });
   A.unit_fluid_faces = true;
   A.any_solid = count_solid(exec, A) > 0;
