@@ -44,6 +44,12 @@ void axpy(const ExecSpace& exec, typename Y::non_const_value_type a, const X& x,
                        KOKKOS_LAMBDA(int i) { y(i) += a * x(i); });
 }
 
+/// x(i) = 1 / x(i) (a diagonal into its inverse, for Jacobi).
+template <class ExecSpace, class X>
+void reciprocal(const ExecSpace& exec, const X& x) {
+  Kokkos::parallel_for("amphora::blas1::reciprocal", detail::range(exec, x), KOKKOS_LAMBDA(int i) { x(i) = 1.0 / x(i); });
+}
+
 /// y(i) = a x(i) + b y(i)
 template <class ExecSpace, class X, class Y>
 void axpby(const ExecSpace& exec, typename Y::non_const_value_type a, const X& x,

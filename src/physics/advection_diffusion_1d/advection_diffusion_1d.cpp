@@ -9,6 +9,21 @@
 
 namespace amphora::advection_diffusion_1d {
 
+// A named namespace and a free function: CUDA's extended lambdas may not be defined in a
+// constructor or in an anonymous namespace.
+namespace initial_detail {
+/// u(s) = the exact solution at point s of grid cg at time t.
+template <class ExecSpace, class View>
+void fill_exact(const ExecSpace& exec, const View& u, const ManufacturedWave& exact, const ComponentGrid1D& grid,
+                double t) {
+  const ManufacturedWave ex = exact;
+  const ComponentGrid1D cg = grid;
+  Kokkos::parallel_for(
+      "amphora::AdvectionDiffusion1D::initial", RangePolicy<ExecSpace>(exec, 0, cg.size),
+      KOKKOS_LAMBDA(int s) { u(s) = ex.value(cg.x0 + s * cg.dx, t); });
+}
+}  // namespace initial_detail
+
 ParamTable parameter_table() {
   ParamTable t;
   t.name = "advection_diffusion_1d";
@@ -59,11 +74,7 @@ AdvectionDiffusion1D<ExecSpace>::AdvectionDiffusion1D(const Parameters& p,
     u_[g] = View(std::string("amphora::AdvectionDiffusion1D::u_") + block_name(g), cg.size);
     u_new_[g] = View(std::string("amphora::AdvectionDiffusion1D::u_new_") + block_name(g),
                      cg.size);
-    const View u = u_[g];
-    const ManufacturedWave ex = exact_;
-    Kokkos::parallel_for(
-        "amphora::AdvectionDiffusion1D::initial", RangePolicy<ExecSpace>(exec_, 0, cg.size),
-        KOKKOS_LAMBDA(int s) { u(s) = ex.value(cg.x0 + s * cg.dx, 0.0); });
+    initial_detail::fill_exact(exec_, u_[g], exact_, cg, 0.0);
   }
   apply_boundary_conditions(0.0);
   exec_.fence();

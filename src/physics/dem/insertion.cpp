@@ -150,17 +150,15 @@ std::vector<ParticleSpec> random_insertion(const DemSystem<ExecSpace>& system,
   return out;
 }
 
-#ifdef KOKKOS_ENABLE_SERIAL
-template std::vector<ParticleSpec> random_insertion(const DemSystem<Kokkos::Serial>&,
-                                                    const InsertionRegion&, const RadiusDistribution&,
-                                                    long long, int, std::uint64_t, std::uint64_t,
-                                                    std::int64_t, const std::vector<double>&);
-#endif
-#ifdef KOKKOS_ENABLE_OPENMP
-template std::vector<ParticleSpec> random_insertion(const DemSystem<Kokkos::OpenMP>&,
-                                                    const InsertionRegion&, const RadiusDistribution&,
-                                                    long long, int, std::uint64_t, std::uint64_t,
-                                                    std::int64_t, const std::vector<double>&);
-#endif
+// on every enabled execution space, as DemSystem is (the module calls it on the default one)
+#define AMPHORA_RANDOM_INSERTION_ON(SPACE)                                                                      \
+  template std::vector<ParticleSpec> random_insertion(const DemSystem<SPACE>&, const InsertionRegion&,          \
+                                                      const RadiusDistribution&, long long, int, std::uint64_t, \
+                                                      std::uint64_t, std::int64_t, const std::vector<double>&);
+AMPHORA_IF_SERIAL(AMPHORA_RANDOM_INSERTION_ON(Kokkos::Serial))
+AMPHORA_IF_OPENMP(AMPHORA_RANDOM_INSERTION_ON(Kokkos::OpenMP))
+AMPHORA_IF_CUDA(AMPHORA_RANDOM_INSERTION_ON(Kokkos::Cuda))
+AMPHORA_IF_HIP(AMPHORA_RANDOM_INSERTION_ON(Kokkos::Experimental::HIP))
+#undef AMPHORA_RANDOM_INSERTION_ON
 
 }  // namespace amphora::dem

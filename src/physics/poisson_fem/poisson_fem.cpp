@@ -76,8 +76,7 @@ class PoissonFem final : public Module {
     } else {
       Vector d("d", n);
       A_->compute_diagonal(exec, d);
-      Kokkos::parallel_for("amphora::PoissonFem::invert", RangePolicy<Exec>(exec, 0, static_cast<int>(n)),
-                           KOKKOS_LAMBDA(int i) { d(i) = 1.0 / d(i); });
+      blas1::reciprocal(exec, d);
       result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_, solvers::JacobiPreconditioner<Vector>{d},
                                             dot);
     }

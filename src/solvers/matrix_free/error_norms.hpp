@@ -15,58 +15,70 @@ struct ErrorNorms {
   double h1semi = 0.0;  ///< ||grad(u_h - u)||_L2
 };
 
+// A named function per degree: CUDA's extended lambdas may not be defined inside a generic
+// lambda (the degree dispatch's).
+namespace error_norms_detail {
+/// The squared L2 and H1-seminorm errors (l2, h1) with n_p nodes and n_q Gauss points per direction.
+template <int dim, int n_p, int n_q, class ExecSpace, class Exact>
+void squared_errors(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& space,
+                    const Kokkos::View<double*, typename ExecSpace::memory_space>& u, const Exact& exact, double& l2,
+                    double& h1) {
+  using K = CellOperatorKernel<dim, n_p, n_q, ExecSpace>;
+  using T = typename K::T;
+  K kern;
+  kern.lattice = space.lattice();
+  kern.shape = sumfac::ShapeData<n_p, n_q>::create(sumfac::QuadratureKind::gauss);
+  kern.coordinates = space.coordinates();
+  const double* src = u.data();
+  Kokkos::parallel_reduce(
+      "amphora::error_norms", RangePolicy<ExecSpace>(exec, 0, kern.lattice.n_batches()),
+      KOKKOS_LAMBDA(int b, double& e0, double& e1) {
+        typename K::Scratch s;
+        T uloc[K::n_dofs], x[dim * K::n_points];
+        const long n_nodes = kern.lattice.n_nodes();
+        for (int a = 0; a < dim; ++a) {  // Jacobian rows and physical points
+          kern.gather_nodes(kern.coordinates.data() + a * n_nodes, b, s.nodal);
+          K::Eval::values(kern.shape, s.nodal, x + a * K::n_points, s.tmp);
+          K::Eval::gradients(kern.shape, x + a * K::n_points, s.jac + a * dim * K::n_points);
+        }
+        kern.gather_unconstrained(src, b, uloc);
+        K::Eval::values(kern.shape, uloc, s.v, s.tmp);
+        K::Eval::gradients(kern.shape, s.v, s.grad);
+        const int active = kern.lattice.active_lanes(b);
+        for (int q = 0; q < K::n_points; ++q) {
+          T J[dim * dim], inv[dim * dim];
+          for (int e = 0; e < dim * dim; ++e) J[e] = s.jac[e * K::n_points + q];
+          const T det = sumfac::inverse<dim>(J, inv);
+          const double w = K::Eval::weight(kern.shape, q);
+          for (int l = 0; l < active; ++l) {
+            double xp[3] = {0.0, 0.0, 0.0}, g[3] = {0.0, 0.0, 0.0};
+            for (int a = 0; a < dim; ++a) xp[a] = x[a * K::n_points + q][l];
+            exact.gradient(xp, g);
+            const double d0 = s.v[q][l] - exact.value(xp);
+            double d1 = 0.0;
+            for (int a = 0; a < dim; ++a) {  // grad u_h = J^-T grad_ref u_h
+              double gh = 0.0;
+              for (int c = 0; c < dim; ++c) gh += inv[c * dim + a][l] * s.grad[c * K::n_points + q][l];
+              d1 += (gh - g[a]) * (gh - g[a]);
+            }
+            e0 += w * det[l] * d0 * d0;
+            e1 += w * det[l] * d1;
+          }
+        }
+      },
+      l2, h1);
+}
+}  // namespace error_norms_detail
+
 template <int dim, class ExecSpace, class Exact>
 ErrorNorms error_norms(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& space,
                        const Kokkos::View<double*, typename ExecSpace::memory_space>& u, const Exact& exact) {
   ErrorNorms result;
   const int k = space.degree();
   dispatch_degree(k, k + 2, [&](auto np_c, auto nq_c) {
-    constexpr int n_p = decltype(np_c)::value, n_q = decltype(nq_c)::value;
-    using K = CellOperatorKernel<dim, n_p, n_q, ExecSpace>;
-    using T = typename K::T;
-    K kern;
-    kern.lattice = space.lattice();
-    kern.shape = sumfac::ShapeData<n_p, n_q>::create(sumfac::QuadratureKind::gauss);
-    kern.coordinates = space.coordinates();
-    const double* src = u.data();
     double l2 = 0.0, h1 = 0.0;
-    Kokkos::parallel_reduce(
-        "amphora::error_norms", RangePolicy<ExecSpace>(exec, 0, kern.lattice.n_batches()),
-        KOKKOS_LAMBDA(int b, double& e0, double& e1) {
-          typename K::Scratch s;
-          T uloc[K::n_dofs], x[dim * K::n_points];
-          const long n_nodes = kern.lattice.n_nodes();
-          for (int a = 0; a < dim; ++a) {  // Jacobian rows and physical points
-            kern.gather_nodes(kern.coordinates.data() + a * n_nodes, b, s.nodal);
-            K::Eval::values(kern.shape, s.nodal, x + a * K::n_points, s.tmp);
-            K::Eval::gradients(kern.shape, x + a * K::n_points, s.jac + a * dim * K::n_points);
-          }
-          kern.gather_unconstrained(src, b, uloc);
-          K::Eval::values(kern.shape, uloc, s.v, s.tmp);
-          K::Eval::gradients(kern.shape, s.v, s.grad);
-          const int active = kern.lattice.active_lanes(b);
-          for (int q = 0; q < K::n_points; ++q) {
-            T J[dim * dim], inv[dim * dim];
-            for (int e = 0; e < dim * dim; ++e) J[e] = s.jac[e * K::n_points + q];
-            const T det = sumfac::inverse<dim>(J, inv);
-            const double w = K::Eval::weight(kern.shape, q);
-            for (int l = 0; l < active; ++l) {
-              double xp[3] = {0.0, 0.0, 0.0}, g[3] = {0.0, 0.0, 0.0};
-              for (int a = 0; a < dim; ++a) xp[a] = x[a * K::n_points + q][l];
-              exact.gradient(xp, g);
-              const double d0 = s.v[q][l] - exact.value(xp);
-              double d1 = 0.0;
-              for (int a = 0; a < dim; ++a) {  // grad u_h = J^-T grad_ref u_h
-                double gh = 0.0;
-                for (int c = 0; c < dim; ++c) gh += inv[c * dim + a][l] * s.grad[c * K::n_points + q][l];
-                d1 += (gh - g[a]) * (gh - g[a]);
-              }
-              e0 += w * det[l] * d0 * d0;
-              e1 += w * det[l] * d1;
-            }
-          }
-        },
-        l2, h1);
+    error_norms_detail::squared_errors<dim, decltype(np_c)::value, decltype(nq_c)::value>(exec, space, u, exact, l2,
+                                                                                          h1);
     result.l2 = std::sqrt(l2);
     result.h1semi = std::sqrt(h1);
   });

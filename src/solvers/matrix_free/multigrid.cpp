@@ -3,9 +3,24 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "kernels/blas1.hpp"
 #include "solvers/matrix_free/assembly.hpp"
 
 namespace amphora::solvers {
+
+// A named namespace and a free function: CUDA's extended lambdas may not be defined in a
+// constructor (nor in the lambdas inside one) or in an anonymous namespace.
+namespace multigrid_detail {
+/// start(i) from DoF i's global number alone (deterministic, rich in every eigencomponent).
+template <class ExecSpace, class Global, class Vector>
+void start_from_global_numbers(const ExecSpace& exec, const Global& global, const Vector& start) {
+  Kokkos::parallel_for("amphora::mg::start_vector", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(start.extent(0))),
+                       KOKKOS_LAMBDA(int i) {
+                         const unsigned g = static_cast<unsigned>(global(i));
+                         start(i) = static_cast<double>((g * 2654435761u) % 1000003u) / 1000003.0 - 0.5;
+                       });
+}
+}  // namespace multigrid_detail
 
 template <int dim, class ExecSpace>
 struct MatrixFreeMultigrid<dim, ExecSpace>::Level {
@@ -45,12 +60,8 @@ MatrixFreeMultigrid<dim, ExecSpace>::MatrixFreeMultigrid(const ExecSpace& exec, 
     // lambda_max, so the same smoother, on any rank count.
     const auto global = sp.global_indices();
     const Vector start("amphora::mg::start", n);
-    Kokkos::parallel_for("amphora::mg::invert_diagonal", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(n)),
-                         KOKKOS_LAMBDA(int i) {
-                           d(i) = 1.0 / d(i);
-                           const unsigned g = static_cast<unsigned>(global(i));
-                           start(i) = static_cast<double>((g * 2654435761u) % 1000003u) / 1000003.0 - 0.5;
-                         });
+    blas1::reciprocal(exec, d);
+    multigrid_detail::start_from_global_numbers(exec, global, start);
     L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Operator, Vector, typename Space::InnerProduct>>(
         exec, *op, d, options.smoother, sp.inner_product(), start);
     levels_.push_back(std::move(L));
