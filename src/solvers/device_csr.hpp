@@ -2,6 +2,7 @@
 // An assembled CSR matrix in a memory space, with y = A x as a kernel (one row per work item)
 // and 1/diag(A) for Jacobi-type smoothers.
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "kernels/host_vector.hpp"
@@ -22,10 +23,12 @@ struct DeviceCsrMatrix {
   explicit DeviceCsrMatrix(const CsrMatrix& A, bool with_inverse_diagonal = true) : n(static_cast<int>(A.n)) {
     copy(A, with_inverse_diagonal);
   }
-  /// A itself, where the host can read MemSpace: its columns and values are kept and viewed,
+  /// A itself, where MemSpace is the host's: its columns and values are kept and viewed,
   /// not copied (the multigrid's transfers are assembled every sub-step); elsewhere a copy.
   DeviceCsrMatrix(CsrMatrix&& A, bool with_inverse_diagonal) : n(static_cast<int>(A.n)) {
-    if constexpr (Kokkos::SpaceAccessibility<Kokkos::HostSpace, MemSpace>::accessible) {
+    // HostSpace itself, not any space the host can read: a managed (UVM) space would let GPU
+    // kernels read the vector's pageable memory
+    if constexpr (std::is_same_v<MemSpace, Kokkos::HostSpace>) {
       auto kept = std::make_shared<CsrMatrix>(std::move(A));
       cols = Kokkos::View<int*, MemSpace>(kept->cols.data(), kept->cols.size());
       values = Vector(kept->values.data(), kept->values.size());

@@ -19,7 +19,9 @@ enum class MacCellType : std::uint8_t { fluid = 0, air = 1, solid = 2 };
 struct MacGrid {
   int nx = 0, ny = 0, nz = 0;
   double h = 1.0;                       ///< cell width (cubic cells)
-  std::array<double, 3> origin{0, 0, 0};  ///< lower corner of cell (0, 0, 0)
+  /// lower corner of cell (0, 0, 0); a Kokkos::Array, as kernels read it (std::array's
+  /// operator[] is host-only on CUDA without relaxed constexpr)
+  Kokkos::Array<double, 3> origin{0, 0, 0};
 
   KOKKOS_INLINE_FUNCTION int stride_y() const { return nx + 2; }
   KOKKOS_INLINE_FUNCTION int stride_z() const { return (nx + 2) * (ny + 2); }
