@@ -2,6 +2,7 @@
 // pressure, with and without tall cells, for each pressure back end.
 #include <cmath>
 
+#include "physics/water_mac/stoker_dam_break.hpp"
 #include "physics/water_mac/water_mac.hpp"
 #include "test_backend.hpp"
 
@@ -65,6 +66,27 @@ TEST(WaterMac, MartinMoyceTableIsInterpolated) {
   EXPECT_DOUBLE_EQ(martin_moyce_front(0.832), 1.217);
   EXPECT_DOUBLE_EQ(martin_moyce_front(9.237), 13.970);
   EXPECT_NEAR(martin_moyce_front(0.5 * (1.997 + 2.547)), 0.5 * (2.292 + 2.995), 1e-12);
+}
+
+// Stoker's wet-bed dam break: the state it returns satisfies the bore's mass and momentum
+// balances and the rarefaction's Riemann invariant, and it tends to Ritter's dry-bed front
+// (S -> 2 sqrt(g h0)) as h1 -> 0 and to a linear wave (S -> sqrt(g h0)) as h1 -> h0.
+TEST(StokerDamBreak, SatisfiesTheJumpConditionsAndTheLimits) {
+  const double g = 9.81, h0 = 0.1, c0 = std::sqrt(g * h0);
+  for (const double ratio : {0.05, 0.1, 0.3, 0.6}) {
+    const double h1 = ratio * h0;
+    const StokerDamBreak s = stoker_dam_break(g, h0, h1);
+    EXPECT_GT(s.hm, h1);
+    EXPECT_LT(s.hm, h0);
+    // in the bore's frame the still water enters at -S and leaves at um - S
+    const double w1 = -s.bore_speed, wm = s.um - s.bore_speed;
+    EXPECT_NEAR(h1 * w1, s.hm * wm, 1e-12) << ratio;                                          // mass
+    EXPECT_NEAR(h1 * w1 * w1 + 0.5 * g * h1 * h1, s.hm * wm * wm + 0.5 * g * s.hm * s.hm, 1e-12) << ratio;  // momentum
+    EXPECT_NEAR(s.um + 2.0 * std::sqrt(g * s.hm), 2.0 * c0, 1e-12) << ratio;                  // Riemann invariant
+  }
+  EXPECT_NEAR(stoker_dam_break(g, h0, 1e-9 * h0).bore_speed / (2.0 * c0), 1.0, 0.02);
+  EXPECT_NEAR(stoker_dam_break(g, h0, (1 - 1e-6) * h0).bore_speed / c0, 1.0, 1e-5);
+  EXPECT_THROW(stoker_dam_break(g, h0, h0), std::invalid_argument);
 }
 
 }  // namespace

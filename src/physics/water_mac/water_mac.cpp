@@ -19,6 +19,7 @@
 #include "mesh/mac/lattice_halo.hpp"
 #include "mesh/mac/tall_cell_grid.hpp"
 #include "physics/phase_times.hpp"
+#include "physics/water_mac/stoker_dam_break.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
 #include "solvers/mac/tall_cell_matrix.hpp"
@@ -46,7 +47,8 @@ ParamTable parameter_table() {
   ParamTable t;
   t.name = "water_mac";
   t.doc = "water on a uniform MAC grid: level set, semi-Lagrangian advection, ghost-fluid pressure projection";
-  auto scene = string_param("scene", std::string("dam_break"), "initial state", {"dam_break", "splash", "still"});
+  auto scene = string_param("scene", std::string("dam_break"), "initial state",
+                            {"dam_break", "wet_dam_break", "splash", "still"});
   auto nx = int_param("cells_x", 64, "cells along x");
   auto ny = int_param("cells_y", 32, "cells along y (up)");
   auto nz = int_param("cells_z", 4, "cells along z");
@@ -73,8 +75,13 @@ ParamTable parameter_table() {
   at_least(reinit, 0);
   auto depth = int_param("optical_depth", 0, "uniform cells below the surface before the tall cells (0: no tall cells)");
   at_least(depth, 0);
-  auto a = real_param("column_width", 0.05715, "m", "dam break: width a of the water column (its height is 2a)");
+  auto a = real_param("column_width", 0.05715, "m",
+                      "dam breaks: width a of the water column behind the dam at x = a (the dry-bed column is 2a high)");
   greater_than(a, 0.0);
+  auto h0 = real_param("reservoir_depth", 0.1, "m", "wet dam break: depth of the water behind the dam");
+  greater_than(h0, 0.0);
+  auto h1 = real_param("tailwater_depth", 0.01, "m", "wet dam break: depth of the still water ahead of the dam");
+  greater_than(h1, 0.0);
   auto pool = real_param("pool_depth", 0.6, "m", "splash and still water: depth of the water above y = 0");
   greater_than(pool, 0.0);
   auto r = real_param("drop_radius", 0.08, "m", "splash: radius of the falling ball of water");
@@ -87,7 +94,7 @@ ParamTable parameter_table() {
   at_least(terrain, 0.0);
   auto base = real_param("terrain_base", 0.0, "m", "still/splash: mean height of the bottom");
   at_least(base, 0.0);
-  t.specs = {scene, nx, ny, nz, lx, g, rho, cfl, solver, tol, maxit, reinit, depth, a, pool, r, hc, vd, terrain, base};
+  t.specs = {scene, nx, ny, nz, lx, g, rho, cfl, solver, tol, maxit, reinit, depth, a, h0, h1, pool, r, hc, vd, terrain, base};
   return t;
 }
 
@@ -131,6 +138,15 @@ class WaterMac final : public Module {
     reinit_ = static_cast<int>(p.integer("reinitialise_iterations"));
     optical_depth_ = static_cast<int>(p.integer("optical_depth"));
     column_width_ = p.real("column_width");
+    if (scene_ == "wet_dam_break") {
+      reservoir_depth_ = p.real("reservoir_depth");
+      tailwater_depth_ = p.real("tailwater_depth");
+      if (tailwater_depth_ >= reservoir_depth_)
+        throw std::invalid_argument("water_mac.tailwater_depth = " + std::to_string(tailwater_depth_) +
+                                    " m must be below water_mac.reservoir_depth = " +
+                                    std::to_string(reservoir_depth_) + " m (the water behind the dam)");
+      stoker_ = stoker_dam_break(gravity_, reservoir_depth_, tailwater_depth_);
+    }
     // the band of uniform cells must hold a whole semi-Lagrangian trace and the extrapolation
     const int band = static_cast<int>(std::ceil(cfl_)) + 2;
     if (optical_depth_ > 0 && optical_depth_ < band) {
@@ -225,12 +241,20 @@ class WaterMac final : public Module {
       d.emplace_back("front_T", T);
       const bool measured = T >= 0.832 && T <= 9.237;
       d.emplace_back("front_error", measured ? (Z - martin_moyce_front(T)) / martin_moyce_front(T) : 0.0);
+    } else if (scene_ == "wet_dam_break") {
+      // the bore's distance from the dam against Stoker's S t (T = t sqrt(g / h0))
+      const double travelled = bore() - column_width_, exact = stoker_.bore_speed * t;
+      d.emplace_back("bore_x", travelled);
+      d.emplace_back("bore_T", t * std::sqrt(gravity_ / reservoir_depth_));
+      d.emplace_back("bore_error", t > 0.0 ? (travelled - exact) / exact : 0.0);
     } else {
       d.emplace_back("surface_height", surface_height());
     }
     return d;
   }
-  std::string error_diagnostic() const override { return scene_ == "dam_break" ? "front_error" : "max_speed"; }
+  std::string error_diagnostic() const override {
+    return scene_ == "dam_break" ? "front_error" : scene_ == "wet_dam_break" ? "bore_error" : "max_speed";
+  }
 
   std::optional<NonFiniteReport> find_nonfinite() const override {
     const Exec exec;
@@ -368,9 +392,12 @@ class WaterMac final : public Module {
       return base + amp * std::sin(2 * math::pi * x / lx) * std::cos(2 * math::pi * z / lz + 0.3);
     };
     const double a = column_width_, pool = p.real("pool_depth"), r = p.real("drop_radius"), hc = p.real("drop_height");
-    if (scene_ == "dam_break" && (a >= lx || 2 * a >= ly))
-      throw std::invalid_argument("water_mac: the dam-break column (" + std::to_string(a) + " x " + std::to_string(2 * a) +
-                                  " m) must fit in the box (" + std::to_string(lx) + " x " + std::to_string(ly) + " m)");
+    const bool dam = scene_ == "dam_break" || scene_ == "wet_dam_break";
+    const double column_height = scene_ == "wet_dam_break" ? reservoir_depth_ : 2 * a;
+    if (dam && (a >= lx || column_height >= ly))
+      throw std::invalid_argument("water_mac: the dam-break column (" + std::to_string(a) + " x " +
+                                  std::to_string(column_height) + " m) must fit in the box (" + std::to_string(lx) +
+                                  " x " + std::to_string(ly) + " m)");
     bool water_above_terrain = false;
     for (int k = 0; k < g.nz; ++k)
       for (int j = 0; j < g.ny; ++j)
@@ -378,10 +405,12 @@ class WaterMac final : public Module {
           const auto x = g.cell_centre(i, j, k);
           const int c = g.index(i, j, k);
           double d;
-          if (scene_ == "dam_break") {
-            // outside distance to the column [0, a] x [0, 2a] (the box walls are not surface)
-            const double dx = x[0] - a, dy = x[1] - 2 * a;
+          if (dam) {
+            // outside distance to the column [0, a] x [0, height] (the box walls are not surface),
+            // with the still water ahead of the dam on a wet bed
+            const double dx = x[0] - a, dy = x[1] - column_height;
             d = (dx > 0 || dy > 0) ? std::hypot(std::max(dx, 0.0), std::max(dy, 0.0)) : std::max(dx, dy);
+            if (scene_ == "wet_dam_break") d = std::min(d, x[1] - tailwater_depth_);
           } else {
             d = x[1] - pool;
             if (scene_ == "splash") {
@@ -396,7 +425,7 @@ class WaterMac final : public Module {
           phi[c] = d;
         }
     water_above_terrain = comm_.any(water_above_terrain);
-    if (scene_ != "dam_break" && !water_above_terrain)
+    if (!dam && !water_above_terrain)
       throw std::invalid_argument("water_mac: the terrain (terrain_base = " + std::to_string(base) +
                                   " m, amplitude " + std::to_string(amp) + " m) is above the water (pool_depth = " +
                                   std::to_string(pool) + " m) everywhere: no water to simulate");
@@ -713,6 +742,36 @@ class WaterMac final : public Module {
     return sum / global_.nz;
   }
 
+  /// The wet dam break's bore: the largest x where the water depth (the lowest zero crossing of
+  /// the level set in a column, averaged over z) reaches halfway from the still water's to
+  /// Stoker's hm behind the bore, linear between cell centres.
+  double bore() const {
+    const auto phi = to_std_vector(phi_);
+    const mesh::MacGrid& g = grid_;
+    std::vector<double> depth(global_.nx, 0.0);  // summed over z, this block's columns
+    for (int k = 0; k < g.nz; ++k)
+      for (int i = 0; i < g.nx; ++i) {
+        // the bottom row dry: no depth; no crossing: water to the top
+        double y = phi[g.index(i, 0, k)] >= 0 ? 0.0 : g.ny * g.h;
+        for (int j = 0; j + 1 < g.ny && y > 0.0; ++j) {
+          const double p0 = phi[g.index(i, j, k)], p1 = phi[g.index(i, j + 1, k)];
+          if (p0 < 0 && p1 >= 0) {
+            y = (j + 0.5) * g.h + g.h * p0 / (p0 - p1);
+            break;
+          }
+        }
+        depth[block_.global_lower[0] + i] += y;
+      }
+    MPI_Allreduce(MPI_IN_PLACE, depth.data(), global_.nx, MPI_DOUBLE, MPI_SUM, comm_.get());
+    const double half = 0.5 * (tailwater_depth_ + stoker_.hm) * global_.nz;
+    for (int i = global_.nx - 2; i >= 0; --i)
+      if (depth[i] >= half) {
+        const double s = depth[i + 1] < depth[i] ? (depth[i] - half) / (depth[i] - depth[i + 1]) : 0.0;
+        return (i + 0.5 + s) * g.h;
+      }
+    return 0.0;
+  }
+
   /// Mean height of the highest zero crossing of the level set over the columns.
   double surface_height() const {
     const auto phi = to_std_vector(phi_);
@@ -745,6 +804,8 @@ class WaterMac final : public Module {
   mesh::TallCellColumns<Mem> wide_tall_;
   Types wide_type_;
   double gravity_ = 9.81, rho_ = 1000.0, cfl_ = 1.0, column_width_ = 0.05;
+  double reservoir_depth_ = 0.0, tailwater_depth_ = 0.0;  ///< wet dam break
+  StokerDamBreak stoker_;                                  ///< wet dam break: the shallow-water solution
   solvers::mac::PressureBackend backend_ = solvers::mac::PressureBackend::multigrid;
   solvers::SolverControl control_;
   int reinit_ = 2, optical_depth_ = 0, extrapolation_layers_ = 3;
