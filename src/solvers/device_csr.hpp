@@ -11,6 +11,9 @@
 
 namespace amphora::solvers {
 
+// Values stay double: float values (the tall-cell multigrid's matrices, tried three times) made
+// the products no faster on the host (README, "Tried and not kept"): their bytes are not what
+// limits them there.
 template <class MemSpace>
 struct DeviceCsrMatrix {
   using Vector = Kokkos::View<double*, MemSpace>;
