@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "kernels/blas1.hpp"
 #include "kernels/host_vector.hpp"
 #include "physics/poisson_fem/sine_solution.hpp"
 #include "solvers/conjugate_gradient.hpp"
@@ -37,8 +38,7 @@ ErrorNorms solve(int k, int n) {
   o.n_q = k + 1;
   const MatrixFreeOperator<dim, TestExecSpace> A(space, o);
   A.compute_diagonal(exec, diag);
-  Kokkos::parallel_for(RangePolicy<TestExecSpace>(exec, 0, static_cast<int>(N)),
-                       KOKKOS_LAMBDA(int i) { diag(i) = 1.0 / diag(i); });
+  blas1::reciprocal(exec, diag);
   SolverControl control;
   control.max_iterations = 5000;
   control.relative_tolerance = 1e-13;

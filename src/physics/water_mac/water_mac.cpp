@@ -767,7 +767,7 @@ class WaterMac final : public Module {
     for (int i = global_.nx - 2; i >= 0; --i)
       if (depth[i] >= half) {
         const double s = depth[i + 1] < depth[i] ? (depth[i] - half) / (depth[i] - depth[i + 1]) : 0.0;
-        return (i + 0.5 + s) * g.h;
+        return global_.origin[0] + (i + 0.5 + s) * g.h;
       }
     return 0.0;
   }
