@@ -281,6 +281,29 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
   }
 };
 
+/// The block colouring of a lattice's slabs (see the top of this file): colours 0 and 1 take
+/// alternate blocks of slabs_per_block() consecutive slabs (the last block may be short), colour
+/// 2 the last block of an odd count along a periodic direction. Item i of a colour is one block.
+template <int dim>
+struct SlabBlockColouring {
+  int slabs = 0, run = 1, blocks = 0;
+  bool odd_periodic = false;
+  explicit SlabBlockColouring(const sumfac::QkLattice<dim>& lattice)
+      : slabs(lattice.n_slabs()), run(lattice.slabs_per_block()), blocks(lattice.n_slab_blocks()),
+        odd_periodic(lattice.block_colour(lattice.n_slab_blocks() - 1) == 2) {}
+  int items(int colour) const {
+    const int regular = odd_periodic ? blocks - 1 : blocks;
+    return colour < 2 ? (regular - colour + 1) / 2 : (odd_periodic ? 1 : 0);
+  }
+  KOKKOS_INLINE_FUNCTION int first_slab(int colour, int i) const {
+    return (colour < 2 ? 2 * i + colour : blocks - 1) * run;
+  }
+  KOKKOS_INLINE_FUNCTION int end_slab(int colour, int i) const {
+    const int end = first_slab(colour, i) + run;
+    return end < slabs ? end : slabs;
+  }
+};
+
 /// Runs body(b) for every batch b so that batches running at once share no node (see the top
 /// of this file), calling first_touch(slab, row) before and last_touch(slab, row) after each
 /// row of a slab's batches on host spaces (so a destination can be zeroed row by row while it
@@ -304,18 +327,14 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
       Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, lattice.n_batches()), body);
     return false;
   } else {
-    const int slabs = lattice.n_slabs(), per_slab = lattice.batches_per_slab();
+    const SlabBlockColouring<dim> colouring(lattice);
+    const int per_slab = lattice.batches_per_slab();
     const int rows = lattice.rows_per_slab(), per_row = per_slab / rows;
-    const int blocks = lattice.n_slab_blocks(), run = lattice.slabs_per_block();
-    const bool odd_periodic = lattice.block_colour(blocks - 1) == 2;
-    const int regular = odd_periodic ? blocks - 1 : blocks;
     for (int colour = 0; colour < 3; ++colour) {
-      const int items = colour < 2 ? (regular - colour + 1) / 2 : (odd_periodic ? 1 : 0);
+      const int items = colouring.items(colour);
       if (items <= 0) continue;
       Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, items), KOKKOS_LAMBDA(int i) {
-        const int block = colour < 2 ? 2 * i + colour : blocks - 1;
-        const int last = block * run + run < slabs ? block * run + run : slabs;
-        for (int slab = block * run; slab < last; ++slab)
+        for (int slab = colouring.first_slab(colour, i); slab < colouring.end_slab(colour, i); ++slab)
           for (int row = 0; row < rows; ++row) {
             first_touch(slab, row);
             const int b0 = slab * per_slab + row * per_row;
@@ -328,6 +347,36 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
       });
     }
     return true;
+  }
+}
+
+/// Runs body(team, b0, b1) on the batches b0 .. b1 - 1 with one team per call and scratch_bytes
+/// of level-1 team scratch per team, for bodies whose team shares each batch's work (a team's
+/// scratch is taken once per call: it is not returned within it). On host spaces a team of one
+/// thread takes one block of slabs, blocks coloured as above; device spaces run one team per
+/// batch, all at once, and body must add atomically.
+template <class ExecSpace, int dim, class Body>
+void for_each_batch_team(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice, const char* label,
+                         std::size_t scratch_bytes, const Body& body) {
+  using Policy = Kokkos::TeamPolicy<ExecSpace>;
+  using Team = typename Policy::member_type;
+  constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace,
+                                                   typename ExecSpace::memory_space>::accessible;
+  const auto scratch = Kokkos::PerTeam(scratch_bytes);
+  if constexpr (!host) {
+    Kokkos::parallel_for(label, Policy(exec, lattice.n_batches(), Kokkos::AUTO).set_scratch_size(1, scratch),
+                         KOKKOS_LAMBDA(const Team& team) { body(team, team.league_rank(), team.league_rank() + 1); });
+  } else {
+    const SlabBlockColouring<dim> colouring(lattice);
+    const int per_slab = lattice.batches_per_slab();
+    for (int colour = 0; colour < 3; ++colour) {
+      const int items = colouring.items(colour);
+      if (items <= 0) continue;
+      Kokkos::parallel_for(label, Policy(exec, items, 1).set_scratch_size(1, scratch), KOKKOS_LAMBDA(const Team& team) {
+        const int i = team.league_rank();
+        body(team, colouring.first_slab(colour, i) * per_slab, colouring.end_slab(colour, i) * per_slab);
+      });
+    }
   }
 }
 

@@ -116,8 +116,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     }
   }
 
-  // The generic fallback (generic_cell_kernel.hpp): one cell at a time. mode 0: y = A x;
-  // 1: y = diag(A); on host spaces cells of a batch share nodes, batches run coloured.
+  // The generic fallback (generic_cell_kernel.hpp): one team per cell batch, its cells one at
+  // a time. mode 0: y = A x; 1: y = diag(A); on host spaces batches run coloured.
   static void generic_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
                            const Vector& y, int mode) {
     using K = GenericCellKernel<dim, ExecSpace>;
@@ -126,37 +126,11 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const long n = op.space_->n_dofs();
     constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
     blas1::fill(exec, y, 0.0);
-    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::generic", sumfac::NoTouch{},
-                            KOKKOS_LAMBDA(int b) {
-                              int c[3] = {0, 0, 0};
-                              k.lattice.batch_cell(b, c);
-                              const int lanes = k.lattice.active_lanes(b);
-                              double X[dim * K::max_cell_dofs], u[K::max_cell_dofs], yl[K::max_cell_dofs];
-                              double column[K::max_cell_dofs], s[K::scratch_size()];
-                              long dof[K::max_cell_dofs];
-                              for (int lane = 0; lane < lanes; ++lane) {
-                                const int cc[3] = {c[0] + lane, c[1], c[2]};
-                                const int nd = k.cell_setup(cc, X, dof);
-                                for (int comp = 0; comp < comps; ++comp) {
-                                  double* out = y.data() + comp * n;
-                                  if (mode == 0) {
-                                    for (int i = 0; i < nd; ++i) u[i] = dof[i] < 0 ? 0.0 : x(comp * n + dof[i]);
-                                    k.apply_cell(X, u, yl, s);
-                                  } else {
-                                    for (int j = 0; j < nd; ++j) {  // the diagonal: unit vectors
-                                      for (int i = 0; i < nd; ++i) u[i] = i == j ? 1.0 : 0.0;
-                                      k.apply_cell(X, u, column, s);
-                                      yl[j] = column[j];
-                                    }
-                                  }
-                                  for (int i = 0; i < nd; ++i) {
-                                    if (dof[i] < 0) continue;
-                                    if constexpr (atomic) Kokkos::atomic_add(out + dof[i], yl[i]);
-                                    else out[dof[i]] += yl[i];
-                                  }
-                                }
-                              }
-                            });
+    double* out = y.data();
+    for_each_batch_team(exec, k.lattice, "amphora::MatrixFreeOperator::generic", k.scratch_bytes(),
+                        KOKKOS_LAMBDA(const typename K::Team& team, int b0, int b1) {
+                          k.template add_batches<atomic>(team, b0, b1, x, out, n, comps, mode);
+                        });
     if (mode == 0) copy_constrained(op, exec, x, y);
     else copy_constrained(op, exec, Vector(), y, 1.0);
   }
@@ -168,23 +142,28 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   }
   static std::vector<double> generic_elements(const MatrixFreeOperator& op, const ExecSpace& exec) {
     using K = GenericCellKernel<dim, ExecSpace>;
+    using Policy = Kokkos::TeamPolicy<ExecSpace>;
     const K k = op.impl_->generic;
-    int nd = 1, nc = 1;
-    for (int d = 0; d < dim; ++d) nd *= k.n_p, nc *= k.lattice.cells[d];
+    const int nd = k.n_cell_dofs();
+    int nc = 1;
+    for (int d = 0; d < dim; ++d) nc *= k.lattice.cells[d];
     Kokkos::View<double*, memory_space> out("amphora::MatrixFreeOperator::generic_elements",
                                             static_cast<std::size_t>(nc) * nd * nd);
-    Kokkos::parallel_for("amphora::MatrixFreeOperator::generic_elements", RangePolicy<ExecSpace>(exec, 0, nc),
-                         KOKKOS_LAMBDA(int cell) {
+    const bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
+    Policy policy = host ? Policy(exec, nc, 1) : Policy(exec, nc, Kokkos::AUTO);
+    policy.set_scratch_size(1, Kokkos::PerTeam(k.scratch_bytes()));
+    Kokkos::parallel_for("amphora::MatrixFreeOperator::generic_elements", policy,
+                         KOKKOS_LAMBDA(const typename K::Team& team) {
+                           const int cell = team.league_rank();
                            int c[3] = {0, 0, 0};
                            for (int d = 0, r = cell; d < dim; ++d) c[d] = r % k.lattice.cells[d], r /= k.lattice.cells[d];
-                           double X[dim * K::max_cell_dofs], u[K::max_cell_dofs], column[K::max_cell_dofs];
-                           double s[K::scratch_size()];
-                           long dof[K::max_cell_dofs];
-                           k.cell_setup(c, X, dof);
+                           const typename K::Work w = k.work(team);
+                           k.cell_setup(team, c, w.X, w.dof);
                            for (int j = 0; j < nd; ++j) {
-                             for (int i = 0; i < nd; ++i) u[i] = i == j ? 1.0 : 0.0;
-                             k.apply_cell(X, u, column, s);
-                             for (int i = 0; i < nd; ++i) out((static_cast<std::size_t>(cell) * nd + j) * nd + i) = column[i];
+                             k.element_column(team, w, j);
+                             const std::size_t at = (static_cast<std::size_t>(cell) * nd + j) * nd;
+                             Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd), [&](int i) { out(at + i) = w.column[i]; });
+                             team.team_barrier();
                            }
                          });
     auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
