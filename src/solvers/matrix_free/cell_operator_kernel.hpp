@@ -350,29 +350,43 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
   }
 }
 
+/// Runs body(team, b, b + 1) for every batch b, one team of team_size (an int or Kokkos::AUTO)
+/// per batch, all at once, with scratch_bytes of level-1 team scratch per team: body must add
+/// atomically. The schedule of device spaces in for_each_batch_team; on a host space with
+/// team_size > 1 it shows that a body shares its work correctly.
+template <class ExecSpace, int dim, class TeamSize, class Body>
+void for_each_batch_team_at_once(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice, const char* label,
+                                 std::size_t scratch_bytes, TeamSize team_size, const Body& body) {
+  using Policy = Kokkos::TeamPolicy<ExecSpace>;
+  Policy policy(exec, lattice.n_batches(), team_size);
+  policy.set_scratch_size(1, Kokkos::PerTeam(scratch_bytes));
+  Kokkos::parallel_for(label, policy, KOKKOS_LAMBDA(const typename Policy::member_type& team) {
+    body(team, team.league_rank(), team.league_rank() + 1);
+  });
+}
+
 /// Runs body(team, b0, b1) on the batches b0 .. b1 - 1 with one team per call and scratch_bytes
 /// of level-1 team scratch per team, for bodies whose team shares each batch's work (a team's
 /// scratch is taken once per call: it is not returned within it). On host spaces a team of one
 /// thread takes one block of slabs, blocks coloured as above; device spaces run one team per
-/// batch, all at once, and body must add atomically.
+/// batch, all at once (for_each_batch_team_at_once), and body must add atomically.
 template <class ExecSpace, int dim, class Body>
 void for_each_batch_team(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice, const char* label,
                          std::size_t scratch_bytes, const Body& body) {
   using Policy = Kokkos::TeamPolicy<ExecSpace>;
-  using Team = typename Policy::member_type;
   constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace,
                                                    typename ExecSpace::memory_space>::accessible;
-  const auto scratch = Kokkos::PerTeam(scratch_bytes);
   if constexpr (!host) {
-    Kokkos::parallel_for(label, Policy(exec, lattice.n_batches(), Kokkos::AUTO).set_scratch_size(1, scratch),
-                         KOKKOS_LAMBDA(const Team& team) { body(team, team.league_rank(), team.league_rank() + 1); });
+    for_each_batch_team_at_once(exec, lattice, label, scratch_bytes, Kokkos::AUTO, body);
   } else {
     const SlabBlockColouring<dim> colouring(lattice);
     const int per_slab = lattice.batches_per_slab();
     for (int colour = 0; colour < 3; ++colour) {
       const int items = colouring.items(colour);
       if (items <= 0) continue;
-      Kokkos::parallel_for(label, Policy(exec, items, 1).set_scratch_size(1, scratch), KOKKOS_LAMBDA(const Team& team) {
+      Policy policy(exec, items, 1);
+      policy.set_scratch_size(1, Kokkos::PerTeam(scratch_bytes));
+      Kokkos::parallel_for(label, policy, KOKKOS_LAMBDA(const typename Policy::member_type& team) {
         const int i = team.league_rank();
         body(team, colouring.first_slab(colour, i) * per_slab, colouring.end_slab(colour, i) * per_slab);
       });

@@ -9,7 +9,9 @@
 // per-thread arrays sized for the largest degree.
 #include <Kokkos_Core.hpp>
 
+#include "kernels/host_vector.hpp"
 #include "kernels/sumfac/point_geometry.hpp"
+#include "kernels/sumfac/quadrature_1d.hpp"
 #include "kernels/sumfac/qk_lattice.hpp"
 #include "solvers/matrix_free/cell_operator_kernel.hpp"
 
@@ -226,5 +228,26 @@ struct GenericCellKernel {
     for (int d = 0; d < dim; ++d, i /= n_p) node[d] = c[d] * lattice.degree + i % n_p;
   }
 };
+
+/// The kernel for degree `degree` on `lattice` with node coordinates `coordinates`
+/// (QkSpace::coordinates()) and n_q points of `rule` per direction; sizes are checked by the caller.
+template <int dim, class ExecSpace>
+GenericCellKernel<dim, ExecSpace> make_generic_cell_kernel(
+    const sumfac::QkLattice<dim>& lattice, const Kokkos::View<const double*, typename ExecSpace::memory_space>& coordinates,
+    OperatorKind kind, int degree, int n_q, sumfac::QuadratureKind rule_kind) {
+  using Mem = typename ExecSpace::memory_space;
+  const auto nodes = sumfac::gauss_lobatto(degree + 1).points;
+  const auto rule = rule_kind == sumfac::QuadratureKind::gauss_lobatto ? sumfac::gauss_lobatto(n_q) : sumfac::gauss(n_q);
+  GenericCellKernel<dim, ExecSpace> g;
+  g.lattice = lattice;
+  g.kind = kind;
+  g.n_p = degree + 1;
+  g.n_q = n_q;
+  g.values = to_view<Mem>(sumfac::lagrange_values(nodes, rule.points), "amphora::generic::values");
+  g.derivatives = to_view<Mem>(sumfac::lagrange_derivatives(nodes, rule.points), "amphora::generic::derivatives");
+  g.weights = to_view<Mem>(rule.weights, "amphora::generic::weights");
+  g.coordinates = coordinates;
+  return g;
+}
 
 }  // namespace amphora::solvers

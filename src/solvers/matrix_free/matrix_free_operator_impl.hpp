@@ -327,18 +327,8 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
       fail("degree " + std::to_string(k) + " with " + std::to_string(n_q_) +
            " points per direction exceeds the generic kernel's limits (degree <= " +
            std::to_string(K::max_nodes_1d - 1) + ", points <= " + std::to_string(K::max_points_1d) + ")");
-    const auto nodes = sumfac::gauss_lobatto(k + 1).points;
-    const auto rule = options.quadrature == sumfac::QuadratureKind::gauss_lobatto ? sumfac::gauss_lobatto(n_q_)
-                                                                                  : sumfac::gauss(n_q_);
-    K g;
-    g.lattice = space.lattice();
-    g.kind = options.kind;
-    g.n_p = k + 1;
-    g.n_q = n_q_;
-    g.values = to_view<memory_space>(sumfac::lagrange_values(nodes, rule.points), "amphora::generic::values");
-    g.derivatives = to_view<memory_space>(sumfac::lagrange_derivatives(nodes, rule.points), "amphora::generic::derivatives");
-    g.weights = to_view<memory_space>(rule.weights, "amphora::generic::weights");
-    g.coordinates = space.coordinates();
+    const K g = make_generic_cell_kernel<dim, ExecSpace>(space.lattice(), space.coordinates(), options.kind, k, n_q_,
+                                                          options.quadrature);
     impl->generic = g;
     impl->apply = &Impl::generic_apply;
     impl->diagonal = &Impl::generic_diagonal;
