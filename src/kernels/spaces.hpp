@@ -18,6 +18,12 @@ inline constexpr bool is_execution_space_v = Kokkos::is_execution_space<T>::valu
 template <class T>
 inline constexpr bool is_memory_space_v = Kokkos::is_memory_space<T>::value;
 
+/// Whether ExecSpace's threads run on the host: the schedules meant for CPUs (coloured cell
+/// loops instead of atomics, SIMD lanes) go by this. It asks about the execution space, not its
+/// memory space: CUDA's UVM memory is host-accessible, yet its kernels run on the device.
+template <class ExecSpace>
+inline constexpr bool runs_on_host_v = Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible;
+
 /// Contiguous 1D array of T in memory space MemSpace (the SoA building block).
 template <class T, class MemSpace = DefaultMemSpace>
 using Array1D = Kokkos::View<T*, Kokkos::LayoutRight, MemSpace>;

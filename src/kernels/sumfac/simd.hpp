@@ -7,6 +7,8 @@
 // threads read consecutive addresses on GPUs (DESIGN.md; KOKKOS.md, "lessons from others").
 #include <Kokkos_Core.hpp>
 
+#include "kernels/spaces.hpp"
+
 namespace amphora::sumfac {
 
 #if defined(__AVX512F__)
@@ -19,10 +21,7 @@ inline constexpr int host_simd_width = 2;
 
 /// Lanes per batch on execution space E: the SIMD width on host spaces, 1 on devices.
 template <class ExecSpace>
-inline constexpr int simd_width_v =
-    Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible
-        ? host_simd_width
-        : 1;
+inline constexpr int simd_width_v = runs_on_host_v<ExecSpace> ? host_simd_width : 1;
 
 #if (defined(__GNUC__) || defined(__clang__)) && !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
 #define AMPHORA_SIMD_VECTOR_EXTENSIONS 1

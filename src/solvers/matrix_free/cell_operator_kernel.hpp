@@ -316,8 +316,7 @@ struct SlabBlockColouring {
 template <class ExecSpace, int dim, class FirstTouch, class Body, class LastTouch = sumfac::NoTouch>
 bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice, const char* label,
                              const FirstTouch& first_touch, const Body& body, const LastTouch& last_touch = {}) {
-  constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace,
-                                                   typename ExecSpace::memory_space>::accessible;
+  constexpr bool host = runs_on_host_v<ExecSpace>;
   constexpr bool by_row = std::is_invocable_v<const Body&, int, int>;
   if constexpr (!host) {
     if constexpr (by_row)
@@ -374,8 +373,7 @@ template <class ExecSpace, int dim, class Body>
 void for_each_batch_team(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice, const char* label,
                          std::size_t scratch_bytes, const Body& body) {
   using Policy = Kokkos::TeamPolicy<ExecSpace>;
-  constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace,
-                                                   typename ExecSpace::memory_space>::accessible;
+  constexpr bool host = runs_on_host_v<ExecSpace>;
   if constexpr (!host) {
     for_each_batch_team_at_once(exec, lattice, label, scratch_bytes, Kokkos::AUTO, body);
   } else {

@@ -58,7 +58,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const double* src = x.data();
     double* dst = y.data();
     const int comps = op.options_.components;
-    constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
+    constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) blas1::fill(exec, y, 0.0);
     const auto zero = first_touch_zero(op, y);
     for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
@@ -77,7 +77,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   template <int n_p, int n_q>
   static double direction_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& z, double beta,
                                const Vector& p, const Vector& q) {
-    constexpr bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
+    constexpr bool host = runs_on_host_v<ExecSpace>;
     if constexpr (!host) {
       return direction_in_passes(op, exec, z, beta, p, q);
     } else {  // (discarded on devices: the partial sums are read on the host)
@@ -124,7 +124,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const K k = op.impl_->generic;
     const int comps = op.options_.components;
     const long n = op.space_->n_dofs();
-    constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
+    constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     blas1::fill(exec, y, 0.0);
     double* out = y.data();
     for_each_batch_team(exec, k.lattice, "amphora::MatrixFreeOperator::generic", k.scratch_bytes(),
@@ -149,7 +149,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     for (int d = 0; d < dim; ++d) nc *= k.lattice.cells[d];
     Kokkos::View<double*, memory_space> out("amphora::MatrixFreeOperator::generic_elements",
                                             static_cast<std::size_t>(nc) * nd * nd);
-    const bool host = Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
+    const bool host = runs_on_host_v<ExecSpace>;
     Policy policy = host ? Policy(exec, nc, 1) : Policy(exec, nc, Kokkos::AUTO);
     policy.set_scratch_size(1, Kokkos::PerTeam(k.scratch_bytes()));
     Kokkos::parallel_for("amphora::MatrixFreeOperator::generic_elements", policy,
@@ -175,7 +175,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const auto k = kernel<n_p, n_q>(op);
     double* dst = d.data();
     const int comps = op.options_.components;
-    constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, memory_space>::accessible;
+    constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) blas1::fill(exec, d, 0.0);
     for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::diagonal", first_touch_zero(op, d),
                             KOKKOS_LAMBDA(int b) { k.template diagonal_batch<atomic>(dst, comps, b); });

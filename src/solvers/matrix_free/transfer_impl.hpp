@@ -78,7 +78,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
   template <int n_pc, int n_pf>
   static void prolongate_impl(const Impl& impl, const ExecSpace& exec, const Vector& xc, const Vector& xf) {
     const auto k = kernel<n_pc, n_pf>(impl);
-    constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
+    constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) Kokkos::deep_copy(exec, xf, 0.0);
     const long nc = impl.coarse.n_dofs(), nf = impl.fine.n_dofs();
     for (int comp = 0; comp < impl.components; ++comp) {
@@ -94,7 +94,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
   template <int n_pc, int n_pf>
   static void restrict_impl(const Impl& impl, const ExecSpace& exec, const Vector& xf, const Vector& xc) {
     const auto k = kernel<n_pc, n_pf>(impl);
-    constexpr bool atomic = !Kokkos::SpaceAccessibility<Kokkos::HostSpace, typename ExecSpace::memory_space>::accessible;
+    constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) Kokkos::deep_copy(exec, xc, 0.0);
     const long nc = impl.coarse.n_dofs(), nf = impl.fine.n_dofs();
     for (int comp = 0; comp < impl.components; ++comp) {
