@@ -45,7 +45,9 @@ struct GenericCellKernel {
     double *X, *u, *y, *column, *s;
     long* dof;
   };
-  KOKKOS_INLINE_FUNCTION int work_doubles() const { return (dim + 3) * n_cell_dofs() + (1 + dim + dim * dim) * tensor_size(); }
+  KOKKOS_INLINE_FUNCTION int work_doubles() const {
+    return (dim + 3) * n_cell_dofs() + (1 + dim + dim * dim) * tensor_size();
+  }
   std::size_t scratch_bytes() const {
     return DoubleScratch::shmem_size(work_doubles()) + LongScratch::shmem_size(n_cell_dofs());
   }
@@ -233,11 +235,13 @@ struct GenericCellKernel {
 /// (QkSpace::coordinates()) and n_q points of `rule` per direction; sizes are checked by the caller.
 template <int dim, class ExecSpace>
 GenericCellKernel<dim, ExecSpace> make_generic_cell_kernel(
-    const sumfac::QkLattice<dim>& lattice, const Kokkos::View<const double*, typename ExecSpace::memory_space>& coordinates,
-    OperatorKind kind, int degree, int n_q, sumfac::QuadratureKind rule_kind) {
+    const sumfac::QkLattice<dim>& lattice,
+    const Kokkos::View<const double*, typename ExecSpace::memory_space>& coordinates, OperatorKind kind, int degree,
+    int n_q, sumfac::QuadratureKind rule_kind) {
   using Mem = typename ExecSpace::memory_space;
   const auto nodes = sumfac::gauss_lobatto(degree + 1).points;
-  const auto rule = rule_kind == sumfac::QuadratureKind::gauss_lobatto ? sumfac::gauss_lobatto(n_q) : sumfac::gauss(n_q);
+  const auto rule =
+      rule_kind == sumfac::QuadratureKind::gauss_lobatto ? sumfac::gauss_lobatto(n_q) : sumfac::gauss(n_q);
   GenericCellKernel<dim, ExecSpace> g;
   g.lattice = lattice;
   g.kind = kind;

@@ -162,7 +162,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
                            for (int j = 0; j < nd; ++j) {
                              k.element_column(team, w, j);
                              const std::size_t at = (static_cast<std::size_t>(cell) * nd + j) * nd;
-                             Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd), [&](int i) { out(at + i) = w.column[i]; });
+                             Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd),
+                                                  [&](int i) { out(at + i) = w.column[i]; });
                              team.team_barrier();
                            }
                          });
