@@ -17,13 +17,13 @@ import argparse
 import csv
 import os
 import re
-import subprocess
 
 import numpy as np
 
-here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-amphora = os.path.join(here, "build", "release", "apps", "amphora")
+from scene_variant import here, run_variant
+
 out = os.path.join(here, "output", "study_dam_break")
+scene = "water_dam_break.toml"
 
 
 def shallow_water_front(T):
@@ -46,17 +46,8 @@ def best_lag(T, Z, exp, lags):
 def run(base, cells, cfl, threads):
     nx0 = int(re.search(r"^cells_x = (\d+)", base, re.M).group(1))
     ny0 = int(re.search(r"^cells_y = (\d+)", base, re.M).group(1))
-    name = f"nx_{cells}_cfl_{cfl:g}"
-    d = os.path.join(out, name)
-    text = re.sub(r'output_dir = ".*"', f'output_dir = "{d}"', base)
-    text = re.sub(r"^output_every = \d+", "output_every = 0", text, flags=re.M)
-    text = re.sub(r"^cells_x = \d+", f"cells_x = {cells}", text, flags=re.M)
-    text = re.sub(r"^cells_y = \d+", f"cells_y = {ny0 * cells // nx0}", text, flags=re.M)
-    text = re.sub(r"^cfl = \S+", f"cfl = {cfl:g}", text, flags=re.M)
-    scene = os.path.join(out, name + ".toml")
-    open(scene, "w").write(text)
-    env = dict(os.environ, OMP_NUM_THREADS=str(threads), OMP_PROC_BIND="spread", OMP_PLACES="threads")
-    subprocess.run([amphora, "run", scene], check=True, capture_output=True, env=env)
+    d = os.path.join(out, f"nx_{cells}_cfl_{cfl:g}")
+    run_variant(scene, d, {"cells_x": cells, "cells_y": ny0 * cells // nx0, "cfl": f"{cfl:g}"}, threads)
     rows = list(csv.DictReader(open(os.path.join(d, "diagnostics.csv"))))
     T = [float(r["front_T"]) for r in rows]
     Z = [float(r["front_Z"]) for r in rows]
@@ -65,8 +56,8 @@ def run(base, cells, cfl, threads):
     checked = [e for t, e in zip(T, err) if 1.1 <= t <= 3.34]
     # the experiment at the run's times, from the run's relative error (0 where not measured)
     exp = [z / (1 + e) if e else None for z, e in zip(Z, err)]
-    a = float(re.search(r"^column_width = (\S+)", text, re.M).group(1))
-    lx = float(re.search(r"^length_x = (\S+)", text, re.M).group(1))
+    a = float(re.search(r"^column_width = (\S+)", base, re.M).group(1))
+    lx = float(re.search(r"^length_x = (\S+)", base, re.M).group(1))
     lag, lag_error = best_lag(T, Z, exp, [0.005 * n for n in range(161)])  # T = 0-0.8
     return {"lag": lag, "lag_ms": 1e3 * lag * float(rows[-1]["time"]) / T[-1], "lag_error": lag_error,
             "cells": cells, "cfl": cfl, "h_over_a": lx / cells / a, "T": T, "Z": Z, "err": err, "exp": exp,
@@ -82,7 +73,7 @@ def main():
     ap.add_argument("--threads", type=int, default=2)
     args = ap.parse_args()
     os.makedirs(out, exist_ok=True)
-    base = open(os.path.join(here, "scenes", "water_dam_break.toml")).read()
+    base = open(os.path.join(here, "scenes", scene)).read()
     runs = []
     for cfl in (float(c) for c in args.cfl.split(",")):
         for cells in (int(n) for n in args.cells.split(",")):
