@@ -2,6 +2,7 @@
 // prolongation on a grid with a free surface, MG-preconditioned CG needs a number of iterations
 // that does not grow with refinement, and the ghost-fluid solve converges at second order in the
 // max norm for a spherical free surface (Gibou et al. 2002).
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "solvers/mac/pressure_solver.hpp"
 #include "kernels/mac/level_set.hpp"
 #include "kernels/mac/projection.hpp"
+#include "mac_box_iterations.hpp"
 #include "test_backend.hpp"
 
 namespace amphora::solvers::mac {
@@ -187,54 +189,23 @@ TEST(MacMultigrid, GhostFluidSphereConvergesAtSecondOrderWithFlatIterationCounts
               runs[2].first, runs[0].second, runs[1].second, runs[2].second);
 }
 
-/// MG-CG iterations for a box of fluid with the given faces (a tank: walls and an open top, or
-/// open all round) filled to height `fill` (air above; flat surface, theta from the level set).
-int box_iterations(int n, const mesh::MacBoxBoundaries& faces, double fill) {
-  const TestExecSpace exec;
-  const MacGrid g{n, n, n, 1.0 / n, {0, 0, 0}};
-  std::vector<MacCellType> t(g.padded_size(), MacCellType::solid);
-  std::vector<double> phi(g.padded_size(), 1.0), b(g.padded_size(), 0.0);
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const auto x = g.cell_centre(i, j, k);
-        const int c = g.index(i, j, k);
-        phi[c] = x[1] - fill;
-        t[c] = phi[c] < 0 ? MacCellType::fluid : MacCellType::air;
-        if (t[c] == MacCellType::fluid) b[c] = g.h * g.h * (1.0 + std::sin(7 * x[0]) * std::cos(5 * x[2]));
-      }
-  const auto A = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
-      exec, g, to_view<TestMemSpace>(t), to_view<TestMemSpace>(phi), faces);
-  const MacMultigrid<TestExecSpace> mg(exec, A);
-  Vector x("x", g.padded_size());
-  SolverControl control;
-  control.relative_tolerance = 1e-8;
-  const SolverResult r = mg.solve(exec, to_view<TestMemSpace>(b), x, control);
-  EXPECT_TRUE(r.converged);
-  return r.iterations;
-}
-
-// Flat for an open box (the benchmark's problem) and a box with one wall, with and without a free
-// surface. A tank (walls on five sides, open top) grows by about one iteration per refinement
-// (7, 8, 10 at 32^3, 64^3, 128^3; the same in double precision and with a 16^3 coarsest grid,
-// so neither is the cause): bounded here so that it cannot get worse unnoticed.
+// Flat for an open box (the benchmark's problem), a box with one wall and a tank (walls on five
+// sides, open top), 7 at 16^3, 32^3 and 64^3. With a flat free surface the count grows by one or
+// two per refinement (open box 8, 10, 12 and tank 9, 11, 13 at 64^3, 128^3, 192^3:
+// test_mac_iterations_at_scale), so those cases are only bounded here, so that they cannot get
+// worse unnoticed.
 TEST(MacMultigrid, IterationsDoNotGrowWithRefinement) {
-  using mesh::MacBoundary;
-  mesh::MacBoxBoundaries tank, open, bottom;
-  tank.fill(MacBoundary::wall);
-  tank[3] = MacBoundary::open;
-  open.fill(MacBoundary::open);
-  bottom = open;
-  bottom[2] = MacBoundary::wall;
+  using test_problems::box_iterations;
+  const test_problems::BoxFaces f;
   struct Case {
     const char* name;
     mesh::MacBoxBoundaries faces;
     double fill;
     int spread, most;
   };
-  for (const Case& c : {Case{"open box", open, 2.0, 0, 8}, Case{"open box, free surface", open, 0.63, 1, 8},
-                        Case{"bottom wall", bottom, 2.0, 1, 8}, Case{"tank", tank, 2.0, 2, 9},
-                        Case{"tank, free surface", tank, 0.63, 2, 10}}) {
+  for (const Case& c : {Case{"open box", f.open, 2.0, 0, 7}, Case{"open box, free surface", f.open, 0.63, 1, 8},
+                        Case{"bottom wall", f.bottom, 2.0, 0, 7}, Case{"tank", f.tank, 2.0, 0, 7},
+                        Case{"tank, free surface", f.tank, 0.63, 2, 9}}) {
     const int a = box_iterations(16, c.faces, c.fill), b = box_iterations(32, c.faces, c.fill),
               d = box_iterations(64, c.faces, c.fill);
     EXPECT_LE(std::max({a, b, d}) - std::min({a, b, d}), c.spread) << c.name << ": " << a << " " << b << " " << d;
