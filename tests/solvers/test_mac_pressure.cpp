@@ -196,11 +196,16 @@ TEST(MacMultigrid, GhostFluidSphereConvergesAtSecondOrderWithFlatIterationCounts
 // worse unnoticed.
 TEST(MacMultigrid, IterationsDoNotGrowWithRefinement) {
   const test_problems::BoxFaces f;
-  test_problems::expect_flat_iterations({16, 32, 64}, {{"open box", f.open, 2.0, 0, 7},
-                                                       {"open box, free surface", f.open, 0.63, 1, 8},
-                                                       {"bottom wall", f.bottom, 2.0, 0, 7},
-                                                       {"tank", f.tank, 2.0, 0, 7},
-                                                       {"tank, free surface", f.tank, 0.63, 2, 9}});
+  const test_problems::IterationCase cases[] = {{"open box", f.open, 2.0, 0, 7},
+                                                {"open box, free surface", f.open, 0.63, 1, 8},
+                                                {"bottom wall", f.bottom, 2.0, 0, 7},
+                                                {"tank", f.tank, 2.0, 0, 7},
+                                                {"tank, free surface", f.tank, 0.63, 2, 9}};
+  for (const auto& c : cases) {
+    const auto r = test_problems::iteration_counts({16, 32, 64}, c);
+    EXPECT_LE(r.spread(), c.spread) << c.name;
+    EXPECT_LE(r.last(), c.most) << c.name;
+  }
 }
 
 TEST(PressureSolver, ThreeBackEndsAgreeOnTheSphere) {
