@@ -35,7 +35,7 @@ out = os.path.join(here, "output", "study_splash")
 
 
 def read_dataset(path, name):
-    tmp = os.path.join(out, "dataset.bin")
+    tmp = os.path.join(os.path.dirname(path), "dataset.bin")
     subprocess.run(["h5dump", "-d", name, "-b", "LE", "-o", tmp, path], check=True, stdout=subprocess.DEVNULL)
     return np.fromfile(tmp, dtype="<f8")
 
@@ -52,12 +52,14 @@ def surface(fields):
     return eta
 
 
-def run(depth, threads, base, every, cfl_factor=1.0, refine=1):
+def run(depth, threads, base, every, cfl_factor=1.0, refine=1, out_dir=out):
+    """One run of the splash scene text `base` at optical depth `depth`, its scene and fields in
+    out_dir."""
     name = f"depth_{depth}" if cfl_factor == 1.0 else f"depth_{depth}_cfl_x{cfl_factor:g}"
     if refine != 1:
         name += f"_refined_x{refine}"
-    d = os.path.join(out, name)
-    scene = os.path.join(out, f"splash_{name}.toml")
+    d = os.path.join(out_dir, name)
+    scene = os.path.join(out_dir, f"splash_{name}.toml")
     text = re.sub(r'output_dir = ".*"', f'output_dir = "{d}"', base)
     text = re.sub(r"optical_depth = \d+", f"optical_depth = {depth}", text)
     for axis in "xyz":

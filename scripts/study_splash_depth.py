@@ -44,8 +44,8 @@ def pool(scene, depth, threads):
     nx, ny, nz = (int(key(base, f"cells_{a}")) for a in "xyz")
     h = key(base, "length_x") / nx
     water = key(base, "pool_depth")
-    uniform = study_splash.run(0, threads, base, 0)
-    tall = study_splash.run(depth, threads, base, 0)
+    uniform = study_splash.run(0, threads, base, 0, out_dir=out)
+    tall = study_splash.run(depth, threads, base, 0, out_dir=out)
     amplitude = np.max(np.abs(uniform["eta"] - water))
     error = np.max(np.abs(tall["eta"] - uniform["eta"])) / amplitude
     t_u = uniform["seconds_per_step"]
@@ -71,7 +71,6 @@ def main():
     if len(depths) != len(scene_list) or min(depths) < 1:
         sys.exit("--depths needs one optical depth of at least 1 per scene of --scenes")
     os.makedirs(out, exist_ok=True)
-    study_splash.out = out  # the runs' scenes and fields go here, not into the splash study's
     rows = []
     for scene, depth in zip(scene_list, depths):
         r = pool(scene, depth, args.threads)
