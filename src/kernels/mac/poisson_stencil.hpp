@@ -126,7 +126,10 @@ void apply(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const X&
   zero_ghost_planes(exec, A.grid, y);
 }
 
-/// r = b - A x (b zero on ghost cells: so is r).
+/// r = b - A x on every interior cell, zero on every ghost cell. (The flat loop also passes the
+/// x ghost columns, where the -x neighbour of cell -1 is the last ghost of the row below: on a
+/// block with a neighbour beyond +x, its conductance and value are the neighbour's, so the
+/// columns are zeroed after.)
 template <class ExecSpace, class MemSpace, class S, class B, class X, class R>
 void residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b, const X& x,
               const R& r) {
@@ -135,7 +138,7 @@ void residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const
       "amphora::mac::residual",
       RangePolicy<ExecSpace>(exec, A.grid.first_plane_index(), A.grid.end_plane_index()),
       KOKKOS_LAMBDA(int c) { r(c) = b(c) - a.diag(c) * x(c) + a.neighbour_sum(x, c); });
-  zero_ghost_planes(exec, A.grid, r);
+  zero_ghost_cells(exec, A.grid, r);
 }
 
 /// One Gauss–Seidel half-sweep over the cells with (i + j + k) % 2 == colour: the cells of one
