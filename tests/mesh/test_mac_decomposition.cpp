@@ -352,7 +352,7 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SplitDirection, MacDecomposition, ::testing::Values(0, 2),
-                         [](const ::testing::TestParamInfo<int>& info) { return info.param == 0 ? "x" : "z"; });
+                         [](const ::testing::TestParamInfo<int>& direction) { return direction.param == 0 ? "x" : "z"; });
 
 }  // namespace
 }  // namespace amphora

@@ -53,6 +53,11 @@ struct PoissonStencil {
   Kokkos::View<std::uint8_t*, MemSpace> surface_free_rows;
   /// Every face between two fluid cells has c = 1 (a build; not a coarsened stencil).
   bool unit_fluid_faces = false;
+  /// The level set at the cell centres, when the build had one (empty otherwise): the multigrid
+  /// coarsens it to form its coarse levels' free-surface terms (grid_transfer.hpp).
+  Kokkos::View<double*, MemSpace> phi;
+  /// A full face's conductance on this grid: 1 on a built one, doubled per coarsening.
+  double full_face = 1.0;
 
   KOKKOS_INLINE_FUNCTION int surface_free_row(int j, int k) const { return x_row(grid, j, k); }
 
@@ -299,6 +304,14 @@ void build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g, const 
         free_rows(x_row(g, j, k)) = surface ? 0 : 1;
       });
   A.unit_fluid_faces = true;
+  A.full_face = 1.0;
+  if (has_phi) {  // whole, ghost layers included (the rows below first_row hold what they held)
+    if (A.phi.extent(0) != static_cast<std::size_t>(g.padded_size()))
+      A.phi = Kokkos::View<double*, MemSpace>("amphora::mac::phi", g.padded_size());
+    Kokkos::deep_copy(exec, A.phi, phi);
+  } else {
+    A.phi = {};
+  }
   A.any_solid = count_solid(exec, A) > 0;
   // a solid cell's share reads the cells beside it: from the row under the first rebuilt one
   compute_solid_shares(exec, A, j0 - 1);
@@ -334,6 +347,8 @@ PoissonStencil<DstMemSpace, S> copy_stencil(const PoissonStencil<MemSpace, S>& A
   B.solid_share = copy(A.solid_share);
   B.surface_free_rows = copy(A.surface_free_rows);
   B.unit_fluid_faces = A.unit_fluid_faces;
+  if (A.phi.extent(0) > 0) B.phi = copy(A.phi);
+  B.full_face = A.full_face;
   return B;
 }
 

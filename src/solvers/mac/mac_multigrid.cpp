@@ -94,12 +94,26 @@ void complete_block_stencil(const ExecSpace& exec, const mesh::LatticeGhostExcha
   MPI_Allreduce(&any, &global_any, 1, MPI_INT, MPI_MAX, comm);
   if (!halo.block().split()) return;  // one block: the coefficients are complete
   const mesh::MacGrid& g = level.grid;
+  const bool level_set = level.phi.extent(0) > 0;
   // a coarse level: the ghost cells' + faces are this block's - faces, then the diagonal at
-  // the block faces (the caller exchanged the finest level's conductances)
+  // the block faces (the caller exchanged the finest level's conductances), with a level set
+  // from the ghost cells' level set and whether they are unknowns, after which the faces towards
+  // cells that are not unknowns are zero on both sides
   if (fine) {
     halo.exchange(exec, g, level.cx);
     halo.exchange(exec, g, level.cz);
-    kernels::mac::coarse_diagonal(exec, *fine, level);
+    if (level_set) {
+      halo.exchange(exec, g, level.diag);
+      halo.exchange(exec, g, level.solid);
+      halo.exchange(exec, g, level.phi);
+    }
+    kernels::mac::coarse_diagonal(exec, *fine, level, 0, true);
+    if (level_set) {
+      halo.exchange(exec, g, level.cx);
+      halo.exchange(exec, g, level.cz);
+    }
+  } else if (level_set) {
+    halo.exchange(exec, g, level.phi);  // the finest level's, for the first coarsening
   }
   halo.exchange(exec, g, level.diag);
   halo.exchange(exec, g, level.inverse_diag);

@@ -65,6 +65,10 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
   const mesh::TallCellGrid* level_grid = &T;
   std::optional<mesh::TallCellGrid> coarse_level_grid;
   Stencil level_A = A;
+  // The tall-cell levels keep halving the children's free-surface terms (grid_transfer.hpp):
+  // their partial recoarsening from a row (kept) relies on it, and their coarse tall-cell grids
+  // on every cell with a fluid child being an unknown.
+  level_A.phi = {};
   complete_block_stencil(exec, halo_, static_cast<const Stencil*>(nullptr), level_A);
   mesh::MacBlock level_block = block;
   int unchanged_below = kept ? kept->unchanged_below : 0;  // on this level's lattice
