@@ -220,8 +220,9 @@ void prolongate_correction(const ExecSpace& exec, const PoissonStencil<MemSpace,
 /// children's open-box-face terms + the free-surface terms (see the top of this file), from coarse
 /// row first_row up; with a level set also the coarse level set, and the conductances towards
 /// non-unknowns zeroed. ghosts_known: the ghost cells' diagonal (which says whether a cell is an
-/// unknown) and level set hold the neighbouring blocks' (a split grid's second call, after the
-/// exchange); otherwise a coarse face towards a ghost cell counts as one between unknowns.
+/// unknown), solid flags and level set hold the neighbouring blocks' (a split grid's second call,
+/// after the exchange); otherwise a coarse face towards a ghost cell counts as one between
+/// unknowns.
 template <class ExecSpace, class MemSpace>
 void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A, const PoissonStencil<MemSpace>& coarse_A,
                      int first_row = 0, bool ghosts_known = false) {
@@ -233,51 +234,77 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
   const bool level_set = fphi.extent(0) > 0 && cphi.extent(0) > 0;
   const double fine_face = fine_A.full_face, coarse_face = coarse_A.full_face;
   const auto edge = coarse_A.edges();
+  const auto wall = coarse_A.walls();
   const int sy = gf.stride_y(), sz = gf.stride_z();
   const int csy = gc.stride_y(), csz = gc.stride_z();
   const int J0 = math::clamp(first_row, 0, gc.ny);
-  // the children's mean level set, and whether some child is fluid
-  const auto children = KOKKOS_LAMBDA(int I, int J, int K, double& phi) {
-    bool fluid = false;
-    phi = 0.0;
-    for (int c3 = 0; c3 < 2; ++c3)
-      for (int b = 0; b < 2; ++b)
-        for (int a = 0; a < 2; ++a) {
-          const int f = gf.index(2 * I + a, 2 * J + b, 2 * K + c3);
-          fluid = fluid || fd(f) != 0.0;
-          if (level_set) phi += fphi(f);
-        }
-    phi *= 0.125;
-    return fluid;
+  const auto cells = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, J0, 0}, {gc.nz, gc.ny, gc.nx});
+  // With a level set, first each coarse cell's level set (the children's mean), solid flag and
+  // whether it is an unknown (a fluid child and a negative level set), which its neighbours read.
+  Kokkos::View<std::uint8_t*, MemSpace> unknown;
+  if (level_set) {
+    unknown = Kokkos::View<std::uint8_t*, MemSpace>("amphora::mac::coarse_unknown", gc.padded_size());
+    Kokkos::parallel_for(
+        "amphora::mac::coarsen_stencil::level_set", cells, KOKKOS_LAMBDA(int K, int J, int I) {
+          bool fluid = false, all_solid = true;
+          double phi = 0.0;
+          for (int c3 = 0; c3 < 2; ++c3)
+            for (int b = 0; b < 2; ++b)
+              for (int a = 0; a < 2; ++a) {
+                const int f = gf.index(2 * I + a, 2 * J + b, 2 * K + c3);
+                fluid = fluid || fd(f) != 0.0;
+                all_solid = all_solid && fsolid(f);
+                phi += fphi(f);
+              }
+          const int c = gc.index(I, J, K);
+          cphi(c) = 0.125 * phi;
+          csolid(c) = all_solid;
+          unknown(c) = fluid && phi < 0.0;
+        });
+  }
+  // whether coarse cell (I, J, K) = c + offset is an unknown, its solid flag and level set; a
+  // ghost cell's from the exchange when known, else taken to be an unknown
+  const auto neighbour = KOKKOS_LAMBDA(int I, int J, int K, int n, double& phi_n, bool& solid_n) {
+    const bool ghost = I < 0 || J < 0 || K < 0 || I >= gc.nx || J >= gc.ny || K >= gc.nz;
+    if (ghost && !ghosts_known) {
+      phi_n = 0.0, solid_n = false;
+      return true;
+    }
+    phi_n = cphi(n), solid_n = csolid(n);
+    return ghost ? cd(n) != 0.0 : unknown(n) != 0;
   };
   Kokkos::parallel_for(
-      "amphora::mac::coarsen_stencil::diagonal",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, J0, 0}, {gc.nz, gc.ny, gc.nx}),
-      KOKKOS_LAMBDA(int K, int J, int I) {
-        // the children's free-surface and open-box-face terms (the diagonal beyond the faces
-        // towards unknowns); with a level set the free-surface ones are taken out again
+      "amphora::mac::coarsen_stencil::diagonal", cells, KOKKOS_LAMBDA(int K, int J, int I) {
+        // The children's free-surface and open-box-face terms: without a level set all of them
+        // (the diagonal beyond the faces towards fluid); with one only the open-box-face terms
+        // (the diagonal beyond the faces towards unknowns and air inside the box), which only
+        // the children of a cell on a box face have.
+        const bool beyond[6] = {I == 0 && edge[0], I + 1 == gc.nx && edge[1], J == 0 && edge[2],
+                                J + 1 == gc.ny && edge[3], K == 0 && edge[4], K + 1 == gc.nz && edge[5]};
+        // (a wall adds no term)
+        const bool open_face = (beyond[0] && !wall[0]) || (beyond[1] && !wall[1]) || (beyond[2] && !wall[2]) ||
+                               (beyond[3] && !wall[3]) || (beyond[4] && !wall[4]) || (beyond[5] && !wall[5]);
         double dirichlet = 0.0;
-        bool all_solid = true;
+        bool any_fluid = false, all_solid = true;
         const int offset[6] = {-1, 1, -sy, sy, -sz, sz};
-        for (int c3 = 0; c3 < 2; ++c3)
+        for (int c3 = 0; c3 < 2 && (open_face || !level_set); ++c3)
           for (int b = 0; b < 2; ++b)
             for (int a = 0; a < 2; ++a) {
               const int f = gf.index(2 * I + a, 2 * J + b, 2 * K + c3);
               all_solid = all_solid && fsolid(f);
               if (fd(f) == 0.0) continue;
+              any_fluid = true;
               const double c[6] = {double(fcx(f - 1)), double(fcx(f)), double(fcy(f - sy)), double(fcy(f)),
                                    double(fcz(f - sz)), double(fcz(f))};
-              // beyond a box face: neither an unknown nor air (its term is an open face's)
-              const bool beyond[6] = {2 * I + a == 0 && edge[0], 2 * I + a + 1 == gf.nx && edge[1],
-                                      2 * J + b == 0 && edge[2], 2 * J + b + 1 == gf.ny && edge[3],
-                                      2 * K + c3 == 0 && edge[4], 2 * K + c3 + 1 == gf.nz && edge[5]};
-              if (!level_set) {  // every stored face is one towards an unknown or zero
+              if (!level_set) {
                 dirichlet += fd(f) - (c[0] + c[1] + c[2] + c[3] + c[4] + c[5]);
                 continue;
               }
+              const bool child_beyond[6] = {a == 0 && beyond[0], a == 1 && beyond[1], b == 0 && beyond[2],
+                                            b == 1 && beyond[3], c3 == 0 && beyond[4], c3 == 1 && beyond[5]};
               double d = fd(f);
               for (int e = 0; e < 6; ++e) {
-                if (beyond[e]) continue;
+                if (child_beyond[e]) continue;
                 const int n = f + offset[e];
                 if (fd(n) != 0.0)
                   d -= c[e];
@@ -287,20 +314,12 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
               dirichlet += d;
             }
         const int c = gc.index(I, J, K);
-        double phi = 0.0;
-        bool unknown = children(I, J, K, phi);
-        if (level_set) {
-          cphi(c) = phi;
-          unknown = unknown && phi < 0.0;
-        }
         double diag = 0.0;
-        if (unknown) {
+        if (level_set ? unknown(c) != 0 : any_fluid) {
           const int dI[6] = {-1, 1, 0, 0, 0, 0}, dJ[6] = {0, 0, -1, 1, 0, 0}, dK[6] = {0, 0, 0, 0, -1, 1};
           const int offset_c[6] = {-1, 1, -csy, csy, -csz, csz};
           const double cc[6] = {double(ccx(c - 1)), double(ccx(c)), double(ccy(c - csy)), double(ccy(c)),
                                 double(ccz(c - csz)), double(ccz(c))};
-          const bool beyond[6] = {I == 0 && edge[0], I + 1 == gc.nx && edge[1], J == 0 && edge[2],
-                                  J + 1 == gc.ny && edge[3], K == 0 && edge[4], K + 1 == gc.nz && edge[5]};
           diag = 0.5 * dirichlet;
           for (int e = 0; e < 6; ++e) {
             if (beyond[e]) continue;
@@ -308,54 +327,33 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
               diag += cc[e];
               continue;
             }
-            const int NI = I + dI[e], NJ = J + dJ[e], NK = K + dK[e];
-            const bool ghost = NI < 0 || NJ < 0 || NK < 0 || NI >= gc.nx || NJ >= gc.ny || NK >= gc.nz;
             double phi_n = 0.0;
-            bool unknown_n = true, solid_n = false;
-            if (!ghost) {
-              unknown_n = children(NI, NJ, NK, phi_n) && phi_n < 0.0;
-              solid_n = true;
-              for (int c3 = 0; c3 < 2 && solid_n; ++c3)
-                for (int b = 0; b < 2; ++b)
-                  for (int a = 0; a < 2; ++a) solid_n = solid_n && fsolid(gf.index(2 * NI + a, 2 * NJ + b, 2 * NK + c3));
-            } else if (ghosts_known) {
-              const int n = c + offset_c[e];
-              unknown_n = cd(n) != 0.0, solid_n = csolid(n), phi_n = cphi(n);
-            }
-            if (unknown_n)
+            bool solid_n = false;
+            if (neighbour(I + dI[e], J + dJ[e], K + dK[e], c + offset_c[e], phi_n, solid_n))
               diag += cc[e];
             else if (!solid_n)
-              diag += coarse_face * ghost_fluid_weight(phi, phi_n);
+              diag += coarse_face * ghost_fluid_weight(cphi(c), phi_n);
           }
         }
         cd(c) = diag;
         cinv(c) = diag > 0.0 ? 1.0 / diag : 0.0;
-        csolid(c) = all_solid;
+        if (!level_set) csolid(c) = all_solid;  // (with one: above)
       });
   if (!level_set) return;
-  // the conductances of faces with a non-unknown on either side (no unknown couples through them)
+  // the conductances of faces with a non-unknown on either side (no unknown couples through
+  // them); none beyond a box face
   Kokkos::parallel_for(
-      "amphora::mac::coarsen_stencil::faces_of_unknowns",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, J0, 0}, {gc.nz, gc.ny, gc.nx}),
-      KOKKOS_LAMBDA(int K, int J, int I) {
+      "amphora::mac::coarsen_stencil::faces_of_unknowns", cells, KOKKOS_LAMBDA(int K, int J, int I) {
         const int c = gc.index(I, J, K);
-        // whether a cell is an unknown: from its children inside the block; none beyond a box
-        // face; from the exchanged diagonal for another block's cell (taken to be one, the face
-        // kept, until the ghosts are known)
-        const auto unknown = [&](int II, int JJ, int KK, int n, bool last, bool box_face) {
-          if (!last) {
-            double p = 0.0;
-            return children(II, JJ, KK, p) && p < 0.0;
-          }
-          return !box_face && (!ghosts_known || cd(n) != 0.0);
-        };
-        if (!unknown(I, J, K, c, false, false)) {
+        if (!unknown(c)) {
           ccx(c) = ccy(c) = ccz(c) = 0.0f;
           return;
         }
-        if (!unknown(I + 1, J, K, c + 1, I + 1 == gc.nx, edge[1])) ccx(c) = 0.0f;
-        if (!unknown(I, J + 1, K, c + csy, J + 1 == gc.ny, true)) ccy(c) = 0.0f;
-        if (!unknown(I, J, K + 1, c + csz, K + 1 == gc.nz, edge[5])) ccz(c) = 0.0f;
+        double phi_n = 0.0;
+        bool solid_n = false;
+        if ((I + 1 == gc.nx && edge[1]) || !neighbour(I + 1, J, K, c + 1, phi_n, solid_n)) ccx(c) = 0.0f;
+        if (J + 1 == gc.ny || !neighbour(I, J + 1, K, c + csy, phi_n, solid_n)) ccy(c) = 0.0f;
+        if ((K + 1 == gc.nz && edge[5]) || !neighbour(I, J, K + 1, c + csz, phi_n, solid_n)) ccz(c) = 0.0f;
       });
 }
 
