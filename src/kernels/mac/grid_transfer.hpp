@@ -241,11 +241,14 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
   const auto cells = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, J0, 0}, {gc.nz, gc.ny, gc.nx});
   // With a level set, first each coarse cell's level set (the children's mean), solid flag and
   // whether it is an unknown (a fluid child and a negative level set), which its neighbours read.
+  // (From the row under the first one: the first one reads it.)
   Kokkos::View<std::uint8_t*, MemSpace> unknown;
   if (level_set) {
     unknown = Kokkos::View<std::uint8_t*, MemSpace>("amphora::mac::coarse_unknown", gc.padded_size());
     Kokkos::parallel_for(
-        "amphora::mac::coarsen_stencil::level_set", cells, KOKKOS_LAMBDA(int K, int J, int I) {
+        "amphora::mac::coarsen_stencil::level_set",
+        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::max(J0 - 1, 0), 0}, {gc.nz, gc.ny, gc.nx}),
+        KOKKOS_LAMBDA(int K, int J, int I) {
           bool fluid = false, all_solid = true;
           double phi = 0.0;
           for (int c3 = 0; c3 < 2; ++c3)
@@ -358,8 +361,12 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
 }
 
 /// The first coarse row that a change of the fine stencil from fine row `first_row` up can
-/// reach: a coarse row reads the fine rows 2J - 1 (the -y faces) to 2J + 1.
-inline int first_coarse_row_changed(int first_row) { return math::max(first_row, 0) / 2; }
+/// reach: a coarse row reads the fine rows 2J - 1 (the -y faces) to 2J + 1; with a level set
+/// also its neighbours' children (whether they are unknowns, their level set) and the faces of
+/// the row below, which that decides: fine rows 2J - 2 to 2J + 3.
+inline int first_coarse_row_changed(int first_row, bool level_set = false) {
+  return level_set ? math::max(math::max(first_row, 0) / 2 - 2, 0) : math::max(first_row, 0) / 2;
+}
 
 /// The coarse matrix of a fine one (grid dimensions even; see the header comment) into
 /// coarse_A (allocated on the coarsened grid), from coarse row first_row up. The rows below
@@ -371,8 +378,7 @@ void coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
                      int first_row) {
   const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const bool level_set = fine_A.phi.extent(0) > 0;
-  // with a level set a row's terms read the rows beside it: every row is coarsened
-  const int J0 = level_set ? 0 : math::clamp(first_row, 0, gc.ny);
+  const int J0 = math::clamp(first_row, 0, gc.ny);
   coarse_A.box = fine_A.box;
   coarse_A.full_face = 2.0 * fine_A.full_face;
   if (!level_set)

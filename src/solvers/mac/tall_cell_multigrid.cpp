@@ -65,10 +65,6 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
   const mesh::TallCellGrid* level_grid = &T;
   std::optional<mesh::TallCellGrid> coarse_level_grid;
   Stencil level_A = A;
-  // The tall-cell levels keep halving the children's free-surface terms (grid_transfer.hpp):
-  // their partial recoarsening from a row (kept) relies on it, and their coarse tall-cell grids
-  // on every cell with a fluid child being an unknown.
-  level_A.phi = {};
   complete_block_stencil(exec, halo_, static_cast<const Stencil*>(nullptr), level_A);
   mesh::MacBlock level_block = block;
   int unchanged_below = kept ? kept->unchanged_below : 0;  // on this level's lattice
@@ -122,7 +118,8 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     // the coarser lattice's stencil: a kept one coarsened again from the rows that can differ
     const bool keeps = kept && static_cast<std::size_t>(l) < kept->levels.size();
     Stencil coarse = keeps ? kept->levels[l] : Stencil(level_A.grid.coarsened());
-    unchanged_below = keeps ? kernels::mac::first_coarse_row_changed(unchanged_below) : 0;
+    unchanged_below =
+        keeps ? kernels::mac::first_coarse_row_changed(unchanged_below, level_A.phi.extent(0) > 0) : 0;
     kernels::mac::coarsen_stencil(exec, level_A, coarse, unchanged_below);
     complete_block_stencil(exec, halo_, &level_A, coarse);
     if (keeps)
