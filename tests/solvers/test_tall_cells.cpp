@@ -170,17 +170,36 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
     const mesh::TallCellGrid T(A, depth);
     EXPECT_GT(T.tall_cells(), 100);
     expect_same_matrix(assemble_tall_cell_matrix(T, A), assemble_tall_cell_matrix(T, without_hints(A)));
-    // the next multigrid level, as the tall-cell multigrid coarsens (without the level set)
-    HostStencil A_tall = A;
-    A_tall.phi = {};
-    const HostStencil C = kernels::mac::coarsen_stencil(HostExecSpace(), A_tall);
-    EXPECT_FALSE(C.unit_fluid_faces);
-    long coarse_free = 0;
-    for (std::size_t r = 0; r < C.surface_free_rows.extent(0); ++r) coarse_free += C.surface_free_rows(r);
-    EXPECT_GT(coarse_free, 0);
-    const mesh::TallCellGrid Tc(C, T);
-    EXPECT_GT(Tc.tall_cells(), 10);
-    expect_same_matrix(assemble_tall_cell_matrix(Tc, C), assemble_tall_cell_matrix(Tc, without_hints(C)));
+    // the next multigrid level, with the level set (the coarse level set's marks) and without
+    // (the children's)
+    HostStencil A_halved = A;
+    A_halved.phi = {};
+    for (const HostStencil& fine : {A, A_halved}) {
+      const HostStencil C = kernels::mac::coarsen_stencil(HostExecSpace(), fine);
+      EXPECT_FALSE(C.unit_fluid_faces);
+      long coarse_free = 0;
+      for (std::size_t r = 0; r < C.surface_free_rows.extent(0); ++r) coarse_free += C.surface_free_rows(r);
+      EXPECT_GT(coarse_free, 0);
+      if (fine.phi.extent(0) > 0) {  // with the level set: marked exactly where no D != 0
+        const MacGrid& gc = C.grid;
+        long wrong = 0;
+        for (int k = 0; k < gc.nz; ++k)
+          for (int j = 0; j < gc.ny; ++j) {
+            bool surface = false;
+            for (int i = 0; i < gc.nx; ++i) {
+              const int c = gc.index(i, j, k);
+              const double D = C.diag(c) - (double(C.cx(c - 1)) + double(C.cx(c)) + double(C.cy(c - gc.stride_y())) +
+                                            double(C.cy(c)) + double(C.cz(c - gc.stride_z())) + double(C.cz(c)));
+              surface = surface || (C.diag(c) != 0.0 && std::abs(D) > 1e-12 * C.diag(c));
+            }
+            wrong += (C.surface_free_rows(C.surface_free_row(j, k)) != 0) == surface;
+          }
+        EXPECT_EQ(wrong, 0) << "coarse rows marked wrongly, depth " << depth;
+      }
+      const mesh::TallCellGrid Tc(C, T);
+      EXPECT_GT(Tc.tall_cells(), 10);
+      expect_same_matrix(assemble_tall_cell_matrix(Tc, C), assemble_tall_cell_matrix(Tc, without_hints(C)));
+    }
   }
 }
 

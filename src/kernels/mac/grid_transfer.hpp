@@ -358,6 +358,33 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
         if (J + 1 == gc.ny || !neighbour(I, J + 1, K, c + csy, phi_n, solid_n)) ccy(c) = 0.0f;
         if ((K + 1 == gc.nz && edge[5]) || !neighbour(I, J, K + 1, c + csz, phi_n, solid_n)) ccz(c) = 0.0f;
       });
+  // the x-rows free of free-surface and open-box-face terms (PoissonStencil::surface_free_rows):
+  // no unknown in them beside a non-solid cell that is not one, or at an open box face
+  const auto cfree = coarse_A.surface_free_rows;
+  const int rows = gc.ny - J0;
+  Kokkos::parallel_for(
+      "amphora::mac::coarsen_stencil::surface_free_rows", RangePolicy<ExecSpace>(exec, 0, rows * gc.nz),
+      KOKKOS_LAMBDA(int m) {
+        const int J = J0 + m % rows, K = m / rows;
+        const int dI[6] = {-1, 1, 0, 0, 0, 0}, dJ[6] = {0, 0, -1, 1, 0, 0}, dK[6] = {0, 0, 0, 0, -1, 1};
+        const int offset_c[6] = {-1, 1, -csy, csy, -csz, csz};
+        bool row_free = true;
+        for (int I = 0; I < gc.nx && row_free; ++I) {
+          const int c = gc.index(I, J, K);
+          if (!unknown(c)) continue;
+          const bool beyond[6] = {I == 0 && edge[0], I + 1 == gc.nx && edge[1], J == 0 && edge[2],
+                                  J + 1 == gc.ny && edge[3], K == 0 && edge[4], K + 1 == gc.nz && edge[5]};
+          for (int e = 0; e < 6 && row_free; ++e) {
+            double phi_n = 0.0;
+            bool solid_n = false;
+            if (beyond[e])
+              row_free = wall[e];
+            else if (!neighbour(I + dI[e], J + dJ[e], K + dK[e], c + offset_c[e], phi_n, solid_n))
+              row_free = solid_n;
+          }
+        }
+        cfree(x_row(gc, J, K)) = row_free ? 1 : 0;
+      });
 }
 
 /// The first coarse row that a change of the fine stencil from fine row `first_row` up can
@@ -406,18 +433,21 @@ void coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
       });
   coarse_diagonal(exec, fine_A, coarse_A, J0);
   // Without a level set a coarse cell's free-surface term is half its children's
-  // (coarse_diagonal): zero on a row whose four child rows are all known free of them.
+  // (coarse_diagonal): zero on a row whose four child rows are all known free of them. (With
+  // one, coarse_diagonal marks the rows.)
   const auto ffree = fine_A.surface_free_rows, cfree = coarse_A.surface_free_rows;
   const int rows = gc.ny - J0;
-  Kokkos::parallel_for(
-      "amphora::mac::coarsen_stencil::surface_free_rows", RangePolicy<ExecSpace>(exec, 0, rows * gc.nz),
-      KOKKOS_LAMBDA(int m) {
-        const int J = J0 + m % rows, K = m / rows;
-        std::uint8_t all = level_set ? 0 : 1;  // with a level set: not known (new air terms)
-        for (int c3 = 0; c3 < 2; ++c3)
-          for (int b = 0; b < 2; ++b) all = all & ffree(x_row(gf, 2 * J + b, 2 * K + c3));
-        cfree(x_row(gc, J, K)) = all;
-      });
+  if (!level_set) {
+    Kokkos::parallel_for(
+        "amphora::mac::coarsen_stencil::surface_free_rows", RangePolicy<ExecSpace>(exec, 0, rows * gc.nz),
+        KOKKOS_LAMBDA(int m) {
+          const int J = J0 + m % rows, K = m / rows;
+          std::uint8_t all = 1;
+          for (int c3 = 0; c3 < 2; ++c3)
+            for (int b = 0; b < 2; ++b) all = all & ffree(x_row(gf, 2 * J + b, 2 * K + c3));
+          cfree(x_row(gc, J, K)) = all;
+        });
+  }
   coarse_A.unit_fluid_faces = false;
   coarse_A.any_solid = fine_A.any_solid && count_solid(exec, coarse_A) > 0;
   // a solid cell's share reads the cells beside it: from the row under the first coarsened one
