@@ -265,14 +265,21 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
           unknown(c) = fluid && phi < 0.0;
         });
   }
-  // whether coarse cell (I, J, K) = c + offset is an unknown, its solid flag and level set; a
-  // ghost cell's from the exchange when known, else taken to be an unknown
-  const auto neighbour = KOKKOS_LAMBDA(int I, int J, int K, int n, double& phi_n, bool& solid_n) {
-    const bool ghost = I < 0 || J < 0 || K < 0 || I >= gc.nx || J >= gc.ny || K >= gc.nz;
+  // Per direction e = -x, +x, -y, +y, -z, +z of coarse cell (I, J, K): whether a box face lies
+  // that way, and whether the neighbour that way is an unknown, with its solid flag and level set
+  // (a ghost cell's from the exchange when known, else taken to be an unknown).
+  const auto beyond_box = KOKKOS_LAMBDA(int I, int J, int K, int e) {
+    const int at[6] = {I, gc.nx - 1 - I, J, gc.ny - 1 - J, K, gc.nz - 1 - K};
+    return at[e] == 0 && edge[e];
+  };
+  const auto neighbour = KOKKOS_LAMBDA(int I, int J, int K, int e, double& phi_n, bool& solid_n) {
+    const int NI = I + (e == 1) - (e == 0), NJ = J + (e == 3) - (e == 2), NK = K + (e == 5) - (e == 4);
+    const bool ghost = NI < 0 || NJ < 0 || NK < 0 || NI >= gc.nx || NJ >= gc.ny || NK >= gc.nz;
     if (ghost && !ghosts_known) {
       phi_n = 0.0, solid_n = false;
       return true;
     }
+    const int n = gc.index(NI, NJ, NK);
     phi_n = cphi(n), solid_n = csolid(n);
     return ghost ? cd(n) != 0.0 : unknown(n) != 0;
   };
@@ -282,8 +289,8 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
         // (the diagonal beyond the faces towards fluid); with one only the open-box-face terms
         // (the diagonal beyond the faces towards unknowns and air inside the box), which only
         // the children of a cell on a box face have.
-        const bool beyond[6] = {I == 0 && edge[0], I + 1 == gc.nx && edge[1], J == 0 && edge[2],
-                                J + 1 == gc.ny && edge[3], K == 0 && edge[4], K + 1 == gc.nz && edge[5]};
+        bool beyond[6];
+        for (int e = 0; e < 6; ++e) beyond[e] = beyond_box(I, J, K, e);
         // (a wall adds no term)
         const bool open_face = (beyond[0] && !wall[0]) || (beyond[1] && !wall[1]) || (beyond[2] && !wall[2]) ||
                                (beyond[3] && !wall[3]) || (beyond[4] && !wall[4]) || (beyond[5] && !wall[5]);
@@ -319,8 +326,6 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
         const int c = gc.index(I, J, K);
         double diag = 0.0;
         if (level_set ? unknown(c) != 0 : any_fluid) {
-          const int dI[6] = {-1, 1, 0, 0, 0, 0}, dJ[6] = {0, 0, -1, 1, 0, 0}, dK[6] = {0, 0, 0, 0, -1, 1};
-          const int offset_c[6] = {-1, 1, -csy, csy, -csz, csz};
           const double cc[6] = {double(ccx(c - 1)), double(ccx(c)), double(ccy(c - csy)), double(ccy(c)),
                                 double(ccz(c - csz)), double(ccz(c))};
           diag = 0.5 * dirichlet;
@@ -332,7 +337,7 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
             }
             double phi_n = 0.0;
             bool solid_n = false;
-            if (neighbour(I + dI[e], J + dJ[e], K + dK[e], c + offset_c[e], phi_n, solid_n))
+            if (neighbour(I, J, K, e, phi_n, solid_n))
               diag += cc[e];
             else if (!solid_n)
               diag += coarse_face * ghost_fluid_weight(cphi(c), phi_n);
@@ -354,9 +359,9 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
         }
         double phi_n = 0.0;
         bool solid_n = false;
-        if ((I + 1 == gc.nx && edge[1]) || !neighbour(I + 1, J, K, c + 1, phi_n, solid_n)) ccx(c) = 0.0f;
-        if (J + 1 == gc.ny || !neighbour(I, J + 1, K, c + csy, phi_n, solid_n)) ccy(c) = 0.0f;
-        if ((K + 1 == gc.nz && edge[5]) || !neighbour(I, J, K + 1, c + csz, phi_n, solid_n)) ccz(c) = 0.0f;
+        if (beyond_box(I, J, K, 1) || !neighbour(I, J, K, 1, phi_n, solid_n)) ccx(c) = 0.0f;
+        if (beyond_box(I, J, K, 3) || !neighbour(I, J, K, 3, phi_n, solid_n)) ccy(c) = 0.0f;
+        if (beyond_box(I, J, K, 5) || !neighbour(I, J, K, 5, phi_n, solid_n)) ccz(c) = 0.0f;
       });
   // the x-rows free of free-surface and open-box-face terms (PoissonStencil::surface_free_rows):
   // no unknown in them beside a non-solid cell that is not one, or at an open box face
@@ -366,20 +371,16 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
       "amphora::mac::coarsen_stencil::surface_free_rows", RangePolicy<ExecSpace>(exec, 0, rows * gc.nz),
       KOKKOS_LAMBDA(int m) {
         const int J = J0 + m % rows, K = m / rows;
-        const int dI[6] = {-1, 1, 0, 0, 0, 0}, dJ[6] = {0, 0, -1, 1, 0, 0}, dK[6] = {0, 0, 0, 0, -1, 1};
-        const int offset_c[6] = {-1, 1, -csy, csy, -csz, csz};
         bool row_free = true;
         for (int I = 0; I < gc.nx && row_free; ++I) {
           const int c = gc.index(I, J, K);
           if (!unknown(c)) continue;
-          const bool beyond[6] = {I == 0 && edge[0], I + 1 == gc.nx && edge[1], J == 0 && edge[2],
-                                  J + 1 == gc.ny && edge[3], K == 0 && edge[4], K + 1 == gc.nz && edge[5]};
           for (int e = 0; e < 6 && row_free; ++e) {
             double phi_n = 0.0;
             bool solid_n = false;
-            if (beyond[e])
+            if (beyond_box(I, J, K, e))
               row_free = wall[e];
-            else if (!neighbour(I + dI[e], J + dJ[e], K + dK[e], c + offset_c[e], phi_n, solid_n))
+            else if (!neighbour(I, J, K, e, phi_n, solid_n))
               row_free = solid_n;
           }
         }
