@@ -24,6 +24,20 @@ foreach(backend IN LISTS AMPHORA_REQUIRED_KOKKOS_BACKENDS)
 endforeach()
 message(STATUS "Kokkos ${Kokkos_VERSION} from ${Kokkos_DIR}, devices: ${Kokkos_DEVICES}")
 
+# CUDA: nvcc must compile every kernel. A device function that calls a host function is an
+# error, not the warning nvcc gives by default (#20011-#20015: host function, constexpr host
+# function, or a defaulted function's ignored annotation, called from device code), so such a
+# kernel fails the build rather than a later GPU run.
+set(AMPHORA_CUDA OFF)
+if(Kokkos_DEVICES MATCHES "CUDA")
+  set(AMPHORA_CUDA ON)
+  # Eigen serves host code only: without this its defaulted members carry __host__ __device__.
+  add_compile_definitions(EIGEN_NO_CUDA)
+  foreach(diag 20011 20012 20013 20014 20015)
+    add_compile_options("SHELL:-Xcudafe --diag_error=${diag}")
+  endforeach()
+endif()
+
 find_package(MPI REQUIRED COMPONENTS C CXX)
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(HYPRE 2.20 REQUIRED)

@@ -1,18 +1,27 @@
 #!/usr/bin/env bash
 # Installs everything amphora needs on a Debian bookworm machine (run as root; idempotent).
+#   scripts/setup.sh [cpu|cuda]
 #   1. Debian packages: compilers, CMake, Eigen, hypre, Open MPI, parallel HDF5,
 #      Google Benchmark, GoogleTest, toml++, CLI11, matplotlib, ccache.
-#   2. A Kokkos with Serial+OpenMP. If Kokkos_ROOT is set, that Kokkos is used and nothing
-#      is built. Otherwise Kokkos 3.4.1 is built from Debian's `trilinos` source package
-#      (Debian's binary Kokkos is Serial-only) and installed under BUILD_ROOT/_deps, where
-#      later runs find and reuse it.
+#   2. A Kokkos. If Kokkos_ROOT is set, that Kokkos is used and nothing is built (for `cuda`
+#      it must have the Cuda backend). Otherwise, for `cpu` (the default), Kokkos 3.4.1 with
+#      Serial+OpenMP is built from Debian's `trilinos` source package (Debian's binary Kokkos
+#      is Serial-only); for `cuda`, Kokkos 4.6.99 with Serial+Cuda is built with nvcc from
+#      AMPHORA_KOKKOS_SOURCE (default ../shared/kokkos: the source tarball and its CUDA 13
+#      patch) for AMPHORA_CUDA_ARCH (a Kokkos_ARCH_* name, default HOPPER90). Either is
+#      installed under BUILD_ROOT/_deps, where later runs find and reuse it.
 # Prints the Kokkos prefix as the last line: `KOKKOS_PREFIX=<path>`.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build_root=${BUILD_ROOT:-$here/build}
 deps=$build_root/_deps
+target=${1:-cpu}
 log() { echo "[setup] $*" >&2; }
+case "$target" in
+  cpu | cuda) ;;
+  *) echo "setup.sh: unknown target '$target' (allowed: cpu, cuda)" >&2; exit 2 ;;
+esac
 
 packages=(
   g++ cmake ninja-build make pkg-config git ccache dpkg-dev xz-utils
@@ -40,11 +49,16 @@ else
 fi
 
 # --- Kokkos -------------------------------------------------------------------------------
-kokkos_has_openmp() {  # $1 = prefix
+kokkos_has() {  # $1 = prefix, $2 = backend (OPENMP, CUDA)
   local cfg
   cfg=$(find "$1" -name KokkosCore_config.h -print -quit 2>/dev/null) || return 1
-  [ -n "$cfg" ] && grep -q "define KOKKOS_ENABLE_OPENMP" "$cfg"
+  [ -n "$cfg" ] && grep -q "define KOKKOS_ENABLE_$2" "$cfg"
 }
+kokkos_has_openmp() { kokkos_has "$1" OPENMP; }
+
+if [ "$target" = cuda ]; then
+  exec bash "$here/scripts/setup_kokkos_cuda.sh"
+fi
 
 if [ -n "${Kokkos_ROOT:-}" ]; then
   log "using the Kokkos given by Kokkos_ROOT=$Kokkos_ROOT (nothing built)"

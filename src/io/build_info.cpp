@@ -5,7 +5,7 @@
 #include <mpi.h>
 
 #include <Eigen/Core>
-#include <toml++/toml.h>
+#include <toml++/impl/version.h>  // the version only: toml++ itself is compiled in io/scene.cpp
 
 #include "amphora/build_info.hpp"
 #include "kernels/spaces.hpp"

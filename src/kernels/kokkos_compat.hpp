@@ -8,7 +8,30 @@
 #error "Kokkos_Core.hpp did not define KOKKOS_VERSION"
 #endif
 
+// Before a KOKKOS_INLINE_FUNCTION template that host code may call with a host-only functor
+// (a plain lambda): nvcc then checks the function's execution space per instantiation instead
+// of rejecting the host call in the host-device body (its diagnostics 20011-20015).
+#if defined(__CUDACC__)
+#define AMPHORA_EXEC_CHECK_DISABLE _Pragma("nv_exec_check_disable")
+#else
+#define AMPHORA_EXEC_CHECK_DISABLE
+#endif
+
 namespace amphora {
+
+/// A functor a kernel calls that may be host-only (a plain struct or lambda) where the kernel
+/// runs on a host space: nvcc checks each instantiation instead of rejecting the host call in
+/// the kernel's host-device body. On devices F must be device-callable, as ever.
+template <class F>
+struct AnySpaceCall {
+  F f;
+  AMPHORA_EXEC_CHECK_DISABLE
+  template <class... Args>
+  KOKKOS_INLINE_FUNCTION decltype(auto) operator()(Args&&... args) const {
+    return f(static_cast<Args&&>(args)...);
+  }
+};
+
 namespace math {
 
 #if KOKKOS_VERSION >= 30700

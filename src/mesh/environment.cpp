@@ -2,7 +2,29 @@
 
 #include <Kokkos_Core.hpp>
 
+#include <cstdio>
+#include <cstdlib>
+
+#ifdef KOKKOS_ENABLE_CUDA
+#include <cuda_runtime_api.h>
+#endif
+
 namespace amphora {
+namespace {
+/// A CUDA build started where no GPU is visible says so in one line and exits 1 (Kokkos would
+/// abort with a core dump).
+void require_visible_device() {
+#ifdef KOKKOS_ENABLE_CUDA
+  int n = 0;
+  const cudaError_t e = cudaGetDeviceCount(&n);
+  if (e != cudaSuccess || n == 0) {
+    std::fprintf(stderr, "amphora: this build runs its kernels on CUDA, but no GPU is visible (%s)\n",
+                 e != cudaSuccess ? cudaGetErrorString(e) : "no device");
+    std::exit(1);
+  }
+#endif
+}
+}  // namespace
 
 struct Environment::KokkosGuard {
   KokkosGuard(int& argc, char** argv) : guard(argc, argv) {}
@@ -10,6 +32,7 @@ struct Environment::KokkosGuard {
 };
 
 Environment::Environment(int& argc, char**& argv) {
+  require_visible_device();
   int initialized = 0;
   MPI_Initialized(&initialized);
   if (!initialized) {

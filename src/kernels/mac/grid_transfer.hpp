@@ -227,8 +227,10 @@ template <class ExecSpace, class MemSpace>
 void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A, const PoissonStencil<MemSpace>& coarse_A,
                      int first_row = 0, bool ghosts_known = false) {
   const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
-  const auto fd = fine_A.diag, fcx = fine_A.cx, fcy = fine_A.cy, fcz = fine_A.cz;
-  const auto cd = coarse_A.diag, cinv = coarse_A.inverse_diag, ccx = coarse_A.cx, ccy = coarse_A.cy, ccz = coarse_A.cz;
+  const auto fd = fine_A.diag;
+  const auto fcx = fine_A.cx, fcy = fine_A.cy, fcz = fine_A.cz;
+  const auto cd = coarse_A.diag, cinv = coarse_A.inverse_diag;
+  const auto ccx = coarse_A.cx, ccy = coarse_A.cy, ccz = coarse_A.cz;
   const auto fsolid = fine_A.solid, csolid = coarse_A.solid;
   const auto fphi = fine_A.phi, cphi = coarse_A.phi;
   const bool level_set = fphi.extent(0) > 0 && cphi.extent(0) > 0;

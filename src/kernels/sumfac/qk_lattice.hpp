@@ -5,7 +5,7 @@
 // batches are `width` consecutive cells along x, so a batch's lanes read nodes k apart and no
 // index array is stored: the index traffic of an unstructured code (4 bytes per cell node) is
 // gone. Plain data, copied into kernels by value.
-#include <Kokkos_Core.hpp>
+#include "kernels/kokkos_compat.hpp"
 
 namespace amphora::sumfac {
 

@@ -17,6 +17,7 @@ struct TouchedDofs {
   int layer_first = 0, layer_end = 0, line_first = 0, line_end = 1;
   long layer = 0, line = 0;
   /// f(begin, end) for the contiguous range of lattice indices in each layer.
+  AMPHORA_EXEC_CHECK_DISABLE
   template <class F>
   KOKKOS_INLINE_FUNCTION void for_each_range(const F& f) const {
     for (int l = layer_first; l < layer_end; ++l) f(l * layer + line_first * line, l * layer + line_end * line);

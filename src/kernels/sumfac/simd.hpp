@@ -36,7 +36,7 @@ struct alignas(W * sizeof(double)) Simd {
   KOKKOS_INLINE_FUNCTION double operator[](int l) const {
     return reinterpret_cast<const double*>(&v)[l];
   }
-  KOKKOS_INLINE_FUNCTION Simd() = default;
+  Simd() = default;
   KOKKOS_INLINE_FUNCTION Simd(double s) : v(s - native{}) {}
   KOKKOS_INLINE_FUNCTION Simd& operator+=(const Simd& o) { v += o.v; return *this; }
   KOKKOS_INLINE_FUNCTION Simd& operator-=(const Simd& o) { v -= o.v; return *this; }
@@ -50,7 +50,7 @@ struct alignas(W * sizeof(double)) Simd {
   double v[W];
   KOKKOS_INLINE_FUNCTION double& operator[](int l) { return v[l]; }
   KOKKOS_INLINE_FUNCTION double operator[](int l) const { return v[l]; }
-  KOKKOS_INLINE_FUNCTION Simd() = default;
+  Simd() = default;
   KOKKOS_INLINE_FUNCTION Simd(double s) {
     for (int l = 0; l < W; ++l) v[l] = s;
   }

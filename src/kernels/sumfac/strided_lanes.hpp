@@ -12,7 +12,8 @@
 
 namespace amphora::sumfac {
 
-#if defined(__has_builtin)
+// (not under nvcc, whose host pass hands GCC a pack expansion inside the builtin it rejects)
+#if defined(__has_builtin) && !defined(__CUDACC__)
 #if __has_builtin(__builtin_shufflevector)
 #define AMPHORA_HAS_SHUFFLEVECTOR 1
 #endif

@@ -7,7 +7,7 @@
 
 namespace amphora::sumfac {
 
-constexpr int ipow(int b, int e) { return e == 0 ? 1 : b * ipow(b, e - 1); }
+KOKKOS_INLINE_FUNCTION constexpr int ipow(int b, int e) { return e == 0 ? 1 : b * ipow(b, e - 1); }
 
 template <int dim, int n_p, int n_q>
 struct TensorProductEvaluator {

@@ -18,6 +18,7 @@
 namespace amphora::mesh {
 
 /// The lowest run of fluid rows of a column, [terrain, top).
+AMPHORA_EXEC_CHECK_DISABLE
 template <class IsFluid>
 KOKKOS_INLINE_FUNCTION void fluid_run(int ny, const IsFluid& fluid, int& terrain, int& top) {
   terrain = 0;
@@ -33,6 +34,7 @@ KOKKOS_INLINE_FUNCTION int tall_cell_band(int terrain, int band) { return band -
 /// Rows of one column from its fluid cells: terrain = the lowest fluid row, band = the lowest
 /// uniform row, optical_depth uniform rows below the lowest non-fluid row above the terrain
 /// (tall_cell_band: no tall cell of fewer than two rows).
+AMPHORA_EXEC_CHECK_DISABLE
 template <class IsFluid>
 KOKKOS_INLINE_FUNCTION void tall_cell_rows(int ny, int optical_depth, const IsFluid& fluid, int& terrain, int& band) {
   int top;

@@ -99,6 +99,7 @@ class LinearElasticSolid {
     const ElasticMaterial m = m_;
     const double t = t_;
     const Field u = u_;
+    const AnySpaceCall<Traction> traction_at{traction};
     Kokkos::parallel_for(
         "amphora::elastic::traction_ghosts", RangePolicy<ExecSpace>(exec_, 0, g.nx),
         KOKKOS_LAMBDA(int i) {
@@ -106,8 +107,8 @@ class LinearElasticSolid {
           const double ux = (u(1, e, 0) - u(1, w, 0)) / (2 * g.hx);
           const double vx = (u(1, e, 1) - u(1, w, 1)) / (2 * g.hx);
           const double x = i * g.hx;
-          u(0, i, 0) = u(2, i, 0) - 2 * g.hy * (traction(x, t, 0) / m.mu - vx);
-          u(0, i, 1) = u(2, i, 1) - 2 * g.hy * (traction(x, t, 1) - m.lambda * ux) / (m.lambda + 2 * m.mu);
+          u(0, i, 0) = u(2, i, 0) - 2 * g.hy * (traction_at(x, t, 0) / m.mu - vx);
+          u(0, i, 1) = u(2, i, 1) - 2 * g.hy * (traction_at(x, t, 1) - m.lambda * ux) / (m.lambda + 2 * m.mu);
         });
     elastic_wave_step(exec_, g_, m_, dt_, u_old_, u_, f_, u_new_, 0);
     set_rows(boundary, false);
@@ -121,12 +122,13 @@ class LinearElasticSolid {
     const ElasticGrid g = g_;
     const double t = t_ + dt_;
     const Field un = u_new_;
+    const AnySpaceCall<Boundary> boundary_at{boundary};
     Kokkos::parallel_for(
         "amphora::elastic::boundary_rows",
         Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>(exec_, {bottom ? 0 : 1, 0}, {2, g.nx}),
         KOKKOS_LAMBDA(int side, int i) {
           const int j = side == 0 ? 0 : g.ny;
-          for (int c = 0; c < 2; ++c) un(j + 1, i, c) = boundary(i * g.hx, j * g.hy, t, c);
+          for (int c = 0; c < 2; ++c) un(j + 1, i, c) = boundary_at(i * g.hx, j * g.hy, t, c);
         });
   }
 
@@ -139,11 +141,12 @@ class LinearElasticSolid {
   template <class Value>
   void fill(const Field& field, const Value& value, double t) const {
     const ElasticGrid g = g_;
+    const AnySpaceCall<Value> value_at{value};
     Kokkos::parallel_for(
         "amphora::elastic::fill",
         Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>(exec_, {0, 0}, {g.ny + 1, g.nx}),
         KOKKOS_LAMBDA(int j, int i) {
-          for (int c = 0; c < 2; ++c) field(j + 1, i, c) = value(i * g.hx, j * g.hy, t, c);
+          for (int c = 0; c < 2; ++c) field(j + 1, i, c) = value_at(i * g.hx, j * g.hy, t, c);
         });
   }
 

@@ -332,7 +332,9 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
     for (int colour = 0; colour < 3; ++colour) {
       const int items = colouring.items(colour);
       if (items <= 0) continue;
-      Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, items), KOKKOS_LAMBDA(int i) {
+      // a host lambda: this branch runs on host spaces only (and nvcc's extended lambdas may not
+      // first-capture body inside the if constexpr below)
+      Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, items), [=](int i) {
         for (int slab = colouring.first_slab(colour, i); slab < colouring.end_slab(colour, i); ++slab)
           for (int row = 0; row < rows; ++row) {
             first_touch(slab, row);
