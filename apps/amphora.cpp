@@ -115,6 +115,14 @@ int main(int argc, char** argv) {
         for (const auto& [k, v] : r.diagnostics) std::cout << ", " << k << "=" << v;
         std::cout << "\n";
         // where the stepping time went, per phase (the slowest rank's), one greppable line each
+        if (r.steps > 0) {
+          const auto per_step = [&](long long n) { return double(n) / double(r.steps); };
+          const DeepCopyCount& c = r.copies;
+          std::cout << "[transfers] per step (rank 0): " << per_step(c.copies) << " deep copies, "
+                    << per_step(c.bytes) << " B; host-device " << per_step(c.host_device()) << ", "
+                    << per_step(c.host_device_bytes()) << " B; fills " << per_step(c.fills)
+                    << "; scalar reads " << per_step(c.scalar_reads) << "\n";
+        }
         for (const auto& [phase, seconds] : r.phase_seconds)
           std::cout << "[timing] " << phase << " " << seconds << " s "
                     << (r.wall_seconds > 0 ? 100.0 * seconds / r.wall_seconds : 0.0) << " %\n";

@@ -160,10 +160,14 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   Diagnostics last_diagnostics;  // at the final step, computed once
   const long long first_step = step;
   double stepping = 0.0;  // wall time in advance() only
+  DeepCopyCounter copies;  // host-device traffic of the steps (not of output or checkpoints)
+  DeepCopyCount copied;
   while (step < n_steps && (options.max_steps < 0 || step - first_step < options.max_steps)) {
     const double t0 = progress.elapsed();
     work += double(module->work_per_step());
+    const DeepCopyCount before = copies.count();
     module->advance(t, dt);
+    copied = copied + (copies.count() - before);
     stepping += progress.elapsed() - t0;
     ++step;
     t = double(step) * dt;  // not accumulated: lands on end_time and restarts identically
@@ -213,6 +217,7 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   result.diagnostics = last_diagnostics.empty() ? module->diagnostics(t) : last_diagnostics;
   for (const auto& [name, v] : result.diagnostics)
     if (name == module->error_diagnostic()) result.error = v;
+  result.copies = copied;
   result.phase_seconds = module->phase_seconds();
   for (auto& [name, seconds] : result.phase_seconds) seconds = comm.max(seconds);
   return result;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "io/scene.hpp"
+#include "kernels/deep_copy_counter.hpp"
 #include "mesh/environment.hpp"
 #include "physics/module.hpp"
 
@@ -37,6 +38,7 @@ struct RunResult {
   Diagnostics diagnostics;    ///< at the final step
   Diagnostics phase_seconds;  ///< Module::phase_seconds of this run, the largest over the ranks
   double error = 0.0;         ///< the module's error diagnostic at the final step
+  DeepCopyCount copies;       ///< Kokkos deep copies made while stepping (this rank's)
 };
 
 /// Collective. Throws RunError (bad set-up input), DecompositionError (more ranks than

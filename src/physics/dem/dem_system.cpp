@@ -6,7 +6,6 @@
 #include <limits>
 #include <sstream>
 #include <stdexcept>
-#include <tuple>
 #include <type_traits>
 
 #include "kernels/binning.hpp"
@@ -145,6 +144,67 @@ struct BodyForces {
   }
 };
 
+/// The Hertz–Mindlin contact of row particle i with a touching partner j of larger gid, in i's
+/// orientation (each pair is evaluated so, whichever of its particles asks): dx = x_j - x_i,
+/// d2 = |dx|^2 < rsum^2; s, the pair's spring, is advanced. Returns the force and moments on i.
+template <class Mem>
+struct PairContact {
+  using R = Kokkos::MemoryTraits<Kokkos::Restrict>;
+  Rows3<const double> v, om;
+  Kokkos::View<const double*, Mem, R> mass;
+  Kokkos::View<const int*, Mem, R> mat;
+  Kokkos::View<const PairCoefficients**, Mem, R> pairs;
+  double dt;
+
+  KOKKOS_FORCEINLINE_FUNCTION ContactForce operator()(int j, double ri, double rj, double mi, int mati,
+                                                      const double vi[3], const double wi[3],
+                                                      const double dx[3], double d2, double rsum,
+                                                      double s[3]) const {
+    const double dist = math::sqrt(d2);
+    const double inv = 1.0 / dist;
+    const double nn[3] = {dx[0] * inv, dx[1] * inv, dx[2] * inv};
+    const double mj = mass(j);
+    const double dv[3] = {vi[0] - v(j, 0), vi[1] - v(j, 1), vi[2] - v(j, 2)};
+    // The approach speed from dx, not n: off the chain sqrt -> division -> n.
+    const double vn = (dv[0] * dx[0] + dv[1] * dx[1] + dv[2] * dx[2]) * inv;
+    // R* = ri rj / (ri + rj) and m* = mi mj / (mi + mj) with one division.
+    const double q = 1.0 / (rsum * (mi + mj));
+    // Velocity of i's contact point relative to j's: v_i - v_j + (r_i w_i + r_j w_j) x n.
+    const double w[3] = {ri * wi[0] + rj * om(j, 0), ri * wi[1] + rj * om(j, 1), ri * wi[2] + rj * om(j, 2)};
+    const double vr[3] = {dv[0] + w[1] * nn[2] - w[2] * nn[1], dv[1] + w[2] * nn[0] - w[0] * nn[2],
+                          dv[2] + w[0] * nn[1] - w[1] * nn[0]};
+    const double wr[3] = {wi[0] - om(j, 0), wi[1] - om(j, 1), wi[2] - om(j, 2)};
+    return hertz_mindlin_force(pairs(mati, mat(j)), ri * rj * (mi + mj) * q, mi * mj * rsum * q, nn, rsum - dist,
+                               vn, vr, wr, dt, s);
+  }
+};
+
+/// The entry of row j (from half(j) on: its partners of larger gid, by gid) that holds partner
+/// gid g, found by bisection.
+template <class Offsets, class Neighbors, class Ids>
+KOKKOS_INLINE_FUNCTION int own_entry(const Offsets& off, const Offsets& half, const Neighbors& nbr, const Ids& gid,
+                                     int j, std::int64_t g) {
+  int lo = half(j), hi = off(j + 1);
+  while (lo < hi) {
+    const int mid = (lo + hi) / 2;
+    if (gid(nbr(mid)) < g)
+      lo = mid + 1;
+    else
+      hi = mid;
+  }
+  return lo;
+}
+
+/// Whether row a of the ordered rows starts a slab (order_rows): its slab, cell(order(a)) /
+/// layer / 2, differs from the row before's.
+template <class Mem>
+struct SlabStarts {
+  Kokkos::View<int*, Mem> order, cell;
+  int layer, total;
+  KOKKOS_INLINE_FUNCTION int slab(int a) const { return cell(order(a)) / layer / 2; }
+  KOKKOS_INLINE_FUNCTION bool operator()(int a) const { return a < total && (a == 0 || slab(a) != slab(a - 1)); }
+};
+
 constexpr int kGhostRecord = 17;  // x3 v3 omega3 radius mass inertia material gid x_build3
 
 }  // namespace dem_system_kernels
@@ -253,7 +313,10 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
   HostArrays h = to_host();
   auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
   auto &r = h.radius, &m = h.mass, &in = h.inertia;
-  auto &mat = h.material, &gid = h.gid, &ws = h.wall_shear, &rg = h.rec_gid;
+  auto &mat = h.material;
+  auto &gid = h.gid;
+  auto &ws = h.wall_shear;
+  auto &rg = h.rec_gid;
   for (int k = 0; k < int(mine.size()); ++k) {
     const ParticleSpec& s = *mine[k];
     const int i = n0 + k;
@@ -396,8 +459,14 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
   // x v omega radius material gid spare, walls' and contacts' history, x_build
   const int rec = 12 + 1 + 3 * nw + 4 * K + 3;
   HostArrays h = to_host();
-  auto &hx = h.x, &hv = h.v, &ho = h.omega, &hr = h.radius, &hxb = h.x_build;
-  auto &hmat = h.material, &hgid = h.gid, &hws = h.wall_shear, &hrg = h.rec_gid, &hrs = h.rec_shear;
+  auto &hx = h.x, &hv = h.v, &ho = h.omega;
+  auto &hr = h.radius;
+  auto &hxb = h.x_build;
+  auto &hmat = h.material;
+  auto &hgid = h.gid;
+  auto &hws = h.wall_shear;
+  auto &hrg = h.rec_gid;
+  auto &hrs = h.rec_shear;
   auto pack = [&](int i, std::vector<double>& out) {
     for (int d = 0; d < 3; ++d) out.push_back(hx(i, d));
     for (int d = 0; d < 3; ++d) out.push_back(hv(i, d));
@@ -740,37 +809,50 @@ template <class ExecSpace>
 void DemSystem<ExecSpace>::order_rows() {
   // Slabs of 2 cell layers, at least 2 ghost widths thick: rows of slabs two apart are more
   // than 4 r_max + skin apart at the build positions, so the particles they touch (within
-  // 2 r_max, each centre within skin / 2 of its build position) are disjoint.
+  // 2 r_max, each centre within skin / 2 of its build position) are disjoint. Rows in the order
+  // (colour = slab % 2, slab, cell (k, j, i), gid): the cells' binning gives (cell, gid), as cell
+  // indices run k slowest and a slab is two k layers; a stable partition by colour follows.
   const int total = p_.size();
   const CellGrid cells = row_cells();
-  const auto hx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x_build_);
-  const auto hgid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.gid);
-  // colour, slab, cell (k, j, i), gid, row
-  std::vector<std::tuple<int, int, int, int, int, std::int64_t, int>> key(total);
-  for (int i = 0; i < total; ++i) {
-    const int ci = cells.coord(hx(i, 0), 0), cj = cells.coord(hx(i, 1), 1), ck = cells.coord(hx(i, 2), 2);
-    const int slab = ck / 2;
-    key[i] = {slab % 2, slab, ck, cj, ci, hgid(i), i};
-  }
-  std::sort(key.begin(), key.end());
+  const int layer = cells.n[0] * cells.n[1];
+  const auto bins = bin_points(exec_, cells, x_build_, total, p_.gid);
+  const auto perm = bins.permutation;
+  const auto cell = bins.cell;
   row_order_ = Kokkos::View<int*, Mem>("amphora::dem::row_order", total);
-  auto order = Kokkos::create_mirror_view(row_order_);
-  std::vector<int> starts;
-  colour_slabs_[0] = colour_slabs_[1] = 0;
-  for (int a = 0; a < total; ++a) {
-    order(a) = std::get<6>(key[a]);
-    if (a == 0 || std::get<1>(key[a]) != std::get<1>(key[a - 1])) {
-      if (std::get<0>(key[a]) == 0) colour_slabs_[1] = int(starts.size()) + 1;
-      starts.push_back(a);
-    }
-  }
-  colour_slabs_[2] = int(starts.size());
-  starts.push_back(total);
-  Kokkos::deep_copy(row_order_, order);
-  slab_start_ = Kokkos::View<int*, Mem>("amphora::dem::slab_start", starts.size());
-  auto hs = Kokkos::create_mirror_view(slab_start_);
-  for (size_t u = 0; u < starts.size(); ++u) hs(u) = starts[u];
-  Kokkos::deep_copy(slab_start_, hs);
+  const auto order = row_order_;
+  int first_odd = 0;  // rows of colour 0
+  Kokkos::parallel_reduce(
+      "amphora::dem::order_rows::colours", RangePolicy<ExecSpace>(exec_, 0, total),
+      KOKKOS_LAMBDA(int a, int& even) { even += (cell(a) / layer / 2) % 2 == 0; }, first_odd);
+  Kokkos::parallel_scan(
+      "amphora::dem::order_rows::partition", RangePolicy<ExecSpace>(exec_, 0, total),
+      KOKKOS_LAMBDA(int a, int& even_before, bool final) {
+        const int p = perm(a);
+        const bool even = (cell(p) / layer / 2) % 2 == 0;
+        if (final) order(even ? even_before : first_odd + (a - even_before)) = p;
+        even_before += even;
+      });
+  // slab u holds rows slab_start(u) .. slab_start(u + 1): a slab starts where the slab changes
+  const SlabStarts<Mem> starts{order, cell, layer, total};
+  int slabs = 0, even_slabs = 0;
+  Kokkos::parallel_reduce(
+      "amphora::dem::order_rows::count_slabs", RangePolicy<ExecSpace>(exec_, 0, total),
+      KOKKOS_LAMBDA(int a, int& all) { all += starts(a); }, slabs);
+  Kokkos::parallel_reduce(
+      "amphora::dem::order_rows::count_even_slabs", RangePolicy<ExecSpace>(exec_, 0, first_odd),
+      KOKKOS_LAMBDA(int a, int& even) { even += starts(a); }, even_slabs);
+  slab_start_ = Kokkos::View<int*, Mem>("amphora::dem::slab_start", slabs + 1);
+  const auto start = slab_start_;
+  Kokkos::parallel_scan(
+      "amphora::dem::order_rows::slab_starts", RangePolicy<ExecSpace>(exec_, 0, total + 1),
+      KOKKOS_LAMBDA(int a, int& before, bool final) {
+        const bool first = a == total || starts(a);
+        if (final && first) start(before) = a;
+        before += first;
+      });
+  colour_slabs_[0] = 0;
+  colour_slabs_[1] = even_slabs;
+  colour_slabs_[2] = slabs;
 }
 
 template <class ExecSpace>
@@ -854,6 +936,11 @@ void DemSystem<ExecSpace>::compute_forces() {
   forces_zeroed_ = false;
   const BodyForces<Mem> body{p_.radius,   p_.mass,    p_.material, pairs_,     walls_,
                              wall_shear_, wall_mask_, n_walls_,    config_.dt, {g0, g1, g2}};
+  const PairContact<Mem> contact{v, om, p_.mass, p_.material, pairs_, dt};
+  if (by_particle_) {
+    forces_by_particle(body, contact);
+    return;
+  }
   for (int colour = 0; colour < 2; ++colour) {
     // Slabs hold unequal numbers of rows: one at a time to whichever thread is free.
     using Slabs = Kokkos::RangePolicy<ExecSpace, Kokkos::Schedule<Kokkos::Dynamic>, Kokkos::IndexType<int>>;
@@ -901,26 +988,8 @@ void DemSystem<ExecSpace>::compute_forces() {
                 continue;
               }
               springs |= bit;
-              const double dist = math::sqrt(d2);
-              const double inv = 1.0 / dist;
-              const double nn[3] = {dx[0] * inv, dx[1] * inv, dx[2] * inv};
-              const double mj = mass(j);
-              const double dv[3] = {vi[0] - v(j, 0), vi[1] - v(j, 1), vi[2] - v(j, 2)};
-              // The approach speed from dx, not n: off the chain sqrt -> division -> n.
-              const double vn = (dv[0] * dx[0] + dv[1] * dx[1] + dv[2] * dx[2]) * inv;
-              // R* = ri rj / (ri + rj) and m* = mi mj / (mi + mj) with one division.
-              const double q = 1.0 / (rsum * (mi + mj));
-              // Velocity of i's contact point relative to j's: v_i - v_j + (r_i w_i + r_j w_j) x n.
-              const double w[3] = {ri * wi[0] + rj * om(j, 0), ri * wi[1] + rj * om(j, 1),
-                                   ri * wi[2] + rj * om(j, 2)};
-              const double vr[3] = {dv[0] + w[1] * nn[2] - w[2] * nn[1],
-                                    dv[1] + w[2] * nn[0] - w[0] * nn[2],
-                                    dv[2] + w[0] * nn[1] - w[1] * nn[0]};
-              const double wr[3] = {wi[0] - om(j, 0), wi[1] - om(j, 1), wi[2] - om(j, 2)};
               double s[3] = {shear(k, 0), shear(k, 1), shear(k, 2)};
-              const ContactForce c = hertz_mindlin_force(pairs(mati, mat(j)),
-                                                         ri * rj * (mi + mj) * q, mi * mj * rsum * q,
-                                                         nn, rsum - dist, vn, vr, wr, dt, s);
+              const ContactForce c = contact(j, ri, rj, mi, mati, vi, wi, dx, d2, rsum, s);
               for (int d = 0; d < 3; ++d) {
                 shear(k, d) = s[d];
                 F[d] += c.force[d];
@@ -943,6 +1012,77 @@ void DemSystem<ExecSpace>::compute_forces() {
           }
         });
   }
+}
+
+template <class ExecSpace>
+void DemSystem<ExecSpace>::forces_by_particle(const BodyForces<Mem>& body, const PairContact<Mem>& contact) {
+  const int n = p_.n_owned, total = p_.size();
+  const double t = time_;
+  if (shear_next_.extent(0) != shear_.extent(0))  // entries no row owns stay zero in both
+    shear_next_ = decltype(shear_)("amphora::dem::shear_next", shear_.extent(0));
+  const Rows3<const double> x(p_.x), v(p_.v), om(p_.omega), in(shear_);
+  const Rows3<double> f(p_.force), tq(p_.torque), out(shear_next_);
+  const auto rad = p_.radius, mass = p_.mass;
+  const auto mat = p_.material;
+  const auto gid = p_.gid;
+  const auto off = list_.offsets, half = half_start_, nbr = list_.neighbors;
+  const auto wnear = wall_near_;
+  Kokkos::parallel_for(
+      "amphora::dem::pair_forces_by_particle", RangePolicy<ExecSpace>(exec_, 0, total), KOKKOS_LAMBDA(int i) {
+        const bool owned = i < n;  // a ghost's row only advances its springs with owned partners
+        const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
+        const double vi[3] = {v(i, 0), v(i, 1), v(i, 2)};
+        const double wi[3] = {om(i, 0), om(i, 1), om(i, 2)};
+        const double ri = rad(i), mi = mass(i);
+        const int mati = mat(i);
+        double F[3] = {0, 0, 0};
+        double T[3] = {0, 0, 0};
+        if (owned) body(i, t, wnear(i), xi, vi, wi, F, T);
+        // partners of larger gid: the row's own springs, read from `in`, written to `out`
+        for (int k = half(i); k < off(i + 1); ++k) {
+          const int j = nbr(k);
+          double s[3] = {in(k, 0), in(k, 1), in(k, 2)};
+          if (owned || j < n) {
+            const double dx[3] = {x(j, 0) - xi[0], x(j, 1) - xi[1], x(j, 2) - xi[2]};
+            const double d2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+            const double rj = rad(j), rsum = ri + rj;
+            if (d2 >= rsum * rsum) {
+              s[0] = s[1] = s[2] = 0.0;  // contact lost (or never made): the spring resets
+            } else {
+              const ContactForce c = contact(j, ri, rj, mi, mati, vi, wi, dx, d2, rsum, s);
+              for (int d = 0; d < 3; ++d) {
+                F[d] += c.force[d];
+                T[d] += ri * c.moment[d] + c.rolling[d];
+              }
+            }
+          }
+          for (int d = 0; d < 3; ++d) out(k, d) = s[d];
+        }
+        if (!owned) return;
+        // partners of smaller gid: the pair in the partner's orientation, from its spring
+        for (int k = off(i); k < half(i); ++k) {
+          const int j = nbr(k);
+          const double xj[3] = {x(j, 0), x(j, 1), x(j, 2)};
+          const double dx[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
+          const double d2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
+          const double rj = rad(j), rsum = rj + ri;
+          if (d2 >= rsum * rsum) continue;
+          const int e = own_entry(off, half, nbr, gid, j, gid(i));
+          double s[3] = {in(e, 0), in(e, 1), in(e, 2)};
+          const double vj[3] = {v(j, 0), v(j, 1), v(j, 2)};
+          const double wj[3] = {om(j, 0), om(j, 1), om(j, 2)};
+          const ContactForce c = contact(i, rj, ri, mass(j), mat(j), vj, wj, dx, d2, rsum, s);
+          for (int d = 0; d < 3; ++d) {
+            F[d] -= c.force[d];
+            T[d] += ri * c.moment[d] - c.rolling[d];
+          }
+        }
+        for (int d = 0; d < 3; ++d) {
+          f(i, d) = F[d];
+          tq(i, d) = T[d];
+        }
+      });
+  std::swap(shear_, shear_next_);
 }
 
 template <class ExecSpace>
@@ -1199,8 +1339,12 @@ typename DemSystem<ExecSpace>::HostState DemSystem<ExecSpace>::save() const {
   const int n = p_.n_owned, nw = int(wall_shear_.extent(1)), K = config_.max_contacts;
   const HostArrays h = to_host();
   const auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
-  const auto &r = h.radius, &mat = h.material, &gid = h.gid;
-  const auto &ws = h.wall_shear, &rg = h.rec_gid, &rs = h.rec_shear;
+  const auto &r = h.radius;
+  const auto &mat = h.material;
+  const auto &gid = h.gid;
+  const auto &ws = h.wall_shear;
+  const auto &rg = h.rec_gid;
+  const auto &rs = h.rec_shear;
   // Before the first rebuild there are no build positions yet.
   const bool built = has_lists() && n > 0;
   for (int i = 0; i < n; ++i) {
@@ -1239,7 +1383,11 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
   HostArrays h = to_host();
   auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
   auto &r = h.radius, &m = h.mass, &in = h.inertia;
-  auto &mat = h.material, &gid = h.gid, &ws = h.wall_shear, &rg = h.rec_gid, &rs = h.rec_shear;
+  auto &mat = h.material;
+  auto &gid = h.gid;
+  auto &ws = h.wall_shear;
+  auto &rg = h.rec_gid;
+  auto &rs = h.rec_shear;
   const bool have_build = s.x_build.size() == s.x.size();
   for (int a = 0; a < n; ++a) {
     const size_t i = mine[a];

@@ -15,8 +15,11 @@
 // parallel; each slab's rows run in a fixed order (global cell, then gid, at the positions of
 // the last rebuild). A particle thus receives its contributions in an order set by the
 // particles alone: trajectories are the same bits on any thread or rank count, and a
-// checkpoint (which carries the positions of the last rebuild) continues bit for bit. (On
-// GPUs the slabs are too few to fill the device: a per-particle path is still to be written.)
+// checkpoint (which carries the positions of the last rebuild) continues bit for bit. On
+// devices, where the slabs are too few to fill the device, one work item per particle sums the
+// forces on its particle from all its pairs instead (forces_by_particle): each pair is evaluated
+// by both particles, in the orientation of the smaller gid, so both see the same bits and no
+// atomics are needed; the sums are again in an order set by the particles alone.
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -29,6 +32,13 @@
 #include "physics/dem/walls.hpp"
 
 namespace amphora::dem {
+
+namespace dem_system_kernels {
+template <class Mem>
+struct BodyForces;
+template <class Mem>
+struct PairContact;
+}  // namespace dem_system_kernels
 
 struct DemConfig {
   std::vector<Material> materials;  ///< particle and wall materials, indexed by material id
@@ -106,6 +116,10 @@ class DemSystem {
   DemDiagnostics diagnostics() const;  ///< collective
   void set_profiling(bool on) { profiling_ = on; }
   const DemTimers& timers() const { return timers_; }
+  /// The pair forces one work item per particle (each pair evaluated by both, as on devices, the
+  /// default there) instead of slabs of rows in two colours (the default on host spaces). The
+  /// same forces up to round-off: the sums run in another order.
+  void set_forces_by_particle(bool on) { by_particle_ = on; }
   /// Forces a neighbour-list rebuild (and migration) before the next force evaluation.
   void invalidate() { need_rebuild_ = true; }
   /// Sets the rigid rotation of wall w (e.g. a drum starting to turn).
@@ -152,6 +166,11 @@ class DemSystem {
   void build_ghosts();
   void forward_ghosts();
   void compute_forces();
+  /// The devices' schedule of compute_forces: one work item per row, each pair evaluated by
+  /// both of its particles in the orientation of the smaller gid (no atomics, no colouring), the
+  /// springs read from shear_ and written to shear_next_, then swapped.
+  void forces_by_particle(const dem_system_kernels::BodyForces<Mem>& body,
+                          const dem_system_kernels::PairContact<Mem>& contact);
   void order_rows();
   CellGrid row_cells() const;  // the domain's grid the rows' order is taken on
   double kick_drift();
@@ -198,6 +217,9 @@ class DemSystem {
   NeighborList<Mem> list_;  // rows for owned particles and ghosts
   // Aligned with list_.neighbors: the springs of the pairs each row evaluates (zero elsewhere).
   Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> shear_;
+  // forces_by_particle's springs of the next step (swapped with shear_ after each evaluation)
+  Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> shear_next_;
+  bool by_particle_ = !runs_on_host_v<ExecSpace>;
   // Row i's entries from half_start_(i) on are its partners of larger gid: the pairs it
   // evaluates.
   Kokkos::View<int*, Mem> half_start_;

@@ -1,0 +1,108 @@
+// Host-device traffic of a time step, counted with the Kokkos Tools deep-copy hook
+// (kernels/deep_copy_counter.hpp: host_device() counts what crosses on this build, or would on a
+// device). On one rank a DEM step makes no host-device copy, list rebuilds included; a water step
+// on the uniform grid makes one (the multigrid's coarsest-grid cell list, 64 B, set up again each
+// sub-step); the tall-cell water step, which still rebuilds its grid on the host, is held at
+// what it copies now, so a new copy in a step fails here.
+#include <cstdio>
+
+#include "kernels/deep_copy_counter.hpp"
+#include "physics/dem/dem_system.hpp"
+#include "physics/dem/insertion.hpp"
+#include "physics/water_mac/water_mac.hpp"
+#include "test_backend.hpp"
+
+namespace amphora {
+namespace test_step_transfers_cases {
+
+using System = dem::DemSystem<test::TestExecSpace>;
+
+System shaken_box(int n) {
+  const double r = 1e-3, L = 0.034;
+  dem::Material m;
+  m.youngs_modulus = 1e6;
+  m.restitution = 0.5;
+  m.friction = 0.3;
+  dem::DemConfig c;
+  c.materials = {m};
+  c.domain_hi = {L, L, L};
+  c.max_radius = 1.3 * r;
+  c.skin = 0.3 * r;
+  c.dt = 2e-5;
+  for (int d = 0; d < 3; ++d) {
+    dem::Wall lo, hi;
+    lo.axis[d] = 1;
+    hi.axis[d] = -1;
+    hi.point[d] = L;
+    c.walls.push_back(lo);
+    c.walls.push_back(hi);
+  }
+  System s(c, Communicator());
+  dem::InsertionRegion box;
+  for (int d = 0; d < 3; ++d) box.hi[d] = L;
+  auto ps = dem::lattice_insertion(box, {r, 0.3}, 2.7 * r, n, 0.5 * r, 7, 0, {1.0});
+  for (auto& p : ps)
+    for (int d = 0; d < 3; ++d) p.v[d] = 0.3 * (dem::uniform01(11, d, p.gid) - 0.5);
+  s.add_particles(ps);
+  return s;
+}
+
+TEST(StepTransfers, DemStepsStayOnTheDevice) {
+  System s = shaken_box(1000);
+  s.step();  // the first step builds the lists
+  DeepCopyCounter counter;
+  int quiet_steps = 0, rebuild_steps = 0;
+  for (int it = 0; it < 60; ++it) {
+    const long long rebuilds = s.timers().rebuilds;
+    counter.reset();
+    s.step();
+    const DeepCopyCount c = counter.count();
+    const bool rebuilt = s.timers().rebuilds != rebuilds;
+    (rebuilt ? rebuild_steps : quiet_steps) += 1;
+    // a rebuild keeps the positions it was built at: one copy within the device
+    EXPECT_EQ(c.copies, rebuilt ? 1 : 0) << "step " << it;
+    EXPECT_EQ(c.host_device(), 0) << "step " << it;
+    EXPECT_EQ(c.scalar_reads, 0) << "step " << it;
+  }
+  ASSERT_GT(quiet_steps, 10);
+  ASSERT_GT(rebuild_steps, 2);
+}
+
+DeepCopyCount water_step_copies(int optical_depth) {
+  Parameters p(water_mac::parameter_table());
+  p.set("scene", std::string("splash"));
+  p.set("cells_x", std::int64_t(16));
+  p.set("cells_y", std::int64_t(32));
+  p.set("cells_z", std::int64_t(16));
+  p.set("optical_depth", std::int64_t(optical_depth));
+  auto m = water_mac::create(p, Communicator());
+  const double dt = 0.25 * m->stable_dt();
+  m->set_time_step(dt);
+  m->advance(0.0, dt);  // the first step allocates what the later ones reuse
+  DeepCopyCounter counter;
+  const int steps = 3;
+  for (int s = 1; s <= steps; ++s) m->advance(s * dt, dt);
+  DeepCopyCount c = counter.count();
+  std::printf("[transfers] water step, optical depth %d: %.1f deep copies, %.0f B; host-device %.1f, %.0f B\n",
+              optical_depth, double(c.copies) / steps, double(c.bytes) / steps, double(c.host_device()) / steps,
+              double(c.host_device_bytes()) / steps);
+  return c;
+}
+
+TEST(StepTransfers, UniformWaterStepCopiesOnlyTheCoarseCellList) {
+  const DeepCopyCount c = water_step_copies(0);
+  EXPECT_EQ(c.host_device(), 3);  // three steps
+  EXPECT_EQ(c.host_device_bytes(), 3 * 64);
+}
+
+TEST(StepTransfers, TallCellWaterStepCopiesAtMostItsHostRebuild) {
+  // The tall-cell grid is built on the host every sub-step: the columns and the unknowns'
+  // layout go back to the device (4 copies a step on a host build; a device build also copies
+  // the stencil to the host, by create_mirror_view_and_copy, which a host build does not see).
+  const DeepCopyCount c = water_step_copies(4);
+  if (std::is_same_v<test::TestMemSpace, Kokkos::HostSpace>) EXPECT_LE(c.host_device(), 3 * 4);
+  EXPECT_GT(c.host_device(), 0);
+}
+
+}  // namespace test_step_transfers_cases
+}  // namespace amphora
