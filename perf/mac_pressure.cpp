@@ -4,7 +4,11 @@
 // cells, pressure zero on all six box faces, a smooth right-hand side; backend 0 = own
 // multigrid-CG, 1 = hypre Struct PFMG-CG (both on 1 rank with OMP_NUM_THREADS threads, or on the
 // ranks of mpiexec, each owning a z slab), 2 = MIC(0)-CG (sequential). Counters: iterations, unknowns,
-// unknowns per second (unknowns / time), setup seconds.
+// unknowns per second (unknowns / time), setup seconds; for multigrid-CG also the solve's
+// seconds without setup, the bytes one CG iteration moves by the streaming model of
+// MacMultigrid::bytes_per_cg_iteration, and the rate a run at STREAM triad bandwidth would reach
+// (bound_unknowns_per_s: unknowns over iterations x bytes / bandwidth; the measured rate, setup
+// included, is the fraction of it reached). 256^3 runs multigrid-CG alone (the GPU size).
 //
 // TallCells/backend/n: the same footprint as deep water: an n^3 box with walls and an open top,
 // water to 0.9 n over an undulating floor (0.1 +- 0.05), tall cells below an optical depth of
@@ -35,6 +39,7 @@
 #include "solvers/mac/mac_multigrid.hpp"
 #include "solvers/mac/pressure_solver.hpp"
 #include "solvers/mac/tall_cell_matrix.hpp"
+#include "stream_bandwidth.hpp"
 
 namespace {
 
@@ -118,7 +123,7 @@ void Uniform(benchmark::State& state) {
   control.max_iterations = 2000;
   Vector x("x", box.grid.padded_size());
   int iterations = 0;
-  double setup = 0.0, rel = 0.0;
+  double setup = 0.0, rel = 0.0, solve_s = 0.0, bytes_per_iteration = 0.0;
   const auto solve = [&] {
     Kokkos::deep_copy(x, 0.0);
     exec.fence();
@@ -145,6 +150,9 @@ void Uniform(benchmark::State& state) {
       exec.fence();
       setup = seconds_since(t0);
       const auto r = solver->solve(exec, box.b, x, control);
+      exec.fence();
+      solve_s = seconds_since(t0) - setup;
+      bytes_per_iteration = solver->bytes_per_iteration();
       iterations = r.iterations;
       rel = r.final_residual / r.rhs_norm;
     }
@@ -160,11 +168,25 @@ void Uniform(benchmark::State& state) {
   state.counters["setup_s"] = setup;
   state.counters["relative_residual"] = rel;
   state.counters["unknowns_per_s"] = benchmark::Counter(unknowns, benchmark::Counter::kIsIterationInvariantRate);
+  if (bytes_per_iteration > 0) {
+    // the bandwidth of every rank's triad at once, summed, as the ranks share the problem
+    MPI_Barrier(MPI_COMM_WORLD);
+    double bw = amphora::perf::stream_triad_bandwidth(), total_bw = 0;
+    MPI_Allreduce(&bw, &total_bw, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    double bytes = bytes_per_iteration, total_bytes = 0;
+    MPI_Allreduce(&bytes, &total_bytes, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    state.counters["solve_s"] = solve_s;
+    state.counters["bytes_per_iteration"] = total_bytes;
+    state.counters["stream_GB/s"] = total_bw * 1e-9;
+    state.counters["bound_unknowns_per_s"] = unknowns * total_bw / (iterations * total_bytes);
+    state.counters["solve_GB/s"] = iterations * total_bytes / solve_s * 1e-9;
+  }
   static const char* names[] = {"multigrid-CG", "hypre PFMG-CG", "MIC(0)-CG"};
   state.SetLabel(names[backend]);
 }
 BENCHMARK(Uniform)
     ->ArgsProduct({{0, 1, 2}, {64, 128, 192}})
+    ->Args({0, 256})
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime()
     ->Iterations(1);

@@ -146,11 +146,34 @@ void residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const
   zero_ghost_cells(exec, A.grid, r);
 }
 
+/// red_black_gauss_seidel's schedule on devices: one work item per cell of the colour, so
+/// neighbouring threads touch neighbouring addresses (every other cell of an x-row).
+template <class ExecSpace, class MemSpace, class S, class B, class X>
+void red_black_gauss_seidel_cells(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b,
+                                  const X& x, int colour) {
+  const PoissonStencil<MemSpace, S> a = A;
+  const mesh::MacGrid g = A.grid;
+  const int half = (g.nx + 1) / 2;
+  Kokkos::parallel_for(
+      "amphora::mac::red_black_gauss_seidel_cells", RangePolicy<ExecSpace>(exec, 0, half * g.ny * g.nz),
+      KOKKOS_LAMBDA(int t) {
+        const int row = t / half, j = row % g.ny, k = row / g.ny;
+        const int i = 2 * (t % half) + ((j + k + colour) & 1);
+        if (i >= g.nx) return;
+        const int c = g.index(i, j, k);
+        x(c) = a.inverse_diag(c) * (b(c) + a.neighbour_sum(x, c));
+      });
+}
+
 /// One Gauss–Seidel half-sweep over the cells with (i + j + k) % 2 == colour: the cells of one
 /// colour only couple to the other colour, so the update is order-free and thread-count-free.
 template <class ExecSpace, class MemSpace, class S, class B, class X>
 void red_black_gauss_seidel(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b,
                             const X& x, int colour) {
+  if constexpr (!runs_on_host_v<ExecSpace>) {
+    red_black_gauss_seidel_cells(exec, A, b, x, colour);
+    return;
+  }
   const PoissonStencil<MemSpace, S> a = A;
   const mesh::MacGrid g = A.grid;
   // One work item per x-row. The row is updated in chunks: first every cell's Gauss–Seidel
@@ -376,7 +399,8 @@ PoissonStencil<MemSpace, Scalar> convert_stencil(const ExecSpace& exec, const Po
   B.unit_fluid_faces = A.unit_fluid_faces;
   B.diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::diag", A.diag.extent(0));
   B.inverse_diag = Kokkos::View<Scalar*, MemSpace>("amphora::mac::inverse_diag", A.diag.extent(0));
-  const auto d = A.diag, inv = A.inverse_diag, bd = B.diag, binv = B.inverse_diag;
+  const auto d = A.diag, inv = A.inverse_diag;
+  const auto bd = B.diag, binv = B.inverse_diag;
   Kokkos::parallel_for(
       "amphora::mac::convert_stencil", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(d.extent(0))),
       KOKKOS_LAMBDA(int c) {

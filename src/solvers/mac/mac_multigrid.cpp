@@ -244,6 +244,19 @@ void MacMultigrid<ExecSpace>::smooth(const ExecSpace& exec, int l, int first_col
 }
 
 template <class ExecSpace>
+double MacMultigrid<ExecSpace>::bytes_per_application() const {
+  double bytes = 24.0 * static_cast<double>(fine_.grid.padded_size());
+  for (int l = 0; l + 1 < levels(); ++l) {
+    const double n = static_cast<double>(levels_[l].grid.padded_size());
+    const double nc = static_cast<double>(levels_[l + 1].grid.padded_size());
+    const int nu = options_.smoothing_steps << l;
+    bytes += 4.0 * n + 4.0 * nu * 28.0 * n + 28.0 * n  // fill, smoothing, residual
+             + 4.0 * n + 4.0 * nc + 4.0 * nc + 8.0 * n;  // restriction, prolongation
+  }
+  return bytes;
+}
+
+template <class ExecSpace>
 void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
   if (l + 1 == levels()) {
     coarse_solve(exec);

@@ -98,6 +98,19 @@ class MacMultigrid {
   }
 
   int levels() const { return static_cast<int>(levels_.size()); }
+  /// Bytes one V-cycle moves through memory, by a streaming model in which every array a kernel
+  /// reads or writes crosses memory once per kernel (single precision): per level the fill, 4 nu
+  /// red-black half-sweeps and the residual (x, b, a diagonal and three conductances read, one
+  /// vector written: 28 B per cell each), restriction and prolongation; the conversions of r to
+  /// and of z from single precision (24 B per fine cell). The coarsest grid's solve, a gather
+  /// to the host of at most max_coarse_cells values, is left out.
+  double bytes_per_application() const;
+  /// The V-cycle's bytes plus CG's own on the fine grid in double precision (solve()): the
+  /// direction p = z + beta p (24 B per cell), q = A p (x, y, diagonal in double and three float
+  /// conductances: 36), p.q (16), the fused x and r update with r.r (48) and r.z (16).
+  double bytes_per_cg_iteration() const {
+    return bytes_per_application() + 140.0 * static_cast<double>(fine_.grid.padded_size());
+  }
   const LevelStencil& level(int l) const { return levels_[l]; }
 
  public:  // (CUDA: extended lambdas may not live in private member functions)

@@ -73,6 +73,12 @@ class MultigridPressureSolver final : public PressureSolver<ExecSpace> {
     return mg_.solve(exec, b, x, c);
   }
   PressureBackend backend() const override { return PressureBackend::multigrid; }
+  double bytes_per_iteration() const override {
+    if constexpr (std::is_same_v<Multigrid, MacMultigrid<ExecSpace>>)
+      return mg_.bytes_per_cg_iteration();
+    else
+      return 0.0;
+  }
 
  private:
   Multigrid mg_;

@@ -40,6 +40,9 @@ class PressureSolver {
   /// kernels::mac::pressure_rhs writes it so.
   virtual SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& control) = 0;
   virtual PressureBackend backend() const = 0;
+  /// Bytes one iteration moves through memory by a streaming model of its kernels (the bound a
+  /// benchmark divides the measured bandwidth by), or 0 where the back end has no such model.
+  virtual double bytes_per_iteration() const { return 0.0; }
 };
 
 /// A grid split over ranks: `block` says where this rank's part lies (mesh::MacBlock; its
