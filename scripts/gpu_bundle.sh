@@ -5,6 +5,8 @@
 # (Kokkos, amphora's layers, Open MPI with its plugins and helpers, hypre, HDF5, ...). Open MPI
 # goes under ompi/ in its installed layout, so OPAL_PREFIX relocates it.
 #   scripts/gpu_bundle.sh [BUILD_DIR [BUNDLE_DIR]]
+# With GPU_BUNDLE_REFERENCE (default build/release) holding an amphora, a few shipped scenes are
+# run with it, their diagnostics kept in reference/ for gpu_check.sh to compare the GPU's with.
 # Defaults: build/cuda (scripts/build.sh cuda) -> build/gpu-bundle, packed as BUNDLE_DIR.tar.xz
 # too (what travels to the device machine: its `carry`, at most 64 MiB). build/release rehearses
 # the same on the OpenMP build.
@@ -15,6 +17,7 @@ bundle=${2:-$here/build/gpu-bundle}
 [ -f "$build/CTestTestfile.cmake" ] || { echo "gpu_bundle.sh: $build is not a build tree (run scripts/build.sh cuda)" >&2; exit 1; }
 rm -rf "$bundle"
 mkdir -p "$bundle/bin" "$bundle/lib"
+bundle=$(cd "$bundle" && pwd)
 
 # The tests ctest would run, less the multi-rank and app ones (no mpiexec of several ranks, no
 # matplotlib there): name, executable, arguments, environment, one per line.
@@ -81,5 +84,26 @@ if [ -d "$ompi_lib" ]; then
   copy_deps "$ompi_lib"/lib/openmpi3/*.so "$bundle"/ompi/bin/*
 fi
 strip --strip-unneeded "$bundle"/bin/* "$bundle"/lib/* 2> /dev/null || true
+
+# Reference diagnostics from another build (the OpenMP one): scene, run steps.
+reference=${GPU_BUNDLE_REFERENCE:-$here/build/release}
+if [ -x "$reference/apps/amphora" ]; then
+  mkdir -p "$bundle/reference"
+  scratch=$(mktemp -d)
+  for spec in "poisson_curved 1" "water_dam_break 20" "dem_settling_bed 400"; do
+    read -r name steps <<< "$spec"
+    sed 's|^output_dir = .*|output_dir = "out"|' "$here/scenes/$name.toml" > "$bundle/reference/$name.toml"
+    if (cd "$scratch" && rm -rf out && OMP_NUM_THREADS=2 OMP_PROC_BIND=false OMPI_ALLOW_RUN_AS_ROOT=1 \
+          OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "$reference/apps/amphora" run "$bundle/reference/$name.toml" \
+          --max-steps "$steps" > run.log 2>&1); then
+      cp "$scratch/out/diagnostics.csv" "$bundle/reference/$name.csv"
+      echo "$name $steps" >> "$bundle/reference/scenes.txt"
+    else
+      echo "[bundle] the reference run of $name failed: $(tail -n 1 "$scratch/run.log")" >&2
+    fi
+  done
+  rm -rf "$scratch"
+  echo "[bundle] reference diagnostics from $reference: $(cat "$bundle/reference/scenes.txt" | tr '\n' ' ')"
+fi
 tar -C "$(dirname "$bundle")" -cf - "$(basename "$bundle")" | xz -T0 -6 > "$bundle.tar.xz"
 echo "[bundle] $(ls "$bundle/bin" | wc -l) executables, $(ls "$bundle/lib" | wc -l) libraries, $(du -sh "$bundle" | cut -f1) in $bundle; packed: $(du -h "$bundle.tar.xz" | cut -f1) $bundle.tar.xz"

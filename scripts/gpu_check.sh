@@ -76,6 +76,27 @@ ran=$(ls "$out"/tests/*.result 2> /dev/null | wc -l)
 npass=$(cat "$out"/tests/*.result 2> /dev/null | awk -F'\t' '$2 ~ /^PASS/' | wc -l)
 say "tests: $npass of $ntests passed ($ran ran)"
 
+# --- the same scenes as the reference build (OpenMP), diagnostics compared ---------------------
+# Tolerance 1e-6 relative (of each column's largest magnitude): the solvers stop at a relative
+# residual of 1e-8, so sums that round differently on the device may take an iteration more or
+# less, and DEM contacts amplify round-off step by step; a wrong kernel is off by far more.
+scenes_ok=1
+if [ -f "$bundle/reference/scenes.txt" ]; then
+  while read -r name steps; do
+    dir=$out/scenes/$name
+    rm -rf "$dir" && mkdir -p "$dir"
+    if (cd "$dir" && OMP_NUM_THREADS=$threads timeout -k 5 120 "$bundle/bin/amphora" run \
+          "$bundle/reference/$name.toml" --max-steps "$steps" > run.log 2>&1); then
+      python3 "$here/scripts/compare_csv.py" "$bundle/reference/$name.csv" "$dir/out/diagnostics.csv" 1e-6 \
+        > "$dir/compare.txt" 2>&1 || scenes_ok=0
+      say "scene $name against the reference: $(tail -n 1 "$dir/compare.txt")"
+    else
+      scenes_ok=0
+      say "scene $name did not run: $(tail -n 1 "$dir/run.log")"
+    fi
+  done < "$bundle/reference/scenes.txt"
+fi
+
 # --- benchmarks --------------------------------------------------------------------------------
 # name|executable|filter, one process each (a run cut short by the deadline loses only its own
 # results); the quick filters are the OpenMP rehearsal's.
@@ -109,7 +130,10 @@ done
   echo
   echo "== amphora GPU check: ${gpu:-no GPU} ($backend), $(( $(date +%s) - start )) s"
   echo "tests: $npass of $ntests passed"
+  for f in "$out"/scenes/*/compare.txt; do
+    [ -f "$f" ] && echo "scene $(basename "$(dirname "$f")") against the reference build: $(tail -n 1 "$f")"
+  done
   cat "$out"/tests/*.result 2> /dev/null | awk -F'\t' '$2 !~ /^PASS/ {printf "  %-44s %s\n", $1, $2}'
   python3 "$here/scripts/gpu_check_table.py" "$out/bench" 2>&1
 } | tee "$out/summary.txt"
-[ "$npass" -eq "$ntests" ] && [ "$bench_ok" = 1 ]
+[ "$npass" -eq "$ntests" ] && [ "$bench_ok" = 1 ] && [ "$scenes_ok" = 1 ]

@@ -8,6 +8,7 @@
 
 #include "physics/dem/dem_system.hpp"
 #include "physics/dem/insertion.hpp"
+#include "shaken_packing.hpp"
 #include "test_backend.hpp"
 
 namespace amphora::dem {
@@ -32,43 +33,8 @@ std::vector<std::pair<std::int64_t, std::int64_t>> brute_force(const System& s) 
   return out;
 }
 
-/// 10^4 particles on a jittered lattice with overlaps, shaken by random velocities, in a walled
-/// box with a small skin (many rebuilds).
-System shaken_packing() {
-  const double r = 1e-3;
-  Material m;
-  m.youngs_modulus = 1e6;
-  m.restitution = 0.5;
-  m.friction = 0.3;
-  DemConfig c;
-  c.materials = {m};
-  const double L = 0.066;
-  c.domain_lo = {0, 0, 0};
-  c.domain_hi = {L, L, L};
-  c.gravity = {0, 0, -9.81};
-  c.max_radius = 1.3 * r;
-  c.skin = 0.3 * r;  // small: many rebuilds
-  c.dt = 2e-5;
-  for (int d = 0; d < 3; ++d) {
-    Wall lo, hi;
-    lo.axis[0] = lo.axis[1] = lo.axis[2] = 0;
-    lo.axis[d] = 1;
-    hi = lo;
-    hi.axis[d] = -1;
-    hi.point[d] = L;
-    c.walls.push_back(lo);
-    c.walls.push_back(hi);
-  }
-  System s(c, Communicator());
-  InsertionRegion box;
-  for (int d = 0; d < 3; ++d) box.hi[d] = L;
-  auto ps = lattice_insertion(box, {r, 0.3}, 2.7 * r, 10000, 0.5 * r, 7, 0, {1.0});
-  EXPECT_EQ(ps.size(), 10000u);
-  for (auto& p : ps)
-    for (int d = 0; d < 3; ++d) p.v[d] = 0.3 * (uniform01(11, d, p.gid) - 0.5);
-  s.add_particles(ps);
-  return s;
-}
+/// 10^4 particles shaken in a walled box (tests/physics/shaken_packing.hpp).
+System shaken_packing() { return test_systems::shaken_packing<test::TestExecSpace>(10000, 0.066); }
 
 TEST(DemContactDetection, VerletContactsEqualAllPairsAtEveryStep) {
   System s = shaken_packing();

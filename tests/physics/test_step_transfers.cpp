@@ -5,11 +5,12 @@
 // sub-step); the tall-cell water step, which still rebuilds its grid on the host, is held at
 // what it copies now, so a new copy in a step fails here.
 #include <cstdio>
+#include <type_traits>
 
 #include "kernels/deep_copy_counter.hpp"
 #include "physics/dem/dem_system.hpp"
-#include "physics/dem/insertion.hpp"
 #include "physics/water_mac/water_mac.hpp"
+#include "shaken_packing.hpp"
 #include "test_backend.hpp"
 
 namespace amphora {
@@ -17,38 +18,8 @@ namespace test_step_transfers_cases {
 
 using System = dem::DemSystem<test::TestExecSpace>;
 
-System shaken_box(int n) {
-  const double r = 1e-3, L = 0.034;
-  dem::Material m;
-  m.youngs_modulus = 1e6;
-  m.restitution = 0.5;
-  m.friction = 0.3;
-  dem::DemConfig c;
-  c.materials = {m};
-  c.domain_hi = {L, L, L};
-  c.max_radius = 1.3 * r;
-  c.skin = 0.3 * r;
-  c.dt = 2e-5;
-  for (int d = 0; d < 3; ++d) {
-    dem::Wall lo, hi;
-    lo.axis[d] = 1;
-    hi.axis[d] = -1;
-    hi.point[d] = L;
-    c.walls.push_back(lo);
-    c.walls.push_back(hi);
-  }
-  System s(c, Communicator());
-  dem::InsertionRegion box;
-  for (int d = 0; d < 3; ++d) box.hi[d] = L;
-  auto ps = dem::lattice_insertion(box, {r, 0.3}, 2.7 * r, n, 0.5 * r, 7, 0, {1.0});
-  for (auto& p : ps)
-    for (int d = 0; d < 3; ++d) p.v[d] = 0.3 * (dem::uniform01(11, d, p.gid) - 0.5);
-  s.add_particles(ps);
-  return s;
-}
-
 TEST(StepTransfers, DemStepsStayOnTheDevice) {
-  System s = shaken_box(1000);
+  System s = dem::test_systems::shaken_packing<test::TestExecSpace>(1000, 0.034);
   s.step();  // the first step builds the lists
   DeepCopyCounter counter;
   int quiet_steps = 0, rebuild_steps = 0;
