@@ -7,9 +7,11 @@
 #include <iostream>
 #include <sstream>
 
+#include "amphora/build_info.hpp"
 #include "io/build_info.hpp"
 #include "io/runner.hpp"
 #include "io/scene.hpp"
+#include "io/scene_catalog.hpp"
 #include "mesh/box_decomposition.hpp"
 #include "mesh/environment.hpp"
 #include "io/module_registry.hpp"
@@ -47,6 +49,17 @@ int print_defaults(const std::string& name) {
   return 2;
 }
 
+/// `amphora run` without a scene: the scenes shipped, one line each.
+int print_scenes() {
+  const std::string dir = shipped_scene_dir();
+  const auto scenes = list_scenes(dir);
+  std::cout << "usage: amphora run SCENE [--restart FILE] [--max-steps N] [--no-output]\n"
+            << "scenes shipped in " << dir << "/:\n";
+  for (const auto& s : scenes) std::cout << "  " << std::left << std::setw(40) << s.path << s.summary << "\n";
+  if (scenes.empty()) std::cout << "  (none found)\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -55,13 +68,15 @@ int main(int argc, char** argv) {
 
   CLI::App app{"amphora: GPU-portable multiphysics on Kokkos"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("amphora ") + AMPHORA_VERSION + " (" +
+                                        AMPHORA_GIT_REVISION + ")");
 
   std::string scene_path, restart, defaults_module, study_key, study_values, study_csv;
   long long max_steps = -1;
   bool no_output = false;
 
   auto* run = app.add_subcommand("run", "run a scene");
-  run->add_option("scene", scene_path, "scene file (TOML)")->required();
+  run->add_option("scene", scene_path, "scene file (TOML); without one, the scenes shipped");
   run->add_option("--restart", restart, "continue from this checkpoint");
   run->add_option("--max-steps", max_steps, "stop after this many steps (writes a checkpoint)");
   run->add_flag("--no-output", no_output, "write nothing (for timing)");
@@ -93,6 +108,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (*defaults) return comm.is_root() ? print_defaults(defaults_module) : 0;
+    if (*run && scene_path.empty()) return comm.is_root() ? print_scenes() : 0;
 
     const Scene scene = load_scene(scene_path);
     if (*check) {

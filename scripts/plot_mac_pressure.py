@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Charts and ratios of scripts/bench_mac_pressure.sh: solve time (setup included) per back end
-and grid, uniform and tall-cell, 1 and 2 threads, PFMG on 2 ranks; the issue's ratios against
+and grid, uniform and tall-cell, 1 and 2 threads, PFMG on 2 ranks; and the ratios against
 PFMG-CG (2 ranks) and MIC(0)-CG from the same run. Usage: plot_mac_pressure.py output/bench"""
 import json
 import os

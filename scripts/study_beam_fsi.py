@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The beam studies of issue 5 (scenes/beam_channel_amp.toml, a beam over an inviscid channel):
+"""The beam studies (scenes/beam_channel_amp.toml, a beam over an inviscid channel):
 
 (a) stability map: the traditional partitioned scheme (TP) and AMP over grid points
     n = 20..320 and beam-to-fluid density ratios rho_h / rho = 100 .. 0.01, each run for a fixed

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 5 (c) for MP-VE: how many Aitken sub-iterations the traditional partitioned scheme needs
+"""MP-VE: how many Aitken sub-iterations the traditional partitioned scheme needs
 to stay stable as the solid gets lighter (rho_bar / rho = 800 .. 0.001, fluid viscosity 0.02,
 dy = 1/40 by default), and what a step then costs against AMP, which needs none. Each run goes
 from the exact traveling wave to a fixed time through `amphora run` (scene scenes/mpve_tp.toml

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 5 (a) for MP-VE: max-norm convergence of AMP at h = 1/20, 1/40, 1/80, 1/160 for the heavy
+"""MP-VE: max-norm convergence of AMP at h = 1/20, 1/40, 1/80, 1/160 for the heavy
 solid (rho_bar / rho = 1e3, fluid viscosity mu = 0.02) and the very light one (rho_bar / rho =
 1e-3, mu = 0.005), each through `amphora run` (scenes/mpve_amp.toml) from the exact traveling
 wave to t = 0.3; the errors are the module's diagnostics at the end (p at t - dt/2, v, u of the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Issue 5 (b) for MP-VE (scenes/mpve_tp.toml, scenes/mpve_amp.toml): where the traditional
+"""MP-VE (scenes/mpve_tp.toml, scenes/mpve_amp.toml): where the traditional
 partitioned scheme (TP) and the added-mass partitioned scheme (AMP) are stable, over grid
 spacing dy = 1/20 .. 1/320 and solid-to-fluid density ratio rho_bar / rho = 800 .. 0.001 (fluid
 viscosity 0.02), each run from the exact traveling wave to a fixed time; "unstable" = amphora

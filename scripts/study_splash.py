@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The tall-cell study of issue 4: the deep-water splash of scenes/water_splash_deep.toml (or
+"""The tall-cell study: the deep-water splash of scenes/water_splash_deep.toml (or
 another splash scene, --scene) with uniform cells everywhere (optical_depth = 0) and with tall
 cells below several optical depths. For each run:
 pressure unknowns (mean over the run), wall time per step, and the surface-height error against

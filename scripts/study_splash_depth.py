@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""How the tall cells' gain grows with the depth of the water (issue 4): the same splash over
+"""How the tall cells' gain grows with the depth of the water: the same splash over
 pools of several depths (--scenes, default the 1.6 m, 3.6 m and 7.6 m pools), each run uniform
 and with tall cells below optical depth D (--depths, one per scene), as scripts/study_splash.py
 runs them. Per pool: fewer pressure unknowns, less time per step, the surface error at the end

@@ -19,6 +19,7 @@ class Environment {
   Environment& operator=(const Environment&) = delete;
 
  private:
+  void start_kokkos(int& argc, char**& argv);
   bool owns_mpi_ = false;
   struct KokkosGuard;
   std::unique_ptr<KokkosGuard> kokkos_;

@@ -1,4 +1,4 @@
-# info, defaults and check work and say what they should.
+# info, defaults, check, --help, --version and a bare `run` work and say what they should.
 source "$(dirname "$0")/common.sh"
 "$AMPHORA" info > info.txt
 for row in "Kokkos backends *Serial OpenMP" "MPI ranks *1" "HDF5 .*parallel" "hypre *2\." "git revision" "threads *1"; do
@@ -11,4 +11,15 @@ expect_error 2 "unknown module 'fluid'; known: run, advection_diffusion_1d" "$AM
 make_scene scene.toml
 "$AMPHORA" check scene.toml | grep -q "scene.toml: ok" || fail "check of a good scene"
 [ ! -e out ] || fail "check wrote output"
+# --help is amphora's alone (Kokkos' stays under --kokkos-help), on stdout, nothing on stderr
+"$AMPHORA" --help > help.txt 2> help.err
+grep -q "^Usage: .*amphora \[OPTIONS\] SUBCOMMAND" help.txt || { cat help.txt; fail "--help"; }
+! grep -qi "kokkos command line\|kokkos-help\|WARNING" help.txt help.err || { cat help.txt help.err; fail "--help prints Kokkos' text"; }
+"$AMPHORA" run --help | grep -q "scene file (TOML)" || fail "run --help"
+"$AMPHORA" --version | grep -E -q '^amphora [0-9]+\.[0-9]+\.[0-9]+ \(.+\)$' || fail "--version"
+# `run` without a scene lists the shipped scenes with a summary each
+(cd "$AMPHORA_SOURCE_DIR" && "$AMPHORA" run) > scenes.txt
+shipped=$(ls "$AMPHORA_SOURCE_DIR"/scenes/*.toml | wc -l)
+[ "$(grep -c '^  scenes/.*\.toml  ' scenes.txt)" = "$shipped" ] || { cat scenes.txt; fail "run lists $shipped scenes"; }
+grep -q "scenes/dem_drum.toml *A thin rotating drum" scenes.txt || { cat scenes.txt; fail "scene summary"; }
 echo "cli: ok"
