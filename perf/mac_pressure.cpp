@@ -49,6 +49,7 @@ using Vector = Kokkos::View<double*, Mem>;
 using Stencil = amphora::kernels::mac::PoissonStencil<Mem>;
 using kernels_mac_host_stencil_t = amphora::kernels::mac::PoissonStencil<amphora::HostMemSpace>;
 namespace mesh = amphora::mesh;
+namespace kernels = amphora::kernels;
 namespace mac = amphora::solvers::mac;
 using Clock = std::chrono::steady_clock;
 
@@ -57,7 +58,7 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 /// This rank's z slab of the fluid box [0,1]^3 with n^3 cells: its stencil (conductances
 /// towards the neighbouring slabs in the ghost layer) and right-hand side h^2 f.
 struct UniformBox {
-  mesh::MacGrid grid;
+  kernels::mac::MacGrid grid;
   int z0 = 0;
   mesh::MacBlock block;
   Stencil A;
@@ -69,13 +70,13 @@ struct UniformBox {
     const amphora::Box box = dec.box(rank);
     const int nz = box.extent(2);
     z0 = box.lo[2];
-    grid = mesh::MacGrid{n, n, nz, 1.0 / n, {0.0, 0.0, z0 / double(n)}};
+    grid = kernels::mac::MacGrid{n, n, nz, 1.0 / n, {0.0, 0.0, z0 / double(n)}};
     const Exec exec;
-    Kokkos::View<mesh::MacCellType*, Mem> type("type", grid.padded_size());
-    Kokkos::deep_copy(type, mesh::MacCellType::fluid);  // ghosts too: the neighbours are all fluid
+    Kokkos::View<kernels::mac::MacCellType*, Mem> type("type", grid.padded_size());
+    Kokkos::deep_copy(type, kernels::mac::MacCellType::fluid);  // ghosts too: the neighbours are all fluid
     block = mesh::MacBlock::of(dec, MPI_COMM_WORLD, rank);
-    mesh::MacBoxBoundaries open;
-    open.fill(mesh::MacBoundary::open);
+    kernels::mac::MacBoxBoundaries open;
+    open.fill(kernels::mac::MacBoundary::open);
     A = amphora::kernels::mac::build_poisson_stencil<Exec, Mem>(exec, grid, type, Vector(), block.faces(open));
     mesh::LatticeGhostExchange(block).exchange(exec, grid, A.cz);  // the ghost cells' + faces
     std::vector<double> f(grid.padded_size(), 0.0);
@@ -203,8 +204,8 @@ DeepWater deep_water(int n, int rank, int ranks) {
   const amphora::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1, {false, false, true});
   const amphora::Box box = dec.box(rank);
   w.block = mesh::MacBlock::of(dec, MPI_COMM_WORLD, rank);
-  const mesh::MacGrid g{n, n, box.extent(2), 1.0 / n, {0, 0, box.lo[2] / double(n)}};
-  std::vector<mesh::MacCellType> type(g.padded_size(), mesh::MacCellType::solid);
+  const kernels::mac::MacGrid g{n, n, box.extent(2), 1.0 / n, {0, 0, box.lo[2] / double(n)}};
+  std::vector<kernels::mac::MacCellType> type(g.padded_size(), kernels::mac::MacCellType::solid);
   std::vector<double> phi(g.padded_size(), 1.0);
   const int k_lo = w.block.neighbours[4] >= 0 ? -1 : 0, k_hi = g.nz + (w.block.neighbours[5] >= 0 ? 1 : 0);
   for (int k = k_lo; k < k_hi; ++k)
@@ -214,15 +215,15 @@ DeepWater deep_water(int n, int rank, int ranks) {
         const int c = g.index(i, j, k);
         phi[c] = x[1] - 0.9;
         const double floor = 0.1 + 0.05 * std::sin(6 * x[0]) * std::cos(4 * x[2]);
-        type[c] = x[1] < floor ? mesh::MacCellType::solid : (phi[c] < 0 ? mesh::MacCellType::fluid : mesh::MacCellType::air);
-        if (k >= 0 && k < g.nz) w.fluid_cells += type[c] == mesh::MacCellType::fluid;
+        type[c] = x[1] < floor ? kernels::mac::MacCellType::solid : (phi[c] < 0 ? kernels::mac::MacCellType::fluid : kernels::mac::MacCellType::air);
+        if (k >= 0 && k < g.nz) w.fluid_cells += type[c] == kernels::mac::MacCellType::fluid;
       }
   long total = 0;
   MPI_Allreduce(&w.fluid_cells, &total, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
   w.fluid_cells = total;
-  mesh::MacBoxBoundaries faces;
-  faces.fill(mesh::MacBoundary::wall);
-  faces[3] = mesh::MacBoundary::open;
+  kernels::mac::MacBoxBoundaries faces;
+  faces.fill(kernels::mac::MacBoundary::wall);
+  faces[3] = kernels::mac::MacBoundary::open;
   w.A = amphora::kernels::mac::build_poisson_stencil<amphora::HostExecSpace, amphora::HostMemSpace>(
       amphora::HostExecSpace(), g, amphora::to_view<amphora::HostMemSpace>(type),
       amphora::to_view<amphora::HostMemSpace>(phi), w.block.faces(faces));
@@ -245,7 +246,7 @@ void TallCells(benchmark::State& state) {
   int iterations = 0;
   double setup = 0.0, rel = 0.0;
   long unknowns = 0;
-  const mesh::MacGrid g = host_A.grid;
+  const kernels::mac::MacGrid g = host_A.grid;
   const auto solve = [&] {
     exec.fence();
     MPI_Barrier(MPI_COMM_WORLD);

@@ -27,18 +27,18 @@ namespace {
 using Exec = amphora::DefaultExecSpace;
 using Mem = Exec::memory_space;
 using Vector = Kokkos::View<double*, Mem>;
-namespace mesh = amphora::mesh;
+namespace kernels = amphora::kernels;
 namespace mac = amphora::kernels::mac;
 
 struct Pool {
-  mesh::MacGrid grid;
+  kernels::mac::MacGrid grid;
   Vector phi, u, v, w, out;
-  Kokkos::View<mesh::MacCellType*, Mem> type;
+  Kokkos::View<kernels::mac::MacCellType*, Mem> type;
   Kokkos::View<std::uint8_t*, Mem> mark;
   explicit Pool(int n) : grid{n, n, n, 1.0 / n, {0.0, 0.0, 0.0}} {
     const long size = grid.padded_size();
     std::vector<double> p(size, 0.0), f[3];
-    std::vector<mesh::MacCellType> t(size, mesh::MacCellType::air);
+    std::vector<kernels::mac::MacCellType> t(size, kernels::mac::MacCellType::air);
     for (auto& c : f) c.assign(size, 0.0);
     const double pi = amphora::math::pi;
     for (int k = 0; k < n; ++k)
@@ -47,7 +47,7 @@ struct Pool {
           const auto x = grid.cell_centre(i, j, k);
           const int c = grid.index(i, j, k);
           p[c] = x[1] - 0.6;
-          t[c] = p[c] < 0 ? mesh::MacCellType::fluid : mesh::MacCellType::air;
+          t[c] = p[c] < 0 ? kernels::mac::MacCellType::fluid : kernels::mac::MacCellType::air;
           // a divergence-free swirl in x-y, a gentle drift in z
           f[0][c] = std::sin(pi * x[0]) * std::cos(pi * x[1]);
           f[1][c] = -std::cos(pi * x[0]) * std::sin(pi * x[1]);
@@ -65,9 +65,9 @@ void WaterKernels(benchmark::State& state) {
   const int kind = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
   Pool pool(n);
   const Exec exec;
-  const mesh::MacGrid& g = pool.grid;
+  const kernels::mac::MacGrid& g = pool.grid;
   // every column uniform, or (kind 2) every column one tall cell
-  mesh::TallCellColumns<Mem> columns(g);
+  kernels::mac::TallCellColumns<Mem> columns(g);
   if (kind == 2) Kokkos::deep_copy(columns.band, g.ny);
   const double dt = g.h / 1.0, reach = 1e30;
   for (auto _ : state) {

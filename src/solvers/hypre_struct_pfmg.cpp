@@ -8,7 +8,7 @@
 namespace amphora::solvers {
 
 struct StructPfmgCG::Impl {
-  mesh::MacGrid g;
+  kernels::mac::MacGrid g;
   StructPfmgOptions options;
   HYPRE_Int lower[3], upper[3];
   HYPRE_StructGrid grid = nullptr;
@@ -34,7 +34,7 @@ struct StructPfmgCG::Impl {
   }
 };
 
-StructPfmgCG::StructPfmgCG(MPI_Comm comm, const mesh::MacGrid& g, std::array<int, 3> global_lower, const double* diag,
+StructPfmgCG::StructPfmgCG(MPI_Comm comm, const kernels::mac::MacGrid& g, std::array<int, 3> global_lower, const double* diag,
                            const float* cx, const float* cy, const float* cz, const StructPfmgOptions& options)
     : impl_(std::make_unique<Impl>()) {
   HYPRE_Init();  // idempotent in hypre 2.26

@@ -8,7 +8,7 @@
 #include <array>
 #include <memory>
 
-#include "mesh/mac/mac_grid.hpp"
+#include "kernels/mac/mac_grid.hpp"
 #include "solvers/hypre_boomeramg.hpp"
 
 namespace amphora::solvers {
@@ -24,7 +24,7 @@ class StructPfmgCG {
  public:
   /// diag/cx/cy/cz: host arrays on g's padded lattice (MacPoisson stencil form). Cells with
   /// diag 0 become identity rows (their right-hand side must be zero).
-  StructPfmgCG(MPI_Comm comm, const mesh::MacGrid& g, std::array<int, 3> global_lower, const double* diag,
+  StructPfmgCG(MPI_Comm comm, const kernels::mac::MacGrid& g, std::array<int, 3> global_lower, const double* diag,
                const float* cx, const float* cy, const float* cz, const StructPfmgOptions& options = {});
   ~StructPfmgCG();
   StructPfmgCG(const StructPfmgCG&) = delete;

@@ -27,7 +27,7 @@ struct StretchedSphere {
 };
 
 // where the level set crosses zero between x-neighbours, as a fraction of h from the left one
-std::vector<std::pair<int, double>> x_crossings(const mesh::MacGrid& g, const std::vector<double>& phi) {
+std::vector<std::pair<int, double>> x_crossings(const kernels::mac::MacGrid& g, const std::vector<double>& phi) {
   std::vector<std::pair<int, double>> out;
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < g.ny; ++j)
@@ -40,7 +40,7 @@ std::vector<std::pair<int, double>> x_crossings(const mesh::MacGrid& g, const st
 
 TEST(LevelSetReinitialisation, KeepsTheZeroSetAndReachesTheDistance) {
   const int n = 32;
-  const mesh::MacGrid g{n, n, n, 1.0 / n, {0.0, 0.0, 0.0}};
+  const kernels::mac::MacGrid g{n, n, n, 1.0 / n, {0.0, 0.0, 0.0}};
   const StretchedSphere s;
   std::vector<double> phi0(g.padded_size(), 1.0);
   for (int k = 0; k < n; ++k)

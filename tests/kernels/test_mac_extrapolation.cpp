@@ -14,10 +14,10 @@ namespace {
 
 using Exec = test::TestExecSpace;
 using Mem = test::TestMemSpace;
-using mesh::MacCellType;
+using kernels::mac::MacCellType;
 
 TEST(MacExtrapolation, LayersFromTheLowestAirRowEqualLayersOverTheWholeGrid) {
-  const mesh::MacGrid g{20, 24, 12, 1.0 / 20, {0.0, 0.0, 0.0}};
+  const kernels::mac::MacGrid g{20, 24, 12, 1.0 / 20, {0.0, 0.0, 0.0}};
   // a solid floor, water up to a wavy surface between rows 9 and 17, air above
   std::vector<MacCellType> type(g.padded_size(), MacCellType::solid);
   for (int k = 0; k < g.nz; ++k)
@@ -48,7 +48,7 @@ TEST(MacExtrapolation, LayersFromTheLowestAirRowEqualLayersOverTheWholeGrid) {
       Kokkos::View<std::uint8_t*, Mem> mark("mark", g.padded_size());
       mark_fluid_faces(exec, g, d, types, mark);
       for (int layer = 2; layer < 5; ++layer)
-        extrapolate_layer(exec, g, d, types, f, mark, layer, mesh::box_edges(), variant == 0 ? 0 : first);
+        extrapolate_layer(exec, g, d, types, f, mark, layer, kernels::mac::box_edges(), variant == 0 ? 0 : first);
       results[variant] = to_std_vector(f);
       const auto host_mark = Kokkos::create_mirror_view_and_copy(HostMemSpace(), mark);
       marks[variant].assign(host_mark.data(), host_mark.data() + host_mark.extent(0));

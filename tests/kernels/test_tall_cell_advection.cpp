@@ -17,12 +17,12 @@ namespace {
 
 using Exec = test::TestExecSpace;
 using Mem = test::TestMemSpace;
-using mesh::MacGrid;
+using kernels::mac::MacGrid;
 
 /// Columns with the given per-column terrain and band rows.
 template <class M = Mem>
-mesh::TallCellColumns<M> columns(const MacGrid& g, const std::vector<int>& terrain, const std::vector<int>& band) {
-  mesh::TallCellColumns<M> T(g);
+kernels::mac::TallCellColumns<M> columns(const MacGrid& g, const std::vector<int>& terrain, const std::vector<int>& band) {
+  kernels::mac::TallCellColumns<M> T(g);
   std::vector<int> t(T.terrain.extent(0), 0), b(T.band.extent(0), 0);  // the ghost ring: no tall cells
   for (int k = 0; k < g.nz; ++k)
     for (int i = 0; i < g.nx; ++i) {
@@ -36,7 +36,7 @@ mesh::TallCellColumns<M> columns(const MacGrid& g, const std::vector<int>& terra
 
 /// Uneven tall cells: terrain 0..2, band 5..10 (some columns without a tall cell).
 template <class M = Mem>
-mesh::TallCellColumns<M> uneven_columns(const MacGrid& g) {
+kernels::mac::TallCellColumns<M> uneven_columns(const MacGrid& g) {
   std::vector<int> terrain, band;
   for (int k = 0; k < g.nz; ++k)
     for (int i = 0; i < g.nx; ++i) {
@@ -266,7 +266,7 @@ TEST(TallCellVelocity, LevelSetKernelsFromTheFirstRowEqualTheWholeLatticeAbove) 
     if (advection)
       advect(Exec(), T, Staggering::centre, P, out, U, V, W, 0.05, P, 1.0, g, none, first_row);
     else
-      reinitialise_step(Exec(), T, P, P, out, mesh::box_edges(), first_row);
+      reinitialise_step(Exec(), T, P, P, out, kernels::mac::box_edges(), first_row);
     return to_std_vector(out);
   };
   for (bool advection : {true, false}) {

@@ -28,8 +28,8 @@
 namespace amphora {
 namespace {
 
-using mesh::MacCellType;
-using mesh::MacGrid;
+using kernels::mac::MacCellType;
+using kernels::mac::MacGrid;
 using Mem = test::TestMemSpace;
 using Exec = test::TestExecSpace;
 
@@ -44,7 +44,7 @@ double source(const std::array<double, 3>& x) { return 1.0 + x[0] * x[2]; }
 
 struct Block {
   MacGrid grid;
-  mesh::MacBoxBoundaries faces;
+  kernels::mac::MacBoxBoundaries faces;
   kernels::mac::PoissonStencil<HostMemSpace> A;
   std::vector<double> b;
 };
@@ -60,7 +60,7 @@ void exchange(const mesh::LatticeGhostExchange& halo, const MacGrid& g, T* data)
 
 /// The block of `box` (global cell indices) with the given box faces; ghost types and phi come
 /// from the neighbours by halo exchange when `halo` is given, else the block is the whole box.
-Block make_block(const Box& box, const mesh::MacBoxBoundaries& faces, const mesh::LatticeGhostExchange* halo) {
+Block make_block(const Box& box, const kernels::mac::MacBoxBoundaries& faces, const mesh::LatticeGhostExchange* halo) {
   Block B;
   const double h = 1.0 / N;
   B.grid = MacGrid{box.extent(0), box.extent(1), box.extent(2), h, {box.lo[0] * h, box.lo[1] * h, box.lo[2] * h}};
@@ -124,16 +124,16 @@ SplitScene split_scene(const Communicator& comm, int direction) {
   EXPECT_EQ(dec.blocks()[1], 1);
   EXPECT_EQ(dec.blocks()[direction], comm.size());
   S.box = dec.box(comm.rank());
-  mesh::MacBoxBoundaries faces;
+  kernels::mac::MacBoxBoundaries faces;
   for (int d = 0; d < 3; ++d)
     for (int side = 0; side < 2; ++side)
-      faces[2 * d + side] = dec.neighbor(comm.rank(), d, side) >= 0 ? mesh::MacBoundary::neighbour
-                                                                     : mesh::MacBoundary::wall;
+      faces[2 * d + side] = dec.neighbor(comm.rank(), d, side) >= 0 ? kernels::mac::MacBoundary::neighbour
+                                                                     : kernels::mac::MacBoundary::wall;
   S.block = mesh::MacBlock::of(dec, comm.get(), comm.rank());
   const mesh::LatticeGhostExchange halo(S.block);
   S.local = make_block(S.box, faces, &halo);
-  mesh::MacBoxBoundaries walls;
-  walls.fill(mesh::MacBoundary::wall);
+  kernels::mac::MacBoxBoundaries walls;
+  walls.fill(kernels::mac::MacBoundary::wall);
   S.whole = make_block(Box{{0, 0, 0}, global}, walls, nullptr);
   return S;
 }

@@ -19,12 +19,12 @@ namespace amphora::solvers::mac::test_problems {
 /// MG-CG iterations for a box of fluid with the given faces (a tank: walls and an open top, or
 /// open all round) filled to height `fill` + `wave` sin(2 pi x) cos(2 pi z) (air above; theta
 /// from the level set).
-inline int box_iterations(int n, const mesh::MacBoxBoundaries& faces, double fill, double wave = 0.0) {
+inline int box_iterations(int n, const kernels::mac::MacBoxBoundaries& faces, double fill, double wave = 0.0) {
   using test::TestExecSpace;
   using test::TestMemSpace;
-  using mesh::MacCellType;
+  using kernels::mac::MacCellType;
   const TestExecSpace exec;
-  const mesh::MacGrid g{n, n, n, 1.0 / n, {0, 0, 0}};
+  const kernels::mac::MacGrid g{n, n, n, 1.0 / n, {0, 0, 0}};
   std::vector<MacCellType> t(g.padded_size(), MacCellType::solid);
   std::vector<double> phi(g.padded_size(), 1.0), b(g.padded_size(), 0.0);
   for (int k = 0; k < n; ++k)
@@ -49,20 +49,20 @@ inline int box_iterations(int n, const mesh::MacBoxBoundaries& faces, double fil
 
 /// The faces of the box problems.
 struct BoxFaces {
-  mesh::MacBoxBoundaries open, bottom, tank;  ///< open all round; a wall below only; walls and an open top
+  kernels::mac::MacBoxBoundaries open, bottom, tank;  ///< open all round; a wall below only; walls and an open top
   BoxFaces() {
-    open.fill(mesh::MacBoundary::open);
+    open.fill(kernels::mac::MacBoundary::open);
     bottom = open;
-    bottom[2] = mesh::MacBoundary::wall;
-    tank.fill(mesh::MacBoundary::wall);
-    tank[3] = mesh::MacBoundary::open;
+    bottom[2] = kernels::mac::MacBoundary::wall;
+    tank.fill(kernels::mac::MacBoundary::wall);
+    tank[3] = kernels::mac::MacBoundary::open;
   }
 };
 
 /// One box problem of an iteration-count test and what it may do over the sizes.
 struct IterationCase {
   const char* name;
-  mesh::MacBoxBoundaries faces;
+  kernels::mac::MacBoxBoundaries faces;
   double fill;
   int spread;  ///< largest difference of the counts over the sizes (the issue's +-2, or more where not met)
   int most;    ///< largest count at the last size

@@ -22,8 +22,8 @@ namespace {
 using test::TestExecSpace;
 using test::TestMemSpace;
 using Vector = Kokkos::View<double*, TestMemSpace>;
-using mesh::MacCellType;
-using mesh::MacGrid;
+using kernels::mac::MacCellType;
+using kernels::mac::MacGrid;
 
 /// Fluid inside a sphere (level set r - R), air outside, in the unit cube with walls.
 struct SphereScene {
@@ -51,8 +51,8 @@ struct SphereScene {
   }
   static double sq(double a) { return a * a; }
   kernels::mac::PoissonStencil<TestMemSpace> stencil() const {
-    mesh::MacBoxBoundaries walls;
-    walls.fill(mesh::MacBoundary::wall);
+    kernels::mac::MacBoxBoundaries walls;
+    walls.fill(kernels::mac::MacBoundary::wall);
     return kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), grid, type, phi, walls);
   }
   /// p = (R^2 - r^2) e^x: zero on the sphere; f = -lap p = e^x (6 + 4 (x - cx) - (R^2 - r^2)).
@@ -290,7 +290,7 @@ TEST(MacProjection, SolidFacesListsEveryFaceTouchingASolidOrTheBoxInOrder) {
   std::uniform_real_distribution<double> R(0.0, 1.0);
   std::vector<MacCellType> t(g.padded_size());
   for (auto& c : t) c = R(rng) < 0.2 ? MacCellType::solid : R(rng) < 0.5 ? MacCellType::fluid : MacCellType::air;
-  mesh::MacEdges edges = mesh::box_edges();
+  kernels::mac::MacEdges edges = kernels::mac::box_edges();
   edges[0] = edges[5] = false;
   const auto type = to_view<TestMemSpace>(t);
   for (int d = 0; d < 3; ++d) {
@@ -348,10 +348,10 @@ long move_surface_from_row(const SphereScene& scene, int r, Kokkos::View<MacCell
 }
 
 /// Walls all round, the top open.
-mesh::MacBoxBoundaries open_top_box() {
-  mesh::MacBoxBoundaries box;
-  box.fill(mesh::MacBoundary::wall);
-  box[3] = mesh::MacBoundary::open;
+kernels::mac::MacBoxBoundaries open_top_box() {
+  kernels::mac::MacBoxBoundaries box;
+  box.fill(kernels::mac::MacBoundary::wall);
+  box[3] = kernels::mac::MacBoundary::open;
   return box;
 }
 
@@ -371,7 +371,7 @@ long lattice_differences(const MacGrid& g, const A& a, const B& b, int from_row)
 TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
   const SphereScene scene(16, true);
   const MacGrid& g = scene.grid;
-  const mesh::MacBoxBoundaries box = open_top_box();
+  const kernels::mac::MacBoxBoundaries box = open_top_box();
   const int r = 9;
   Kokkos::View<MacCellType*, TestMemSpace> type2;
   Vector phi2;
@@ -446,7 +446,7 @@ TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
 TEST(MacPoissonStencil, CoarseningFromARowEqualsAFullCoarsening) {
   const SphereScene scene(32, true);
   const MacGrid& g = scene.grid;
-  const mesh::MacBoxBoundaries box = open_top_box();
+  const kernels::mac::MacBoxBoundaries box = open_top_box();
   const int r = 25;  // the fine stencil changes from row r - 1 up (under the top of the sphere)
   Kokkos::View<MacCellType*, TestMemSpace> type2;
   Vector phi2;
@@ -511,7 +511,7 @@ TEST(MacPoissonStencil, CoarseningFromARowEqualsAFullCoarsening) {
 // 16^3 build has 3.45.) The third level's cells are cut by the surface between their children.
 TEST(MacPoissonStencil, CoarseLevelsWithALevelSetAreTheCoarseGridsBuilds) {
   const TestExecSpace exec;
-  const auto build = [&](int n, const mesh::MacBoxBoundaries& box) {
+  const auto build = [&](int n, const kernels::mac::MacBoxBoundaries& box) {
     const MacGrid g{n, n, n, 1.0 / n, {0, 0, 0}};
     std::vector<MacCellType> t(g.padded_size(), MacCellType::solid);
     std::vector<double> phi(g.padded_size(), 1.0);
@@ -525,8 +525,8 @@ TEST(MacPoissonStencil, CoarseLevelsWithALevelSetAreTheCoarseGridsBuilds) {
     return kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(exec, g, to_view<TestMemSpace>(t),
                                                                             to_view<TestMemSpace>(phi), box);
   };
-  mesh::MacBoxBoundaries open;
-  open.fill(mesh::MacBoundary::open);
+  kernels::mac::MacBoxBoundaries open;
+  open.fill(kernels::mac::MacBoundary::open);
   for (const auto& box : {open, open_top_box()}) {
     auto level = build(32, box);
     for (int l = 1; l <= 2; ++l) {

@@ -19,8 +19,8 @@
 namespace amphora::solvers::mac {
 namespace {
 
-using mesh::MacCellType;
-using mesh::MacGrid;
+using kernels::mac::MacCellType;
+using kernels::mac::MacGrid;
 using HostStencil = kernels::mac::PoissonStencil<HostMemSpace>;
 
 /// Water at rest up to height eta over a sinusoidal terrain in a box with walls, open top.
@@ -45,9 +45,9 @@ struct Basin {
           else
             type[c] = phi[c] < 0 ? MacCellType::fluid : MacCellType::air;
         }
-    mesh::MacBoxBoundaries faces;
-    faces.fill(mesh::MacBoundary::wall);
-    faces[3] = mesh::MacBoundary::open;
+    kernels::mac::MacBoxBoundaries faces;
+    faces.fill(kernels::mac::MacBoundary::wall);
+    faces[3] = kernels::mac::MacBoundary::open;
     A = kernels::mac::build_poisson_stencil<HostExecSpace, HostMemSpace>(
         HostExecSpace(), grid, to_view<HostMemSpace>(type), to_view<HostMemSpace>(phi), faces);
   }
@@ -142,9 +142,9 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
         phi[c] = x[1] - (x[0] < 0.5 ? b.eta : b.eta - 0.375) - 0.03 * std::sin(7 * x[0]) * std::sin(5 * x[2]);
         if (type[c] != MacCellType::solid) type[c] = phi[c] < 0 ? MacCellType::fluid : MacCellType::air;
       }
-  mesh::MacBoxBoundaries faces;
-  faces.fill(mesh::MacBoundary::wall);
-  faces[3] = mesh::MacBoundary::open;
+  kernels::mac::MacBoxBoundaries faces;
+  faces.fill(kernels::mac::MacBoundary::wall);
+  faces[3] = kernels::mac::MacBoundary::open;
   const HostStencil A = kernels::mac::build_poisson_stencil<HostExecSpace, HostMemSpace>(
       HostExecSpace(), b.grid, to_view<HostMemSpace>(type), to_view<HostMemSpace>(phi), faces);
   ASSERT_TRUE(A.unit_fluid_faces);

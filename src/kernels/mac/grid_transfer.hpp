@@ -51,7 +51,7 @@ KOKKOS_INLINE_FUNCTION S reflected_weight(bool wall) {
 template <class ExecSpace, class MemSpace, class S, class FineView, class CoarseView>
 void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& fine_A,
                         const PoissonStencil<MemSpace, S>& coarse_A, const FineView& fine, const CoarseView& coarse) {
-  const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
+  const kernels::mac::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto active = coarse_A.inverse_diag;
   const auto solid = coarse_A.solid;
   const int sy = gf.stride_y(), sz = gf.stride_z();
@@ -91,7 +91,7 @@ void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
 template <class ExecSpace, class MemSpace, class S, class CoarseView, class FineView>
 void prolongate_add(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& coarse_A,
                     const PoissonStencil<MemSpace, S>& fine_A, const CoarseView& coarse, const FineView& fine) {
-  const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
+  const kernels::mac::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto active = fine_A.inverse_diag;
   const int fsy = gf.stride_y(), fsz = gf.stride_z();
   const auto wall = coarse_A.walls();
@@ -157,7 +157,7 @@ KOKKOS_INLINE_FUNCTION int fluid_neighbours(const Active& active, int c, int sy,
 /// E: every solid cell takes the mean of its fluid face neighbours (zero if it has none).
 template <class ExecSpace, class MemSpace, class S, class V>
 void extend_into_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const V& v) {
-  const mesh::MacGrid g = A.grid;
+  const kernels::mac::MacGrid g = A.grid;
   const auto active = A.inverse_diag;
   const auto solid = A.solid;
   const int sy = g.stride_y(), sz = g.stride_z();
@@ -177,7 +177,7 @@ void extend_into_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
 /// neighbour (ghost solid cells: their owners' values and shares).
 template <class ExecSpace, class MemSpace, class S, class V>
 void gather_from_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const V& v) {
-  const mesh::MacGrid g = A.grid;
+  const kernels::mac::MacGrid g = A.grid;
   const auto active = A.inverse_diag;
   const auto solid = A.solid;
   const auto share = A.solid_share;
@@ -226,7 +226,7 @@ void prolongate_correction(const ExecSpace& exec, const PoissonStencil<MemSpace,
 template <class ExecSpace, class MemSpace>
 void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A, const PoissonStencil<MemSpace>& coarse_A,
                      int first_row = 0, bool ghosts_known = false) {
-  const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
+  const kernels::mac::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto fd = fine_A.diag;
   const auto fcx = fine_A.cx, fcy = fine_A.cy, fcz = fine_A.cz;
   const auto cd = coarse_A.diag, cinv = coarse_A.inverse_diag;
@@ -406,7 +406,7 @@ inline int first_coarse_row_changed(int first_row, bool level_set = false) {
 template <class ExecSpace, class MemSpace>
 void coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A, PoissonStencil<MemSpace>& coarse_A,
                      int first_row) {
-  const mesh::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
+  const kernels::mac::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const bool level_set = fine_A.phi.extent(0) > 0;
   const int J0 = math::clamp(first_row, 0, gc.ny);
   coarse_A.box = fine_A.box;

@@ -7,7 +7,7 @@
 // they relax towards phi0 / |grad phi0|, so the zero level set stays where phi0 put it. Without
 // it every pseudo-step moves the interface by O(h) in thin sheets and the water shrinks with the
 // number of sub-steps (dam break at h = a/8: 2 % of the volume lost at CFL 1, 12 % at CFL 0.25).
-#include "mesh/mac/mac_grid.hpp"
+#include "kernels/mac/mac_grid.hpp"
 
 namespace amphora::kernels::mac {
 
@@ -15,7 +15,7 @@ namespace amphora::kernels::mac {
 /// phi0 is the level set before reinitialisation (its sign is kept). Across a box face that is
 /// not an edge (another block's side) the ghost cell is read.
 template <class P0, class P>
-KOKKOS_INLINE_FUNCTION double reinitialised_value(const mesh::MacGrid& g, const mesh::MacEdges& edges, const P0& phi0,
+KOKKOS_INLINE_FUNCTION double reinitialised_value(const kernels::mac::MacGrid& g, const kernels::mac::MacEdges& edges, const P0& phi0,
                                                   const P& phi, int i, int j, int k) {
   const int c = g.index(i, j, k);
   const double p = phi(c), s0 = phi0(c);
@@ -60,8 +60,8 @@ KOKKOS_INLINE_FUNCTION double reinitialised_value(const mesh::MacGrid& g, const 
 
 /// One pseudo-time step of reinitialisation, phi -> phi_new.
 template <class ExecSpace, class P0, class P, class PN>
-void reinitialise_step(const ExecSpace& exec, const mesh::MacGrid& g, const P0& phi0, const P& phi, const PN& phi_new,
-                       const mesh::MacEdges& edges = mesh::box_edges()) {
+void reinitialise_step(const ExecSpace& exec, const kernels::mac::MacGrid& g, const P0& phi0, const P& phi, const PN& phi_new,
+                       const kernels::mac::MacEdges& edges = kernels::mac::box_edges()) {
   Kokkos::parallel_for(
       "amphora::mac::reinitialise_step",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
@@ -72,8 +72,8 @@ void reinitialise_step(const ExecSpace& exec, const mesh::MacGrid& g, const P0& 
 
 /// type = solid where solid(c), else fluid where phi < 0, else air.
 template <class ExecSpace, class Solid, class P, class T>
-void classify_cells(const ExecSpace& exec, const mesh::MacGrid& g, const Solid& solid, const P& phi, const T& type) {
-  using mesh::MacCellType;
+void classify_cells(const ExecSpace& exec, const kernels::mac::MacGrid& g, const Solid& solid, const P& phi, const T& type) {
+  using kernels::mac::MacCellType;
   Kokkos::parallel_for(
       "amphora::mac::classify_cells",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),

@@ -14,7 +14,7 @@
 #include <type_traits>
 
 #include "kernels/spaces.hpp"
-#include "mesh/mac/mac_grid.hpp"
+#include "kernels/mac/mac_grid.hpp"
 
 namespace amphora::kernels::mac {
 
@@ -30,13 +30,13 @@ KOKKOS_INLINE_FUNCTION double ghost_fluid_weight(double phi_fluid, double phi_ai
 }
 
 /// The index of the interior x-row (j, k) among g's ny * nz x-rows (per-row data of a lattice).
-KOKKOS_INLINE_FUNCTION int x_row(const mesh::MacGrid& g, int j, int k) { return j + g.ny * k; }
+KOKKOS_INLINE_FUNCTION int x_row(const kernels::mac::MacGrid& g, int j, int k) { return j + g.ny * k; }
 
 template <class MemSpace, class Scalar = double>
 struct PoissonStencil {
   using scalar_type = Scalar;
-  mesh::MacGrid grid;
-  mesh::MacBoxBoundaries box{};  ///< what lies beyond each box face (multigrid transfers)
+  kernels::mac::MacGrid grid;
+  kernels::mac::MacBoxBoundaries box{};  ///< what lies beyond each box face (multigrid transfers)
   Kokkos::View<Scalar*, MemSpace> diag, inverse_diag;
   Kokkos::View<float*, MemSpace> cx, cy, cz;
   /// 1 on solid cells inside the box (terrain, obstacles): multigrid extends a correction into
@@ -72,18 +72,18 @@ struct PoissonStencil {
   /// Which box faces are walls, as a device-copyable array.
   Kokkos::Array<bool, 6> walls() const {
     Kokkos::Array<bool, 6> w;
-    for (int f = 0; f < 6; ++f) w[f] = box[f] == mesh::MacBoundary::wall;
+    for (int f = 0; f < 6; ++f) w[f] = box[f] == kernels::mac::MacBoundary::wall;
     return w;
   }
   /// Which box faces end the grid (wall or open, not another block's face).
   Kokkos::Array<bool, 6> edges() const {
     Kokkos::Array<bool, 6> e;
-    for (int f = 0; f < 6; ++f) e[f] = box[f] != mesh::MacBoundary::neighbour;
+    for (int f = 0; f < 6; ++f) e[f] = box[f] != kernels::mac::MacBoundary::neighbour;
     return e;
   }
 
   PoissonStencil() = default;
-  explicit PoissonStencil(const mesh::MacGrid& g)
+  explicit PoissonStencil(const kernels::mac::MacGrid& g)
       : grid(g),
         diag("amphora::mac::diag", g.padded_size()),
         inverse_diag("amphora::mac::inverse_diag", g.padded_size()),
@@ -98,7 +98,7 @@ struct PoissonStencil {
 /// v = 0 on the ghost planes k = -1 and k = nz, which the flat stencil loops do not visit (the
 /// ghost cells inside the planes they visit come out zero because their coefficients are).
 template <class ExecSpace, class V>
-void zero_ghost_planes(const ExecSpace& exec, const mesh::MacGrid& g, const V& v) {
+void zero_ghost_planes(const ExecSpace& exec, const kernels::mac::MacGrid& g, const V& v) {
   const int plane = g.stride_z(), last = g.end_plane_index();
   Kokkos::parallel_for(
       "amphora::mac::zero_ghost_planes", RangePolicy<ExecSpace>(exec, 0, plane), KOKKOS_LAMBDA(int c) {
@@ -110,7 +110,7 @@ void zero_ghost_planes(const ExecSpace& exec, const mesh::MacGrid& g, const V& v
 /// v = 0 on every ghost cell beyond the x and z faces (the y ghosts of the planes are zero
 /// after apply/residual, whose coefficients there are).
 template <class ExecSpace, class V>
-void zero_ghost_cells(const ExecSpace& exec, const mesh::MacGrid& g, const V& v) {
+void zero_ghost_cells(const ExecSpace& exec, const kernels::mac::MacGrid& g, const V& v) {
   zero_ghost_planes(exec, g, v);
   Kokkos::parallel_for(
       "amphora::mac::zero_ghost_columns", RangePolicy<ExecSpace>(exec, 0, (g.ny + 2) * g.nz), KOKKOS_LAMBDA(int row) {
@@ -152,7 +152,7 @@ template <class ExecSpace, class MemSpace, class S, class B, class X>
 void red_black_gauss_seidel_cells(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b,
                                   const X& x, int colour) {
   const PoissonStencil<MemSpace, S> a = A;
-  const mesh::MacGrid g = A.grid;
+  const kernels::mac::MacGrid g = A.grid;
   const int half = (g.nx + 1) / 2;
   Kokkos::parallel_for(
       "amphora::mac::red_black_gauss_seidel_cells", RangePolicy<ExecSpace>(exec, 0, half * g.ny * g.nz),
@@ -175,7 +175,7 @@ void red_black_gauss_seidel(const ExecSpace& exec, const PoissonStencil<MemSpace
     return;
   }
   const PoissonStencil<MemSpace, S> a = A;
-  const mesh::MacGrid g = A.grid;
+  const kernels::mac::MacGrid g = A.grid;
   // One work item per x-row. The row is updated in chunks: first every cell's Gauss–Seidel
   // value into a local buffer (contiguous, so it vectorises; only other-colour cells are read for
   // the cells that are kept), then the cells of this colour are written.
@@ -230,7 +230,7 @@ int count_solid(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
 /// Rows below first_row are left as they are.
 template <class ExecSpace, class MemSpace, class S>
 void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, int first_row = 0) {
-  const mesh::MacGrid g = A.grid;
+  const kernels::mac::MacGrid g = A.grid;
   const auto active = A.inverse_diag;
   const auto solid = A.solid;
   const auto share = A.solid_share;
@@ -263,8 +263,8 @@ void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, 
 /// below which nothing that the stencil reads has changed since A was built (the water module
 /// on tall cells: the row under the lowest band, below which every cell is fluid or solid).
 template <class ExecSpace, class MemSpace, class Types, class Phi>
-void build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g, const Types& type, const Phi& phi,
-                           const mesh::MacBoxBoundaries& box, PoissonStencil<MemSpace>& A, int first_row) {
+void build_poisson_stencil(const ExecSpace& exec, const kernels::mac::MacGrid& g, const Types& type, const Phi& phi,
+                           const kernels::mac::MacBoxBoundaries& box, PoissonStencil<MemSpace>& A, int first_row) {
   A.box = box;
   const auto d = A.diag, inv = A.inverse_diag;
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
@@ -273,10 +273,10 @@ void build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g, const 
   const bool has_phi = phi.extent(0) > 0;
   Kokkos::Array<bool, 6> open_face, neighbour_face;
   for (int f = 0; f < 6; ++f) {
-    open_face[f] = box[f] == mesh::MacBoundary::open;
-    neighbour_face[f] = box[f] == mesh::MacBoundary::neighbour;
+    open_face[f] = box[f] == kernels::mac::MacBoundary::open;
+    neighbour_face[f] = box[f] == kernels::mac::MacBoundary::neighbour;
   }
-  using mesh::MacCellType;
+  using kernels::mac::MacCellType;
   // One work item per x-row, x fastest inside it; the box faces are tested once per row for y
   // and z. An MDRange over the cells, testing every neighbour against the box, took three times
   // as long on the host (3.6 m pool, 20 builds: 0.18-0.20 s against 0.062-0.068 s).
@@ -342,9 +342,9 @@ void build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g, const 
 
 /// A new stencil, every row built.
 template <class ExecSpace, class MemSpace, class Types, class Phi>
-PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const mesh::MacGrid& g,
+PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const kernels::mac::MacGrid& g,
                                                const Types& type, const Phi& phi,
-                                               const mesh::MacBoxBoundaries& box) {
+                                               const kernels::mac::MacBoxBoundaries& box) {
   PoissonStencil<MemSpace> A(g);
   build_poisson_stencil(exec, g, type, phi, box, A, 0);
   return A;

@@ -17,7 +17,7 @@ namespace amphora::kernels::mac {
 namespace detail {
 /// The two cells of face c of component d: L = c - stride, R = c; false if the face is on an
 /// edge of the domain (i == 0 or i == n along d, on a face that is an edge).
-KOKKOS_INLINE_FUNCTION bool face_cells(const mesh::MacGrid& g, const mesh::MacEdges& edges, int d, int i, int j, int k,
+KOKKOS_INLINE_FUNCTION bool face_cells(const kernels::mac::MacGrid& g, const kernels::mac::MacEdges& edges, int d, int i, int j, int k,
                                        int& L, int& R) {
   const int idx[3] = {i, j, k}, n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
   R = g.index(i, j, k);
@@ -31,10 +31,10 @@ KOKKOS_INLINE_FUNCTION bool face_cells(const mesh::MacGrid& g, const mesh::MacEd
 /// costs per listed face, not per face of the lattice (3.6 m pool: the terrain's rows and the
 /// walls, 4 % of the faces).
 template <class ExecSpace, class T>
-Kokkos::View<int*, typename ExecSpace::memory_space> solid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d,
+Kokkos::View<int*, typename ExecSpace::memory_space> solid_faces(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d,
                                                                  const T& type,
-                                                                 const mesh::MacEdges& edges = mesh::box_edges()) {
-  using mesh::MacCellType;
+                                                                 const kernels::mac::MacEdges& edges = kernels::mac::box_edges()) {
+  using kernels::mac::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   const auto touches_solid = KOKKOS_LAMBDA(int n, int& c) {
     const int i = n % ex, j = (n / ex) % ey, k = n / (ex * ey);
@@ -74,7 +74,7 @@ void enforce_solid_faces(const ExecSpace& exec, const L& list, const F& face) {
 
 /// b = -(rho h / dt) (sum of outward face velocities) on fluid cells, zero elsewhere.
 template <class ExecSpace, class T, class U, class V, class W, class B>
-void pressure_rhs(const ExecSpace& exec, const mesh::MacGrid& g, const T& type, const U& u, const V& v, const W& w,
+void pressure_rhs(const ExecSpace& exec, const kernels::mac::MacGrid& g, const T& type, const U& u, const V& v, const W& w,
                   double rho, double dt, const B& b) {
   const int sy = g.stride_y(), sz = g.stride_z();
   const double scale = -rho * g.h / dt;
@@ -83,7 +83,7 @@ void pressure_rhs(const ExecSpace& exec, const mesh::MacGrid& g, const T& type, 
       KOKKOS_LAMBDA(int c) {
         int i, j, k;
         g.ijk(c, i, j, k);
-        if (!g.interior(i, j, k) || type(c) != mesh::MacCellType::fluid) {
+        if (!g.interior(i, j, k) || type(c) != kernels::mac::MacCellType::fluid) {
           b(c) = 0.0;
           return;
         }
@@ -94,10 +94,10 @@ void pressure_rhs(const ExecSpace& exec, const mesh::MacGrid& g, const T& type, 
 /// u -= dt/(rho h) dp on the faces of component d next to fluid (ghost fluid at the surface);
 /// zero on faces touching a solid or the box.
 template <class ExecSpace, class T, class Phi, class P, class F>
-void subtract_pressure_gradient(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const Phi& phi,
+void subtract_pressure_gradient(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d, const T& type, const Phi& phi,
                                 const P& p, double rho, double dt, const F& face,
-                                const mesh::MacEdges& edges = mesh::box_edges()) {
-  using mesh::MacCellType;
+                                const kernels::mac::MacEdges& edges = kernels::mac::box_edges()) {
+  using kernels::mac::MacCellType;
   const double scale = dt / (rho * g.h);
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   Kokkos::parallel_for(
@@ -125,9 +125,9 @@ void subtract_pressure_gradient(const ExecSpace& exec, const mesh::MacGrid& g, i
 /// valid(face) = 1 where the face of component d touches fluid and no solid (its velocity is
 /// known after the projection), else 0; on the faces of rows first_row.. (the others keep theirs).
 template <class ExecSpace, class T, class M>
-void mark_fluid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const M& valid,
-                      const mesh::MacEdges& edges = mesh::box_edges(), int first_row = 0) {
-  using mesh::MacCellType;
+void mark_fluid_faces(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d, const T& type, const M& valid,
+                      const kernels::mac::MacEdges& edges = kernels::mac::box_edges(), int first_row = 0) {
+  using kernels::mac::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   Kokkos::parallel_for(
       "amphora::mac::mark_fluid_faces",
@@ -144,13 +144,13 @@ void mark_fluid_faces(const ExecSpace& exec, const mesh::MacGrid& g, int d, cons
 /// between two air cells only, so it has nothing to do below this row: under deep water most
 /// of the lattice.
 template <class ExecSpace, class T>
-int lowest_air_row(const ExecSpace& exec, const mesh::MacGrid& g, const T& type) {
+int lowest_air_row(const ExecSpace& exec, const kernels::mac::MacGrid& g, const T& type) {
   int lowest = g.ny;
   Kokkos::parallel_reduce(
       "amphora::mac::lowest_air_row",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
       KOKKOS_LAMBDA(int k, int j, int i, int& acc) {
-        if (type(g.index(i, j, k)) == mesh::MacCellType::air && j < acc) acc = j;
+        if (type(g.index(i, j, k)) == kernels::mac::MacCellType::air && j < acc) acc = j;
       },
       Kokkos::Min<int>(lowest));
   return lowest;
@@ -163,9 +163,9 @@ int lowest_air_row(const ExecSpace& exec, const mesh::MacGrid& g, const T& type)
 /// second buffer. Marks: 1 = known (next to fluid), 0 = unknown. Rows below first_row are
 /// skipped: pass lowest_air_row(), below which no face lies between two air cells.
 template <class ExecSpace, class T, class F, class M>
-void extrapolate_layer(const ExecSpace& exec, const mesh::MacGrid& g, int d, const T& type, const F& face,
-                       const M& mark, int layer, const mesh::MacEdges& edges = mesh::box_edges(), int first_row = 0) {
-  using mesh::MacCellType;
+void extrapolate_layer(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d, const T& type, const F& face,
+                       const M& mark, int layer, const kernels::mac::MacEdges& edges = kernels::mac::box_edges(), int first_row = 0) {
+  using kernels::mac::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   const int sy = g.stride_y(), sz = g.stride_z();
   Kokkos::parallel_for(

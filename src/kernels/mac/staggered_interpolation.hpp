@@ -4,7 +4,7 @@
 // centres of the faces normal to it. Sample positions are clamped to the samples inside the box
 // (no values are invented beyond them).
 #include "kernels/spaces.hpp"
-#include "mesh/mac/mac_grid.hpp"
+#include "kernels/mac/mac_grid.hpp"
 
 namespace amphora::kernels::mac {
 
@@ -14,7 +14,7 @@ enum class Staggering : int { centre = -1, x = 0, y = 1, z = 2 };
 /// Interpolates field f (padded lattice) of staggering s at q, a position in cell widths from
 /// the box's lower corner.
 template <class F>
-KOKKOS_FORCEINLINE_FUNCTION double interpolate_cells(const mesh::MacGrid& g, const F& f, Staggering s, const double q[3]) {
+KOKKOS_FORCEINLINE_FUNCTION double interpolate_cells(const kernels::mac::MacGrid& g, const F& f, Staggering s, const double q[3]) {
   const int n[3] = {g.nx, g.ny, g.nz};
   int base[3];
   double w[3];
@@ -38,14 +38,14 @@ KOKKOS_FORCEINLINE_FUNCTION double interpolate_cells(const mesh::MacGrid& g, con
 }
 
 /// Position p (physical coordinates) in cell widths from the box's lower corner.
-KOKKOS_INLINE_FUNCTION void to_cells(const mesh::MacGrid& g, const double p[3], double q[3]) {
+KOKKOS_INLINE_FUNCTION void to_cells(const kernels::mac::MacGrid& g, const double p[3], double q[3]) {
   const double inv_h = 1.0 / g.h;
   for (int d = 0; d < 3; ++d) q[d] = (p[d] - g.origin[d]) * inv_h;
 }
 
 /// Interpolates field f (padded lattice) of staggering s at point p (physical coordinates).
 template <class F>
-KOKKOS_INLINE_FUNCTION double interpolate(const mesh::MacGrid& g, const F& f, Staggering s, const double p[3]) {
+KOKKOS_INLINE_FUNCTION double interpolate(const kernels::mac::MacGrid& g, const F& f, Staggering s, const double p[3]) {
   double q[3];
   to_cells(g, p, q);
   return interpolate_cells(g, f, s, q);
@@ -53,7 +53,7 @@ KOKKOS_INLINE_FUNCTION double interpolate(const mesh::MacGrid& g, const F& f, St
 
 /// The velocity at q (cell widths) from its three face components.
 template <class U, class V, class W>
-KOKKOS_FORCEINLINE_FUNCTION void velocity_at_cells(const mesh::MacGrid& g, const U& u, const V& v, const W& w,
+KOKKOS_FORCEINLINE_FUNCTION void velocity_at_cells(const kernels::mac::MacGrid& g, const U& u, const V& v, const W& w,
                                               const double q[3], double vel[3]) {
   vel[0] = interpolate_cells(g, u, Staggering::x, q);
   vel[1] = interpolate_cells(g, v, Staggering::y, q);
@@ -64,7 +64,7 @@ KOKKOS_FORCEINLINE_FUNCTION void velocity_at_cells(const mesh::MacGrid& g, const
 /// bit for bit, from the two or four samples of each component around it (the trilinear weights
 /// there are 0, 1/2 or 1, so the other loads are skipped). The first step of every trace.
 template <class U, class V, class W>
-KOKKOS_FORCEINLINE_FUNCTION void velocity_at_sample(const mesh::MacGrid& g, Staggering s, int i, int j, int k,
+KOKKOS_FORCEINLINE_FUNCTION void velocity_at_sample(const kernels::mac::MacGrid& g, Staggering s, int i, int j, int k,
                                                     const U& u, const V& v, const W& w, double vel[3]) {
   const int idx[3] = {i, j, k}, n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
   const int sd = static_cast<int>(s);
@@ -104,7 +104,7 @@ KOKKOS_FORCEINLINE_FUNCTION void velocity_at_sample(const mesh::MacGrid& g, Stag
 
 /// The velocity at point p from its three face components.
 template <class U, class V, class W>
-KOKKOS_INLINE_FUNCTION void velocity_at(const mesh::MacGrid& g, const U& u, const V& v, const W& w, const double p[3],
+KOKKOS_INLINE_FUNCTION void velocity_at(const kernels::mac::MacGrid& g, const U& u, const V& v, const W& w, const double p[3],
                                         double vel[3]) {
   double q[3];
   to_cells(g, p, q);
@@ -112,7 +112,7 @@ KOKKOS_INLINE_FUNCTION void velocity_at(const mesh::MacGrid& g, const U& u, cons
 }
 
 /// Position of sample (i, j, k) of a lattice.
-KOKKOS_INLINE_FUNCTION void sample_position(const mesh::MacGrid& g, Staggering s, int i, int j, int k, double p[3]) {
+KOKKOS_INLINE_FUNCTION void sample_position(const kernels::mac::MacGrid& g, Staggering s, int i, int j, int k, double p[3]) {
   const int idx[3] = {i, j, k};
   for (int d = 0; d < 3; ++d) p[d] = g.origin[d] + (idx[d] + (static_cast<int>(s) == d ? 0.0 : 0.5)) * g.h;
 }

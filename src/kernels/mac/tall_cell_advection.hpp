@@ -19,7 +19,7 @@
 // The fields stay expanded on the lattice; these kernels choose the scheme per sample.
 #include "kernels/mac/level_set.hpp"
 #include "kernels/mac/semi_lagrangian.hpp"
-#include "mesh/mac/tall_cell_columns.hpp"
+#include "kernels/mac/tall_cell_columns.hpp"
 
 namespace amphora::kernels::mac {
 
@@ -33,7 +33,7 @@ KOKKOS_INLINE_FUNCTION double component(int e, const U& u, const V& v, const W& 
 /// q - dt/h sum_e (F_e+ - F_e-), F = U q_upwind with U the velocity normal to the control
 /// volume's face (component e averaged over the two samples that share it).
 template <class Q, class U, class V, class W>
-KOKKOS_INLINE_FUNCTION double conservative_upwind_sample(const mesh::MacGrid& g, int d, int c, const Q& q, const U& u,
+KOKKOS_INLINE_FUNCTION double conservative_upwind_sample(const kernels::mac::MacGrid& g, int d, int c, const Q& q, const U& u,
                                                          const V& v, const W& w, double dt) {
   const int stride[3] = {1, g.stride_y(), g.stride_z()};
   const int sd = stride[d];
@@ -72,9 +72,9 @@ KOKKOS_INLINE_FUNCTION double cubic_sum(double a0, double a1, double b0, double 
 /// The rows [lo, hi) where the samples of component e in sample column (i, k) are linear in
 /// height (its tall rows; none for a column outside the block and its ghost ring).
 template <class MemSpace>
-KOKKOS_INLINE_FUNCTION void linear_rows(const mesh::TallCellColumns<MemSpace>& T, int e, int i, int k, int& lo,
+KOKKOS_INLINE_FUNCTION void linear_rows(const kernels::mac::TallCellColumns<MemSpace>& T, int e, int i, int k, int& lo,
                                         int& hi) {
-  const mesh::MacGrid& g = T.grid;
+  const kernels::mac::MacGrid& g = T.grid;
   const bool inside = i >= (e == 0 ? 0 : -1) && i <= g.nx && k >= (e == 2 ? 0 : -1) && k <= g.nz;
   lo = hi = 0;
   if (inside) T.tall_rows(e, i, k, lo, hi);
@@ -87,7 +87,7 @@ KOKKOS_INLINE_FUNCTION void linear_rows(const mesh::TallCellColumns<MemSpace>& T
 /// all four samples are linear in height (rows [lin_lo, lin_hi)) the sums come in closed form
 /// from each sample's two end values, split where U changes sign; elsewhere row by row.
 template <class Q, class U, class V, class W>
-KOKKOS_INLINE_FUNCTION void upwind_flux_sums(const mesh::MacGrid& g, int e, int a, int b, int l, int r, int lo, int hi,
+KOKKOS_INLINE_FUNCTION void upwind_flux_sums(const kernels::mac::MacGrid& g, int e, int a, int b, int l, int r, int lo, int hi,
                                              int lin_lo, int lin_hi, double mid, const Q& q, const U& u, const V& v,
                                              const W& w, double& sum, double& moment) {
   const int sy = g.stride_y();
@@ -140,10 +140,10 @@ constexpr int min_tall_sample_rows = 3;
 /// not per lattice row inside it. The fields must be linear in height in the tall cells of T
 /// (fit_linear_in_tall_cells; the pressure projection keeps them so).
 template <class MemSpace, class Q, class U, class V, class W>
-KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const mesh::TallCellColumns<MemSpace>& T, int d, int i, int k,
+KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const kernels::mac::TallCellColumns<MemSpace>& T, int d, int i, int k,
                                                   int lo, int hi, const Q& q, const U& u, const V& v, const W& w,
                                                   double dt, double& mean, double& slope) {
-  const mesh::MacGrid& g = T.grid;
+  const kernels::mac::MacGrid& g = T.grid;
   const int sy = g.stride_y(), c0 = g.index(i, 0, k);
   const int stride[3] = {1, sy, g.stride_z()};
   const double mid = 0.5 * (lo + hi - 1);
@@ -200,13 +200,13 @@ KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const mesh::TallCellColumns<Me
 /// q, u, v, w, phi and T live on T.grid; q_new on `out`, whose sample (i, j, k) is T.grid's
 /// (i + out_offset[0], j, k + out_offset[2]) (a block inside its widened grid: the traces near
 /// the block's faces read the neighbours' cells). Cell samples (s == centre) in rows below
-/// first_row are not written: pass mesh::lowest_band(), below which they all lie in tall cells or
+/// first_row are not written: pass kernels::mac::lowest_band(), below which they all lie in tall cells or
 /// under the terrain, with q_new holding q there already.
 template <class ExecSpace, class MemSpace, class Q, class QN, class U, class V, class W, class P>
-void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Staggering s, const Q& q, const QN& q_new,
-            const U& u, const V& v, const W& w, double dt, const P& phi, double reach, const mesh::MacGrid& out,
+void advect(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, Staggering s, const Q& q, const QN& q_new,
+            const U& u, const V& v, const W& w, double dt, const P& phi, double reach, const kernels::mac::MacGrid& out,
             const int out_offset[3], int first_row = 0) {
-  const mesh::MacGrid g = T.grid, go = out;
+  const kernels::mac::MacGrid g = T.grid, go = out;
   const int d = static_cast<int>(s), oi = out_offset[0], ok = out_offset[2];
   const int ex = go.nx + (d == 0), ey = go.ny + (d == 1), ez = go.nz + (d == 2);
   const int j0 = d < 0 ? math::clamp(first_row, 0, ey) : 0, rows_written = ey - j0;
@@ -249,19 +249,19 @@ void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Sta
 
 /// The same on T.grid itself.
 template <class ExecSpace, class MemSpace, class Q, class QN, class U, class V, class W, class P>
-void advect(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, Staggering s, const Q& q, const QN& q_new,
+void advect(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, Staggering s, const Q& q, const QN& q_new,
             const U& u, const V& v, const W& w, double dt, const P& phi, double reach) {
   const int none[3] = {0, 0, 0};
   advect(exec, T, s, q, q_new, u, v, w, dt, phi, reach, T.grid, none);
 }
 
 /// One pseudo-time step of reinitialisation in the uniform cells (tall cells keep phi). Rows
-/// below first_row are not written (as in advect: pass mesh::lowest_band(), phi_new holding phi
+/// below first_row are not written (as in advect: pass kernels::mac::lowest_band(), phi_new holding phi
 /// there already).
 template <class ExecSpace, class MemSpace, class P0, class P, class PN>
-void reinitialise_step(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, const P0& phi0, const P& phi,
-                       const PN& phi_new, const mesh::MacEdges& edges = mesh::box_edges(), int first_row = 0) {
-  const mesh::MacGrid g = T.grid;
+void reinitialise_step(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, const P0& phi0, const P& phi,
+                       const PN& phi_new, const kernels::mac::MacEdges& edges = kernels::mac::box_edges(), int first_row = 0) {
+  const kernels::mac::MacGrid g = T.grid;
   Kokkos::parallel_for(
       "amphora::mac::reinitialise_step_tall_cells",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::clamp(first_row, 0, g.ny), 0},
@@ -278,9 +278,9 @@ void reinitialise_step(const ExecSpace& exec, const mesh::TallCellColumns<MemSpa
 /// tall rows are the same under T and `fitted` is left alone: refitting a line changes it only
 /// at round-off. Most columns keep their rows from one sub-step to the next.
 template <class ExecSpace, class MemSpace, class F>
-void fit_linear_in_tall_cells(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, int d, const F& f,
-                              const mesh::TallCellColumns<MemSpace>& fitted = {}) {
-  const mesh::MacGrid g = T.grid;
+void fit_linear_in_tall_cells(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, int d, const F& f,
+                              const kernels::mac::TallCellColumns<MemSpace>& fitted = {}) {
+  const kernels::mac::MacGrid g = T.grid;
   const int ex = g.nx + (d == 0), ez = g.nz + (d == 2), sy = g.stride_y();
   const bool skip_fitted = fitted.terrain.extent(0) > 0;
   Kokkos::parallel_for(
@@ -316,9 +316,9 @@ void fit_linear_in_tall_cells(const ExecSpace& exec, const mesh::TallCellColumns
 /// cell's are, the sum is convex in height (a sum of maxima of |linear|), so only the ends of
 /// those rows are read, whatever the tall cell's height.
 template <class ExecSpace, class MemSpace, class U, class V, class W>
-double tall_cell_speed(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, const U& u, const V& v,
+double tall_cell_speed(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, const U& u, const V& v,
                        const W& w) {
-  const mesh::MacGrid g = T.grid;
+  const kernels::mac::MacGrid g = T.grid;
   const int sy = g.stride_y(), sz = g.stride_z();
   double speed = 0.0;
   Kokkos::parallel_reduce(
@@ -354,9 +354,9 @@ double tall_cell_speed(const ExecSpace& exec, const mesh::TallCellColumns<MemSpa
 /// must be linear in height there (as for tall_cell_speed), so only the ends of each sample
 /// column's rows are read: the caller measures the lattice from `below` up.
 template <class ExecSpace, class MemSpace, class F>
-double tall_rows_max_abs(const ExecSpace& exec, const mesh::TallCellColumns<MemSpace>& T, int d, const F& f,
+double tall_rows_max_abs(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, int d, const F& f,
                          int below) {
-  const mesh::MacGrid g = T.grid;
+  const kernels::mac::MacGrid g = T.grid;
   const int ex = g.nx + (d == 0), ez = g.nz + (d == 2);
   double largest = 0.0;
   Kokkos::parallel_reduce(

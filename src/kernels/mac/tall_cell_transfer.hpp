@@ -5,13 +5,13 @@
 // for the tall samples, identity for the uniform cells): the least-squares fit of a lattice
 // function by tall-cell unknowns, which the water module uses to start a pressure solve from the
 // last one on a rebuilt grid.
-#include "mesh/mac/tall_cell_grid.hpp"
+#include "kernels/mac/tall_cell_layout.hpp"
 
 namespace amphora::kernels::mac {
 
 template <class ExecSpace, class MemSpace, class Y, class L>
-void tall_cell_prolongate(const ExecSpace& exec, const mesh::TallCellLayout<MemSpace>& T, const Y& y, const L& lattice) {
-  const mesh::MacGrid g = T.grid;
+void tall_cell_prolongate(const ExecSpace& exec, const kernels::mac::TallCellLayout<MemSpace>& T, const Y& y, const L& lattice) {
+  const kernels::mac::MacGrid g = T.grid;
   Kokkos::parallel_for(
       "amphora::mac::tall_cell_prolongate",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
@@ -19,8 +19,8 @@ void tall_cell_prolongate(const ExecSpace& exec, const mesh::TallCellLayout<MemS
 }
 
 template <class ExecSpace, class MemSpace, class L, class Y>
-void tall_cell_restrict(const ExecSpace& exec, const mesh::TallCellLayout<MemSpace>& T, const L& lattice, const Y& y) {
-  const mesh::MacGrid g = T.grid;
+void tall_cell_restrict(const ExecSpace& exec, const kernels::mac::TallCellLayout<MemSpace>& T, const L& lattice, const Y& y) {
+  const kernels::mac::MacGrid g = T.grid;
   Kokkos::parallel_for(
       "amphora::mac::tall_cell_restrict", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz), KOKKOS_LAMBDA(int col) {
         const int i = col % g.nx, k = col / g.nx;
@@ -58,8 +58,8 @@ struct TallCellGram {
 
 /// y = (P^T P)^-1 y, tall cell by tall cell.
 template <class ExecSpace, class MemSpace, class Y>
-void tall_cell_gram_solve(const ExecSpace& exec, const mesh::TallCellLayout<MemSpace>& T, const Y& y) {
-  const mesh::MacGrid g = T.grid;
+void tall_cell_gram_solve(const ExecSpace& exec, const kernels::mac::TallCellLayout<MemSpace>& T, const Y& y) {
+  const kernels::mac::MacGrid g = T.grid;
   Kokkos::parallel_for(
       "amphora::mac::tall_cell_gram_solve", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz), KOKKOS_LAMBDA(int col) {
         const int j0 = T.terrain(col), jb = T.band(col);

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "mesh/box_decomposition.hpp"
-#include "mesh/mac/mac_grid.hpp"
+#include "kernels/mac/mac_grid.hpp"
 
 namespace amphora::mesh {
 
@@ -39,16 +39,16 @@ struct MacBlock {
     return b;
   }
   /// The faces that end the domain (no neighbour there).
-  MacEdges edges() const {
-    MacEdges e;
+  kernels::mac::MacEdges edges() const {
+    kernels::mac::MacEdges e;
     for (int f = 0; f < 6; ++f) e[f] = neighbours[f] < 0;
     return e;
   }
   /// The box faces of the block: `neighbour` towards another block, `outer` elsewhere.
-  MacBoxBoundaries faces(const MacBoxBoundaries& outer) const {
-    MacBoxBoundaries f = outer;
+  kernels::mac::MacBoxBoundaries faces(const kernels::mac::MacBoxBoundaries& outer) const {
+    kernels::mac::MacBoxBoundaries f = outer;
     for (int s = 0; s < 6; ++s)
-      if (neighbours[s] >= 0) f[s] = MacBoundary::neighbour;
+      if (neighbours[s] >= 0) f[s] = kernels::mac::MacBoundary::neighbour;
     return f;
   }
 };
@@ -57,7 +57,7 @@ struct MacBlock {
 /// global box stay where they are), for stencils wider than the ghost layer (semi-Lagrangian
 /// traces): block cell (i, j, k) is wide cell (i + offset[0], j, k + offset[2]).
 struct WideGrid {
-  MacGrid grid;
+  kernels::mac::MacGrid grid;
   int offset[3] = {0, 0, 0};
   int width = 0;
 };
@@ -67,7 +67,7 @@ class LatticeGhostExchange {
   /// Padded indices of a box of lattice entries, x fastest (public, as shift() is: CUDA names a
   /// lambda's captured types outside the class).
   struct Region {
-    MacGrid g;
+    kernels::mac::MacGrid g;
     int i0, ni, j0, nj, k0, nk;
     KOKKOS_INLINE_FUNCTION int operator()(int m) const {
       const int r = m / ni;
@@ -83,7 +83,7 @@ class LatticeGhostExchange {
 
   /// Fills the ghost cells of v (padded lattice of g) beyond the block's neighbour faces.
   template <class ExecSpace, class View>
-  void exchange(const ExecSpace& exec, const MacGrid& g, const View& v) const {
+  void exchange(const ExecSpace& exec, const kernels::mac::MacGrid& g, const View& v) const {
     if (!block_.split()) return;
     // x planes: rows j = -1..ny of planes k = 0..nz-1; z planes: i = -1..nx, j = -1..ny
     for (int side = 0; side < 2; ++side) {
@@ -100,7 +100,7 @@ class LatticeGhostExchange {
 
   /// The block's grid g widened by `width` cells towards its neighbours (width <= the block's
   /// extent in each split direction).
-  WideGrid widened(const MacGrid& g, int width) const {
+  WideGrid widened(const kernels::mac::MacGrid& g, int width) const {
     WideGrid w;
     w.width = width;
     w.grid = g;
@@ -118,9 +118,9 @@ class LatticeGhostExchange {
   /// from the neighbouring blocks' cells (x first, then z including the x widening, so corners
   /// come from the diagonal neighbours).
   template <class ExecSpace, class View, class WideView>
-  void fill_widened(const ExecSpace& exec, const MacGrid& g, const View& v, const WideGrid& W,
+  void fill_widened(const ExecSpace& exec, const kernels::mac::MacGrid& g, const View& v, const WideGrid& W,
                     const WideView& wide) const {
-    const MacGrid wg = W.grid;
+    const kernels::mac::MacGrid wg = W.grid;
     const int oi = W.offset[0], ok = W.offset[2], n = W.width;
     Kokkos::parallel_for(
         "amphora::lattice_halo::widen",

@@ -7,6 +7,10 @@
 
 namespace amphora::mesh {
 
+using kernels::mac::fluid_run;
+using kernels::mac::MacGrid;
+using kernels::mac::tall_cell_band;
+
 TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth,
                            const MacBlock& block)
     : grid_(A.grid), block_(block), optical_depth_(optical_depth) {

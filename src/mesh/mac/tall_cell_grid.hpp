@@ -19,7 +19,8 @@
 #include "kernels/host_vector.hpp"
 #include "kernels/mac/poisson_stencil.hpp"
 #include "mesh/mac/lattice_halo.hpp"
-#include "mesh/mac/tall_cell_columns.hpp"
+#include "kernels/mac/tall_cell_columns.hpp"
+#include "kernels/mac/tall_cell_layout.hpp"
 
 namespace amphora::mesh {
 
@@ -48,7 +49,7 @@ class TallCellGrid {
   TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, const TallCellGrid& finer,
                const MacBlock& block = {});
 
-  const MacGrid& grid() const { return grid_; }
+  const kernels::mac::MacGrid& grid() const { return grid_; }
   const MacBlock& block() const { return block_; }
   /// This block's unknowns (all of them on one block).
   long unknowns() const { return unknowns_; }
@@ -128,7 +129,7 @@ class TallCellGrid {
     }
   }
 
-  MacGrid grid_;
+  kernels::mac::MacGrid grid_;
   MacBlock block_;
   int optical_depth_ = 0;
   long unknowns_ = 0, tall_cells_ = 0, first_unknown_ = 0, global_unknowns_ = 0;
@@ -144,33 +145,12 @@ class TallCellGrid {
 
 namespace amphora::mesh {
 
-/// The tall-cell grid's arrays in a memory space, for kernels (device-copyable).
+/// The grid's arrays in a memory space, for kernels.
 template <class MemSpace>
-struct TallCellLayout {
-  MacGrid grid;
-  Kokkos::View<int*, MemSpace> terrain, band, first_unknown;  ///< per column, x fastest
-  Kokkos::View<int*, MemSpace> cell_unknown;                  ///< per padded lattice cell
-
-  /// p = sum w y for lattice cell (i, j, k) (zero off the fluid).
-  template <class Y>
-  KOKKOS_INLINE_FUNCTION double lattice_value(int i, int j, int k, const Y& y) const {
-    const int col = i + grid.nx * k;
-    const int j0 = terrain(col), jb = band(col);
-    if (j >= j0 && j < jb) {
-      const double t = double(j - j0) / double(jb - 1 - j0);
-      const int u = first_unknown(col);
-      return (1.0 - t) * y(u) + t * y(u + 1);
-    }
-    const int u = cell_unknown(grid.index(i, j, k));
-    return u >= 0 ? double(y(u)) : 0.0;
-  }
-};
-
-template <class MemSpace>
-TallCellLayout<MemSpace> make_layout(const TallCellGrid& T) {
+kernels::mac::TallCellLayout<MemSpace> make_layout(const TallCellGrid& T) {
   std::vector<int> t, b, f;
   for (const TallCellColumn& c : T.columns()) t.push_back(c.terrain), b.push_back(c.band), f.push_back(c.first_unknown);
-  TallCellLayout<MemSpace> L;
+  kernels::mac::TallCellLayout<MemSpace> L;
   L.grid = T.grid();
   L.terrain = to_view<MemSpace>(t, "amphora::tall::terrain");
   L.band = to_view<MemSpace>(b, "amphora::tall::band");

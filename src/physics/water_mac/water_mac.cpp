@@ -105,7 +105,7 @@ namespace water_mac_kernels {
 using Exec = DefaultExecSpace;
 using Mem = Exec::memory_space;
 using Vector = Kokkos::View<double*, Mem>;
-using Types = Kokkos::View<mesh::MacCellType*, Mem>;
+using Types = Kokkos::View<kernels::mac::MacCellType*, Mem>;
 using Stencil = kernels::mac::PoissonStencil<Mem>;
 using kernels::mac::Staggering;
 
@@ -115,7 +115,7 @@ class WaterMac final : public Module {
     scene_ = p.string("scene");
     const int nx = static_cast<int>(p.integer("cells_x")), ny = static_cast<int>(p.integer("cells_y")),
               nz = static_cast<int>(p.integer("cells_z"));
-    global_ = mesh::MacGrid{nx, ny, nz, p.real("length_x") / nx, {0.0, 0.0, 0.0}};
+    global_ = kernels::mac::MacGrid{nx, ny, nz, p.real("length_x") / nx, {0.0, 0.0, 0.0}};
     cfl_ = p.real("cfl");
     // Blocks split horizontally (columns whole), each at least as wide as a trace reaches into
     // its neighbours: sqrt(3) cfl cells (the speed against its largest component) plus the
@@ -127,7 +127,7 @@ class WaterMac final : public Module {
     block_ = mesh::MacBlock::of(*decomposition_, comm.get(), comm.rank());
     const Box box = decomposition_->box(comm.rank());
     const double h = global_.h;
-    grid_ = mesh::MacGrid{box.extent(0), ny, box.extent(2), h, {box.lo[0] * h, 0.0, box.lo[2] * h}};
+    grid_ = kernels::mac::MacGrid{box.extent(0), ny, box.extent(2), h, {box.lo[0] * h, 0.0, box.lo[2] * h}};
     halo_ = mesh::LatticeGhostExchange(block_);
     edges_ = block_.edges();
     gravity_ = p.real("gravity");
@@ -199,7 +199,7 @@ class WaterMac final : public Module {
   std::string work_unit() const override { return "cell-steps"; }
 
   std::vector<OutputBlock> output(double) const override {
-    const mesh::MacGrid& g = grid_;
+    const kernels::mac::MacGrid& g = grid_;
     OutputBlock b;
     b.name = comm_.size() > 1 ? "water_" + std::to_string(comm_.rank()) : "water";  // one piece per block
     for (int i = 0; i < g.nx; ++i) b.x.push_back(g.origin[0] + (i + 0.5) * g.h);
@@ -365,8 +365,8 @@ class WaterMac final : public Module {
     stencil_ = Stencil(grid_);
     stencil_built_from_ = 0;
     type_ = Types("amphora::water::type", n);
-    tall_ = mesh::TallCellColumns<Mem>(grid_, block_.edges());
-    fitted_tall_ = mesh::TallCellColumns<Mem>(grid_, block_.edges());
+    tall_ = kernels::mac::TallCellColumns<Mem>(grid_, block_.edges());
+    fitted_tall_ = kernels::mac::TallCellColumns<Mem>(grid_, block_.edges());
     solid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::solid", n);
     valid_ = Kokkos::View<std::uint8_t*, Mem>("amphora::water::valid", n);
     if (block_.split()) {
@@ -375,14 +375,14 @@ class WaterMac final : public Module {
       wide_ = halo_.widened(grid_, trace_reach_);
       const long nw = wide_.grid.padded_size();
       for (Vector* f : {&wide_phi_, &wide_u_, &wide_v_, &wide_w_}) *f = Vector("amphora::water::wide", nw);
-      wide_tall_ = mesh::TallCellColumns<Mem>(wide_.grid);
+      wide_tall_ = kernels::mac::TallCellColumns<Mem>(wide_.grid);
       if (optical_depth_ > 0) wide_type_ = Types("amphora::water::wide_type", nw);
     }
   }
 
   /// Signed distances of the initial water and the solid floor, on the host.
   void initialise(const Parameters& p) {
-    const mesh::MacGrid& g = grid_;
+    const kernels::mac::MacGrid& g = grid_;
     // ghost entries are never read; zero in every buffer, so a restart restores them exactly
     std::vector<double> phi(g.padded_size(), 0.0), v(g.padded_size(), 0.0);
     std::vector<std::uint8_t> solid(g.padded_size(), 0);
@@ -460,18 +460,18 @@ class WaterMac final : public Module {
       // the columns the velocity is linear on so far (nothing before the first fit)
       Kokkos::deep_copy(fitted_tall_.terrain, tall_.terrain);
       Kokkos::deep_copy(fitted_tall_.band, tall_.band);
-      mesh::find_tall_cell_columns(Exec(), type_, optical_depth_, tall_);
-      lowest_band_ = mesh::lowest_band(Exec(), tall_, type_);
+      kernels::mac::find_tall_cell_columns(Exec(), type_, optical_depth_, tall_);
+      lowest_band_ = kernels::mac::lowest_band(Exec(), tall_, type_);
       if (block_.split()) {
         halo_.fill_widened(Exec(), grid_, type_, wide_, wide_type_);
-        mesh::find_tall_cell_columns(Exec(), wide_type_, optical_depth_, wide_tall_);
+        kernels::mac::find_tall_cell_columns(Exec(), wide_type_, optical_depth_, wide_tall_);
       }
     }
   }
 
   void substep(double dt) {
     const Exec exec;
-    const mesh::MacGrid& g = grid_;
+    const kernels::mac::MacGrid& g = grid_;
     speed_ = -1.0;  // the velocity changes from here on
     // 1. advection of the level set and the velocity (all from the old velocity; on the
     //    tall-cell grid of the last sub-step, uniform everywhere without tall cells)
@@ -521,7 +521,7 @@ class WaterMac final : public Module {
     // 3. gravity, on the y faces inside the box
     const double dv = gravity_ * dt;
     const auto v = v_;
-    const mesh::MacGrid gg = g;
+    const kernels::mac::MacGrid gg = g;
     Kokkos::parallel_for(
         "amphora::water::gravity",
         Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>(exec, {0, 1, 0}, {g.nz, g.ny, g.nx}),
@@ -536,10 +536,10 @@ class WaterMac final : public Module {
 
   void project(double dt) {
     const Exec exec;
-    const mesh::MacGrid& g = grid_;
-    mesh::MacBoxBoundaries box;
-    box.fill(mesh::MacBoundary::wall);
-    box[3] = mesh::MacBoundary::open;
+    const kernels::mac::MacGrid& g = grid_;
+    kernels::mac::MacBoxBoundaries box;
+    box.fill(kernels::mac::MacBoundary::wall);
+    box[3] = kernels::mac::MacBoundary::open;
     // The stencil is kept between sub-steps and rebuilt from the row under the lowest band up
     // (from the lowest of this sub-step's and the last one's): below it every cell is fluid or
     // solid now and was at the last build, so its rows are what a build gives (tall cells; all
@@ -604,7 +604,7 @@ class WaterMac final : public Module {
 
   void extrapolate_velocity() {
     const Exec exec;
-    const mesh::MacGrid& g = grid_;
+    const kernels::mac::MacGrid& g = grid_;
     const Vector faces[3] = {u_, v_, w_};
     const int first_row = kernels::mac::lowest_air_row(exec, g, type_);
     // The layers read the marks from one row below the lowest air row of any block on (across a
@@ -647,7 +647,7 @@ class WaterMac final : public Module {
     const int from = phi_buffers_match_below_;
     phi_buffers_match_below_ = first_row;
     if (first_row <= from) return;
-    const mesh::MacGrid g = grid_;
+    const kernels::mac::MacGrid g = grid_;
     const auto phi = phi_, tmp = phi_tmp_;
     Kokkos::parallel_for(
         "amphora::water::match_phi_rows",
@@ -661,11 +661,11 @@ class WaterMac final : public Module {
   /// Fluid cells (pressure unknowns) over all blocks.
   long count_fluid() const {
     const auto type = type_;
-    const mesh::MacGrid g = grid_;
+    const kernels::mac::MacGrid g = grid_;
     long n = 0;
     Kokkos::parallel_reduce(
         "amphora::water::count_fluid", Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz, g.ny, g.nx}),
-        KOKKOS_LAMBDA(int k, int j, int i, long& acc) { acc += type(g.index(i, j, k)) == mesh::MacCellType::fluid; }, n);
+        KOKKOS_LAMBDA(int k, int j, int i, long& acc) { acc += type(g.index(i, j, k)) == kernels::mac::MacCellType::fluid; }, n);
     return static_cast<long>(comm_.sum(static_cast<long long>(n)));
   }
 
@@ -677,7 +677,7 @@ class WaterMac final : public Module {
   }
   double measured_max_speed() const {
     const auto u = u_, v = v_, w = w_;
-    const mesh::MacGrid g = grid_;
+    const kernels::mac::MacGrid g = grid_;
     // below the lowest band the faces lie in tall rows, where the velocity is linear in height
     // (only the ends are read), or touch a solid (zero)
     const int below = lowest_band_;
@@ -704,7 +704,7 @@ class WaterMac final : public Module {
   double volume() const {
     const auto phi = phi_;
     const auto solid = solid_;
-    const mesh::MacGrid g = grid_;
+    const kernels::mac::MacGrid g = grid_;
     double vol = 0.0;
     Kokkos::parallel_reduce(
         "amphora::water::volume", Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz, g.ny, g.nx}),
@@ -720,7 +720,7 @@ class WaterMac final : public Module {
   /// (linear between cell centres), averaged over z.
   double front() const {
     const auto phi = to_std_vector(phi_);  // its ghost cells hold the neighbours' (classify)
-    const mesh::MacGrid& g = grid_;
+    const kernels::mac::MacGrid& g = grid_;
     // per z row of the whole grid, the front of this block's part (0 if none), then the largest
     std::vector<double> x(global_.nz, 0.0);
     for (int k = 0; k < g.nz; ++k) {
@@ -747,7 +747,7 @@ class WaterMac final : public Module {
   /// Stoker's hm behind the bore, linear between cell centres.
   double bore() const {
     const auto phi = to_std_vector(phi_);
-    const mesh::MacGrid& g = grid_;
+    const kernels::mac::MacGrid& g = grid_;
     std::vector<double> depth(global_.nx, 0.0);  // summed over z, this block's columns
     for (int k = 0; k < g.nz; ++k)
       for (int i = 0; i < g.nx; ++i) {
@@ -775,7 +775,7 @@ class WaterMac final : public Module {
   /// Mean height of the highest zero crossing of the level set over the columns.
   double surface_height() const {
     const auto phi = to_std_vector(phi_);
-    const mesh::MacGrid& g = grid_;
+    const kernels::mac::MacGrid& g = grid_;
     double sum = 0.0;
     for (int k = 0; k < g.nz; ++k)
       for (int i = 0; i < g.nx; ++i) {
@@ -792,16 +792,16 @@ class WaterMac final : public Module {
  private:
   Communicator comm_;
   std::string scene_;
-  mesh::MacGrid global_;  ///< the whole grid
-  mesh::MacGrid grid_;    ///< this rank's block of it
+  kernels::mac::MacGrid global_;  ///< the whole grid
+  kernels::mac::MacGrid grid_;    ///< this rank's block of it
   std::unique_ptr<BoxDecomposition> decomposition_;
   mesh::MacBlock block_;
   mesh::LatticeGhostExchange halo_;
-  mesh::MacEdges edges_ = mesh::box_edges();
+  kernels::mac::MacEdges edges_ = kernels::mac::box_edges();
   int trace_reach_ = 3;
   mesh::WideGrid wide_;
   Vector wide_phi_, wide_u_, wide_v_, wide_w_;
-  mesh::TallCellColumns<Mem> wide_tall_;
+  kernels::mac::TallCellColumns<Mem> wide_tall_;
   Types wide_type_;
   double gravity_ = 9.81, rho_ = 1000.0, cfl_ = 1.0, column_width_ = 0.05;
   double reservoir_depth_ = 0.0, tailwater_depth_ = 0.0;  ///< wet dam break
@@ -814,8 +814,8 @@ class WaterMac final : public Module {
   /// phi_ and phi_tmp_ hold the same values in the rows below this one (match_phi_buffers_below)
   int phi_buffers_match_below_ = 0;
   Types type_;
-  mesh::TallCellColumns<Mem> tall_;
-  /// mesh::lowest_band of tall_ and type_ (0 without tall cells), found with them in classify()
+  kernels::mac::TallCellColumns<Mem> tall_;
+  /// kernels::mac::lowest_band of tall_ and type_ (0 without tall cells), found with them in classify()
   int lowest_band_ = 0;
   /// the pressure stencil, kept between sub-steps; its rows from stencil_built_from_ up were
   /// rebuilt last (project())
@@ -825,7 +825,7 @@ class WaterMac final : public Module {
   /// from the rows it was rebuilt in
   solvers::mac::KeptCoarseStencils<Mem> coarse_stencils_;
   /// tall_ before the last classify(): the velocity's tall cells until it is fitted to tall_
-  mesh::TallCellColumns<Mem> fitted_tall_;
+  kernels::mac::TallCellColumns<Mem> fitted_tall_;
   Kokkos::View<std::uint8_t*, Mem> solid_, valid_;
   Kokkos::View<int*, Mem> solid_faces_[3];  ///< per component, the faces touching a solid or the box
   long substeps_ = 0;

@@ -25,7 +25,7 @@ struct BlockCsrMatrix {
   int ghosts = 0;   ///< columns of the ghost ring
   DeviceCsrMatrix<MemSpace> local;  ///< columns [0, columns): this block's, then the ring's
   Vector inverse_diagonal;
-  mesh::MacGrid grid;
+  kernels::mac::MacGrid grid;
   mesh::LatticeGhostExchange halo;
   Kokkos::View<int*, MemSpace> own_cells, ghost_cells;  ///< lattice cells carrying the unknowns
   Vector lattice, extended;                             ///< scratch of apply()

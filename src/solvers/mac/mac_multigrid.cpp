@@ -23,7 +23,7 @@ bool all_ranks(MPI_Comm comm, bool local) {
 }
 }  // namespace
 
-std::string multigrid_size_error(const mesh::MacGrid& g, long max_coarse_cells) {
+std::string multigrid_size_error(const kernels::mac::MacGrid& g, long max_coarse_cells) {
   if (g.nx < 1 || g.ny < 1 || g.nz < 1) return "multigrid: empty grid";
   const int L = std::min({halvings(g.nx), halvings(g.ny), halvings(g.nz)});
   const long coarse = (long(g.nx) >> L) * (long(g.ny) >> L) * (long(g.nz) >> L);
@@ -65,7 +65,7 @@ MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A, c
   const auto& lower = block.global_lower;
   parity_.push_back((lower[0] + lower[2]) & 1);
   for (int shift = 1;; ++shift) {
-    const mesh::MacGrid& g = level.grid;
+    const kernels::mac::MacGrid& g = level.grid;
     const bool local = g.nx % 2 == 0 && g.ny % 2 == 0 && g.nz % 2 == 0 && g.cells() > 64 &&
                        lower[0] % (1 << shift) == 0 && lower[2] % (1 << shift) == 0;
     if (!all_ranks(comm, local)) break;
@@ -93,7 +93,7 @@ void complete_block_stencil(const ExecSpace& exec, const mesh::LatticeGhostExcha
   int any = level.any_solid ? 1 : 0, global_any = 0;
   MPI_Allreduce(&any, &global_any, 1, MPI_INT, MPI_MAX, comm);
   if (!halo.block().split()) return;  // one block: the coefficients are complete
-  const mesh::MacGrid& g = level.grid;
+  const kernels::mac::MacGrid& g = level.grid;
   const bool level_set = level.phi.extent(0) > 0;
   // a coarse level: the ghost cells' + faces are this block's - faces, then the diagonal at
   // the block faces (the caller exchanged the finest level's conductances), with a level set
@@ -131,13 +131,13 @@ void MacMultigrid<ExecSpace>::setup_coarse_solve(const Stencil& coarsest) {
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &ranks);
-  const mesh::MacGrid g = coarsest.grid;
+  const kernels::mac::MacGrid g = coarsest.grid;
   const int shift = levels() - 1;
   // the blocks of the coarsest grid: lower corner and extents
   const int mine[6] = {block.global_lower[0] >> shift, 0, block.global_lower[2] >> shift, g.nx, g.ny, g.nz};
   std::vector<int> boxes(6 * ranks);
   MPI_Allgather(mine, 6, MPI_INT, boxes.data(), 6, MPI_INT, comm);
-  mesh::MacGrid whole{0, 0, 0, g.h, g.origin};
+  kernels::mac::MacGrid whole{0, 0, 0, g.h, g.origin};
   counts_.assign(ranks, 0);
   displacements_.assign(ranks, 0);
   for (int r = 0; r < ranks; ++r) {

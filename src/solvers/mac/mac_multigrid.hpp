@@ -32,7 +32,7 @@ struct MacMultigridOptions {
 
 /// Empty if the multigrid can coarsen g down to at most max_coarse_cells; otherwise a message
 /// naming the dimension at fault and the nearest sizes that work.
-std::string multigrid_size_error(const mesh::MacGrid& g, long max_coarse_cells);
+std::string multigrid_size_error(const kernels::mac::MacGrid& g, long max_coarse_cells);
 
 /// Completes a level of a split grid's stencil hierarchy: on a coarse level (`fine` given: the
 /// level it was coarsened from) the ghost cells' + faces and the diagonal at the block faces,

@@ -217,7 +217,7 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
     PressureBackend backend, const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
     const MacBlock& block) {
   bool split = false;
-  for (const auto f : A.box) split = split || f == mesh::MacBoundary::neighbour;
+  for (const auto f : A.box) split = split || f == kernels::mac::MacBoundary::neighbour;
   if (split && backend == PressureBackend::mic0)
     throw std::invalid_argument(std::string("pressure back end '") + to_string(backend) +
                                 "' solves a grid on one rank; for a grid split over ranks use 'multigrid' or 'hypre'");

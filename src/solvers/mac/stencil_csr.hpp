@@ -18,7 +18,7 @@ struct CompactNumbering {
 };
 
 /// Assembles from host arrays on the padded lattice of g.
-CsrMatrix stencil_to_csr(const mesh::MacGrid& g, const double* diag, const float* cx, const float* cy,
+CsrMatrix stencil_to_csr(const kernels::mac::MacGrid& g, const double* diag, const float* cx, const float* cy,
                          const float* cz, CompactNumbering& numbering);
 
 template <class MemSpace>

@@ -14,7 +14,7 @@ class StencilMic0 {
   using HostStencil = kernels::mac::PoissonStencil<HostMemSpace>;
 
   explicit StencilMic0(const HostStencil& A, double tau = 0.97, double sigma = 0.25) : A_(A) {
-    const mesh::MacGrid& g = A.grid;
+    const kernels::mac::MacGrid& g = A.grid;
     inverse_e_.assign(static_cast<std::size_t>(g.padded_size()), 0.0);
     std::vector<double> e(inverse_e_.size(), 0.0);
     const int sy = g.stride_y(), sz = g.stride_z();
@@ -40,7 +40,7 @@ class StencilMic0 {
 
   /// z = M^-1 r on the padded lattice (z zero on non-fluid cells).
   void apply(const double* r, double* z) const {
-    const mesh::MacGrid& g = A_.grid;
+    const kernels::mac::MacGrid& g = A_.grid;
     const int sy = g.stride_y(), sz = g.stride_z();
     const float *cx = A_.cx.data(), *cy = A_.cy.data(), *cz = A_.cz.data();
     const double* inv = inverse_e_.data();

@@ -34,7 +34,7 @@ int axis_weights(int f, int n_coarse, bool edge_lo, bool edge_hi, bool wall_lo, 
 
 TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, const mesh::TallCellGrid& coarse,
                                                const kernels::mac::PoissonStencil<HostMemSpace>& coarse_A) {
-  const mesh::MacGrid &gf = fine.grid(), &gc = coarse.grid();
+  const kernels::mac::MacGrid &gf = fine.grid(), &gc = coarse.grid();
   const auto edge = coarse_A.edges();
   const auto wall = coarse_A.walls();
   // every fine unknown whose row of Q this block needs: its own (for Q; in their order, column

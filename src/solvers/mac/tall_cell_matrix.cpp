@@ -20,7 +20,7 @@ namespace {
 /// one block the entries come sorted and the sort only checks them.
 int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A, int i, int j, int k,
                 int u, std::pair<int, double>* row) {
-  const mesh::MacGrid& g = T.grid();
+  const kernels::mac::MacGrid& g = T.grid();
   const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
   int n = 0;
   const int di[7] = {0, -1, 0, 0, 0, 1, 0}, dj[7] = {0, 0, -1, 0, 1, 0, 0}, dk[7] = {-1, 0, 0, 0, 0, 0, 1};
@@ -46,7 +46,7 @@ int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<
 /// for a tall cell's inner row (at its bottom and top rows one sample's weight is zero).
 int uniform_row_length(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A, int i,
                        int j, int k) {
-  const mesh::MacGrid& g = T.grid();
+  const kernels::mac::MacGrid& g = T.grid();
   const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
   const int di[6] = {0, -1, 0, 0, 1, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {-1, 0, 0, 0, 0, 1};
   const float cond[6] = {A.cz(c - sz), A.cx(c - 1), A.cy(c - sy), A.cy(c), A.cx(c), A.cz(c)};
@@ -63,7 +63,7 @@ int uniform_row_length(const mesh::TallCellGrid& T, const kernels::mac::PoissonS
 }  // namespace
 
 CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A) {
-  const mesh::MacGrid& g = T.grid();
+  const kernels::mac::MacGrid& g = T.grid();
   const int sy = g.stride_y(), sz = g.stride_z();
   const long n = T.unknowns(), first = T.first_unknown();
 

@@ -80,7 +80,7 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
       Kokkos::Profiling::popRegion();
     };
     // every rank decides together (a block's first cell must stay on the coarse grid)
-    const mesh::MacGrid g = level_A.grid;
+    const kernels::mac::MacGrid g = level_A.grid;
     long cells = g.cells();
     MPI_Allreduce(MPI_IN_PLACE, &cells, 1, MPI_LONG, MPI_SUM, comm);
     const bool halvable = g.nx % 2 == 0 && g.ny % 2 == 0 && g.nz % 2 == 0 && level_block.global_lower[0] % 2 == 0 &&

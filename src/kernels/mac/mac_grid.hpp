@@ -12,7 +12,7 @@
 
 #include "kernels/spaces.hpp"
 
-namespace amphora::mesh {
+namespace amphora::kernels::mac {
 
 enum class MacCellType : std::uint8_t { fluid = 0, air = 1, solid = 2 };
 
@@ -67,4 +67,4 @@ inline MacEdges box_edges() {
   return e;
 }
 
-}  // namespace amphora::mesh
+}  // namespace amphora::kernels::mac

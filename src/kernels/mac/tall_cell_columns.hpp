@@ -13,9 +13,9 @@
 // A tall cell carries every field as a linear function of height through two samples (bottom
 // and top). The water module stores the fields expanded on the lattice; tall_rows() names the
 // lattice samples of a field that lie inside tall cells, where the tall-cell schemes apply.
-#include "mesh/mac/mac_grid.hpp"
+#include "kernels/mac/mac_grid.hpp"
 
-namespace amphora::mesh {
+namespace amphora::kernels::mac {
 
 /// The lowest run of fluid rows of a column, [terrain, top).
 AMPHORA_EXEC_CHECK_DISABLE
@@ -126,4 +126,4 @@ int lowest_band(const ExecSpace& exec, const TallCellColumns<MemSpace>& T, const
   return lowest;
 }
 
-}  // namespace amphora::mesh
+}  // namespace amphora::kernels::mac

@@ -1,14 +1,14 @@
-// The column structure of a tall-cell grid (mesh/mac/tall_cell_columns.hpp): the lowest band,
+// The column structure of a tall-cell grid (kernels/mac/tall_cell_columns.hpp): the lowest band,
 // below which the water module's level-set kernels skip every row, must leave no cell there that
 // is neither solid nor in a tall cell, and must be as high as that allows.
 #include <algorithm>
 #include <vector>
 
 #include "kernels/host_vector.hpp"
-#include "mesh/mac/tall_cell_columns.hpp"
+#include "kernels/mac/tall_cell_columns.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::mesh {
+namespace amphora::kernels::mac {
 namespace {
 
 using Exec = test::TestExecSpace;
@@ -71,4 +71,4 @@ TEST(TallCellColumns, LowestBandLeavesOnlyTallCellsAndSolidsBelowIt) {
 }
 
 }  // namespace
-}  // namespace amphora::mesh
+}  // namespace amphora::kernels::mac
