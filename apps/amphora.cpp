@@ -13,7 +13,7 @@
 #include "io/scene.hpp"
 #include "io/scene_catalog.hpp"
 #include "mesh/box_decomposition.hpp"
-#include "mesh/environment.hpp"
+#include "base/environment.hpp"
 #include "io/module_registry.hpp"
 
 namespace {

@@ -3,7 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "io/build_info.hpp"
-#include "mesh/environment.hpp"
+#include "base/environment.hpp"
 
 #include <cstdio>
 

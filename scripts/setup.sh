@@ -24,7 +24,7 @@ case "$target" in
 esac
 
 packages=(
-  g++ cmake ninja-build make pkg-config git ccache dpkg-dev xz-utils
+  g++ cmake ninja-build make pkg-config git ccache dpkg-dev xz-utils clang-format
   libeigen3-dev libhypre-dev libopenmpi-dev openmpi-bin
   libhdf5-openmpi-dev hdf5-tools
   libbenchmark-dev libgtest-dev libgmock-dev

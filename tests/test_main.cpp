@@ -1,7 +1,7 @@
 // GoogleTest main for every amphora test: MPI and Kokkos up first; only rank 0 prints.
 #include <gtest/gtest.h>
 
-#include "mesh/environment.hpp"
+#include "base/environment.hpp"
 
 int main(int argc, char** argv) {
   amphora::Environment env(argc, argv);

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <string>
 
-#include "physics/module.hpp"
+#include "base/output_block.hpp"
 
 namespace amphora {
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "mesh/environment.hpp"
-#include "physics/module.hpp"
+#include "base/communicator.hpp"
+#include "base/output_block.hpp"
 
 namespace amphora {
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 #include "physics/module.hpp"
-#include "physics/parameters.hpp"
+#include "base/parameters.hpp"
 
 namespace amphora {
 

@@ -6,7 +6,7 @@
 
 #include "io/scene.hpp"
 #include "kernels/deep_copy_counter.hpp"
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 #include "physics/module.hpp"
 
 namespace amphora {

@@ -11,31 +11,20 @@
 namespace amphora {
 
 ParamTable run_parameter_table() {
-  ParamTable t;
-  t.name = "run";
-  t.doc = "what to run, for how long, and where its output goes";
-  auto name = string_param("name", std::nullopt, "scene name (default: the file's stem)");
-  auto module = string_param("module", std::nullopt, "the physics module to run (required)",
-                             module_names());
-  auto out = string_param("output_dir", std::string("output"),
-                          "output directory (fields, series, diagnostics, checkpoint)");
-  auto end = real_param("end_time", std::nullopt, "s", "end time (required)");
-  greater_than(end, 0.0);
-  auto dt = real_param("dt", std::nullopt, "s", "time step (default: cfl * stable step)");
-  greater_than(dt, 0.0);
-  auto cfl = real_param("cfl", 0.8, "1", "fraction of the module's stable step");
-  greater_than(cfl, 0.0);
-  at_most(cfl, 1.0);
-  auto out_every = int_param("output_every", 0, "steps between field outputs (0: first and last)");
-  at_least(out_every, 0);
-  auto ck_every = int_param("checkpoint_every", 0, "steps between checkpoints (0: at the end)");
-  at_least(ck_every, 0);
-  auto diag_every = int_param("diagnostics_every", 10, "steps between diagnostics rows");
-  at_least(diag_every, 1);
-  auto prog = real_param("progress_seconds", 2.0, "s", "wall time between progress lines");
-  at_least(prog, 0.0);
-  t.specs = {name, module, out, end, dt, cfl, out_every, ck_every, diag_every, prog};
-  return t;
+  return {"run",
+          "what to run, for how long, and where its output goes",
+          {
+              string_param("name", std::nullopt, "scene name (default: the file's stem)"),
+              string_param("module", std::nullopt, "the physics module to run (required)", module_names()),
+              string_param("output_dir", std::string("output"), "output directory (fields, series, diagnostics, checkpoint)"),
+              real_param("end_time", std::nullopt, "s", above(0.0), "end time (required)"),
+              real_param("dt", std::nullopt, "s", above(0.0), "time step (default: cfl * stable step)"),
+              real_param("cfl", 0.8, "1", above(0.0) & at_most(1.0), "fraction of the module's stable step"),
+              int_param("output_every", 0, at_least(0), "steps between field outputs (0: first and last)"),
+              int_param("checkpoint_every", 0, at_least(0), "steps between checkpoints (0: at the end)"),
+              int_param("diagnostics_every", 10, at_least(1), "steps between diagnostics rows"),
+              real_param("progress_seconds", 2.0, "s", at_least(0.0), "wall time between progress lines"),
+          }};
 }
 
 namespace {

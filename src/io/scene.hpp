@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "physics/parameters.hpp"
+#include "base/parameters.hpp"
 
 namespace amphora {
 

@@ -8,7 +8,7 @@
 
 #include "kernels/spaces.hpp"
 #include "mesh/box_decomposition.hpp"
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 
 namespace amphora {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "mesh/box_decomposition.hpp"
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 
 namespace amphora {
 

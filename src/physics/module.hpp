@@ -5,32 +5,11 @@
 // happens in the kernels each module launches.
 #include <optional>
 #include <string>
-#include <utility>
 #include <vector>
 
+#include "base/output_block.hpp"
+
 namespace amphora {
-
-using NamedArray = std::pair<std::string, std::vector<double>>;
-
-/// One block of output owned by this rank: a rectilinear grid (node coordinates per
-/// direction, length 1 for an unused direction, fields stored x fastest), a set of points
-/// (`points`: x, y, z hold each point's coordinates, fields one value per point), or a
-/// curvilinear grid (`curvilinear`: nodes[0] x nodes[1] x nodes[2] nodes, x fastest, x, y, z
-/// hold every node's coordinates; curved high-order meshes).
-struct OutputBlock {
-  std::string name;
-  std::vector<double> x, y, z;
-  std::vector<NamedArray> fields;
-  bool points = false;
-  bool curvilinear = false;
-  long nodes[3] = {1, 1, 1};
-};
-
-/// Named arrays of one block of state, enough to continue bit for bit.
-struct StateBlock {
-  std::string name;
-  std::vector<NamedArray> arrays;
-};
 
 /// Where a run first went non-finite (or, with `reason`, where a module saw it fail otherwise,
 /// e.g. unbounded growth).
@@ -42,7 +21,6 @@ struct NonFiniteReport {
   std::string reason;  ///< empty: "non-finite value"
 };
 
-using Diagnostics = std::vector<std::pair<std::string, double>>;
 
 class Module {
  public:

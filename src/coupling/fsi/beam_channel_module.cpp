@@ -11,46 +11,25 @@
 namespace amphora::fsi {
 
 ParamTable beam_channel_parameter_table() {
-  ParamTable t;
-  t.name = "beam_channel";
-  t.doc = "a periodic Euler-Bernoulli beam over a channel of inviscid fluid, partitioned (tp | amp), "
-          "from the exact traveling wave";
-  auto scheme = string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp", "tp_aitken"});
-  auto rho_h = real_param("rho_h", 1.0, "kg/m^2", "beam mass per unit length (density x thickness)");
-  greater_than(rho_h, 0.0);
-  auto spring = real_param("spring", 0.5, "N/m^3", "K: restoring spring");
-  at_least(spring, 0.0);
-  auto tension = real_param("tension", 1.0, "N/m", "T: tension");
-  at_least(tension, 0.0);
-  auto stiffness = real_param("stiffness", 0.01, "N m", "B = E I: bending stiffness");
-  at_least(stiffness, 0.0);
-  auto length = real_param("length", 1.0, "m", "period in x");
-  greater_than(length, 0.0);
-  auto depth = real_param("depth", 0.5, "m", "channel depth H");
-  greater_than(depth, 0.0);
-  auto density = real_param("density", 1.0, "kg/m^3", "fluid density rho");
-  greater_than(density, 0.0);
-  auto points = int_param("points", 80, "beam points = fluid columns (h = length / points)");
-  at_least(points, 8);
-  at_most(points, 1 << 14);
-  auto rows = int_param("fluid_rows", 40, "fluid cells across the channel");
-  at_least(rows, 2);
-  at_most(rows, 1 << 14);
-  auto mode = int_param("mode", 1, "wave number k = 2 pi mode / length");
-  at_least(mode, 1);
-  auto blowup = real_param("blowup_factor", 10.0, "1",
-                           "stop as unstable when max |eta| exceeds this multiple of the amplitude");
-  greater_than(blowup, 1.0);
-  auto tol = real_param("subiteration_tolerance", 1e-10, "1",
-                        "tp_aitken: relative change of the interface acceleration that ends a step");
-  greater_than(tol, 0.0);
-  auto max_it = int_param("max_subiterations", 500, "tp_aitken: sub-iterations allowed per step");
-  at_least(max_it, 1);
-  auto relax = real_param("initial_relaxation", 0.1, "1", "tp_aitken: first relaxation factor");
-  greater_than(relax, 0.0);
-  at_most(relax, 1.0);
-  t.specs = {scheme, rho_h, spring, tension, stiffness, length, depth, density, points, rows, mode, blowup, tol, max_it, relax};
-  return t;
+  return {"beam_channel",
+          "a periodic Euler-Bernoulli beam over a channel of inviscid fluid, partitioned (tp | amp), " "from the exact traveling wave",
+          {
+              string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp", "tp_aitken"}),
+              real_param("rho_h", 1.0, "kg/m^2", above(0.0), "beam mass per unit length (density x thickness)"),
+              real_param("spring", 0.5, "N/m^3", at_least(0.0), "K: restoring spring"),
+              real_param("tension", 1.0, "N/m", at_least(0.0), "T: tension"),
+              real_param("stiffness", 0.01, "N m", at_least(0.0), "B = E I: bending stiffness"),
+              real_param("length", 1.0, "m", above(0.0), "period in x"),
+              real_param("depth", 0.5, "m", above(0.0), "channel depth H"),
+              real_param("density", 1.0, "kg/m^3", above(0.0), "fluid density rho"),
+              int_param("points", 80, at_least(8) & at_most(1 << 14), "beam points = fluid columns (h = length / points)"),
+              int_param("fluid_rows", 40, at_least(2) & at_most(1 << 14), "fluid cells across the channel"),
+              int_param("mode", 1, at_least(1), "wave number k = 2 pi mode / length"),
+              real_param("blowup_factor", 10.0, "1", above(1.0), "stop as unstable when max |eta| exceeds this multiple of the amplitude"),
+              real_param("subiteration_tolerance", 1e-10, "1", above(0.0), "tp_aitken: relative change of the interface acceleration that ends a step"),
+              int_param("max_subiterations", 500, at_least(1), "tp_aitken: sub-iterations allowed per step"),
+              real_param("initial_relaxation", 0.1, "1", above(0.0) & at_most(1.0), "tp_aitken: first relaxation factor"),
+          }};
 }
 
 namespace {

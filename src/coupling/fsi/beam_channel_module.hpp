@@ -5,9 +5,9 @@
 // an unstable coupling stopped with a message saying when and by how much it grew.
 #include <memory>
 
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 #include "physics/module.hpp"
-#include "physics/parameters.hpp"
+#include "base/parameters.hpp"
 
 namespace amphora::fsi {
 

@@ -10,25 +10,16 @@
 namespace amphora::fsi {
 
 ParamTable mpve_parameter_table() {
-  ParamTable t;
-  t.name = "mpve";
-  t.doc = "MP-VE: viscous fluid (-H < y < 0) on an elastic solid (0 < y < Hbar), periodic in x, "
-          "partitioned coupling (traditional, traditional with Aitken sub-iterations, or added-mass partitioned), from the exact traveling wave";
-  auto scheme = string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp", "tp_aitken"});
-  auto rho_bar = real_param("rho_bar", 1000.0, "kg/m^3", "solid density (mu_bar = rho_bar: cs = 1)");
-  greater_than(rho_bar, 0.0);
-  auto poisson = real_param("poisson_ratio", 0.25, "1", "solid Poisson ratio nu (lambda_bar = 2 mu_bar nu / (1 - 2 nu); 0.25: cp = sqrt 3)");
-  greater_than(poisson, -1.0);
-  less_than(poisson, 0.5);
-  auto mu = real_param("viscosity", 0.02, "Pa s", "fluid viscosity mu (fluid density 1)");
-  greater_than(mu, 0.0);
-  auto cells = int_param("cells", 32, "cells per wavelength in x (h = 1 / cells; the wavelength is 1)");
-  at_least(cells, 8);
-  at_most(cells, 4096);
-  auto blowup = real_param("blowup_factor", 10.0, "1", "unstable once max |v| exceeds this multiple of its start");
-  greater_than(blowup, 1.0);
-  t.specs = {scheme, rho_bar, poisson, mu, cells, blowup};
-  return t;
+  return {"mpve",
+          "MP-VE: viscous fluid (-H < y < 0) on an elastic solid (0 < y < Hbar), periodic in x, " "partitioned coupling (traditional, traditional with Aitken sub-iterations, or added-mass partitioned), from the exact traveling wave",
+          {
+              string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp", "tp_aitken"}),
+              real_param("rho_bar", 1000.0, "kg/m^3", above(0.0), "solid density (mu_bar = rho_bar: cs = 1)"),
+              real_param("poisson_ratio", 0.25, "1", above(-1.0) & below(0.5), "solid Poisson ratio nu (lambda_bar = 2 mu_bar nu / (1 - 2 nu); 0.25: cp = sqrt 3)"),
+              real_param("viscosity", 0.02, "Pa s", above(0.0), "fluid viscosity mu (fluid density 1)"),
+              int_param("cells", 32, at_least(8) & at_most(4096), "cells per wavelength in x (h = 1 / cells; the wavelength is 1)"),
+              real_param("blowup_factor", 10.0, "1", above(1.0), "unstable once max |v| exceeds this multiple of its start"),
+          }};
 }
 
 namespace {

@@ -6,9 +6,9 @@
 // blow-up stopped with a message.
 #include <memory>
 
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 #include "physics/module.hpp"
-#include "physics/parameters.hpp"
+#include "base/parameters.hpp"
 
 namespace amphora::fsi {
 

@@ -16,7 +16,7 @@
 #include <Kokkos_Core.hpp>
 
 #include "mesh/box_decomposition.hpp"
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 #include "mesh/hex/qk_space.hpp"
 
 namespace amphora::mesh {

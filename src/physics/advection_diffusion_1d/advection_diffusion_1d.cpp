@@ -25,32 +25,21 @@ void fill_exact(const ExecSpace& exec, const View& u, const ManufacturedWave& ex
 }  // namespace initial_detail
 
 ParamTable parameter_table() {
-  ParamTable t;
-  t.name = "advection_diffusion_1d";
-  t.doc = "u_t + a u_x = nu u_xx + f on (0,1), two overlapping grids, manufactured solution";
-  auto a = real_param("a", 1.0, "m/s", "advection speed");
-  auto nu = real_param("nu", 0.05, "m^2/s", "diffusivity (> 0: the centred scheme needs it)");
-  greater_than(nu, 0.0);
-  auto cells = int_param("cells", 40, "grid-1 cells per unit length (h1 = 1/cells)");
-  at_least(cells, 8);
-  at_most(cells, 1 << 24);
-  auto interface = real_param("interface", 0.5, "m", "right end of grid 1 (x_b)");
-  greater_than(interface, 0.2);
-  less_than(interface, 0.8);
-  auto overlap = real_param("overlap", 1.5, "1", "overlap width x_b - x_a in grid-1 cells");
-  greater_than(overlap, 0.0);
-  at_most(overlap, 2.0);
-  auto ratio = real_param("spacing_ratio", 1.3, "1", "grid-2 spacing over grid-1 spacing");
-  at_least(ratio, 0.5);
-  at_most(ratio, 2.0);
-  auto amp = real_param("amplitude", 1.0, "1", "manufactured solution amplitude A");
-  auto off = real_param("offset", 0.5, "1", "manufactured solution offset B");
-  auto k = real_param("wavenumber", 6.0, "1/m", "manufactured solution wavenumber k");
-  auto om = real_param("frequency", 2.0, "1/s", "manufactured solution angular frequency omega");
-  auto ga = real_param("decay", 0.5, "1/s", "manufactured solution decay rate gamma");
-  at_least(ga, 0.0);
-  t.specs = {a, nu, cells, interface, overlap, ratio, amp, off, k, om, ga};
-  return t;
+  return {"advection_diffusion_1d",
+          "u_t + a u_x = nu u_xx + f on (0,1), two overlapping grids, manufactured solution",
+          {
+              real_param("a", 1.0, "m/s", "advection speed"),
+              real_param("nu", 0.05, "m^2/s", above(0.0), "diffusivity (> 0: the centred scheme needs it)"),
+              int_param("cells", 40, at_least(8) & at_most(1 << 24), "grid-1 cells per unit length (h1 = 1/cells)"),
+              real_param("interface", 0.5, "m", above(0.2) & below(0.8), "right end of grid 1 (x_b)"),
+              real_param("overlap", 1.5, "1", above(0.0) & at_most(2.0), "overlap width x_b - x_a in grid-1 cells"),
+              real_param("spacing_ratio", 1.3, "1", at_least(0.5) & at_most(2.0), "grid-2 spacing over grid-1 spacing"),
+              real_param("amplitude", 1.0, "1", "manufactured solution amplitude A"),
+              real_param("offset", 0.5, "1", "manufactured solution offset B"),
+              real_param("wavenumber", 6.0, "1/m", "manufactured solution wavenumber k"),
+              real_param("frequency", 2.0, "1/s", "manufactured solution angular frequency omega"),
+              real_param("decay", 0.5, "1/s", at_least(0.0), "manufactured solution decay rate gamma"),
+          }};
 }
 
 template <class ExecSpace>

@@ -9,11 +9,11 @@
 #include <vector>
 
 #include "kernels/spaces.hpp"
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 #include "mesh/overlapping_grid_1d.hpp"
 #include "physics/advection_diffusion_1d/manufactured_wave.hpp"
 #include "physics/module.hpp"
-#include "physics/parameters.hpp"
+#include "base/parameters.hpp"
 
 namespace amphora::advection_diffusion_1d {
 

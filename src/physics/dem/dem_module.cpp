@@ -10,82 +10,44 @@
 namespace amphora::dem {
 
 ParamTable parameter_table() {
-  ParamTable t;
-  t.name = "dem";
-  t.doc = "discrete elements: Hertz-Mindlin spheres in a box or a rotating drum";
-  auto geometry = string_param("geometry", std::string("box"), "box (settling bed) or drum",
-                               {"box", "drum"});
-  auto bx = real_param("box_x", 0.03, "m", "box width");
-  auto by = real_param("box_y", 0.03, "m", "box depth");
-  auto bz = real_param("box_z", 0.06, "m", "box height (particles above it are removed)");
-  auto dr = real_param("drum_radius", 0.04, "m", "drum inner radius");
-  auto dl = real_param("drum_length", 0.012, "m", "drum length (end caps turn with the drum)");
-  auto fr = real_param("froude", 0.1, "1", "drum Froude number omega^2 R / g");
-  auto fill = real_param("fill_level", 0.3, "1", "bed volume over drum volume (drum)");
-  auto settle = real_param("settle_time", 0.2, "s", "the drum starts turning after this time");
-  for (auto* s : {&bx, &by, &bz, &dr, &dl}) greater_than(*s, 0.0);
-  greater_than(fr, 0.0);
-  greater_than(fill, 0.0);
-  less_than(fill, 0.6);
-  at_least(settle, 0.0);
-  auto radius = real_param("particle_radius", 1.5e-3, "m", "mean particle radius");
-  greater_than(radius, 0.0);
-  auto spread = real_param("radius_spread", 0.0, "1", "radii uniform in r (1 -+ spread)");
-  at_least(spread, 0.0);
-  less_than(spread, 1.0);
-  auto rho = real_param("density", 2500.0, "kg/m^3", "particle density (glass)");
-  auto young = real_param("youngs_modulus", 5e6, "Pa", "particle Young's modulus");
-  auto nu = real_param("poisson_ratio", 0.3, "1", "particle Poisson's ratio");
-  auto e = real_param("restitution", 0.9, "1", "particle-particle restitution coefficient");
-  auto mu = real_param("friction", 0.5, "1", "sliding friction coefficient");
-  auto mur = real_param("rolling_friction", 0.05, "1", "rolling friction coefficient");
-  auto coh = real_param("cohesion_energy_density", 0.0, "J/m^3", "SJKR cohesion (0: off)");
-  greater_than(rho, 0.0);
-  greater_than(young, 0.0);
-  greater_than(nu, -1.0);
-  less_than(nu, 0.5);
-  greater_than(e, 0.0);
-  at_most(e, 1.0);
-  for (auto* s : {&mu, &mur, &coh}) at_least(*s, 0.0);
-  auto f2 = real_param("second_material_fraction", 0.0, "1", "share of particles of material 2");
-  at_least(f2, 0.0);
-  at_most(f2, 1.0);
-  auto rho2 = real_param("second_density", 1050.0, "kg/m^3", "material 2 density (ABS)");
-  greater_than(rho2, 0.0);
-  auto young2 = real_param("second_youngs_modulus", 5e6, "Pa", "material 2 Young's modulus");
-  greater_than(young2, 0.0);
-  auto wy = real_param("wall_youngs_modulus", 5e6, "Pa", "wall Young's modulus");
-  greater_than(wy, 0.0);
-  auto we = real_param("wall_restitution", 0.9, "1", "wall restitution coefficient");
-  greater_than(we, 0.0);
-  at_most(we, 1.0);
-  auto wmu = real_param("wall_friction", 0.5, "1", "wall friction coefficient");
-  at_least(wmu, 0.0);
-  auto ins = string_param("insertion", std::string("random"), "random (over time) or lattice",
-                          {"random", "lattice"});
-  auto count = int_param("particle_count", 2000, "particles to insert (drum: 0 = from fill_level)");
-  at_least(count, 0);
-  auto rate = real_param("insertion_rate", 10000.0, "1/s", "random insertion rate (0: all at t = 0)");
-  auto vin = real_param("insertion_velocity", 1.0, "m/s", "downward speed of inserted particles");
-  at_least(vin, 0.0);
-  at_least(rate, 0.0);
-  auto att = int_param("insertion_attempts", 100, "random draws per particle before giving up");
-  at_least(att, 1);
-  auto g = real_param("gravity", 9.81, "m/s^2", "gravitational acceleration (-z box, -y drum)");
-  at_least(g, 0.0);
-  auto skin = real_param("verlet_skin", 0.25, "1", "Verlet skin in largest diameters");
-  greater_than(skin, 0.0);
-  at_most(skin, 2.0);
-  auto maxc = int_param("max_contacts", 24, "contact histories a particle may carry");
-  at_least(maxc, 6);
-  auto seed = int_param("seed", 1, "seed of the insertion draws");
-  at_least(seed, 0);
-  auto large = bool_param("allow_large_dt", false,
-                          "accept a step over the Rayleigh/Hertz limit (at your risk)");
-  t.specs = {geometry, bx, by, bz, dr, dl, fr, fill, settle, radius, spread, rho, young, nu, e, mu,
-             mur, coh, f2, rho2, young2, wy, we, wmu, ins, count, rate, vin, att, g, skin, maxc, seed,
-             large};
-  return t;
+  return {"dem",
+          "discrete elements: Hertz-Mindlin spheres in a box or a rotating drum",
+          {
+              string_param("geometry", std::string("box"), "box (settling bed) or drum", {"box", "drum"}),
+              real_param("box_x", 0.03, "m", above(0.0), "box width"),
+              real_param("box_y", 0.03, "m", above(0.0), "box depth"),
+              real_param("box_z", 0.06, "m", above(0.0), "box height (particles above it are removed)"),
+              real_param("drum_radius", 0.04, "m", above(0.0), "drum inner radius"),
+              real_param("drum_length", 0.012, "m", above(0.0), "drum length (end caps turn with the drum)"),
+              real_param("froude", 0.1, "1", above(0.0), "drum Froude number omega^2 R / g"),
+              real_param("fill_level", 0.3, "1", above(0.0) & below(0.6), "bed volume over drum volume (drum)"),
+              real_param("settle_time", 0.2, "s", at_least(0.0), "the drum starts turning after this time"),
+              real_param("particle_radius", 1.5e-3, "m", above(0.0), "mean particle radius"),
+              real_param("radius_spread", 0.0, "1", at_least(0.0) & below(1.0), "radii uniform in r (1 -+ spread)"),
+              real_param("density", 2500.0, "kg/m^3", above(0.0), "particle density (glass)"),
+              real_param("youngs_modulus", 5e6, "Pa", above(0.0), "particle Young's modulus"),
+              real_param("poisson_ratio", 0.3, "1", above(-1.0) & below(0.5), "particle Poisson's ratio"),
+              real_param("restitution", 0.9, "1", above(0.0) & at_most(1.0), "particle-particle restitution coefficient"),
+              real_param("friction", 0.5, "1", at_least(0.0), "sliding friction coefficient"),
+              real_param("rolling_friction", 0.05, "1", at_least(0.0), "rolling friction coefficient"),
+              real_param("cohesion_energy_density", 0.0, "J/m^3", at_least(0.0), "SJKR cohesion (0: off)"),
+              real_param("second_material_fraction", 0.0, "1", at_least(0.0) & at_most(1.0), "share of particles of material 2"),
+              real_param("second_density", 1050.0, "kg/m^3", above(0.0), "material 2 density (ABS)"),
+              real_param("second_youngs_modulus", 5e6, "Pa", above(0.0), "material 2 Young's modulus"),
+              real_param("wall_youngs_modulus", 5e6, "Pa", above(0.0), "wall Young's modulus"),
+              real_param("wall_restitution", 0.9, "1", above(0.0) & at_most(1.0), "wall restitution coefficient"),
+              real_param("wall_friction", 0.5, "1", at_least(0.0), "wall friction coefficient"),
+              string_param("insertion", std::string("random"), "random (over time) or lattice", {"random", "lattice"}),
+              int_param("particle_count", 2000, at_least(0), "particles to insert (drum: 0 = from fill_level)"),
+              real_param("insertion_rate", 10000.0, "1/s", at_least(0.0), "random insertion rate (0: all at t = 0)"),
+              real_param("insertion_velocity", 1.0, "m/s", at_least(0.0), "downward speed of inserted particles"),
+              int_param("insertion_attempts", 100, at_least(1), "random draws per particle before giving up"),
+              real_param("gravity", 9.81, "m/s^2", at_least(0.0), "gravitational acceleration (-z box, -y drum)"),
+              real_param("verlet_skin", 0.25, "1", above(0.0) & at_most(2.0), "Verlet skin in largest diameters"),
+              int_param("max_contacts", 24, at_least(6), "contact histories a particle may carry"),
+              int_param("seed", 1, at_least(0), "seed of the insertion draws"),
+              bool_param("allow_large_dt", false, "accept a step over the Rayleigh/Hertz limit (at your risk)"),
+          }};
 }
 
 DemModule::DemModule(const Parameters& p, const Communicator& comm) : comm_(comm) {

@@ -8,7 +8,7 @@
 #include "physics/dem/drum_regime.hpp"
 #include "physics/dem/insertion.hpp"
 #include "physics/module.hpp"
-#include "physics/parameters.hpp"
+#include "base/parameters.hpp"
 
 namespace amphora::dem {
 

@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "kernels/verlet_list.hpp"
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 #include "mesh/particle_set.hpp"
 #include "mesh/spatial_decomposition.hpp"
 #include "physics/dem/contact_model.hpp"

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 #include "physics/dem/dem_system.hpp"
 
 namespace amphora::dem {

@@ -191,31 +191,18 @@ class PoissonFem final : public Module {
 using namespace poisson_fem_kernels;
 
 ParamTable parameter_table() {
-  ParamTable t;
-  t.name = "poisson_fem";
-  t.doc = "-lap u = f on curved Q_k hexahedra of the unit square/cube, manufactured sine solution";
-  auto dim = int_param("dim", 3, "space dimension");
-  at_least(dim, 2);
-  at_most(dim, 3);
-  auto degree = int_param("degree", 4, "polynomial degree k of Q_k");
-  at_least(degree, 1);
-  at_most(degree, mesh::max_qk_degree);
-  auto cells = int_param("cells", 8, "cells per direction");
-  at_least(cells, 1);
-  at_most(cells, 1024);
-  auto deformation = real_param("deformation", 0.05, "1", "amplitude of the sinusoidal deformation (0: Cartesian)");
-  at_least(deformation, 0.0);
-  at_most(deformation, 0.1);
-  auto geometry = string_param("geometry", std::string("stored"), "how geometry reaches the quadrature points",
-                               {"cartesian", "stored", "on_the_fly"});
-  auto solver = string_param("solver", std::string("multigrid"), "preconditioner of CG", {"multigrid", "jacobi"});
-  auto tol = real_param("tolerance", 1e-10, "1", "relative residual of the CG solve");
-  greater_than(tol, 0.0);
-  less_than(tol, 1.0);
-  auto maxit = int_param("max_iterations", 2000, "CG iteration limit");
-  at_least(maxit, 1);
-  t.specs = {dim, degree, cells, deformation, geometry, solver, tol, maxit};
-  return t;
+  return {"poisson_fem",
+          "-lap u = f on curved Q_k hexahedra of the unit square/cube, manufactured sine solution",
+          {
+              int_param("dim", 3, at_least(2) & at_most(3), "space dimension"),
+              int_param("degree", 4, at_least(1) & at_most(mesh::max_qk_degree), "polynomial degree k of Q_k"),
+              int_param("cells", 8, at_least(1) & at_most(1024), "cells per direction"),
+              real_param("deformation", 0.05, "1", at_least(0.0) & at_most(0.1), "amplitude of the sinusoidal deformation (0: Cartesian)"),
+              string_param("geometry", std::string("stored"), "how geometry reaches the quadrature points", {"cartesian", "stored", "on_the_fly"}),
+              string_param("solver", std::string("multigrid"), "preconditioner of CG", {"multigrid", "jacobi"}),
+              real_param("tolerance", 1e-10, "1", above(0.0) & below(1.0), "relative residual of the CG solve"),
+              int_param("max_iterations", 2000, at_least(1), "CG iteration limit"),
+          }};
 }
 
 std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {

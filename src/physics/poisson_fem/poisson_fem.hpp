@@ -6,9 +6,9 @@
 // ParaView) with the exact solution and the error.
 #include <memory>
 
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 #include "physics/module.hpp"
-#include "physics/parameters.hpp"
+#include "base/parameters.hpp"
 
 namespace amphora::poisson_fem {
 

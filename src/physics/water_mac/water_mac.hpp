@@ -14,9 +14,9 @@
 // terrain (must stay at rest with hydrostatic pressure).
 #include <memory>
 
-#include "mesh/environment.hpp"
+#include "base/communicator.hpp"
 #include "physics/module.hpp"
-#include "physics/parameters.hpp"
+#include "base/parameters.hpp"
 
 namespace amphora::water_mac {
 

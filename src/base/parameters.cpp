@@ -1,4 +1,4 @@
-#include "physics/parameters.hpp"
+#include "base/parameters.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -124,24 +124,29 @@ ParamSpec string_param(std::string key, std::optional<std::string> def, std::str
   s.choices = std::move(choices);
   return s;
 }
-ParamSpec& greater_than(ParamSpec& s, double lo) {
-  s.min = lo;
-  s.min_exclusive = true;
+Range above(double lo) { return {lo, std::nullopt, true, false}; }
+Range at_least(double lo) { return {lo, std::nullopt, false, false}; }
+Range below(double hi) { return {std::nullopt, hi, false, true}; }
+Range at_most(double hi) { return {std::nullopt, hi, false, false}; }
+Range operator&(const Range& a, const Range& b) {
+  Range r = a;
+  if (b.min) r.min = b.min, r.min_exclusive = b.min_exclusive;
+  if (b.max) r.max = b.max, r.max_exclusive = b.max_exclusive;
+  return r;
+}
+
+ParamSpec real_param(std::string key, std::optional<double> def, std::string unit, Range range,
+                     std::string doc) {
+  ParamSpec s = real_param(std::move(key), def, std::move(unit), std::move(doc));
+  s.min = range.min, s.max = range.max;
+  s.min_exclusive = range.min_exclusive, s.max_exclusive = range.max_exclusive;
   return s;
 }
-ParamSpec& at_least(ParamSpec& s, double lo) {
-  s.min = lo;
-  s.min_exclusive = false;
-  return s;
-}
-ParamSpec& at_most(ParamSpec& s, double hi) {
-  s.max = hi;
-  s.max_exclusive = false;
-  return s;
-}
-ParamSpec& less_than(ParamSpec& s, double hi) {
-  s.max = hi;
-  s.max_exclusive = true;
+ParamSpec int_param(std::string key, std::optional<std::int64_t> def, Range range,
+                    std::string doc) {
+  ParamSpec s = int_param(std::move(key), def, std::move(doc));
+  s.min = range.min, s.max = range.max;
+  s.min_exclusive = range.min_exclusive, s.max_exclusive = range.max_exclusive;
   return s;
 }
 

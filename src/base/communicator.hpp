@@ -1,31 +1,14 @@
 #pragma once
-// MPI and Kokkos started together and stopped in reverse order (MPI first, so Kokkos sees the
-// rank's environment; Kokkos finalised before MPI so no View outlives MPI's buffers).
+// A thin view of an MPI communicator with the few collectives amphora uses everywhere.
 #include <mpi.h>
 
 #include <cstdint>
-#include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
 
 namespace amphora {
 
-class Environment {
- public:
-  Environment(int& argc, char**& argv);
-  ~Environment();
-  Environment(const Environment&) = delete;
-  Environment& operator=(const Environment&) = delete;
-
- private:
-  void start_kokkos(int& argc, char**& argv);
-  bool owns_mpi_ = false;
-  struct KokkosGuard;
-  std::unique_ptr<KokkosGuard> kokkos_;
-};
-
-/// Thin view of an MPI communicator with the few collectives amphora uses everywhere.
 class Communicator {
  public:
   explicit Communicator(MPI_Comm comm = MPI_COMM_WORLD);

@@ -33,19 +33,32 @@ struct ParamSpec {
 std::string to_string(const ParamValue& v);
 const char* type_name(ParamType t);
 
-/// Fluent builders so a declaration reads like a table row.
+/// The values a numeric key allows, written like the statement it makes: above(0),
+/// at_least(1) & at_most(8), above(0) & below(1).
+struct Range {
+  std::optional<double> min, max;
+  bool min_exclusive = false, max_exclusive = false;
+};
+Range above(double lo);     ///< > lo
+Range at_least(double lo);  ///< >= lo
+Range below(double hi);     ///< < hi
+Range at_most(double hi);   ///< <= hi
+/// Both bounds (each side from the operand that has it).
+Range operator&(const Range& a, const Range& b);
+
+/// One row of a table each: key, default (nullopt: none), unit, allowed values, help.
+ParamSpec real_param(std::string key, std::optional<double> def, std::string unit, Range range,
+                     std::string doc);
 ParamSpec real_param(std::string key, std::optional<double> def, std::string unit,
                      std::string doc);
+ParamSpec int_param(std::string key, std::optional<std::int64_t> def, Range range,
+                    std::string doc);
 ParamSpec int_param(std::string key, std::optional<std::int64_t> def, std::string doc);
 ParamSpec bool_param(std::string key, bool def, std::string doc);
 ParamSpec string_param(std::string key, std::optional<std::string> def, std::string doc,
                        std::vector<std::string> choices = {});
-ParamSpec& greater_than(ParamSpec& s, double lo);
-ParamSpec& at_least(ParamSpec& s, double lo);
-ParamSpec& at_most(ParamSpec& s, double hi);
-ParamSpec& less_than(ParamSpec& s, double hi);
 
-/// The declared keys of one scene table.
+/// The declared keys of one scene table, each declared once: {name, doc, {rows...}}.
 struct ParamTable {
   std::string name;
   std::string doc;
