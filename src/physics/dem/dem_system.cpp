@@ -8,9 +8,9 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "kernels/binning.hpp"
-#include "kernels/prefetch.hpp"
-#include "physics/dem/hertz_mindlin.hpp"
+#include "kernels/particles/binning.hpp"
+#include "kernels/particles/pair_loop.hpp"
+#include "physics/dem/dem_pair_law.hpp"
 
 namespace amphora::dem {
 
@@ -22,22 +22,6 @@ double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
       .count();
 }
-
-/// A LayoutRight [n][3] View seen as a restrict pointer whose row stride, 3, is known at
-/// compile time. Kokkos keeps a LayoutRight stride at run time (rows may be padded), which in
-/// the contact loop costs a register (spilled) and a multiply per access.
-template <class T>
-struct Rows3 {
-  T* KOKKOS_RESTRICT p;
-  template <class View>
-  explicit Rows3(const View& v) : p(v.data()) {
-    static_assert(std::is_same_v<typename View::array_layout, Kokkos::LayoutRight> &&
-                      View::rank == 2 && View::static_extent(1) == 3,
-                  "Rows3 views a LayoutRight [n][3] View");
-    if (v.extent(0) > 1 && v.stride(0) != 3) throw std::logic_error("Rows3: padded rows");
-  }
-  KOKKOS_FORCEINLINE_FUNCTION T& operator()(int i, int d) const { return p[3 * size_t(i) + d]; }
-};
 
 /// dst(i, ...) = src(perm(i), ...) for i < n, for LayoutRight Views of any rank: the inner
 /// extents of a row are contiguous.
@@ -80,135 +64,13 @@ void grow(View& v, int n) {
   }
 }
 
-/// The entry of row r whose partner has global id g, r's entries lo .. hi being sorted by gid
-/// and holding it.
-template <class Neighbors, class Ids>
-KOKKOS_INLINE_FUNCTION int entry_of(const Neighbors& nbr, const Ids& gid, int lo, int hi,
-                                    std::int64_t g) {
-  while (hi - lo > 1) {
-    const int mid = (lo + hi) / 2;
-    if (gid(nbr(mid)) <= g) lo = mid; else hi = mid;
-  }
-  return lo;
-}
-
-/// Gravity and the walls' forces on particle i at (x, v, omega) and time t, where the share
-/// its row adds starts. Walls not in `near` are skipped.
-template <class Mem>
-struct BodyForces {
-  using R = Kokkos::MemoryTraits<Kokkos::Restrict>;
-  Kokkos::View<const double*, Mem, R> rad, mass;
-  Kokkos::View<const int*, Mem, R> mat;
-  Kokkos::View<const PairCoefficients**, Mem, R> pairs;
-  Kokkos::View<const Wall*, Mem, R> walls;
-  Kokkos::View<double** [3], Kokkos::LayoutRight, Mem, R> wshear;
-  Kokkos::View<unsigned*, Mem, R> wmask;
-  int nw;
-  double dt, g[3];
-
-  KOKKOS_FORCEINLINE_FUNCTION void operator()(int i, double t, unsigned near, const double xi[3],
-                                         const double vi[3], const double wi[3], double F[3],
-                                         double T[3]) const {
-    const double ri = rad(i), mi = mass(i);
-    for (int d = 0; d < 3; ++d) {
-      F[d] = mi * g[d];
-      T[d] = 0.0;
-    }
-    if (!near) return;
-    for (int w = 0; w < nw; ++w) {
-      if (!(near & (1u << w))) continue;
-      double nn[3], delta, vw[3];
-      const Wall& wall = walls(w);
-      if (!wall_contact(wall, t, xi, ri, nn, delta, vw)) {
-        if (wmask(i) & (1u << w)) {
-          wmask(i) &= ~(1u << w);
-          wshear(i, w, 0) = wshear(i, w, 1) = wshear(i, w, 2) = 0.0;
-        }
-        continue;
-      }
-      wmask(i) |= 1u << w;
-      const double vr[3] = {vi[0] - vw[0] + ri * (wi[1] * nn[2] - wi[2] * nn[1]),
-                            vi[1] - vw[1] + ri * (wi[2] * nn[0] - wi[0] * nn[2]),
-                            vi[2] - vw[2] + ri * (wi[0] * nn[1] - wi[1] * nn[0])};
-      const double wr[3] = {wi[0] - wall.angular_velocity[0], wi[1] - wall.angular_velocity[1],
-                            wi[2] - wall.angular_velocity[2]};
-      double s[3] = {wshear(i, w, 0), wshear(i, w, 1), wshear(i, w, 2)};
-      const ContactForce c =
-          hertz_mindlin_force(pairs(mat(i), wall.material), ri, mi, nn, delta, vr, wr, dt, s);
-      for (int d = 0; d < 3; ++d) {
-        wshear(i, w, d) = s[d];
-        F[d] += c.force[d];
-        T[d] += ri * c.moment[d] + c.rolling[d];
-      }
-    }
-  }
-};
-
-/// The Hertz–Mindlin contact of row particle i with a touching partner j of larger gid, in i's
-/// orientation (each pair is evaluated so, whichever of its particles asks): dx = x_j - x_i,
-/// d2 = |dx|^2 < rsum^2; s, the pair's spring, is advanced. Returns the force and moments on i.
-template <class Mem>
-struct PairContact {
-  using R = Kokkos::MemoryTraits<Kokkos::Restrict>;
-  Rows3<const double> v, om;
-  Kokkos::View<const double*, Mem, R> mass;
-  Kokkos::View<const int*, Mem, R> mat;
-  Kokkos::View<const PairCoefficients**, Mem, R> pairs;
-  double dt;
-
-  KOKKOS_FORCEINLINE_FUNCTION ContactForce operator()(int j, double ri, double rj, double mi, int mati,
-                                                      const double vi[3], const double wi[3],
-                                                      const double dx[3], double d2, double rsum,
-                                                      double s[3]) const {
-    const double dist = math::sqrt(d2);
-    const double inv = 1.0 / dist;
-    const double nn[3] = {dx[0] * inv, dx[1] * inv, dx[2] * inv};
-    const double mj = mass(j);
-    const double dv[3] = {vi[0] - v(j, 0), vi[1] - v(j, 1), vi[2] - v(j, 2)};
-    // The approach speed from dx, not n: off the chain sqrt -> division -> n.
-    const double vn = (dv[0] * dx[0] + dv[1] * dx[1] + dv[2] * dx[2]) * inv;
-    // R* = ri rj / (ri + rj) and m* = mi mj / (mi + mj) with one division.
-    const double q = 1.0 / (rsum * (mi + mj));
-    // Velocity of i's contact point relative to j's: v_i - v_j + (r_i w_i + r_j w_j) x n.
-    const double w[3] = {ri * wi[0] + rj * om(j, 0), ri * wi[1] + rj * om(j, 1), ri * wi[2] + rj * om(j, 2)};
-    const double vr[3] = {dv[0] + w[1] * nn[2] - w[2] * nn[1], dv[1] + w[2] * nn[0] - w[0] * nn[2],
-                          dv[2] + w[0] * nn[1] - w[1] * nn[0]};
-    const double wr[3] = {wi[0] - om(j, 0), wi[1] - om(j, 1), wi[2] - om(j, 2)};
-    return hertz_mindlin_force(pairs(mati, mat(j)), ri * rj * (mi + mj) * q, mi * mj * rsum * q, nn, rsum - dist,
-                               vn, vr, wr, dt, s);
-  }
-};
-
-/// The entry of row j (from half(j) on: its partners of larger gid, by gid) that holds partner
-/// gid g, found by bisection.
-template <class Offsets, class Neighbors, class Ids>
-KOKKOS_INLINE_FUNCTION int own_entry(const Offsets& off, const Offsets& half, const Neighbors& nbr, const Ids& gid,
-                                     int j, std::int64_t g) {
-  int lo = half(j), hi = off(j + 1);
-  while (lo < hi) {
-    const int mid = (lo + hi) / 2;
-    if (gid(nbr(mid)) < g)
-      lo = mid + 1;
-    else
-      hi = mid;
-  }
-  return lo;
-}
-
-/// Whether row a of the ordered rows starts a slab (order_rows): its slab, cell(order(a)) /
-/// layer / 2, differs from the row before's.
-template <class Mem>
-struct SlabStarts {
-  Kokkos::View<int*, Mem> order, cell;
-  int layer, total;
-  KOKKOS_INLINE_FUNCTION int slab(int a) const { return cell(order(a)) / layer / 2; }
-  KOKKOS_INLINE_FUNCTION bool operator()(int a) const { return a < total && (a == 0 || slab(a) != slab(a - 1)); }
-};
-
 constexpr int kGhostRecord = 17;  // x3 v3 omega3 radius mass inertia material gid x_build3
 
 }  // namespace dem_system_kernels
 using namespace dem_system_kernels;
+using kernels::particles::bin_points;
+using kernels::particles::own_entry;
+using kernels::particles::Rows3;
 
 template <class ExecSpace>
 DemSystem<ExecSpace>::DemSystem(const DemConfig& config, const Communicator& comm,
@@ -243,8 +105,8 @@ DemSystem<ExecSpace>::DemSystem(const DemConfig& config, const Communicator& com
   rec_gid_ = RecIds("amphora::dem::rec_gid", 0, config_.max_contacts);
   shear_ = decltype(shear_)("amphora::dem::shear", 0);
   half_start_ = Kokkos::View<int*, Mem>("amphora::dem::half_start", 0);
-  row_order_ = Kokkos::View<int*, Mem>("amphora::dem::row_order", 0);
-  slab_start_ = Kokkos::View<int*, Mem>("amphora::dem::slab_start", 1);
+  schedule_.order = Kokkos::View<int*, Mem>("amphora::dem::row_order", 0);
+  schedule_.start = Kokkos::View<int*, Mem>("amphora::dem::slab_start", 1);
   list_.offsets = Kokkos::View<int*, Mem>("amphora::dem::list_offsets", 1);
   list_.neighbors = Kokkos::View<int*, Mem>("amphora::dem::list_neighbors", 0);
 }
@@ -362,6 +224,7 @@ void DemSystem<ExecSpace>::history_to_records() {
   const auto off = list_.offsets;
   const auto nbr = list_.neighbors;
   const auto half = half_start_;
+  const kernels::particles::HalfPairList<Mem> pairs{off, nbr, half};
   const auto shear = shear_;
   const auto gid = p_.gid;
   const auto rg = rec_gid_;
@@ -375,7 +238,7 @@ void DemSystem<ExecSpace>::history_to_records() {
         int r = 0;
         for (int k = off(i); k < off(i + 1); ++k) {
           const int j = nbr(k);
-          const int e = k < half(i) ? entry_of(nbr, gid, half(j), off(j + 1), gid(i)) : k;
+          const int e = k < half(i) ? own_entry(pairs, gid, j, gid(i)) : k;
           if (shear(e, 0) == 0.0 && shear(e, 1) == 0.0 && shear(e, 2) == 0.0) continue;
           if (r == K) {
             over = over > 0 ? over : 1;
@@ -409,6 +272,7 @@ void DemSystem<ExecSpace>::records_to_history() {
   const auto rg = rec_gid_;
   const auto rs = rec_shear_;
   const auto half = half_start_;
+  const kernels::particles::HalfPairList<Mem> pairs{off, nbr, half};
   Kokkos::parallel_for(
       "amphora::dem::records_to_history", RangePolicy<ExecSpace>(exec_, 0, n),
       KOKKOS_LAMBDA(int i) {
@@ -422,7 +286,7 @@ void DemSystem<ExecSpace>::records_to_history() {
           if (k < half(i) && j < n) continue;
           while (a < K && rg(i, a) >= 0 && rg(i, a) < g) ++a;
           if (a < K && rg(i, a) == g) {
-            const int e = k < half(i) ? entry_of(nbr, gid, half(j), off(j + 1), gid(i)) : k;
+            const int e = k < half(i) ? own_entry(pairs, gid, j, gid(i)) : k;
             for (int d = 0; d < 3; ++d) shear(e, d) = rs(i, a, d);
           }
         }
@@ -740,19 +604,7 @@ void DemSystem<ExecSpace>::rebuild() {
   const auto bins = bin_points(exec_, grid, x_build_, total);
   t = timer_mark(timers_.binning, t);
   list_ = build_verlet_list(exec_, grid, bins, x_build_, p_.radius, p_.gid, total, config_.skin);
-  {
-    half_start_ = Kokkos::View<int*, Mem>("amphora::dem::half_start", total);
-    const auto half = half_start_;
-    const auto off = list_.offsets;
-    const auto nbr = list_.neighbors;
-    const auto gid = p_.gid;
-    Kokkos::parallel_for(
-        "amphora::dem::half_start", RangePolicy<ExecSpace>(exec_, 0, total), KOKKOS_LAMBDA(int i) {
-          int k = off(i);
-          while (k < off(i + 1) && gid(nbr(k)) < gid(i)) ++k;
-          half(i) = k;
-        });
-  }
+  half_start_ = kernels::particles::half_starts(exec_, list_, p_.gid);
   records_to_history();
   order_rows();
   {
@@ -809,50 +661,8 @@ template <class ExecSpace>
 void DemSystem<ExecSpace>::order_rows() {
   // Slabs of 2 cell layers, at least 2 ghost widths thick: rows of slabs two apart are more
   // than 4 r_max + skin apart at the build positions, so the particles they touch (within
-  // 2 r_max, each centre within skin / 2 of its build position) are disjoint. Rows in the order
-  // (colour = slab % 2, slab, cell (k, j, i), gid): the cells' binning gives (cell, gid), as cell
-  // indices run k slowest and a slab is two k layers; a stable partition by colour follows.
-  const int total = p_.size();
-  const CellGrid cells = row_cells();
-  const int layer = cells.n[0] * cells.n[1];
-  const auto bins = bin_points(exec_, cells, x_build_, total, p_.gid);
-  const auto perm = bins.permutation;
-  const auto cell = bins.cell;
-  row_order_ = Kokkos::View<int*, Mem>("amphora::dem::row_order", total);
-  const auto order = row_order_;
-  int first_odd = 0;  // rows of colour 0
-  Kokkos::parallel_reduce(
-      "amphora::dem::order_rows::colours", RangePolicy<ExecSpace>(exec_, 0, total),
-      KOKKOS_LAMBDA(int a, int& even) { even += (cell(a) / layer / 2) % 2 == 0; }, first_odd);
-  Kokkos::parallel_scan(
-      "amphora::dem::order_rows::partition", RangePolicy<ExecSpace>(exec_, 0, total),
-      KOKKOS_LAMBDA(int a, int& even_before, bool final) {
-        const int p = perm(a);
-        const bool even = (cell(p) / layer / 2) % 2 == 0;
-        if (final) order(even ? even_before : first_odd + (a - even_before)) = p;
-        even_before += even;
-      });
-  // slab u holds rows slab_start(u) .. slab_start(u + 1): a slab starts where the slab changes
-  const SlabStarts<Mem> starts{order, cell, layer, total};
-  int slabs = 0, even_slabs = 0;
-  Kokkos::parallel_reduce(
-      "amphora::dem::order_rows::count_slabs", RangePolicy<ExecSpace>(exec_, 0, total),
-      KOKKOS_LAMBDA(int a, int& all) { all += starts(a); }, slabs);
-  Kokkos::parallel_reduce(
-      "amphora::dem::order_rows::count_even_slabs", RangePolicy<ExecSpace>(exec_, 0, first_odd),
-      KOKKOS_LAMBDA(int a, int& even) { even += starts(a); }, even_slabs);
-  slab_start_ = Kokkos::View<int*, Mem>("amphora::dem::slab_start", slabs + 1);
-  const auto start = slab_start_;
-  Kokkos::parallel_scan(
-      "amphora::dem::order_rows::slab_starts", RangePolicy<ExecSpace>(exec_, 0, total + 1),
-      KOKKOS_LAMBDA(int a, int& before, bool final) {
-        const bool first = a == total || starts(a);
-        if (final && first) start(before) = a;
-        before += first;
-      });
-  colour_slabs_[0] = 0;
-  colour_slabs_[1] = even_slabs;
-  colour_slabs_[2] = slabs;
+  // 2 r_max, each centre within skin / 2 of its build position) are disjoint.
+  schedule_ = kernels::particles::slab_schedule(exec_, row_cells(), x_build_, p_.size(), p_.gid);
 }
 
 template <class ExecSpace>
@@ -910,179 +720,36 @@ void DemSystem<ExecSpace>::kick() const {
 
 template <class ExecSpace>
 void DemSystem<ExecSpace>::compute_forces() {
-  const double dt = config_.dt, t = time_;
+  namespace particles = kernels::particles;
   const double g0 = config_.gravity[0], g1 = config_.gravity[1], g2 = config_.gravity[2];
-  const int n = p_.n_owned;
-  // Restrict-qualified Views: no store through one may alias another, so the compiler keeps
-  // loads in registers across the contact loop (about 1.3x on the dense bed).
-  using R = Kokkos::MemoryTraits<Kokkos::Restrict>;
-  const Rows3<const double> x(p_.x), v(p_.v), om(p_.omega);
-  const Rows3<double> f(p_.force), tq(p_.torque), shear(shear_);
-  const Kokkos::View<const double*, Mem, R> rad = p_.radius, mass = p_.mass;
-  const Kokkos::View<const int*, Mem, R> mat = p_.material, off = list_.offsets,
-                                         nbr = list_.neighbors, half = half_start_,
-                                         order = row_order_, slab = slab_start_;
-  const Kokkos::View<const PairCoefficients**, Mem, R> pairs = pairs_;
-  const Kokkos::View<const unsigned*, Mem, R> wnear = wall_near_;
-  const Kokkos::View<unsigned*, Mem, R> rmask = row_mask_;
-  // Force and torque start at zero (kick_drift left them so, having used them): the rows add
-  // to them, even slabs in parallel, then odd ones; in a slab, row by row in order. A row adds
-  // its particle's gravity, walls and share of its pairs with larger-gid partners in one go,
-  // and the partners' shares to theirs.
+  // Force and torque start at zero (kick_drift left them so, having used them): the slab
+  // schedule's rows add to them (a row its particle's gravity, walls and share of its pairs
+  // with larger-gid partners in one go, and the partners' shares to theirs).
   if (!forces_zeroed_) {
     Kokkos::deep_copy(exec_, p_.force, 0.0);
     Kokkos::deep_copy(exec_, p_.torque, 0.0);
   }
   forces_zeroed_ = false;
-  const BodyForces<Mem> body{p_.radius,   p_.mass,    p_.material, pairs_,     walls_,
-                             wall_shear_, wall_mask_, n_walls_,    config_.dt, {g0, g1, g2}};
-  const PairContact<Mem> contact{v, om, p_.mass, p_.material, pairs_, dt};
-  if (by_particle_) {
-    forces_by_particle(body, contact);
-    return;
-  }
-  for (int colour = 0; colour < 2; ++colour) {
-    // Slabs hold unequal numbers of rows: one at a time to whichever thread is free.
-    using Slabs = Kokkos::RangePolicy<ExecSpace, Kokkos::Schedule<Kokkos::Dynamic>, Kokkos::IndexType<int>>;
-    Kokkos::parallel_for(
-        "amphora::dem::pair_forces",
-        Slabs(exec_, colour_slabs_[colour], colour_slabs_[colour + 1], Kokkos::ChunkSize(1)),
-        KOKKOS_LAMBDA(int u) {
-          for (int a = slab(u); a < slab(u + 1); ++a) {
-            // the springs of a row a few ahead: their lines are far apart and read only where
-            // pairs touch, which no hardware prefetcher foresees
-            if (a + 4 < slab(u + 1)) {
-              const int r = order(a + 4);
-              const double* p = shear.p + 3 * size_t(half(r));
-              if (half(r) < off(r + 1)) prefetch_line(p, true);
-              if (half(r) + 1 < off(r + 1)) prefetch_line(p + 5, true);
-            }
-            const int i = order(a);
-            const bool owned = i < n;  // else a ghost's row: only its pairs with owned particles
-            const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
-            const double vi[3] = {v(i, 0), v(i, 1), v(i, 2)};
-            const double wi[3] = {om(i, 0), om(i, 1), om(i, 2)};
-            const double ri = rad(i), mi = mass(i);
-            const int mati = mat(i);
-            // gravity, the walls, and i's share of its pairs with larger-gid partners in gid
-            // order
-            double F[3] = {0, 0, 0};
-            double T[3] = {0, 0, 0};
-            if (owned) body(i, t, wnear(i), xi, vi, wi, F, T);
-            const int k0 = half(i);
-            unsigned springs = rmask(i);
-            for (int k = half(i); k < off(i + 1); ++k) {
-              const int j = nbr(k);
-              if (!owned && j >= n) continue;
-              const double dx[3] = {x(j, 0) - xi[0], x(j, 1) - xi[1], x(j, 2) - xi[2]};
-              const double d2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-              const double rj = rad(j), rsum = ri + rj;
-              const unsigned bit = k - k0 < 32 ? 1u << (k - k0) : 0u;
-              if (d2 >= rsum * rsum) {
-                // Contact lost (or never made): its spring resets. Touched only when it may be
-                // set, so the many near-but-apart neighbours cost no history traffic.
-                if (bit == 0u || (springs & bit)) {
-                  shear(k, 0) = shear(k, 1) = shear(k, 2) = 0.0;
-                  springs &= ~bit;
-                }
-                continue;
-              }
-              springs |= bit;
-              double s[3] = {shear(k, 0), shear(k, 1), shear(k, 2)};
-              const ContactForce c = contact(j, ri, rj, mi, mati, vi, wi, dx, d2, rsum, s);
-              for (int d = 0; d < 3; ++d) {
-                shear(k, d) = s[d];
-                F[d] += c.force[d];
-                T[d] += ri * c.moment[d] + c.rolling[d];
-              }
-              if (j < n) {
-                for (int d = 0; d < 3; ++d) {
-                  f(j, d) -= c.force[d];
-                  tq(j, d) += rj * c.moment[d] - c.rolling[d];
-                }
-              }
-            }
-            rmask(i) = springs;
-            if (owned) {
-              for (int d = 0; d < 3; ++d) {
-                f(i, d) += F[d];
-                tq(i, d) += T[d];
-              }
-            }
-          }
-        });
-  }
-}
-
-template <class ExecSpace>
-void DemSystem<ExecSpace>::forces_by_particle(const BodyForces<Mem>& body, const PairContact<Mem>& contact) {
-  const int n = p_.n_owned, total = p_.size();
-  const double t = time_;
-  if (shear_next_.extent(0) != shear_.extent(0))  // entries no row owns stay zero in both
+  if (by_particle_ && shear_next_.extent(0) != shear_.extent(0))  // entries no row owns stay 0
     shear_next_ = decltype(shear_)("amphora::dem::shear_next", shear_.extent(0));
-  const Rows3<const double> x(p_.x), v(p_.v), om(p_.omega), in(shear_);
-  const Rows3<double> f(p_.force), tq(p_.torque), out(shear_next_);
-  const auto rad = p_.radius, mass = p_.mass;
-  const auto mat = p_.material;
-  const auto gid = p_.gid;
-  const auto off = list_.offsets, half = half_start_, nbr = list_.neighbors;
-  const auto wnear = wall_near_;
-  Kokkos::parallel_for(
-      "amphora::dem::pair_forces_by_particle", RangePolicy<ExecSpace>(exec_, 0, total), KOKKOS_LAMBDA(int i) {
-        const bool owned = i < n;  // a ghost's row only advances its springs with owned partners
-        const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
-        const double vi[3] = {v(i, 0), v(i, 1), v(i, 2)};
-        const double wi[3] = {om(i, 0), om(i, 1), om(i, 2)};
-        const double ri = rad(i), mi = mass(i);
-        const int mati = mat(i);
-        double F[3] = {0, 0, 0};
-        double T[3] = {0, 0, 0};
-        if (owned) body(i, t, wnear(i), xi, vi, wi, F, T);
-        // partners of larger gid: the row's own springs, read from `in`, written to `out`
-        for (int k = half(i); k < off(i + 1); ++k) {
-          const int j = nbr(k);
-          double s[3] = {in(k, 0), in(k, 1), in(k, 2)};
-          if (owned || j < n) {
-            const double dx[3] = {x(j, 0) - xi[0], x(j, 1) - xi[1], x(j, 2) - xi[2]};
-            const double d2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-            const double rj = rad(j), rsum = ri + rj;
-            if (d2 >= rsum * rsum) {
-              s[0] = s[1] = s[2] = 0.0;  // contact lost (or never made): the spring resets
-            } else {
-              const ContactForce c = contact(j, ri, rj, mi, mati, vi, wi, dx, d2, rsum, s);
-              for (int d = 0; d < 3; ++d) {
-                F[d] += c.force[d];
-                T[d] += ri * c.moment[d] + c.rolling[d];
-              }
-            }
-          }
-          for (int d = 0; d < 3; ++d) out(k, d) = s[d];
-        }
-        if (!owned) return;
-        // partners of smaller gid: the pair in the partner's orientation, from its spring
-        for (int k = off(i); k < half(i); ++k) {
-          const int j = nbr(k);
-          const double xj[3] = {x(j, 0), x(j, 1), x(j, 2)};
-          const double dx[3] = {xi[0] - xj[0], xi[1] - xj[1], xi[2] - xj[2]};
-          const double d2 = dx[0] * dx[0] + dx[1] * dx[1] + dx[2] * dx[2];
-          const double rj = rad(j), rsum = rj + ri;
-          if (d2 >= rsum * rsum) continue;
-          const int e = own_entry(off, half, nbr, gid, j, gid(i));
-          double s[3] = {in(e, 0), in(e, 1), in(e, 2)};
-          const double vj[3] = {v(j, 0), v(j, 1), v(j, 2)};
-          const double wj[3] = {om(j, 0), om(j, 1), om(j, 2)};
-          const ContactForce c = contact(i, rj, ri, mass(j), mat(j), vj, wj, dx, d2, rsum, s);
-          for (int d = 0; d < 3; ++d) {
-            F[d] -= c.force[d];
-            T[d] += ri * c.moment[d] - c.rolling[d];
-          }
-        }
-        for (int d = 0; d < 3; ++d) {
-          f(i, d) = F[d];
-          tq(i, d) = T[d];
-        }
-      });
-  std::swap(shear_, shear_next_);
+  // Restrict-qualified Views: no store through one may alias another, so the compiler keeps
+  // loads in registers across the contact loop (about 1.3x on the dense bed).
+  const Rows3<const double> x(p_.x), v(p_.v), om(p_.omega);
+  const Rows3<double> springs_out(by_particle_ ? shear_next_ : shear_);
+  const HertzMindlinPairLaw<Mem> law{
+      x, v, om, Rows3<double>(p_.force), Rows3<double>(p_.torque), Rows3<const double>(shear_),
+      springs_out, p_.radius, p_.mass, p_.material, wall_near_,
+      BodyForces<Mem>{p_.radius, p_.mass, p_.material, pairs_, walls_, wall_shear_, wall_mask_,
+                      n_walls_, config_.dt, {g0, g1, g2}},
+      PairContact<Mem>{v, om, p_.mass, p_.material, pairs_, config_.dt}, time_};
+  const particles::HalfPairList<Mem> pairs{list_.offsets, list_.neighbors, half_start_};
+  const particles::Spheres<Mem> spheres{x, p_.radius};
+  if (by_particle_) {
+    particles::pair_sums_by_particle(exec_, pairs, spheres, p_.gid, p_.n_owned, p_.size(), law);
+    std::swap(shear_, shear_next_);
+  } else {
+    particles::pair_sums_by_slabs(exec_, schedule_, pairs, spheres, p_.n_owned, row_mask_, law);
+  }
 }
 
 template <class ExecSpace>
@@ -1148,7 +815,6 @@ std::vector<std::pair<std::int64_t, std::int64_t>> DemSystem<ExecSpace>::contact
 template <class ExecSpace>
 DemDiagnostics DemSystem<ExecSpace>::diagnostics() const {
   synchronize();
-  DemDiagnostics out;
   const int n = p_.n_owned;
   const auto x = p_.x, v = p_.v, om = p_.omega;
   const auto rad = p_.radius, mass = p_.mass, in = p_.inertia;
@@ -1161,102 +827,39 @@ DemDiagnostics DemSystem<ExecSpace>::diagnostics() const {
   const double t = time_;
   const double g0 = config_.gravity[0], g1 = config_.gravity[1], g2 = config_.gravity[2];
   const bool have_list = has_lists();
-  double ke = 0, re = 0, pe = 0, el = 0, mo = 0;
+  // One pass over the owned particles: energies, contacts (each pair seen from both sides) and
+  // the largest overlaps, of pairs and of walls.
+  double ke = 0, re = 0, pe = 0, el = 0, mo = 0, wel = 0, wmo = 0;
   long long contacts = 0, wcontacts = 0;
-  using Policy = RangePolicy<ExecSpace>;
   Kokkos::parallel_reduce(
-      "amphora::dem::diagnostics::kinetic", Policy(exec_, 0, n),
-      KOKKOS_LAMBDA(int i, double& k) {
+      "amphora::dem::diagnostics", RangePolicy<ExecSpace>(exec_, 0, n),
+      KOKKOS_LAMBDA(int i, double& k, double& r, double& p, double& e, long long& c, double& m,
+                    double& we, long long& wc, double& wm) {
         k += 0.5 * mass(i) * (v(i, 0) * v(i, 0) + v(i, 1) * v(i, 1) + v(i, 2) * v(i, 2));
-      },
-      ke);
-  Kokkos::parallel_reduce(
-      "amphora::dem::diagnostics::rotational", Policy(exec_, 0, n),
-      KOKKOS_LAMBDA(int i, double& r) {
         r += 0.5 * in(i) * (om(i, 0) * om(i, 0) + om(i, 1) * om(i, 1) + om(i, 2) * om(i, 2));
-      },
-      re);
-  Kokkos::parallel_reduce(
-      "amphora::dem::diagnostics::gravity", Policy(exec_, 0, n),
-      KOKKOS_LAMBDA(int i, double& p) {
         p -= mass(i) * (g0 * x(i, 0) + g1 * x(i, 1) + g2 * x(i, 2));
-      },
-      pe);
-  if (have_list) {
-    Kokkos::parallel_reduce(
-        "amphora::dem::diagnostics::elastic", Policy(exec_, 0, n),
-        KOKKOS_LAMBDA(int i, double& e) {
-          for (int k = off(i); k < off(i + 1); ++k) {
-            const int j = nbr(k);
-            double d2 = 0;
-            for (int d = 0; d < 3; ++d) d2 += (x(j, d) - x(i, d)) * (x(j, d) - x(i, d));
-            const double rs = rad(i) + rad(j);
-            if (d2 >= rs * rs) continue;
-            const double delta = rs - math::sqrt(d2), reff = rad(i) * rad(j) / rs;
-            // Hertz potential (8/15) E* sqrt(R*) delta^{5/2}; each pair is seen from both sides.
-            e += 0.5 * (8.0 / 15.0) * pairs(mat(i), mat(j)).e_star * math::sqrt(reff) * delta *
-                 delta * math::sqrt(delta);
-          }
-        },
-        el);
-    Kokkos::parallel_reduce(
-        "amphora::dem::diagnostics::contacts", Policy(exec_, 0, n),
-        KOKKOS_LAMBDA(int i, long long& c) {
-          for (int k = off(i); k < off(i + 1); ++k) {
-            const int j = nbr(k);
-            double d2 = 0;
-            for (int d = 0; d < 3; ++d) d2 += (x(j, d) - x(i, d)) * (x(j, d) - x(i, d));
-            const double rs = rad(i) + rad(j);
-            if (d2 < rs * rs) ++c;
-          }
-        },
-        contacts);
-    Kokkos::parallel_reduce(
-        "amphora::dem::diagnostics::max_overlap", Policy(exec_, 0, n),
-        KOKKOS_LAMBDA(int i, double& m) {
-          for (int k = off(i); k < off(i + 1); ++k) {
-            const int j = nbr(k);
-            double d2 = 0;
-            for (int d = 0; d < 3; ++d) d2 += (x(j, d) - x(i, d)) * (x(j, d) - x(i, d));
-            const double rs = rad(i) + rad(j);
-            if (d2 < rs * rs) m = math::max(m, (rs - math::sqrt(d2)) / math::min(rad(i), rad(j)));
-          }
-        },
-        Kokkos::Max<double>(mo));
-  }
-  double wel = 0, wmo = 0;
-  Kokkos::parallel_reduce(
-      "amphora::dem::diagnostics::wall_elastic", Policy(exec_, 0, n),
-      KOKKOS_LAMBDA(int i, double& e) {
+        for (int a = have_list ? off(i) : 0; have_list && a < off(i + 1); ++a) {
+          const int j = nbr(a);
+          double d2 = 0;
+          for (int d = 0; d < 3; ++d) d2 += (x(j, d) - x(i, d)) * (x(j, d) - x(i, d));
+          const double rs = rad(i) + rad(j);
+          if (d2 >= rs * rs) continue;
+          const double delta = rs - math::sqrt(d2), reff = rad(i) * rad(j) / rs;
+          e += hertz_energy(0.5, pairs(mat(i), mat(j)).e_star, reff, delta);
+          ++c;
+          m = math::max(m, (rs - math::sqrt(d2)) / math::min(rad(i), rad(j)));
+        }
         const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
         for (int w = 0; w < nw; ++w) {
           double nn[3], delta, vw[3];
           if (!wall_contact(walls(w), t, xi, rad(i), nn, delta, vw)) continue;
-          e += (8.0 / 15.0) * pairs(mat(i), walls(w).material).e_star * math::sqrt(rad(i)) *
-               delta * delta * math::sqrt(delta);
+          we += hertz_energy(1.0, pairs(mat(i), walls(w).material).e_star, rad(i), delta);
+          ++wc;
+          wm = math::max(wm, delta / rad(i));
         }
       },
-      wel);
-  Kokkos::parallel_reduce(
-      "amphora::dem::diagnostics::wall_contacts", Policy(exec_, 0, n),
-      KOKKOS_LAMBDA(int i, long long& c) {
-        const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
-        for (int w = 0; w < nw; ++w) {
-          double nn[3], delta, vw[3];
-          if (wall_contact(walls(w), t, xi, rad(i), nn, delta, vw)) ++c;
-        }
-      },
-      wcontacts);
-  Kokkos::parallel_reduce(
-      "amphora::dem::diagnostics::wall_overlap", Policy(exec_, 0, n),
-      KOKKOS_LAMBDA(int i, double& m) {
-        const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
-        for (int w = 0; w < nw; ++w) {
-          double nn[3], delta, vw[3];
-          if (wall_contact(walls(w), t, xi, rad(i), nn, delta, vw)) m = math::max(m, delta / rad(i));
-        }
-      },
-      Kokkos::Max<double>(wmo));
+      ke, re, pe, el, contacts, Kokkos::Max<double>(mo), wel, wcontacts, Kokkos::Max<double>(wmo));
+  DemDiagnostics out;
   out.particles = comm_.sum(static_cast<long long>(n));
   out.contacts = comm_.sum(contacts) / 2;
   out.wall_contacts = comm_.sum(wcontacts);
@@ -1264,7 +867,8 @@ DemDiagnostics DemSystem<ExecSpace>::diagnostics() const {
   out.rotational = comm_.sum(re);
   out.gravity_potential = comm_.sum(pe);
   out.elastic = comm_.sum(el + wel);
-  out.max_overlap = comm_.max(std::max(mo, wmo));
+  // 0 without contacts (the Max reductions' identity is the lowest double)
+  out.max_overlap = std::max(0.0, comm_.max(std::max(mo, wmo)));
   return out;
 }
 

@@ -24,21 +24,19 @@
 #include <cstdint>
 #include <vector>
 
-#include "kernels/verlet_list.hpp"
 #include "base/communicator.hpp"
-#include "mesh/particle_set.hpp"
+#include "kernels/particles/slab_schedule.hpp"
+#include "kernels/particles/verlet_list.hpp"
+#include "mesh/particles/particle_set.hpp"
 #include "mesh/spatial_decomposition.hpp"
 #include "physics/dem/contact_model.hpp"
 #include "physics/dem/walls.hpp"
 
 namespace amphora::dem {
 
-namespace dem_system_kernels {
-template <class Mem>
-struct BodyForces;
-template <class Mem>
-struct PairContact;
-}  // namespace dem_system_kernels
+using kernels::particles::CellGrid;
+using kernels::particles::NeighborList;
+using mesh::ParticleSet;
 
 struct DemConfig {
   std::vector<Material> materials;  ///< particle and wall materials, indexed by material id
@@ -165,12 +163,11 @@ class DemSystem {
   void sort_owned_by_cell();
   void build_ghosts();
   void forward_ghosts();
+  /// Forces and torques of the current state: the pair loops of kernels/particles with the
+  /// Hertz–Mindlin pair law (dem_pair_law.hpp), by slabs (host spaces) or by particle
+  /// (devices: each pair evaluated by both of its particles, the springs read from shear_ and
+  /// written to shear_next_, then swapped).
   void compute_forces();
-  /// The devices' schedule of compute_forces: one work item per row, each pair evaluated by
-  /// both of its particles in the orientation of the smaller gid (no atomics, no colouring), the
-  /// springs read from shear_ and written to shear_next_, then swapped.
-  void forces_by_particle(const dem_system_kernels::BodyForces<Mem>& body,
-                          const dem_system_kernels::PairContact<Mem>& contact);
   void order_rows();
   CellGrid row_cells() const;  // the domain's grid the rows' order is taken on
   double kick_drift();
@@ -224,10 +221,8 @@ class DemSystem {
   // evaluates.
   Kokkos::View<int*, Mem> half_start_;
   // Rows in the order they run: slab by slab (slabs of one colour, even or odd, run in
-  // parallel); slab u holds row_order_(slab_start_(u) .. slab_start_(u+1)); the slabs of colour
-  // c are colour_slabs_[c] .. colour_slabs_[c+1].
-  Kokkos::View<int*, Mem> row_order_, slab_start_;
-  int colour_slabs_[3] = {0, 0, 0};
+  // parallel).
+  kernels::particles::SlabSchedule<Mem> schedule_;
 
   // Ghost forwarding plan: per exchange (d, side), the local indices sent and where the
   // received copies start.

@@ -91,4 +91,11 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficie
   return hertz_mindlin_force(c, r_eff, m_eff, n, delta, vn, v_rel, w_rel, dt, shear);
 }
 
+/// scale times the elastic energy of a Hertz contact, (8/15) E* sqrt(R*) delta^{5/2} (the
+/// integral of the normal force k_n sqrt(R* delta) delta over the overlap).
+KOKKOS_FORCEINLINE_FUNCTION double hertz_energy(double scale, double e_star, double r_eff,
+                                                double delta) {
+  return scale * (8.0 / 15.0) * e_star * math::sqrt(r_eff) * delta * delta * math::sqrt(delta);
+}
+
 }  // namespace amphora::dem

@@ -5,9 +5,9 @@
 // pair in both rows): a row's owner accumulates its own sum with no atomics.
 #include <cstdint>
 
-#include "kernels/binning.hpp"
+#include "kernels/particles/binning.hpp"
 
-namespace amphora {
+namespace amphora::kernels::particles {
 
 /// Visits, for point i, every other binned point j with |x_i - x_j| < r_i + r_j + skin, by
 /// scanning the 27 cells around i's cell.
@@ -101,4 +101,25 @@ NeighborList<typename ExecSpace::memory_space> build_verlet_list(
   return list;
 }
 
-}  // namespace amphora
+/// Where each row's partners of larger key start (the list's rows are sorted by key): the
+/// entries from half(i) on are the pairs row i evaluates in a half-pair schedule.
+template <class ExecSpace, class Ids>
+Kokkos::View<int*, typename ExecSpace::memory_space> half_starts(
+    const ExecSpace& exec, const NeighborList<typename ExecSpace::memory_space>& list,
+    const Ids& key) {
+  const int rows = list.rows();
+  Kokkos::View<int*, typename ExecSpace::memory_space> half("amphora::particles::half_start",
+                                                             rows);
+  const auto off = list.offsets;
+  const auto nbr = list.neighbors;
+  Kokkos::parallel_for(
+      "amphora::particles::half_starts", RangePolicy<ExecSpace>(exec, 0, rows),
+      KOKKOS_LAMBDA(int i) {
+        int k = off(i);
+        while (k < off(i + 1) && key(nbr(k)) < key(i)) ++k;
+        half(i) = k;
+      });
+  return half;
+}
+
+}  // namespace amphora::kernels::particles

@@ -5,7 +5,7 @@
 // detection, and later void fractions and particle-cell maps.
 #include "kernels/spaces.hpp"
 
-namespace amphora {
+namespace amphora::kernels::particles {
 
 /// A uniform grid of cubic cells of side h covering [lo, lo + n h). Points outside are clamped
 /// into the boundary cells.
@@ -113,4 +113,4 @@ Bins<typename ExecSpace::memory_space> bin_points(const ExecSpace& exec, const C
   return b;
 }
 
-}  // namespace amphora
+}  // namespace amphora::kernels::particles

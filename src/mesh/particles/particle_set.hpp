@@ -7,7 +7,7 @@
 
 #include "kernels/spaces.hpp"
 
-namespace amphora {
+namespace amphora::mesh {
 
 template <class MemSpace>
 struct ParticleSet {
@@ -60,4 +60,4 @@ struct ParticleSet {
   }
 };
 
-}  // namespace amphora
+}  // namespace amphora::mesh
