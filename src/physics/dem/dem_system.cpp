@@ -10,6 +10,7 @@
 
 #include "kernels/particles/binning.hpp"
 #include "kernels/particles/pair_loop.hpp"
+#include "mesh/particles/particle_migration.hpp"
 #include "physics/dem/dem_pair_law.hpp"
 
 namespace amphora::dem {
@@ -63,8 +64,6 @@ void grow(View& v, int n) {
     Kokkos::resize(v, cap, v.extent(1));
   }
 }
-
-constexpr int kGhostRecord = 17;  // x3 v3 omega3 radius mass inertia material gid x_build3
 
 }  // namespace dem_system_kernels
 using namespace dem_system_kernels;
@@ -316,79 +315,30 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
       leaving);
   if (!comm_.any(leaving > 0)) return;
 
-  // Rare path (rebuilds where something leaves): pack on the host. Force and torque are not
-  // carried: the force evaluation under way zeroes them again.
+  // Force and torque are not carried: the force evaluation under way zeroes them again.
   forces_zeroed_ = false;
-  const int nw = static_cast<int>(wall_shear_.extent(1)), K = config_.max_contacts;
-  // x v omega radius material gid spare, walls' and contacts' history, x_build
-  const int rec = 12 + 1 + 3 * nw + 4 * K + 3;
-  HostArrays h = to_host();
-  auto &hx = h.x, &hv = h.v, &ho = h.omega;
-  auto &hr = h.radius;
-  auto &hxb = h.x_build;
-  auto &hmat = h.material;
-  auto &hgid = h.gid;
-  auto &hws = h.wall_shear;
-  auto &hrg = h.rec_gid;
-  auto &hrs = h.rec_shear;
-  auto pack = [&](int i, std::vector<double>& out) {
-    for (int d = 0; d < 3; ++d) out.push_back(hx(i, d));
-    for (int d = 0; d < 3; ++d) out.push_back(hv(i, d));
-    for (int d = 0; d < 3; ++d) out.push_back(ho(i, d));
-    out.push_back(hr(i));
-    out.push_back(double(hmat(i)));
-    out.push_back(double(hgid(i)));
-    out.push_back(0.0);
-    for (int w = 0; w < nw; ++w)
-      for (int d = 0; d < 3; ++d) out.push_back(hws(i, w, d));
-    for (int c = 0; c < K; ++c) {
-      out.push_back(double(hrg(i, c)));
-      for (int d = 0; d < 3; ++d) out.push_back(hrs(i, c, d));
-    }
-    for (int d = 0; d < 3; ++d) out.push_back(hxb(i, d));
-  };
-  std::vector<std::vector<double>> out(comm_.size());
-  std::vector<double> kept;
-  for (int i = 0; i < n; ++i) {
-    const double pos[3] = {hx(i, 0), hx(i, 1), hx(i, 2)};
-    bool in_domain = true;
-    for (int d = 0; d < 3; ++d) in_domain = in_domain && pos[d] >= dlo[d] && pos[d] <= dhi[d];
-    if (!in_domain) continue;  // removed: left the domain
-    const int owner = decomposition_.owner(pos);
-    pack(i, owner == comm_.rank() ? kept : out[owner]);
-  }
-  const std::vector<double> in = decomposition_.exchange_all(out);
-  kept.insert(kept.end(), in.begin(), in.end());
-  const int m = static_cast<int>(kept.size()) / rec;
-
+  const mesh::OwnerMap owner = decomposition_.owner_map();
+  Kokkos::View<int*, Mem> dest("amphora::dem::destination", n);
+  Kokkos::parallel_for(
+      "amphora::dem::destination", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
+        const double a = x(i, 0), b = x(i, 1), z = x(i, 2);
+        const bool in_domain = a >= d0 && a <= e0 && b >= d1 && b <= e1 && z >= d2 && z <= e2;
+        dest(i) = in_domain ? owner(a, b, z) : -1;  // -1: removed, it left the domain
+      });
+  mesh::ParticleMigration<ExecSpace> migration(decomposition_, dest, n);
+  const int m = migration.send(exec_, migrating_fields());
   p_.n_owned = 0;
   resize_owned(m);
-  h = to_host();
-  auto &hm = h.mass, &hin = h.inertia;
-  for (int i = 0; i < m; ++i) {
-    const double* q = kept.data() + size_t(i) * rec;
-    for (int d = 0; d < 3; ++d) {
-      hx(i, d) = q[d];
-      hv(i, d) = q[3 + d];
-      ho(i, d) = q[6 + d];
-    }
-    hr(i) = q[9];
-    hmat(i) = static_cast<int>(q[10]);
-    hgid(i) = static_cast<std::int64_t>(q[11]);
-    const double rad = hr(i);
-    hm(i) = config_.materials[hmat(i)].density * 4.0 / 3.0 * M_PI * rad * rad * rad;
-    hin(i) = 0.4 * hm(i) * rad * rad;
-    q += 13;
-    for (int w = 0; w < nw; ++w)
-      for (int d = 0; d < 3; ++d) hws(i, w, d) = *q++;
-    for (int c = 0; c < K; ++c) {
-      hrg(i, c) = static_cast<std::int64_t>(*q++);
-      for (int d = 0; d < 3; ++d) hrs(i, c, d) = *q++;
-    }
-    for (int d = 0; d < 3; ++d) hxb(i, d) = *q++;
-  }
-  from_host(h);
+  migration.receive(exec_, migrating_fields());
   p_.n_owned = m;
+}
+
+template <class ExecSpace>
+mesh::ParticleFields<ExecSpace> DemSystem<ExecSpace>::migrating_fields() const {
+  mesh::ParticleFields<ExecSpace> f;
+  f.add(p_.x).add(p_.v).add(p_.omega).add(p_.radius).add(p_.mass).add(p_.inertia);
+  f.add(p_.material).add(p_.gid).add(wall_shear_).add(rec_gid_).add(rec_shear_).add(x_build_);
+  return f;
 }
 
 template <class ExecSpace>
@@ -426,150 +376,26 @@ void DemSystem<ExecSpace>::sort_owned_by_cell() {
 
 template <class ExecSpace>
 void DemSystem<ExecSpace>::build_ghosts() {
-  legs_.clear();
+  using Halo = mesh::ParticleHalo<ExecSpace>;
   p_.n_ghost = 0;
-  if (comm_.size() == 1) return;
-  // Host copies of what a ghost needs; grown as ghosts arrive (they may be forwarded on).
   const int n = p_.n_owned;
-  auto hx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.x);
-  auto hv = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.v);
-  auto ho = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.omega);
-  auto hr = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.radius);
-  auto hm = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.mass);
-  auto hin = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.inertia);
-  auto hmat = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.material);
-  auto hgid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.gid);
-  auto hxb = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x_build_);
-  std::vector<double> data;  // ghost records in arrival order
-  auto value = [&](int i, int field) -> double {
-    if (i < n) {
-      switch (field) {
-        case 0: case 1: case 2: return hx(i, field);
-        case 3: case 4: case 5: return hv(i, field - 3);
-        case 6: case 7: case 8: return ho(i, field - 6);
-        case 9: return hr(i);
-        case 10: return hm(i);
-        case 11: return hin(i);
-        case 12: return double(hmat(i));
-        case 13: return double(hgid(i));
-        case 14: case 15: case 16: return hxb(i, field - 14);
-        default: return 0.0;
-      }
-    }
-    return data[size_t(i - n) * kGhostRecord + field];
-  };
-  const auto lo = decomposition_.lo(comm_.rank());
-  const auto hi = decomposition_.hi(comm_.rank());
-  for (int d = 0; d < 3; ++d) {
-    // Candidates: owned particles and ghosts from earlier directions (so edges and corners
-    // arrive), never ghosts that came in along this direction (they would go back home).
-    const int candidates = n + int(data.size()) / kGhostRecord;
-    for (int side = 0; side < 2; ++side) {
-      GhostLeg leg{d, side, {}, 0, 0, {}, {}};
-      std::vector<int> send;
-      std::vector<double> out;
-      const int total = n + int(data.size()) / kGhostRecord;
-      if (decomposition_.neighbor(d, side) >= 0) {
-        for (int i = 0; i < candidates; ++i) {
-          const double c = value(i, 14 + d);  // where the lists are built
-          if (side == 0 ? c < lo[d] + ghost_width_ : c >= hi[d] - ghost_width_) {
-            send.push_back(i);
-            for (int f = 0; f < kGhostRecord; ++f) out.push_back(value(i, f));
-          }
-        }
-      }
-      const std::vector<double> in = decomposition_.exchange_face(d, side, out);
-      leg.recv_first = total;
-      leg.recv_count = int(in.size()) / kGhostRecord;
-      data.insert(data.end(), in.begin(), in.end());
-      leg.send = Kokkos::View<int*, Mem>("amphora::dem::ghost_send", send.size());
-      leg.send_buf = Kokkos::View<double*, Mem>("amphora::dem::ghost_send_buf", 9 * send.size());
-      leg.recv_buf = Kokkos::View<double*, Mem>("amphora::dem::ghost_recv_buf", 9 * size_t(leg.recv_count));
-      auto hs = Kokkos::create_mirror_view(leg.send);
-      for (size_t k = 0; k < send.size(); ++k) hs(k) = send[k];
-      Kokkos::deep_copy(leg.send, hs);
-      legs_.push_back(leg);
-    }
-  }
-  const int ng = int(data.size()) / kGhostRecord;
-  p_.reserve(n + ng);
-  grow(x_build_, n + ng);
-  hxb = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x_build_);
-  hx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.x);
-  hv = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.v);
-  ho = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.omega);
-  hr = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.radius);
-  hm = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.mass);
-  hin = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.inertia);
-  hmat = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.material);
-  hgid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.gid);
-  for (int g = 0; g < ng; ++g) {
-    const double* q = data.data() + size_t(g) * kGhostRecord;
-    const int i = n + g;
-    for (int d = 0; d < 3; ++d) {
-      hx(i, d) = q[d];
-      hv(i, d) = q[3 + d];
-      ho(i, d) = q[6 + d];
-    }
-    hr(i) = q[9];
-    hm(i) = q[10];
-    hin(i) = q[11];
-    hmat(i) = static_cast<int>(q[12]);
-    hgid(i) = static_cast<std::int64_t>(q[13]);
-    for (int d = 0; d < 3; ++d) hxb(i, d) = q[14 + d];
-  }
-  Kokkos::deep_copy(x_build_, hxb);
-  Kokkos::deep_copy(p_.x, hx);
-  Kokkos::deep_copy(p_.v, hv);
-  Kokkos::deep_copy(p_.omega, ho);
-  Kokkos::deep_copy(p_.radius, hr);
-  Kokkos::deep_copy(p_.mass, hm);
-  Kokkos::deep_copy(p_.inertia, hin);
-  Kokkos::deep_copy(p_.material, hmat);
-  Kokkos::deep_copy(p_.gid, hgid);
-  p_.n_ghost = ng;
+  // What a ghost needs, chosen where the lists are built (x_build_).
+  p_.n_ghost = halo_.build(exec_, decomposition_, n, ghost_width_, [&](int capacity) {
+    p_.reserve(capacity);
+    grow(x_build_, capacity);
+    mesh::ParticleFields<ExecSpace> record;
+    record.add(p_.x).add(p_.v).add(p_.omega).add(p_.radius).add(p_.mass).add(p_.inertia);
+    record.add(p_.material).add(p_.gid).add(x_build_);
+    return typename Halo::Arrays{record, x_build_};
+  });
 }
 
 template <class ExecSpace>
 void DemSystem<ExecSpace>::forward_ghosts() {
-  if (legs_.empty()) return;
-  const auto x = p_.x;
-  const auto v = p_.v;
-  const auto om = p_.omega;
-  for (const auto& leg : legs_) {
-    const auto send = leg.send;
-    const int ns = static_cast<int>(send.extent(0));
-    const auto buf = leg.send_buf, rbuf = leg.recv_buf;
-    Kokkos::parallel_for(
-        "amphora::dem::forward_ghosts::pack", RangePolicy<ExecSpace>(exec_, 0, ns),
-        KOKKOS_LAMBDA(int k) {
-          const int i = send(k);
-          for (int d = 0; d < 3; ++d) {
-            buf(9 * k + d) = x(i, d);
-            buf(9 * k + 3 + d) = v(i, d);
-            buf(9 * k + 6 + d) = om(i, d);
-          }
-        });
-    exec_.fence();
-    // Host mirrors (the buffers themselves on host back ends): both sides know the sizes.
-    const auto hb = Kokkos::create_mirror_view_and_copy(HostMemSpace(), buf);
-    const auto hrb = Kokkos::create_mirror_view(rbuf);
-    decomposition_.exchange_face(leg.d, leg.side, hb.data(), int(hb.size()), hrb.data(),
-                                 int(hrb.size()));
-    Kokkos::deep_copy(rbuf, hrb);
-    const int first = leg.recv_first;
-    Kokkos::parallel_for(
-        "amphora::dem::forward_ghosts::unpack", RangePolicy<ExecSpace>(exec_, 0, leg.recv_count),
-        KOKKOS_LAMBDA(int k) {
-          const int i = first + k;
-          for (int d = 0; d < 3; ++d) {
-            x(i, d) = rbuf(9 * k + d);
-            v(i, d) = rbuf(9 * k + 3 + d);
-            om(i, d) = rbuf(9 * k + 6 + d);
-          }
-        });
-  }
-  exec_.fence();
+  if (halo_.empty()) return;
+  mesh::ParticleFields<ExecSpace> moving;
+  moving.add(p_.x).add(p_.v).add(p_.omega);
+  halo_.forward(exec_, decomposition_, moving);
 }
 
 template <class ExecSpace>

@@ -27,8 +27,10 @@
 #include "base/communicator.hpp"
 #include "kernels/particles/slab_schedule.hpp"
 #include "kernels/particles/verlet_list.hpp"
+#include "mesh/particles/particle_fields.hpp"
+#include "mesh/particles/particle_halo.hpp"
 #include "mesh/particles/particle_set.hpp"
-#include "mesh/spatial_decomposition.hpp"
+#include "mesh/particles/spatial_decomposition.hpp"
 #include "physics/dem/contact_model.hpp"
 #include "physics/dem/walls.hpp"
 
@@ -96,7 +98,7 @@ class DemSystem {
   long long steps() const { return steps_; }
   const DemConfig& config() const { return config_; }
   void set_dt(double dt) { config_.dt = dt; }
-  const SpatialDecomposition& decomposition() const { return decomposition_; }
+  const mesh::SpatialDecomposition& decomposition() const { return decomposition_; }
   ParticleSet<Mem>& particles() {
     synchronize();
     return p_;
@@ -160,6 +162,8 @@ class DemSystem {
   void history_to_records();
   void records_to_history();
   void remove_and_migrate();
+  /// Every per-particle array a particle carries to another rank.
+  mesh::ParticleFields<ExecSpace> migrating_fields() const;
   void sort_owned_by_cell();
   void build_ghosts();
   void forward_ghosts();
@@ -187,7 +191,7 @@ class DemSystem {
   DemConfig config_;
   Communicator comm_;
   ExecSpace exec_;
-  SpatialDecomposition decomposition_;
+  mesh::SpatialDecomposition decomposition_;
   Kokkos::View<PairCoefficients**, Mem> pairs_;
   Kokkos::View<Wall*, Mem> walls_;
   int n_walls_ = 0;
@@ -224,15 +228,7 @@ class DemSystem {
   // parallel).
   kernels::particles::SlabSchedule<Mem> schedule_;
 
-  // Ghost forwarding plan: per exchange (d, side), the local indices sent and where the
-  // received copies start.
-  struct GhostLeg {
-    int d, side;
-    Kokkos::View<int*, Mem> send;
-    int recv_first = 0, recv_count = 0;
-    Kokkos::View<double*, Mem> send_buf, recv_buf;  // kept from step to step
-  };
-  std::vector<GhostLeg> legs_;
+  mesh::ParticleHalo<ExecSpace> halo_;  // the ghosts' plan, refreshed each step
 
   double time_ = 0;
   long long steps_ = 0;

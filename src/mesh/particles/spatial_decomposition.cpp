@@ -1,8 +1,8 @@
-#include "mesh/spatial_decomposition.hpp"
+#include "mesh/particles/spatial_decomposition.hpp"
 
 #include <cmath>
 
-namespace amphora {
+namespace amphora::mesh {
 
 namespace {
 Index3 cells_of(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double w) {
@@ -90,4 +90,4 @@ void SpatialDecomposition::exchange_face(int d, int side, const double* out, int
                comm_.get(), MPI_STATUS_IGNORE);
 }
 
-}  // namespace amphora
+}  // namespace amphora::mesh

@@ -5,10 +5,31 @@
 #include <array>
 #include <vector>
 
-#include "mesh/box_decomposition.hpp"
 #include "base/communicator.hpp"
+#include "kernels/spaces.hpp"
+#include "mesh/box_decomposition.hpp"
 
-namespace amphora {
+namespace amphora::mesh {
+
+/// SpatialDecomposition::owner as a device-copyable map (the same arithmetic, so the same
+/// owner on host and device).
+struct OwnerMap {
+  double lo[3], h[3];
+  int cells[3], blocks[3];
+  KOKKOS_INLINE_FUNCTION int operator()(double x0, double x1, double x2) const {
+    const double x[3] = {x0, x1, x2};
+    int c[3];
+    for (int d = 0; d < 3; ++d) {
+      const int n = cells[d];
+      int cell = static_cast<int>(math::floor((x[d] - lo[d]) / h[d]));
+      cell = cell < 0 ? 0 : (cell >= n ? n - 1 : cell);
+      const int p = blocks[d], base = n / p, extra = n % p;
+      const int long_cells = extra * (base + 1);
+      c[d] = cell < long_cells ? cell / (base + 1) : extra + (cell - long_cells) / base;
+    }
+    return c[0] + blocks[0] * (c[1] + blocks[1] * c[2]);
+  }
+};
 
 class SpatialDecomposition {
  public:
@@ -24,6 +45,15 @@ class SpatialDecomposition {
   /// Owner of a point (points outside the box go to the nearest subdomain).
   int owner(const double x[3]) const;
   int neighbor(int d, int side) const { return boxes_.neighbor(comm_.rank(), d, side); }
+  /// owner() for kernels.
+  OwnerMap owner_map() const {
+    OwnerMap m;
+    for (int d = 0; d < 3; ++d) {
+      m.lo[d] = lo_[d], m.h[d] = h_[d];
+      m.cells[d] = boxes_.global_cells()[d], m.blocks[d] = boxes_.blocks()[d];
+    }
+    return m;
+  }
 
   /// Sends buffers[r] (records of `record_size` doubles) to rank r and returns everything
   /// received, in rank order. Collective.
@@ -42,4 +72,4 @@ class SpatialDecomposition {
   BoxDecomposition boxes_;
 };
 
-}  // namespace amphora
+}  // namespace amphora::mesh
