@@ -59,6 +59,13 @@ std::string enabled_backends();
 #else
 #define AMPHORA_IF_HIP(x)
 #endif
+// MACRO(space) for every enabled execution space: explicit instantiations of members defined
+// in another .cpp than their class's AMPHORA_INSTANTIATE_ON_EXEC_SPACES.
+#define AMPHORA_FOR_EACH_EXEC_SPACE(MACRO)      \
+  AMPHORA_IF_SERIAL(MACRO(Kokkos::Serial))      \
+  AMPHORA_IF_OPENMP(MACRO(Kokkos::OpenMP))      \
+  AMPHORA_IF_CUDA(MACRO(Kokkos::Cuda))          \
+  AMPHORA_IF_HIP(MACRO(Kokkos::Experimental::HIP))
 #define AMPHORA_INSTANTIATE_ON_EXEC_SPACES(CLASS)                \
   AMPHORA_IF_SERIAL(template class CLASS<Kokkos::Serial>;)       \
   AMPHORA_IF_OPENMP(template class CLASS<Kokkos::OpenMP>;)       \
