@@ -20,62 +20,14 @@
 #include "mesh/mac/tall_cell_grid.hpp"
 #include "physics/phase_times.hpp"
 #include "physics/water_mac/stoker_dam_break.hpp"
+#include "physics/water_mac/water_diagnostics.hpp"
+#include "physics/water_mac/water_scenes.hpp"
+#include "solvers/mac/lattice_pressure.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
-#include "solvers/mac/pressure_solver.hpp"
-#include "solvers/mac/tall_cell_matrix.hpp"
-#include "solvers/mac/tall_cell_multigrid.hpp"
 
 namespace amphora::water_mac {
 
-double martin_moyce_front(double T) {
-  // Martin & Moyce (1952), fig. 3, n^2 = 2, a = 2.25 in (digitised; as tabulated in PySPH's
-  // examples/dam_break data module): T = t sqrt(2 g / a), Z = x / a.
-  static const double data[][2] = {{0.832, 1.217}, {1.219, 1.474}, {1.997, 2.292}, {2.547, 2.995}, {3.345, 4.134},
-                                   {4.034, 4.944}, {4.418, 5.881}, {5.091, 6.980}, {5.685, 7.945}, {6.306, 8.966},
-                                   {6.822, 9.986}, {7.439, 10.963}, {8.031, 11.977}, {8.633, 13.005}, {9.237, 13.970}};
-  constexpr int n = sizeof(data) / sizeof(data[0]);
-  if (T <= data[0][0]) return data[0][1];
-  for (int m = 1; m < n; ++m)
-    if (T <= data[m][0]) {
-      const double s = (T - data[m - 1][0]) / (data[m][0] - data[m - 1][0]);
-      return data[m - 1][1] + s * (data[m][1] - data[m - 1][1]);
-    }
-  return data[n - 1][1];
-}
-
-ParamTable parameter_table() {
-  return {"water_mac",
-          "water on a uniform MAC grid: level set, semi-Lagrangian advection, ghost-fluid pressure projection",
-          {
-              string_param("scene", std::string("dam_break"), "initial state", {"dam_break", "wet_dam_break", "splash", "still"}),
-              int_param("cells_x", 64, at_least(2) & at_most(2048), "cells along x"),
-              int_param("cells_y", 32, at_least(2) & at_most(2048), "cells along y (up)"),
-              int_param("cells_z", 4, at_least(2) & at_most(2048), "cells along z"),
-              real_param("length_x", 0.2286, "m", above(0.0), "box length along x (the cell width is length_x / cells_x)"),
-              real_param("gravity", 9.81, "m/s^2", at_least(0.0), "gravitational acceleration (along -y)"),
-              real_param("density", 1000.0, "kg/m^3", above(0.0), "water density"),
-              real_param("cfl", 1.0, "1", above(0.0) & at_most(2.0), "largest CFL number of a sub-step (semi-Lagrangian: the trace length in cells)"),
-              string_param("solver", std::string("multigrid"), "pressure back end", {"multigrid", "hypre", "mic0"}),
-              real_param("tolerance", 1e-8, "1", above(0.0) & below(1.0), "relative residual of the pressure solve"),
-              int_param("max_iterations", 500, at_least(1), "pressure CG iteration limit"),
-              int_param("reinitialise_iterations", 2, at_least(0), "pseudo-time steps of level-set reinitialisation per sub-step"),
-              int_param("optical_depth", 0, at_least(0), "uniform cells below the surface before the tall cells (0: no tall cells)"),
-              real_param("column_width", 0.05715, "m", above(0.0), "dam breaks: width a of the water column behind the dam at x = a (the dry-bed column is 2a high)"),
-              real_param("reservoir_depth", 0.1, "m", above(0.0), "wet dam break: depth of the water behind the dam"),
-              real_param("tailwater_depth", 0.01, "m", above(0.0), "wet dam break: depth of the still water ahead of the dam"),
-              real_param("pool_depth", 0.6, "m", above(0.0), "splash and still water: depth of the water above y = 0"),
-              real_param("drop_radius", 0.08, "m", above(0.0), "splash: radius of the falling ball of water"),
-              real_param("drop_height", 0.85, "m", above(0.0), "splash: height of the ball's centre"),
-              real_param("drop_speed", 2.0, "m/s", at_least(0.0), "splash: initial downward speed of the ball"),
-              real_param("terrain_amplitude", 0.0, "m", at_least(0.0), "still/splash: amplitude of the sinusoidal bottom"),
-              real_param("terrain_base", 0.0, "m", at_least(0.0), "still/splash: mean height of the bottom"),
-          }};
-}
-
-// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
-// anonymous namespaces (Kokkos issue #1547).
-namespace water_mac_kernels {
-
+// The module lives in a named namespace: CUDA takes no extended lambda in an anonymous one.
 using Exec = DefaultExecSpace;
 using Mem = Exec::memory_space;
 using Vector = Kokkos::View<double*, Mem>;
@@ -354,58 +306,14 @@ class WaterMac final : public Module {
     }
   }
 
-  /// Signed distances of the initial water and the solid floor, on the host.
+  /// The initial water and the solid floor (water_scenes.cpp), then the cell types, the
+  /// solid faces and the velocity's first extrapolation.
   void initialise(const Parameters& p) {
-    const kernels::mac::MacGrid& g = grid_;
-    // ghost entries are never read; zero in every buffer, so a restart restores them exactly
-    std::vector<double> phi(g.padded_size(), 0.0), v(g.padded_size(), 0.0);
-    std::vector<std::uint8_t> solid(g.padded_size(), 0);
-    const double lx = global_.nx * g.h, ly = global_.ny * g.h, lz = global_.nz * g.h;
-    const double amp = p.real("terrain_amplitude"), base = p.real("terrain_base");
-    auto floor = [&](double x, double z) {
-      return base + amp * std::sin(2 * math::pi * x / lx) * std::cos(2 * math::pi * z / lz + 0.3);
-    };
-    const double a = column_width_, pool = p.real("pool_depth"), r = p.real("drop_radius"), hc = p.real("drop_height");
-    const bool dam = scene_ == "dam_break" || scene_ == "wet_dam_break";
-    const double column_height = scene_ == "wet_dam_break" ? reservoir_depth_ : 2 * a;
-    if (dam && (a >= lx || column_height >= ly))
-      throw std::invalid_argument("water_mac: the dam-break column (" + std::to_string(a) + " x " +
-                                  std::to_string(column_height) + " m) must fit in the box (" + std::to_string(lx) +
-                                  " x " + std::to_string(ly) + " m)");
-    bool water_above_terrain = false;
-    for (int k = 0; k < g.nz; ++k)
-      for (int j = 0; j < g.ny; ++j)
-        for (int i = 0; i < g.nx; ++i) {
-          const auto x = g.cell_centre(i, j, k);
-          const int c = g.index(i, j, k);
-          double d;
-          if (dam) {
-            // outside distance to the column [0, a] x [0, height] (the box walls are not surface),
-            // with the still water ahead of the dam on a wet bed
-            const double dx = x[0] - a, dy = x[1] - column_height;
-            d = (dx > 0 || dy > 0) ? std::hypot(std::max(dx, 0.0), std::max(dy, 0.0)) : std::max(dx, dy);
-            if (scene_ == "wet_dam_break") d = std::min(d, x[1] - tailwater_depth_);
-          } else {
-            d = x[1] - pool;
-            if (scene_ == "splash") {
-              const double ball = std::sqrt((x[0] - 0.5 * lx) * (x[0] - 0.5 * lx) + (x[1] - hc) * (x[1] - hc) +
-                                            (x[2] - 0.5 * lz) * (x[2] - 0.5 * lz)) - r;
-              d = std::min(d, ball);
-              if (ball < 0) v[c] = -p.real("drop_speed");
-            }
-            solid[c] = x[1] < floor(x[0], x[2]);
-            if (!solid[c] && d < 0) water_above_terrain = true;
-          }
-          phi[c] = d;
-        }
-    water_above_terrain = comm_.any(water_above_terrain);
-    if (!dam && !water_above_terrain)
-      throw std::invalid_argument("water_mac: the terrain (terrain_base = " + std::to_string(base) +
-                                  " m, amplitude " + std::to_string(amp) + " m) is above the water (pool_depth = " +
-                                  std::to_string(pool) + " m) everywhere: no water to simulate");
-    Kokkos::deep_copy(phi_, to_view<Mem>(phi));
-    Kokkos::deep_copy(v_, to_view<Mem>(v));
-    Kokkos::deep_copy(solid_, to_view<Mem>(solid));
+    const WaterScene scene{scene_, column_width_, reservoir_depth_, tailwater_depth_};
+    const InitialWater init = initial_water(p, scene, grid_, global_, comm_);
+    Kokkos::deep_copy(phi_, to_view<Mem>(init.phi));
+    Kokkos::deep_copy(v_, to_view<Mem>(init.v));
+    Kokkos::deep_copy(solid_, to_view<Mem>(init.solid));
     halo_.exchange(Exec(), grid_, solid_);
     classify();
     // the solids do not move: their faces are listed once (classify() gave the ghost cells' types)
@@ -531,38 +439,12 @@ class WaterMac final : public Module {
     kernels::mac::enforce_solid_faces(exec, solid_faces_[1], v_);
     kernels::mac::enforce_solid_faces(exec, solid_faces_[2], w_);
     kernels::mac::pressure_rhs(exec, g, type_, u_, v_, w_, rho_, dt, b_);
-    solvers::SolverResult r;
-    if (optical_depth_ == 0) {
-      auto solver = solvers::mac::make_pressure_solver(backend_, exec, A, block_);
-      phases_.lap(pressure_setup);
-      r = solver->solve(exec, b_, p_, control_);
-      phases_.lap(pressure_solve);
-    } else {
-      // tall cells: solve P^T A P y = P^T b, then p = P y on the lattice
-      Kokkos::Profiling::pushRegion("amphora::water::tall_cell_grid");
-      const auto H = kernels::mac::host_stencil(A);
-      const mesh::TallCellGrid T(H, optical_depth_, block_);
-      Kokkos::Profiling::popRegion();
-      Kokkos::Profiling::pushRegion("amphora::water::tall_cell_matrix");
-      solvers::CsrMatrix M = solvers::mac::assemble_tall_cell_matrix(T, H);
-      Kokkos::Profiling::popRegion();
-      const auto layout = mesh::make_layout<Mem>(T);
-      Vector bt("amphora::water::b_tall", T.unknowns()), y("amphora::water::p_tall", T.unknowns());
-      kernels::mac::tall_cell_restrict(exec, layout, b_, bt);
-      // Start from the last sub-step's pressure, fitted to this grid (least squares, G^-1 P^T p)
-      // as the uniform solve starts from p itself: 295 -> 253 CG iterations over the first 10
-      // steps of the 64^3 splash with D = 8.
-      kernels::mac::tall_cell_restrict(exec, layout, p_, y);
-      kernels::mac::tall_cell_gram_solve(exec, layout, y);
-      Kokkos::Profiling::pushRegion("amphora::water::tall_cell_solver_setup");
-      auto solver = solvers::mac::make_tall_cell_pressure_solver(backend_, exec, T, std::move(M), A, &coarse_stencils_);
-      Kokkos::Profiling::popRegion();
-      phases_.lap(pressure_setup);
-      r = solver->solve(exec, bt, y, control_);
-      phases_.lap(pressure_solve);
-      kernels::mac::tall_cell_prolongate(exec, layout, y, p_);
-      last_unknowns_ = T.global_unknowns();  // tall cells: the unknowns of the last solve
-    }
+    solvers::mac::LatticePressure<Exec> pressure(exec, backend_, optical_depth_, A, block_, b_, p_,
+                                                 &coarse_stencils_);
+    phases_.lap(pressure_setup);
+    const solvers::SolverResult r = pressure.solve(exec, control_);
+    phases_.lap(pressure_solve);
+    if (optical_depth_ > 0) last_unknowns_ = pressure.global_unknowns();  // the last solve's
     last_iterations_ = r.iterations;
     if (!r.converged)
       throw std::runtime_error("water_mac: the pressure solve did not reach the relative residual " +
@@ -690,78 +572,13 @@ class WaterMac final : public Module {
     return comm_.sum(vol) * g.h * g.h * g.h;
   }
 
-  /// The dam-break front: the largest x where the bottom row's level set crosses zero
-  /// (linear between cell centres), averaged over z.
-  double front() const {
-    const auto phi = to_std_vector(phi_);  // its ghost cells hold the neighbours' (classify)
-    const kernels::mac::MacGrid& g = grid_;
-    // per z row of the whole grid, the front of this block's part (0 if none), then the largest
-    std::vector<double> x(global_.nz, 0.0);
-    for (int k = 0; k < g.nz; ++k) {
-      double& xk = x[block_.global_lower[2] + k];
-      for (int i = 0; i < g.nx; ++i) {
-        const double p0 = phi[g.index(i, 0, k)];
-        if (p0 >= 0) continue;
-        if (i + 1 == g.nx && edges_[1]) {
-          xk = g.origin[0] + g.nx * g.h;
-          continue;
-        }
-        const double p1 = phi[g.index(i + 1, 0, k)];
-        xk = g.origin[0] + (i + 0.5) * g.h + (p1 > 0 ? g.h * p0 / (p0 - p1) : g.h);
-      }
-    }
-    MPI_Allreduce(MPI_IN_PLACE, x.data(), global_.nz, MPI_DOUBLE, MPI_MAX, comm_.get());
-    double sum = 0.0;
-    for (const double xk : x) sum += xk;
-    return sum / global_.nz;
+  /// The level set on the host with where this block lies, for the surface diagnostics.
+  LevelSetBlock level_set() const {
+    return {to_std_vector(phi_), grid_, global_, block_.global_lower, edges_[1], comm_};
   }
-
-  /// The wet dam break's bore: the largest x where the water depth (the lowest zero crossing of
-  /// the level set in a column, averaged over z) reaches halfway from the still water's to
-  /// Stoker's hm behind the bore, linear between cell centres.
-  double bore() const {
-    const auto phi = to_std_vector(phi_);
-    const kernels::mac::MacGrid& g = grid_;
-    std::vector<double> depth(global_.nx, 0.0);  // summed over z, this block's columns
-    for (int k = 0; k < g.nz; ++k)
-      for (int i = 0; i < g.nx; ++i) {
-        // the bottom row dry: no depth; no crossing: water to the top
-        double y = phi[g.index(i, 0, k)] >= 0 ? 0.0 : g.ny * g.h;
-        for (int j = 0; j + 1 < g.ny && y > 0.0; ++j) {
-          const double p0 = phi[g.index(i, j, k)], p1 = phi[g.index(i, j + 1, k)];
-          if (p0 < 0 && p1 >= 0) {
-            y = (j + 0.5) * g.h + g.h * p0 / (p0 - p1);
-            break;
-          }
-        }
-        depth[block_.global_lower[0] + i] += y;
-      }
-    MPI_Allreduce(MPI_IN_PLACE, depth.data(), global_.nx, MPI_DOUBLE, MPI_SUM, comm_.get());
-    const double half = 0.5 * (tailwater_depth_ + stoker_.hm) * global_.nz;
-    for (int i = global_.nx - 2; i >= 0; --i)
-      if (depth[i] >= half) {
-        const double s = depth[i + 1] < depth[i] ? (depth[i] - half) / (depth[i] - depth[i + 1]) : 0.0;
-        return global_.origin[0] + (i + 0.5 + s) * g.h;
-      }
-    return 0.0;
-  }
-
-  /// Mean height of the highest zero crossing of the level set over the columns.
-  double surface_height() const {
-    const auto phi = to_std_vector(phi_);
-    const kernels::mac::MacGrid& g = grid_;
-    double sum = 0.0;
-    for (int k = 0; k < g.nz; ++k)
-      for (int i = 0; i < g.nx; ++i) {
-        double y = 0.0;
-        for (int j = 0; j + 1 < g.ny; ++j) {
-          const double p0 = phi[g.index(i, j, k)], p1 = phi[g.index(i, j + 1, k)];
-          if (p0 < 0 && p1 >= 0) y = (j + 0.5) * g.h + g.h * p0 / (p0 - p1);
-        }
-        sum += y;
-      }
-    return comm_.sum(sum) / (double(global_.nx) * global_.nz);
-  }
+  double front() const { return dam_break_front(level_set()); }
+  double bore() const { return bore_position(level_set(), 0.5 * (tailwater_depth_ + stoker_.hm)); }
+  double surface_height() const { return mean_surface_height(level_set()); }
 
  private:
   Communicator comm_;
@@ -806,16 +623,13 @@ class WaterMac final : public Module {
   int last_iterations_ = 0;
   long last_unknowns_ = 0;
   /// Wall time per phase of a sub-step (the pressure's setup, on tall cells the tall-cell grid,
-  /// matrix and multigrid hierarchy; after the solve, the prolongation and the gradient in
+  /// matrix and multigrid hierarchy; its solve with the prolongation; the gradient in
   /// `projection`).
   enum Phase { step_control, advection, reinitialisation, cell_types, pressure_setup, pressure_solve, projection,
                extrapolation };
   PhaseTimes phases_{{"step_control", "advection", "reinitialisation", "cell_types", "pressure_setup",
                       "pressure_solve", "projection", "extrapolation"}};
 };
-
-}  // namespace water_mac_kernels
-using namespace water_mac_kernels;
 
 std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {
   return std::make_unique<WaterMac>(p, comm);

@@ -17,6 +17,7 @@
 #include "base/communicator.hpp"
 #include "physics/module.hpp"
 #include "base/parameters.hpp"
+#include "physics/water_mac/water_diagnostics.hpp"
 
 namespace amphora::water_mac {
 
@@ -24,9 +25,5 @@ namespace amphora::water_mac {
 ParamTable parameter_table();
 
 std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm);
-
-/// Martin & Moyce (1952), fig. 3, n^2 = 2, a = 2.25 in: front position Z = x/a against
-/// T = t sqrt(2 g / a), linearly interpolated (T within the measured 0.832 .. 9.237).
-double martin_moyce_front(double T);
 
 }  // namespace amphora::water_mac
