@@ -60,37 +60,49 @@ int uniform_row_length(const mesh::TallCellGrid& T, const kernels::mac::PoissonS
   }
   return n;
 }
-}  // namespace
 
-CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A) {
-  const kernels::mac::MacGrid& g = T.grid();
-  const int sy = g.stride_y(), sz = g.stride_z();
-  const long n = T.unknowns(), first = T.first_unknown();
+/// The rows of the tall cells' samples, from the quadratic form p^T A p = sum_faces c (p_P -
+/// p_Q)^2 + sum_cells D p^2 over the faces and cells that touch a tall cell (the uniform rows
+/// are gathered apart). Accumulated per tall sample: slot[u] is u's accumulator row (-1 for a
+/// uniform unknown).
+class TallRows {
+ public:
+  TallRows(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A)
+      : T(T), A(A), g(T.grid()), sy(g.stride_y()), sz(g.stride_z()), n(T.unknowns()),
+        first(T.first_unknown()), slot(n, -1), tall_rows(number_samples(T, slot)),
+        rows(tall_rows, 0), unit(A.unit_fluid_faces),
+        marked(A.surface_free_rows.extent(0) == static_cast<std::size_t>(g.ny) * g.nz) {}
 
-  // The tall cells' rows, from the quadratic form p^T A p = sum_faces c (p_P - p_Q)^2 +
-  // sum_cells D p^2 over the faces and cells that touch a tall cell (the uniform rows come
-  // gathered below). Accumulated per tall sample: slot[u] is u's accumulator row (-1 for a
-  // uniform unknown).
-  std::vector<int> slot(n, -1);
-  long tall_rows = 0;
-  for (const mesh::TallCellColumn& col : T.columns())
-    if (col.has_tall_cell())
-      for (int s = 0; s < 2; ++s) slot[col.first_unknown + s] = static_cast<int>(tall_rows++);
-  RowAccumulator<16> rows(tall_rows, 0);
-  const auto tall_slot = [&](int global) {
+  /// Every tall row's terms. Rows of a column take terms from its own cells and vertical
+  /// faces, from the x faces to the columns of its x line and from the z faces to the
+  /// neighbouring lines: lines run in parallel (host threads), the z faces in two passes over
+  /// lines of one parity, so no row is written by two threads and each row sums its terms in
+  /// an order fixed by the grid, not the threads.
+  CsrMatrix assemble();
+  const std::vector<int>& slots() const { return slot; }
+
+ private:
+  static long number_samples(const mesh::TallCellGrid& T, std::vector<int>& slot) {
+    long count = 0;
+    for (const mesh::TallCellColumn& col : T.columns())
+      if (col.has_tall_cell())
+        for (int s = 0; s < 2; ++s) slot[col.first_unknown + s] = static_cast<int>(count++);
+    return count;
+  }
+  int tall_slot(int global) const {
     const long u = global - first;
     return u >= 0 && u < n ? slot[u] : -1;
-  };
-  // += scale v v^T in the tall rows among ids
-  const auto add_outer = [&](const int* ids, const double* v, int m, double scale) {
+  }
+  /// += scale v v^T in the tall rows among ids
+  void add_outer(const int* ids, const double* v, int m, double scale) {
     for (int a = 0; a < m; ++a) {
       const int s = tall_slot(ids[a]);
       if (s < 0) continue;
       for (int b = 0; b < m; ++b) rows.add(s, ids[b], scale * v[a] * v[b]);
     }
-  };
-  // c (p_P - p_Q)^2 for lattice cells P and Q, whatever they map to (zero weights left out)
-  auto add_face = [&](int iP, int jP, int kP, int iQ, int jQ, int kQ, double c) {
+  }
+  /// c (p_P - p_Q)^2 for lattice cells P and Q, whatever they map to (zero weights left out)
+  void add_face(int iP, int jP, int kP, int iQ, int jQ, int kQ, double c) {
     int ids[4], cell_ids[2];
     double v[4], w[2];
     int m = 0;
@@ -101,23 +113,22 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
     for (int e = 0; e < nQ; ++e)
       if (w[e] != 0.0) ids[m] = cell_ids[e], v[m++] = -w[e];
     add_outer(ids, v, m, c);
-  };
-  auto tall_step = [](const mesh::TallCellColumn& c) {
+  }
+  static double tall_step(const mesh::TallCellColumn& c) {
     return c.has_tall_cell() ? 1.0 / (c.band - 1 - c.terrain) : 0.0;
-  };
-  const auto& d = A.diag;
-  const auto &cx = A.cx, &cy = A.cy, &cz = A.cz;
-  // What the stencil knows of its values lets most rows of a tall cell go unread (their sums
-  // are the same): rows known free of free-surface terms, and faces between fluid cells with
-  // c = 1 exactly, whose sums over rows are sums of small integers, exact in closed form.
-  const bool unit = A.unit_fluid_faces;
-  const bool marked = A.surface_free_rows.extent(0) == static_cast<std::size_t>(g.ny) * g.nz;
-  const auto surface_free = [&](int j, int k) {
+  }
+  /// What the stencil knows of its values lets most rows of a tall cell go unread (their sums
+  /// are the same): rows known free of free-surface terms, and faces between fluid cells with
+  /// c = 1 exactly (`unit`), whose sums over rows are sums of small integers, exact in closed
+  /// form.
+  bool surface_free(int j, int k) const {
     return marked && A.surface_free_rows(A.surface_free_row(j, k)) != 0;
-  };
-  // A column's tall cell: the free-surface terms D p^2 of its rows (D = d - sum c: nonzero
-  // only where a row meets air beside it), its inner vertical faces in one block, its top face.
-  auto column_terms = [&](int i, int k) {
+  }
+  /// A column's tall cell: the free-surface terms D p^2 of its rows (D = d - sum c: nonzero
+  /// only where a row meets air beside it), its inner vertical faces in one block, its top face.
+  void column_terms(int i, int k) {
+    const auto& d = A.diag;
+    const auto &cx = A.cx, &cy = A.cy, &cz = A.cz;
     const mesh::TallCellColumn& col = T.column(i, k);
     if (!col.has_tall_cell()) return;
     const int bot = static_cast<int>(T.global_first_unknown(i, k));
@@ -145,10 +156,11 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
     }
     const double top = cy(g.index(i, col.band - 1, k));
     if (top != 0.0 && col.band < g.ny) add_face(i, col.band - 1, k, i, col.band, k, top);
-  };
-  // The face between column (i, k) and its +x (dir 0) or +z (dir 1) neighbour, over the rows
-  // where either side is in a tall cell (above them both are uniform: gathered rows).
-  auto face_terms = [&](int dir, int i, int k) {
+  }
+  /// The face between column (i, k) and its +x (dir 0) or +z (dir 1) neighbour, over the rows
+  /// where either side is in a tall cell (above them both are uniform: gathered rows).
+  void face_terms(int dir, int i, int k) {
+    const auto &cx = A.cx, &cz = A.cz;
     const auto& cond = dir == 0 ? cx : cz;
     const int in = i + (dir == 0), kn = k + (dir == 1);
     const mesh::TallCellColumn &col = T.column(i, k), &next = T.column(in, kn);
@@ -191,11 +203,20 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
         }
       }
     }
-  };
-  // Rows of a column take terms from its own cells and vertical faces, from the x faces to the
-  // columns of its x line and from the z faces to the neighbouring lines: lines run in parallel
-  // (host threads), the z faces in two passes over lines of one parity, so no row is written by
-  // two threads and each row sums its terms in an order fixed by the grid, not the threads.
+  }
+
+  const mesh::TallCellGrid& T;
+  const kernels::mac::PoissonStencil<HostMemSpace>& A;
+  const kernels::mac::MacGrid& g;
+  const int sy, sz;
+  const long n, first;
+  std::vector<int> slot;
+  const long tall_rows;
+  RowAccumulator<16> rows;
+  const bool unit, marked;
+};
+
+CsrMatrix TallRows::assemble() {
   // x faces between a column and its +x neighbour, where either is this block's (on a split
   // grid the faces to the ghost ring too: their terms in this block's rows); likewise z faces.
   const auto& nb = T.block().neighbours;
@@ -214,11 +235,17 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
                            });
     }
   }
-  const CsrMatrix tall = rows.to_csr();
+  return rows.to_csr();
+}
 
-  // Every row's length (a uniform row's counted, a tall row's from the accumulator), then the
-  // rows in place (the uniform ones gathered: cheaper than a scratch of 13 entries per unknown
-  // filled in the first pass, whose fresh pages cost more than the second walk).
+/// The matrix from the tall rows and the uniform rows gathered (uniform_row): every row's
+/// length first (a uniform row's counted, a tall row's from `tall`), then the rows in place
+/// (cheaper than a scratch of 13 entries per unknown filled in the first pass, whose fresh
+/// pages cost more than the second walk).
+CsrMatrix merge_rows(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A,
+                     const std::vector<int>& slot, const CsrMatrix& tall) {
+  const kernels::mac::MacGrid& g = T.grid();
+  const long n = T.unknowns(), first = T.first_unknown();
   CsrMatrix M;
   M.n = n;
   M.row_ptr.assign(n + 1, 0);
@@ -258,6 +285,14 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::
   });
   if (!lengths_agree) throw std::logic_error("assemble_tall_cell_matrix: a row's entries differ from its counted length");
   return M;
+}
+
+}  // namespace
+
+CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A) {
+  TallRows tall(T, A);
+  const CsrMatrix rows = tall.assemble();
+  return merge_rows(T, A, tall.slots(), rows);
 }
 
 }  // namespace amphora::solvers::mac
