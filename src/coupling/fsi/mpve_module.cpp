@@ -29,7 +29,7 @@ class MpveModule final : public Module {
   MpveModule(const Parameters& p, const Communicator& comm) {
     if (comm.size() > 1)
       throw DecompositionError("more ranks (" + std::to_string(comm.size()) + ") than blocks (1): MP-VE runs on one rank");
-    // The check case, its root followed to the scene's solid and viscosity.
+    // The MP-VE check case (Banks et al. 2014), its root followed to the scene's solid and viscosity.
     s_.physics = mpve_check_case();
     s_.physics.mu = p.real("viscosity");
     const double nu = p.real("poisson_ratio");

@@ -49,7 +49,7 @@ DispersionRoot solve_mpve_dispersion(const MpveParameters& p, Complex omega0, do
 DispersionRoot continue_mpve_dispersion(const MpveParameters& from, Complex omega_from, const MpveParameters& to,
                                         int steps);
 
-/// The check case: k = 2 pi, H = 1, Hbar = 0.5, rho = 1, mu = 0.01,
+/// The MP-VE check case: k = 2 pi, H = 1, Hbar = 0.5, rho = 1, mu = 0.01,
 /// rho_bar = lambda_bar = mu_bar = 0.05 (omega ~ 1.42227 - 0.37955 i).
 MpveParameters mpve_check_case();
 /// A root of the dispersion relation for `to`, followed by continuation from the check case's

@@ -18,9 +18,9 @@
 //   negative level set, and each face towards a non-solid coarse cell that is not one gets the
 //   ghost-fluid term c / theta from the coarse level set, as the finest grid's are built. Halving
 //   the children's c / theta instead is the coarse term only for theta = 1/2: a child's distance
-//   to the surface is not its parent's. With it, MG-CG needed 8 / 10 / 12 iterations for an open
-//   box with a flat free surface at 64^3 / 128^3 / 192^3 (9 / 11 / 13 for a tank); with the coarse
-//   level set 7 / 7 / 7 (7 / 8 / 7). Without a level set the free-surface terms are halved.
+//   to the surface is not its parent's, and MG-CG's iterations then grow with the grid; with the
+//   coarse level set they stay flat (docs/water.md). Without a level set the free-surface terms
+//   are halved.
 #include "kernels/mac/poisson_stencil.hpp"
 
 namespace amphora::kernels::mac {

@@ -84,8 +84,8 @@ struct BatchDofAccess {
         }
         const double* p = src + ix.rows[r] + ix.start;
         // each row's lines asked into L1 four rows ahead of their loads (from degree 5 they
-        // were prefetched to L2 a batch ahead): 2 threads, medians of 3-5 paired rounds,
-        // BPOperator/5/3-8 and LaplaceLarge/2-6 5-18 % faster, LaplaceDealii/2-5 6-16 %
+        // were prefetched to L2 a batch ahead): the indirect rows defeat the hardware
+        // prefetcher
         if constexpr (n_p >= 3) {
           constexpr int ahead = 4;
           if (r + ahead < n_rows) prefetch_row<into_l1>(src + ix.rows[r + ahead] + ix.start, false);

@@ -43,9 +43,9 @@ class TallCellGrid {
   /// The next coarser multigrid level's grid over A, whose lattice has cells twice as wide as
   /// finer's: a column has a tall cell where the four finer columns under it all have one, and
   /// its band is the coarse row holding the lowest of their bands (rounded up), so the coarse
-  /// tall cells follow the finer ones (0.5 coarse rows at most apart) rather than A's surface.
-  /// In the deep splash (D = 20) 103 CG iterations over the last solves of 10 steps, against 116
-  /// with the bands from A's surface at half the optical depth. Collective on a split grid.
+  /// tall cells follow the finer ones (0.5 coarse rows at most apart) rather than A's surface
+  /// (fewer CG iterations than bands from A's surface: docs/water.md). Collective on a split
+  /// grid.
   TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, const TallCellGrid& finer,
                const MacBlock& block = {});
 

@@ -18,7 +18,7 @@
 //   mu (u_y + v_x) + z_s u = g_x;
 // the normal one, with sigma_yy = -p + 2 mu v_y, p^{n+1} = (3 p^{n+1/2} - p^{n-1/2}) / 2 and the
 // projected v = v_g - dt/rho phi_y, is a Robin condition on the pressure increment with weight
-// z_p dt / rho (the weight; the 3/2 puts it at t_{n+1}),
+// z_p dt / rho (the coupling's weight; the 3/2 puts it at t_{n+1}),
 //   -(3/2) phi - (z_p dt / rho) phi_y + (2 mu dt / rho) phi_xx
 //       = g_y + p^{n-1/2} - (3 mu / 4) div v* - 2 mu v*_y - z_p v_g,
 // which moves the interface's normal velocity: heavy solids (z_p large) fix v, light ones

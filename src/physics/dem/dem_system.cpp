@@ -532,7 +532,7 @@ void DemSystem<ExecSpace>::compute_forces() {
   if (by_particle_ && shear_next_.extent(0) != shear_.extent(0))  // entries no row owns stay 0
     shear_next_ = decltype(shear_)("amphora::dem::shear_next", shear_.extent(0));
   // Restrict-qualified Views: no store through one may alias another, so the compiler keeps
-  // loads in registers across the contact loop (about 1.3x on the dense bed).
+  // loads in registers across the contact loop.
   const Rows3<const double> x(p_.x), v(p_.v), om(p_.omega);
   const Rows3<double> springs_out(by_particle_ ? shear_next_ : shear_);
   const HertzMindlinPairLaw<Mem> law{

@@ -27,9 +27,9 @@
 namespace amphora::solvers::mac {
 
 struct TallCellMultigridOptions {
-  /// Chebyshev degree on the finest level and on the coarser ones. Degree 2 on the finest
-  /// (where a step costs most) and 3 below took the deep splash's 20 tall-cell solves (D = 20)
-  /// from 0.74-0.79 s to 0.65-0.66 s at 116 against 108 iterations; degree 1 needed 184.
+  /// Chebyshev degree on the finest level and on the coarser ones: a cheaper smoother on the
+  /// finest level, where a step costs most, is worth a few more iterations (the measured
+  /// choice is in docs/water.md).
   int fine_chebyshev_degree = 2;
   int chebyshev_degree = 3;
   double smoothing_range = 8.0;
