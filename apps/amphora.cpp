@@ -55,7 +55,8 @@ int print_scenes() {
   const auto scenes = list_scenes(dir);
   std::cout << "usage: amphora run SCENE [--restart FILE] [--max-steps N] [--no-output]\n"
             << "scenes shipped in " << dir << "/:\n";
-  for (const auto& s : scenes) std::cout << "  " << std::left << std::setw(40) << s.path << s.summary << "\n";
+  for (const auto& s : scenes)
+    std::cout << "  " << std::left << std::setw(40) << s.path << s.summary << "\n";
   if (scenes.empty()) std::cout << "  (none found)\n";
   return 0;
 }
@@ -68,8 +69,8 @@ int main(int argc, char** argv) {
 
   CLI::App app{"amphora: GPU-portable multiphysics on Kokkos"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("amphora ") + AMPHORA_VERSION + " (" +
-                                        AMPHORA_GIT_REVISION + ")");
+  app.set_version_flag(
+      "--version", std::string("amphora ") + AMPHORA_VERSION + " (" + AMPHORA_GIT_REVISION + ")");
 
   std::string scene_path, restart, defaults_module, study_key, study_values, study_csv;
   long long max_steps = -1;
@@ -104,7 +105,8 @@ int main(int argc, char** argv) {
   try {
     if (*info) {
       if (comm.is_root())
-        for (const auto& [k, v] : build_info()) std::cout << std::left << std::setw(26) << k << v << "\n";
+        for (const auto& [k, v] : build_info())
+          std::cout << std::left << std::setw(26) << k << v << "\n";
       return 0;
     }
     if (*defaults) return comm.is_root() ? print_defaults(defaults_module) : 0;

@@ -95,8 +95,8 @@ void run(benchmark::State& state, bool phases) {
   }
   const double n = double(s.global_count());
   state.counters["particles"] = n;
-  state.counters["particle_steps_per_s"] = benchmark::Counter(n * steps / seconds, benchmark::Counter::kDefaults,
-                                                              benchmark::Counter::OneK::kIs1000);
+  state.counters["particle_steps_per_s"] = benchmark::Counter(
+      n * steps / seconds, benchmark::Counter::kDefaults, benchmark::Counter::OneK::kIs1000);
   state.counters["ranks"] = comm.size();
   state.counters["threads"] = amphora::DefaultExecSpace().concurrency();
   const DemTimers& t = s.timers();
@@ -121,5 +121,17 @@ void DenseBedPhases(benchmark::State& state) { run(state, true); }
 
 }  // namespace
 
-BENCHMARK(DenseBed)->UseManualTime()->Unit(benchmark::kMillisecond)->Arg(10000)->Arg(100000)->Arg(1000000)->Iterations(4);
-BENCHMARK(DenseBedPhases)->UseManualTime()->Unit(benchmark::kMillisecond)->Arg(10000)->Arg(100000)->Arg(1000000)->Iterations(2);
+BENCHMARK(DenseBed)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->Iterations(4);
+BENCHMARK(DenseBedPhases)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Arg(10000)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->Iterations(2);

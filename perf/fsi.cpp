@@ -37,14 +37,21 @@ void time_steps(benchmark::State& state, Coupled& fsi) {
 
 void Beam(benchmark::State& state) {
   const auto scheme = static_cast<BeamScheme>(state.range(0));
-  const double rho_h = scheme == BeamScheme::traditional ? 100.0 : 1.0 / static_cast<double>(state.range(1));
+  const double rho_h =
+      scheme == BeamScheme::traditional ? 100.0 : 1.0 / static_cast<double>(state.range(1));
   BeamChannelSetup s = beam_channel_wave_case(rho_h, 160, scheme);
   s.end_time = 1e9;  // the benchmark decides how many steps
   BeamChannelFsi fsi(s);
   time_steps(state, fsi);
   state.counters["rho_h_over_rho"] = rho_h;
 }
-BENCHMARK(Beam)->Args({0, 1})->Args({1, 100})->Args({1, 1000})->Args({2, 100})->Args({2, 1000})->Unit(benchmark::kMicrosecond);
+BENCHMARK(Beam)
+    ->Args({0, 1})
+    ->Args({1, 100})
+    ->Args({1, 1000})
+    ->Args({2, 100})
+    ->Args({2, 1000})
+    ->Unit(benchmark::kMicrosecond);
 
 void Mpve(benchmark::State& state) {
   const int n = static_cast<int>(state.range(1));
@@ -63,8 +70,14 @@ void Mpve(benchmark::State& state) {
   state.counters["rho_bar_over_rho"] = rho_bar;
 }
 BENCHMARK(Mpve)
-    ->Args({0, 80, 0})->Args({2, 80, 0})->Args({0, 160, 0})->Args({2, 160, 0})
-    ->Args({1, 80, 100})->Args({2, 80, 100})->Args({1, 80, 1000})->Args({2, 80, 1000})
+    ->Args({0, 80, 0})
+    ->Args({2, 80, 0})
+    ->Args({0, 160, 0})
+    ->Args({2, 160, 0})
+    ->Args({1, 80, 100})
+    ->Args({2, 80, 100})
+    ->Args({1, 80, 1000})
+    ->Args({2, 80, 1000})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -40,15 +40,14 @@ void run(benchmark::State& state, double bytes_per_entry, Kernel kernel) {
                                                  benchmark::Counter::OneK::kIs1000);
   state.counters["bandwidth"] = benchmark::Counter(bytes_per_second, benchmark::Counter::kDefaults,
                                                    benchmark::Counter::OneK::kIs1000);
-  state.counters["stream"] = benchmark::Counter(stream, benchmark::Counter::kDefaults,
-                                                benchmark::Counter::OneK::kIs1000);
+  state.counters["stream"] =
+      benchmark::Counter(stream, benchmark::Counter::kDefaults, benchmark::Counter::OneK::kIs1000);
   state.counters["fraction_of_stream"] = bytes_per_second / stream;
 }
 
 void Axpy(benchmark::State& state) {
-  run(state, 24.0, [](const DefaultExecSpace& e, int, View x, View y) {
-    amphora::blas1::axpy(e, 1e-3, x, y);
-  });
+  run(state, 24.0,
+      [](const DefaultExecSpace& e, int, View x, View y) { amphora::blas1::axpy(e, 1e-3, x, y); });
 }
 
 void Dot(benchmark::State& state) {
@@ -66,6 +65,24 @@ void AdvectionDiffusionStep(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(Axpy)->UseManualTime()->Unit(benchmark::kMicrosecond)->Arg(1 << 10)->Arg(1 << 16)->Arg(1 << 22)->Arg(1 << 25);
-BENCHMARK(Dot)->UseManualTime()->Unit(benchmark::kMicrosecond)->Arg(1 << 10)->Arg(1 << 16)->Arg(1 << 22)->Arg(1 << 25);
-BENCHMARK(AdvectionDiffusionStep)->UseManualTime()->Unit(benchmark::kMicrosecond)->Arg(1 << 10)->Arg(1 << 16)->Arg(1 << 22)->Arg(1 << 25);
+BENCHMARK(Axpy)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond)
+    ->Arg(1 << 10)
+    ->Arg(1 << 16)
+    ->Arg(1 << 22)
+    ->Arg(1 << 25);
+BENCHMARK(Dot)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond)
+    ->Arg(1 << 10)
+    ->Arg(1 << 16)
+    ->Arg(1 << 22)
+    ->Arg(1 << 25);
+BENCHMARK(AdvectionDiffusionStep)
+    ->UseManualTime()
+    ->Unit(benchmark::kMicrosecond)
+    ->Arg(1 << 10)
+    ->Arg(1 << 16)
+    ->Arg(1 << 22)
+    ->Arg(1 << 25);

@@ -3,8 +3,8 @@
 // Uniform/backend/n: the 7-point Poisson problem of the anchors on an n^3 box of fluid
 // cells, pressure zero on all six box faces, a smooth right-hand side; backend 0 = own
 // multigrid-CG, 1 = hypre Struct PFMG-CG (both on 1 rank with OMP_NUM_THREADS threads, or on the
-// ranks of mpiexec, each owning a z slab), 2 = MIC(0)-CG (sequential). Counters: iterations, unknowns,
-// unknowns per second (unknowns / time), setup seconds; for multigrid-CG also the solve's
+// ranks of mpiexec, each owning a z slab), 2 = MIC(0)-CG (sequential). Counters: iterations,
+// unknowns, unknowns per second (unknowns / time), setup seconds; for multigrid-CG also the solve's
 // seconds without setup, the bytes one CG iteration moves by the streaming model of
 // MacMultigrid::bytes_per_cg_iteration, and the rate a run at STREAM triad bandwidth would reach
 // (bound_unknowns_per_s: unknowns over iterations x bytes / bandwidth; the measured rate, setup
@@ -53,7 +53,9 @@ namespace kernels = amphora::kernels;
 namespace mac = amphora::solvers::mac;
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 
 /// This rank's z slab of the fluid box [0,1]^3 with n^3 cells: its stencil (conductances
 /// towards the neighbouring slabs in the ghost layer) and right-hand side h^2 f.
@@ -66,18 +68,21 @@ struct UniformBox {
 
   UniformBox(int n, int rank, int ranks) {
     // z slabs (a horizontal split), block faces between ranks coupled through the ghost layer
-    const amphora::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1, {false, false, true});
+    const amphora::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1,
+                                        {false, false, true});
     const amphora::Box box = dec.box(rank);
     const int nz = box.extent(2);
     z0 = box.lo[2];
     grid = kernels::mac::MacGrid{n, n, nz, 1.0 / n, {0.0, 0.0, z0 / double(n)}};
     const Exec exec;
     Kokkos::View<kernels::mac::MacCellType*, Mem> type("type", grid.padded_size());
-    Kokkos::deep_copy(type, kernels::mac::MacCellType::fluid);  // ghosts too: the neighbours are all fluid
+    Kokkos::deep_copy(
+        type, kernels::mac::MacCellType::fluid);  // ghosts too: the neighbours are all fluid
     block = mesh::MacBlock::of(dec, MPI_COMM_WORLD, rank);
     kernels::mac::MacBoxBoundaries open;
     open.fill(kernels::mac::MacBoundary::open);
-    A = amphora::kernels::mac::build_poisson_stencil<Exec, Mem>(exec, grid, type, Vector(), block.faces(open));
+    A = amphora::kernels::mac::build_poisson_stencil<Exec, Mem>(exec, grid, type, Vector(),
+                                                                block.faces(open));
     mesh::LatticeGhostExchange(block).exchange(exec, grid, A.cz);  // the ghost cells' + faces
     std::vector<double> f(grid.padded_size(), 0.0);
     const double h = grid.h, pi = amphora::math::pi;
@@ -85,7 +90,8 @@ struct UniformBox {
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
           const auto x = grid.cell_centre(i, j, k);
-          f[grid.index(i, j, k)] = h * h * (1.0 + std::sin(pi * x[0]) * std::sin(2 * pi * x[1]) * std::cos(pi * x[2]));
+          f[grid.index(i, j, k)] =
+              h * h * (1.0 + std::sin(pi * x[0]) * std::sin(2 * pi * x[1]) * std::cos(pi * x[2]));
         }
     b = amphora::to_view<Mem>(f, "b");
   }
@@ -110,7 +116,8 @@ bool ranks_of(benchmark::State& state, int backend, int& rank, int& ranks) {
 /// solve and 40.4, 29.2, 28.9, 28.3, 28.6 ms with it.
 bool first_call(const char* name, const benchmark::State& state) {
   static std::set<std::tuple<std::string, long, long>> seen;
-  return seen.insert({name, static_cast<long>(state.range(0)), static_cast<long>(state.range(1))}).second;
+  return seen.insert({name, static_cast<long>(state.range(0)), static_cast<long>(state.range(1))})
+      .second;
 }
 
 void Uniform(benchmark::State& state) {
@@ -138,16 +145,18 @@ void Uniform(benchmark::State& state) {
       const auto cz = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.A.cz);
       const auto bh = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.b);
       auto xh = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), x);
-      amphora::solvers::StructPfmgCG pfmg(MPI_COMM_WORLD, box.grid, {0, 0, box.z0}, d.data(), cx.data(), cy.data(),
-                                          cz.data());
+      amphora::solvers::StructPfmgCG pfmg(MPI_COMM_WORLD, box.grid, {0, 0, box.z0}, d.data(),
+                                          cx.data(), cy.data(), cz.data());
       setup = seconds_since(t0);
-      const auto r = pfmg.solve(bh.data(), xh.data(), control.relative_tolerance, control.max_iterations);
+      const auto r =
+          pfmg.solve(bh.data(), xh.data(), control.relative_tolerance, control.max_iterations);
       iterations = r.iterations;
       rel = r.final_relative_residual;
       Kokkos::deep_copy(x, xh);
     } else {
-      auto solver = mac::make_pressure_solver(backend == 0 ? mac::PressureBackend::multigrid : mac::PressureBackend::mic0,
-                                              exec, box.A, box.block);
+      auto solver = mac::make_pressure_solver(
+          backend == 0 ? mac::PressureBackend::multigrid : mac::PressureBackend::mic0, exec, box.A,
+          box.block);
       exec.fence();
       setup = seconds_since(t0);
       const auto r = solver->solve(exec, box.b, x, control);
@@ -161,14 +170,16 @@ void Uniform(benchmark::State& state) {
     MPI_Barrier(MPI_COMM_WORLD);
     return seconds_since(t0);
   };
-  if (first_call("Uniform", state)) solve();  // untimed: the process's first touch of this much memory
+  if (first_call("Uniform", state))
+    solve();  // untimed: the process's first touch of this much memory
   for (auto _ : state) state.SetIterationTime(solve());
   const double unknowns = double(n) * n * n;
   state.counters["iterations"] = iterations;
   state.counters["unknowns"] = unknowns;
   state.counters["setup_s"] = setup;
   state.counters["relative_residual"] = rel;
-  state.counters["unknowns_per_s"] = benchmark::Counter(unknowns, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["unknowns_per_s"] =
+      benchmark::Counter(unknowns, benchmark::Counter::kIsIterationInvariantRate);
   if (bytes_per_iteration > 0) {
     // the bandwidth of every rank's triad at once, summed, as the ranks share the problem
     MPI_Barrier(MPI_COMM_WORLD);
@@ -201,13 +212,15 @@ struct DeepWater {
 };
 DeepWater deep_water(int n, int rank, int ranks) {
   DeepWater w;
-  const amphora::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1, {false, false, true});
+  const amphora::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1,
+                                      {false, false, true});
   const amphora::Box box = dec.box(rank);
   w.block = mesh::MacBlock::of(dec, MPI_COMM_WORLD, rank);
   const kernels::mac::MacGrid g{n, n, box.extent(2), 1.0 / n, {0, 0, box.lo[2] / double(n)}};
   std::vector<kernels::mac::MacCellType> type(g.padded_size(), kernels::mac::MacCellType::solid);
   std::vector<double> phi(g.padded_size(), 1.0);
-  const int k_lo = w.block.neighbours[4] >= 0 ? -1 : 0, k_hi = g.nz + (w.block.neighbours[5] >= 0 ? 1 : 0);
+  const int k_lo = w.block.neighbours[4] >= 0 ? -1 : 0,
+            k_hi = g.nz + (w.block.neighbours[5] >= 0 ? 1 : 0);
   for (int k = k_lo; k < k_hi; ++k)
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
@@ -215,7 +228,9 @@ DeepWater deep_water(int n, int rank, int ranks) {
         const int c = g.index(i, j, k);
         phi[c] = x[1] - 0.9;
         const double floor = 0.1 + 0.05 * std::sin(6 * x[0]) * std::cos(4 * x[2]);
-        type[c] = x[1] < floor ? kernels::mac::MacCellType::solid : (phi[c] < 0 ? kernels::mac::MacCellType::fluid : kernels::mac::MacCellType::air);
+        type[c] = x[1] < floor ? kernels::mac::MacCellType::solid
+                               : (phi[c] < 0 ? kernels::mac::MacCellType::fluid
+                                             : kernels::mac::MacCellType::air);
         if (k >= 0 && k < g.nz) w.fluid_cells += type[c] == kernels::mac::MacCellType::fluid;
       }
   long total = 0;
@@ -227,7 +242,8 @@ DeepWater deep_water(int n, int rank, int ranks) {
   w.A = amphora::kernels::mac::build_poisson_stencil<amphora::HostExecSpace, amphora::HostMemSpace>(
       amphora::HostExecSpace(), g, amphora::to_view<amphora::HostMemSpace>(type),
       amphora::to_view<amphora::HostMemSpace>(phi), w.block.faces(faces));
-  mesh::LatticeGhostExchange(w.block).exchange(amphora::HostExecSpace(), g, w.A.cz);  // the ghost cells' + faces
+  mesh::LatticeGhostExchange(w.block).exchange(amphora::HostExecSpace(), g,
+                                               w.A.cz);  // the ghost cells' + faces
   return w;
 }
 
@@ -260,13 +276,14 @@ void TallCells(benchmark::State& state) {
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
           const auto x = g.cell_centre(i, j, k);
-          f[g.index(i, j, k)] = g.h * g.h * (1.0 + std::sin(amphora::math::pi * x[0]) * std::cos(2 * x[2]) * x[1]);
+          f[g.index(i, j, k)] =
+              g.h * g.h * (1.0 + std::sin(amphora::math::pi * x[0]) * std::cos(2 * x[2]) * x[1]);
         }
     T.restrict_to_unknowns(f.data(), bt.data());
     const Vector b = amphora::to_view<Mem>(bt, "b");
     Vector x("x", T.unknowns());
-    static const mac::PressureBackend backends[] = {mac::PressureBackend::multigrid, mac::PressureBackend::hypre,
-                                                    mac::PressureBackend::mic0};
+    static const mac::PressureBackend backends[] = {
+        mac::PressureBackend::multigrid, mac::PressureBackend::hypre, mac::PressureBackend::mic0};
     auto solver = mac::make_tall_cell_pressure_solver(backends[backend], exec, T, M, A);
     exec.fence();
     setup = seconds_since(t0);
@@ -327,13 +344,20 @@ void Kernels(benchmark::State& state) {
   }
   const double cells = double(n) * n * n;
   // doubles and floats each kernel must touch per fine cell
-  const double bytes[] = {8 + 8 + 8 + 12, 8 + 8 + 8 + 8 + 12, 2 * (8 + 8 + 8 + 12) + 8, 8 + 8.0 / 8, 8 + 8 + 8.0 / 8, 0};
-  state.counters["cells_per_s"] = benchmark::Counter(cells, benchmark::Counter::kIsIterationInvariantRate);
+  const double bytes[] = {8 + 8 + 8 + 12, 8 + 8 + 8 + 8 + 12, 2 * (8 + 8 + 8 + 12) + 8,
+                          8 + 8.0 / 8,    8 + 8 + 8.0 / 8,    0};
+  state.counters["cells_per_s"] =
+      benchmark::Counter(cells, benchmark::Counter::kIsIterationInvariantRate);
   if (bytes[kind] > 0)
-    state.counters["bytes_per_s"] = benchmark::Counter(cells * bytes[kind], benchmark::Counter::kIsIterationInvariantRate);
-  static const char* names[] = {"apply", "residual", "red-black GS sweep", "restrict", "prolongate", "V-cycle"};
+    state.counters["bytes_per_s"] =
+        benchmark::Counter(cells * bytes[kind], benchmark::Counter::kIsIterationInvariantRate);
+  static const char* names[] = {"apply",    "residual",   "red-black GS sweep",
+                                "restrict", "prolongate", "V-cycle"};
   state.SetLabel(names[kind]);
 }
-BENCHMARK(Kernels)->ArgsProduct({{0, 1, 2, 3, 4, 5}, {128}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(Kernels)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {128}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace

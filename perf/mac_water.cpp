@@ -53,7 +53,8 @@ struct Pool {
           f[1][c] = -std::cos(pi * x[0]) * std::sin(pi * x[1]);
           f[2][c] = 0.2 * std::sin(2 * pi * x[0]);
         }
-    phi = amphora::to_view<Mem>(p), u = amphora::to_view<Mem>(f[0]), v = amphora::to_view<Mem>(f[1]);
+    phi = amphora::to_view<Mem>(p), u = amphora::to_view<Mem>(f[0]),
+    v = amphora::to_view<Mem>(f[1]);
     w = amphora::to_view<Mem>(f[2]);
     out = Vector("out", size);
     type = amphora::to_view<Mem>(t);
@@ -74,11 +75,12 @@ void WaterKernels(benchmark::State& state) {
     switch (kind) {
       case 0:
       case 2:
-        mac::advect(exec, columns, mac::Staggering::x, pool.u, pool.out, pool.u, pool.v, pool.w, dt, pool.phi, reach);
+        mac::advect(exec, columns, mac::Staggering::x, pool.u, pool.out, pool.u, pool.v, pool.w, dt,
+                    pool.phi, reach);
         break;
       case 1:
-        mac::advect(exec, columns, mac::Staggering::centre, pool.phi, pool.out, pool.u, pool.v, pool.w, dt, pool.phi,
-                    reach);
+        mac::advect(exec, columns, mac::Staggering::centre, pool.phi, pool.out, pool.u, pool.v,
+                    pool.w, dt, pool.phi, reach);
         break;
       case 3: mac::reinitialise_step(exec, g, pool.phi, pool.phi, pool.out); break;
       case 4:
@@ -91,13 +93,17 @@ void WaterKernels(benchmark::State& state) {
     }
     exec.fence();
   }
-  state.counters["cells_per_s"] = benchmark::Counter(double(g.cells()), benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["cells_per_s"] =
+      benchmark::Counter(double(g.cells()), benchmark::Counter::kIsIterationInvariantRate);
   static const char* names[] = {"semi-Lagrangian face component", "semi-Lagrangian level set",
-                                "conservative upwind face component (tall cells)", "reinitialisation step",
-                                "extrapolation layer"};
+                                "conservative upwind face component (tall cells)",
+                                "reinitialisation step", "extrapolation layer"};
   state.SetLabel(names[kind]);
 }
-BENCHMARK(WaterKernels)->ArgsProduct({{0, 1, 2, 3, 4}, {64, 128}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(WaterKernels)
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {64, 128}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void WaterStep(benchmark::State& state) {
   const int depth = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
@@ -126,10 +132,15 @@ void WaterStep(benchmark::State& state) {
     t += dt;
   }
   substeps = count() - before;
-  state.counters["cells_per_s"] = benchmark::Counter(double(n) * n * n, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["cells_per_s"] =
+      benchmark::Counter(double(n) * n * n, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["substeps_per_step"] = substeps / double(state.iterations());
   state.SetLabel(depth == 0 ? "uniform" : "tall cells");
 }
-BENCHMARK(WaterStep)->ArgsProduct({{0, 8}, {64}})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(10);
+BENCHMARK(WaterStep)
+    ->ArgsProduct({{0, 8}, {64}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(10);
 
 }  // namespace

@@ -69,11 +69,11 @@ namespace mesh = amphora::mesh;
 /// Cells per direction giving 2–7 million Q_p DoFs (multiples of 8: full SIMD batches).
 int dealii_cells(int p) {
   switch (p) {
-    case 2: return 64;   // 129^3 = 2.15 M
-    case 3: return 48;   // 145^3 = 3.05 M
-    case 4: return 32;   // 129^3 = 2.15 M
-    case 5: return 24;   // 121^3 = 1.77 M  -> 32: 161^3 = 4.17 M
-    case 6: return 24;   // 145^3 = 3.05 M
+    case 2: return 64;  // 129^3 = 2.15 M
+    case 3: return 48;  // 145^3 = 3.05 M
+    case 4: return 32;  // 129^3 = 2.15 M
+    case 5: return 24;  // 121^3 = 1.77 M  -> 32: 161^3 = 4.17 M
+    case 6: return 24;  // 145^3 = 3.05 M
     default: return 16;
   }
 }
@@ -91,7 +91,8 @@ double total_stream_bandwidth() {
 
 /// The timed loop: y = A x once to warm up, then once per iteration.
 template <class Operator>
-void time_applications(benchmark::State& state, const Operator& op, const Vector& x, const Vector& y) {
+void time_applications(benchmark::State& state, const Operator& op, const Vector& x,
+                       const Vector& y) {
   const Exec exec;
   op.apply(exec, x, y);
   exec.fence();
@@ -103,7 +104,8 @@ void time_applications(benchmark::State& state, const Operator& op, const Vector
 
 void report(benchmark::State& state, double dofs, double bytes_per_dof) {
   const double bw = total_stream_bandwidth();
-  state.counters["MDoF/s"] = benchmark::Counter(dofs * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["MDoF/s"] =
+      benchmark::Counter(dofs * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["DoFs"] = dofs;
   state.counters["bound_MDoF/s"] = bw / bytes_per_dof * 1e-6;
   state.counters["stream_GB/s"] = bw * 1e-9;
@@ -123,18 +125,21 @@ void LaplaceDealii(benchmark::State& state) {
   const double dofs = static_cast<double>(space.n_global());
   report(state, dofs, 16.0);
   state.counters["ranks"] = space.communicator().size();
-  state.counters["vs_dealii_1core"] = benchmark::Counter(dofs * 1e-6 / dealii_1core[p], benchmark::Counter::kIsIterationInvariantRate);
-  state.counters["vs_dealii_2ranks"] = benchmark::Counter(dofs * 1e-6 / dealii_2ranks[p], benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["vs_dealii_1core"] = benchmark::Counter(
+      dofs * 1e-6 / dealii_1core[p], benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["vs_dealii_2ranks"] = benchmark::Counter(
+      dofs * 1e-6 / dealii_2ranks[p], benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(LaplaceDealii)->DenseRange(2, 6)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 Vector random_vector(long n, unsigned seed) {
   Vector v("v", n);
-  Kokkos::parallel_for("amphora::bench::random", amphora::RangePolicy<Exec>(0, static_cast<int>(n)),
-                       KOKKOS_LAMBDA(int i) {
-                         const unsigned h = (static_cast<unsigned>(i) + seed) * 2654435761u;
-                         v(i) = static_cast<double>(h % 1000003u) / 1000003.0 - 0.5;
-                       });
+  Kokkos::parallel_for(
+      "amphora::bench::random", amphora::RangePolicy<Exec>(0, static_cast<int>(n)),
+      KOKKOS_LAMBDA(int i) {
+        const unsigned h = (static_cast<unsigned>(i) + seed) * 2654435761u;
+        v(i) = static_cast<double>(h % 1000003u) / 1000003.0 - 0.5;
+      });
   return v;
 }
 
@@ -166,7 +171,8 @@ Op::Options bp_options(int bp, int p) {
   o.geometry = amphora::solvers::GeometryMode::cartesian;
   o.components = bp % 2 == 0 ? 3 : 1;
   o.n_q = bp >= 5 ? p + 1 : p + 2;
-  o.quadrature = bp >= 5 ? amphora::sumfac::QuadratureKind::gauss_lobatto : amphora::sumfac::QuadratureKind::gauss;
+  o.quadrature = bp >= 5 ? amphora::sumfac::QuadratureKind::gauss_lobatto
+                         : amphora::sumfac::QuadratureKind::gauss;
   return o;
 }
 /// The unit cube of BP bp: no Dirichlet faces for the mass BPs, Dirichlet all round otherwise.
@@ -199,7 +205,8 @@ void BP(benchmark::State& state) {
                      .iterations;
     exec.fence();
   }
-  state.counters["MDoF/s"] = benchmark::Counter(N * iterations * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["MDoF/s"] =
+      benchmark::Counter(N * iterations * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["DoFs"] = static_cast<double>(N);
   state.counters["iterations"] = iterations;
   const double bw = total_stream_bandwidth();
@@ -223,7 +230,10 @@ void BPOperator(benchmark::State& state) {
   report(state, static_cast<double>(space.n_global() * o.components), 16.0);
   state.counters["ranks"] = space.communicator().size();
 }
-BENCHMARK(BPOperator)->ArgsProduct({{1, 2, 3, 4, 5, 6}, {1, 2, 3, 4, 5, 6, 7, 8}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BPOperator)
+    ->ArgsProduct({{1, 2, 3, 4, 5, 6}, {1, 2, 3, 4, 5, 6, 7, 8}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 /// The bare operator with the geometry stored at the points (CEED's "qdata": the 6 entries of
 /// the symmetric metric per point) on a curved box, ~4e7 DoFs: the memory-bound form of the
@@ -242,12 +252,16 @@ void StoredGeometryLarge(benchmark::State& state) {
   Vector x = random_vector(op.size(), 1), y("y", op.size());
   time_applications(state, op, x, y);
   const double n = static_cast<double>(space.n_global());
-  const double geometry = space.communicator().sum(static_cast<double>(op.local().geometry_bytes()));
+  const double geometry =
+      space.communicator().sum(static_cast<double>(op.local().geometry_bytes()));
   report(state, n, 16.0 + geometry / n);
   state.counters["geometry_B/DoF"] = geometry / n;
   state.counters["ranks"] = space.communicator().size();
 }
-BENCHMARK(StoredGeometryLarge)->ArgsProduct({{0, 5}, {2, 3, 4, 5, 6, 7, 8}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(StoredGeometryLarge)
+    ->ArgsProduct({{0, 5}, {2, 3, 4, 5, 6, 7, 8}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void GeometryModes(benchmark::State& state) {
   using amphora::solvers::GeometryMode;
@@ -266,7 +280,10 @@ void GeometryModes(benchmark::State& state) {
   report(state, n, 16.0 + op.geometry_bytes() / n);
   state.counters["geometry_B/DoF"] = op.geometry_bytes() / n;
 }
-BENCHMARK(GeometryModes)->ArgsProduct({{0, 1, 2, 3}, {2, 4, 6}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(GeometryModes)
+    ->ArgsProduct({{0, 1, 2, 3}, {2, 4, 6}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // GenericKernel/p/generic: the run-time-size fallback (1) against the compiled kernel (0) for
 // the same operator (Laplace, QGauss(p+1), curved cells, ~1e6 DoFs): what leaving the table
@@ -284,7 +301,10 @@ void GenericKernel(benchmark::State& state) {
   time_applications(state, op, x, y);
   report(state, static_cast<double>(space.n_dofs()), 16.0);
 }
-BENCHMARK(GenericKernel)->ArgsProduct({{2, 4, 6}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(GenericKernel)
+    ->ArgsProduct({{2, 4, 6}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 void PoissonSolve(benchmark::State& state) {
   using namespace amphora::solvers;
@@ -297,8 +317,9 @@ void PoissonSolve(benchmark::State& state) {
   const Exec exec;
   // right-hand side: M f for a smooth f, zero on the Dirichlet DoFs
   Vector f = random_vector(N, 5), x("x", N);
-  Kokkos::parallel_for("amphora::bench::smooth_f", amphora::RangePolicy<Exec>(0, static_cast<int>(N)),
-                       KOKKOS_LAMBDA(int i) { f(i) = 1.0 + 0.1 * f(i); });
+  Kokkos::parallel_for(
+      "amphora::bench::smooth_f", amphora::RangePolicy<Exec>(0, static_cast<int>(N)),
+      KOKKOS_LAMBDA(int i) { f(i) = 1.0 + 0.1 * f(i); });
   const Vector b = load_vector(exec, space, f, GeometryMode::cartesian, k + 1);
   const Op A(space, o);
   // One rank's view of the same problem (no communication): the multigrid's operator type.
@@ -336,8 +357,8 @@ void PoissonSolve(benchmark::State& state) {
   }
   state.counters["DoFs"] = static_cast<double>(N);
   state.counters["iterations"] = iterations;
-  state.counters["ns/DoF"] = benchmark::Counter(N * 1e-9, benchmark::Counter::kIsIterationInvariantRate |
-                                                              benchmark::Counter::kInvert);
+  state.counters["ns/DoF"] = benchmark::Counter(
+      N * 1e-9, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
   state.counters["total_s"] = total_s;
   if (!amg) state.counters["setup_s"] = setup_s;
   if (amg) {
@@ -345,7 +366,12 @@ void PoissonSolve(benchmark::State& state) {
     state.counters["nnz"] = static_cast<double>(csr.nnz());
   }
 }
-BENCHMARK(PoissonSolve)->ArgsProduct({{2, 4}, {0, 1}})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1)->Repetitions(1);
+BENCHMARK(PoissonSolve)
+    ->ArgsProduct({{2, 4}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1)
+    ->Repetitions(1);
 
 }  // namespace bench_matrix_free_cases
 using namespace bench_matrix_free_cases;

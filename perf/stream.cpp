@@ -32,29 +32,43 @@ void run(benchmark::State& state, double bytes_per_element, Kernel kernel) {
   }
   const double bytes = bytes_per_element * n;
   // Shown as e.g. "bandwidth=13.6G/s" (decimal giga, as STREAM reports).
-  state.counters["bandwidth"] = benchmark::Counter(bytes, benchmark::Counter::kIsIterationInvariantRate,
-                                                   benchmark::Counter::OneK::kIs1000);
+  state.counters["bandwidth"] = benchmark::Counter(
+      bytes, benchmark::Counter::kIsIterationInvariantRate, benchmark::Counter::OneK::kIs1000);
   state.counters["MiB"] = 3.0 * 8.0 * n / (1 << 20);
   state.counters["threads"] = DefaultExecSpace().concurrency();
 }
 
 void StreamCopy(benchmark::State& state) {
   run(state, 16.0, [](int n, View a, View b, View) {
-    Kokkos::parallel_for("amphora::perf::stream_copy", amphora::RangePolicy<DefaultExecSpace>(0, n),
-                         KOKKOS_LAMBDA(int i) { a(i) = b(i); });
+    Kokkos::parallel_for(
+        "amphora::perf::stream_copy", amphora::RangePolicy<DefaultExecSpace>(0, n),
+        KOKKOS_LAMBDA(int i) { a(i) = b(i); });
   });
 }
 
 void StreamTriad(benchmark::State& state) {
   run(state, 24.0, [](int n, View a, View b, View c) {
     const double s = 3.0;
-    Kokkos::parallel_for("amphora::perf::stream_triad", amphora::RangePolicy<DefaultExecSpace>(0, n),
-                         KOKKOS_LAMBDA(int i) { a(i) = b(i) + s * c(i); });
+    Kokkos::parallel_for(
+        "amphora::perf::stream_triad", amphora::RangePolicy<DefaultExecSpace>(0, n),
+        KOKKOS_LAMBDA(int i) { a(i) = b(i) + s * c(i); });
   });
 }
 
 }  // namespace bench_stream_cases
 using namespace bench_stream_cases;
 
-BENCHMARK(StreamCopy)->UseManualTime()->Unit(benchmark::kMillisecond)->Arg(1 << 10)->Arg(1 << 20)->Arg(1 << 25)->Arg(1 << 26);
-BENCHMARK(StreamTriad)->UseManualTime()->Unit(benchmark::kMillisecond)->Arg(1 << 10)->Arg(1 << 20)->Arg(1 << 25)->Arg(1 << 26);
+BENCHMARK(StreamCopy)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Arg(1 << 10)
+    ->Arg(1 << 20)
+    ->Arg(1 << 25)
+    ->Arg(1 << 26);
+BENCHMARK(StreamTriad)
+    ->UseManualTime()
+    ->Unit(benchmark::kMillisecond)
+    ->Arg(1 << 10)
+    ->Arg(1 << 20)
+    ->Arg(1 << 25)
+    ->Arg(1 << 26);

@@ -52,9 +52,12 @@ class Communicator {
  private:
   template <class T>
   static MPI_Datatype mpi_type() {
-    if constexpr (std::is_same_v<T, double>) return MPI_DOUBLE;
-    else if constexpr (std::is_same_v<T, int>) return MPI_INT;
-    else if constexpr (std::is_same_v<T, char>) return MPI_CHAR;
+    if constexpr (std::is_same_v<T, double>)
+      return MPI_DOUBLE;
+    else if constexpr (std::is_same_v<T, int>)
+      return MPI_INT;
+    else if constexpr (std::is_same_v<T, char>)
+      return MPI_CHAR;
     else {
       static_assert(std::is_same_v<T, std::int64_t>, "unsupported element type");
       return MPI_INT64_T;

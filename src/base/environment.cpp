@@ -21,7 +21,8 @@ void require_visible_device() {
   int n = 0;
   const cudaError_t e = cudaGetDeviceCount(&n);
   if (e != cudaSuccess || n == 0) {
-    std::fprintf(stderr, "amphora: this build runs its kernels on CUDA, but no GPU is visible (%s)\n",
+    std::fprintf(stderr,
+                 "amphora: this build runs its kernels on CUDA, but no GPU is visible (%s)\n",
                  e != cudaSuccess ? cudaGetErrorString(e) : "no device");
     std::exit(1);
   }
@@ -45,9 +46,10 @@ void Environment::start_kokkos(int& argc, char**& argv) {
     if (is_help) help.push_back(argv[i]);
     args.push_back(is_help ? hidden : argv[i]);
   }
-  const bool asks = argc == 2 || !help.empty() || std::find_if(argv, argv + argc, [](const char* a) {
-                                       return std::strcmp(a, "--version") == 0;
-                                     }) != argv + argc;
+  const bool asks =
+      argc == 2 || !help.empty() || std::find_if(argv, argv + argc, [](const char* a) {
+                                      return std::strcmp(a, "--version") == 0;
+                                    }) != argv + argc;
   if (asks) args.push_back(quiet);
   int n = static_cast<int>(args.size());
   args.push_back(nullptr);

@@ -51,9 +51,10 @@ std::string ParamSpec::allowed() const {
     for (size_t i = 0; i < choices.size(); ++i) s << (i ? ", " : " ") << choices[i];
     return s.str();
   }
-  s << (type == ParamType::Integer ? "an integer" : type == ParamType::Real ? "a real number"
-        : type == ParamType::Boolean                                      ? "true or false"
-                                                                          : "a string");
+  s << (type == ParamType::Integer   ? "an integer"
+        : type == ParamType::Real    ? "a real number"
+        : type == ParamType::Boolean ? "true or false"
+                                     : "a string");
   if (min && max) {
     s << " in " << (min_exclusive ? "(" : "[") << *min << ", " << *max
       << (max_exclusive ? ")" : "]");
@@ -72,8 +73,8 @@ std::string ParamSpec::check(const ParamValue& v) const {
                        (type == ParamType::String && std::holds_alternative<std::string>(v));
   if (!type_ok) return "wrong type";
   if (type == ParamType::Real || type == ParamType::Integer) {
-    const double x = std::holds_alternative<double>(v) ? std::get<double>(v)
-                                                       : double(std::get<std::int64_t>(v));
+    const double x =
+        std::holds_alternative<double>(v) ? std::get<double>(v) : double(std::get<std::int64_t>(v));
     if (!std::isfinite(x)) return "not finite";
     if (min && (min_exclusive ? !(x > *min) : !(x >= *min))) return "out of range";
     if (max && (max_exclusive ? !(x < *max) : !(x <= *max))) return "out of range";

@@ -20,9 +20,9 @@ struct ParamSpec {
   std::optional<ParamValue> default_value;  ///< absent: the key is optional with no default
   std::string unit;                         ///< SI unit, "1" for dimensionless, "" for none
   std::string doc;
-  std::optional<double> min, max;           ///< numeric bounds
+  std::optional<double> min, max;  ///< numeric bounds
   bool min_exclusive = false, max_exclusive = false;
-  std::vector<std::string> choices;         ///< allowed strings (empty: any)
+  std::vector<std::string> choices;  ///< allowed strings (empty: any)
 
   /// "a real number > 0", "an integer in [1, 8]", "one of: a, b" — for error messages.
   std::string allowed() const;
@@ -49,10 +49,8 @@ Range operator&(const Range& a, const Range& b);
 /// One row of a table each: key, default (nullopt: none), unit, allowed values, help.
 ParamSpec real_param(std::string key, std::optional<double> def, std::string unit, Range range,
                      std::string doc);
-ParamSpec real_param(std::string key, std::optional<double> def, std::string unit,
-                     std::string doc);
-ParamSpec int_param(std::string key, std::optional<std::int64_t> def, Range range,
-                    std::string doc);
+ParamSpec real_param(std::string key, std::optional<double> def, std::string unit, std::string doc);
+ParamSpec int_param(std::string key, std::optional<std::int64_t> def, Range range, std::string doc);
 ParamSpec int_param(std::string key, std::optional<std::int64_t> def, std::string doc);
 ParamSpec bool_param(std::string key, bool def, std::string doc);
 ParamSpec string_param(std::string key, std::optional<std::string> def, std::string doc,

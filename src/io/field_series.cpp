@@ -40,7 +40,8 @@ std::string FieldSeries::write(long long step, double time,
     H5Group g{b.name, {{"x", b.x}, {"y", b.y}, {"z", b.z}}};
     if (b.points) g.datasets.push_back({"topology_points", {1.0}});  // marks a point set
     if (b.curvilinear)  // marks a curvilinear grid and gives its node counts
-      g.datasets.push_back({"topology_nodes", {double(b.nodes[0]), double(b.nodes[1]), double(b.nodes[2])}});
+      g.datasets.push_back(
+          {"topology_nodes", {double(b.nodes[0]), double(b.nodes[1]), double(b.nodes[2])}});
     for (const auto& f : b.fields) g.datasets.push_back(f);
     groups.push_back(std::move(g));
   }
@@ -67,8 +68,8 @@ std::string FieldSeries::write(long long step, double time,
     while (pos < joined.size()) {
       const std::size_t end = joined.find('\n', pos);
       curvilinear_nodes[joined.substr(pos, end - pos)] = {static_cast<long>(all_nodes[3 * i]),
-                                                         static_cast<long>(all_nodes[3 * i + 1]),
-                                                         static_cast<long>(all_nodes[3 * i + 2])};
+                                                          static_cast<long>(all_nodes[3 * i + 1]),
+                                                          static_cast<long>(all_nodes[3 * i + 2])};
       pos = end + 1;
       ++i;
     }
@@ -88,13 +89,13 @@ std::string FieldSeries::write(long long step, double time,
     const auto& s = sizes[g];
     const bool points = s.count("topology_points") != 0;
     const bool curvilinear = s.count("topology_nodes") != 0;
-    std::string dims =
-        points ? std::to_string(s.at("x"))
-               : std::to_string(s.at("z")) + " " + std::to_string(s.at("y")) + " " +
-                     std::to_string(s.at("x"));
+    std::string dims = points ? std::to_string(s.at("x"))
+                              : std::to_string(s.at("z")) + " " + std::to_string(s.at("y")) + " " +
+                                    std::to_string(s.at("x"));
     if (curvilinear) {
       const auto& nodes = curvilinear_nodes.at(g);
-      dims = std::to_string(nodes[2]) + " " + std::to_string(nodes[1]) + " " + std::to_string(nodes[0]);
+      dims = std::to_string(nodes[2]) + " " + std::to_string(nodes[1]) + " " +
+             std::to_string(nodes[0]);
     }
     x << "      <Grid Name=\"" << g << "\" GridType=\"Uniform\">\n";
     if (points) {

@@ -23,13 +23,14 @@ std::vector<H5DatasetInfo> gather_layout(const Communicator& comm,
                                          const std::vector<H5Group>& local) {
   std::ostringstream s;
   for (const auto& g : local)
-    for (const auto& [name, data] : g.datasets) s << g.name << '\t' << name << '\t' << data.size() << '\n';
+    for (const auto& [name, data] : g.datasets)
+      s << g.name << '\t' << name << '\t' << data.size() << '\n';
   const std::string mine = s.str();
   const std::vector<char> all = comm.allgatherv(std::vector<char>(mine.begin(), mine.end()));
   // Records are whole lines, so the concatenation parses in rank order; the owner of each
   // line is recovered from every rank's line count.
-  std::vector<int> lines_per_rank =
-      comm.allgatherv(std::vector<int>{static_cast<int>(std::count(mine.begin(), mine.end(), '\n'))});
+  std::vector<int> lines_per_rank = comm.allgatherv(
+      std::vector<int>{static_cast<int>(std::count(mine.begin(), mine.end(), '\n'))});
   std::vector<H5DatasetInfo> out;
   std::istringstream in(std::string(all.begin(), all.end()));
   std::string line;
@@ -62,7 +63,8 @@ hid_t mpio_fapl(const Communicator& comm) {
 }  // namespace
 
 std::vector<H5DatasetInfo> write_h5(const std::string& path, const Communicator& comm,
-              const std::vector<H5Group>& local_groups, const H5Metadata& meta) {
+                                    const std::vector<H5Group>& local_groups,
+                                    const H5Metadata& meta) {
   const auto layout = gather_layout(comm, local_groups);
   hid_t fapl = mpio_fapl(comm);
   hid_t file = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
@@ -79,14 +81,16 @@ std::vector<H5DatasetInfo> write_h5(const std::string& path, const Communicator&
 
   hid_t scalar = H5Screate(H5S_SCALAR);
   for (const auto& [name, v] : meta.reals) {
-    hid_t a = check_id(H5Acreate2(file, name.c_str(), H5T_NATIVE_DOUBLE, scalar, H5P_DEFAULT,
-                                  H5P_DEFAULT), "attribute " + name);
+    hid_t a = check_id(
+        H5Acreate2(file, name.c_str(), H5T_NATIVE_DOUBLE, scalar, H5P_DEFAULT, H5P_DEFAULT),
+        "attribute " + name);
     check(H5Awrite(a, H5T_NATIVE_DOUBLE, &v), "write attribute " + name);
     H5Aclose(a);
   }
   for (const auto& [name, v] : meta.integers) {
-    hid_t a = check_id(H5Acreate2(file, name.c_str(), H5T_NATIVE_LLONG, scalar, H5P_DEFAULT,
-                                  H5P_DEFAULT), "attribute " + name);
+    hid_t a =
+        check_id(H5Acreate2(file, name.c_str(), H5T_NATIVE_LLONG, scalar, H5P_DEFAULT, H5P_DEFAULT),
+                 "attribute " + name);
     check(H5Awrite(a, H5T_NATIVE_LLONG, &v), "write attribute " + name);
     H5Aclose(a);
   }
@@ -97,8 +101,9 @@ std::vector<H5DatasetInfo> write_h5(const std::string& path, const Communicator&
   for (const auto& [name, v] : meta.texts) {
     hsize_t n = std::max<hsize_t>(1, v.size());
     hid_t space = H5Screate_simple(1, &n, nullptr);
-    hid_t d = check_id(H5Dcreate2(file, name.c_str(), H5T_NATIVE_CHAR, space, H5P_DEFAULT, dcpl,
-                                  H5P_DEFAULT), "text " + name);
+    hid_t d = check_id(
+        H5Dcreate2(file, name.c_str(), H5T_NATIVE_CHAR, space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
+        "text " + name);
     H5Sclose(space);
     texts.emplace_back(d, &v);
   }
@@ -122,7 +127,8 @@ std::vector<H5DatasetInfo> write_h5(const std::string& path, const Communicator&
   bool ok = true;
   if (comm.is_root()) {
     for (auto& [id, text] : texts)
-      if (!text->empty()) ok = ok && H5Dwrite(id, H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, text->data()) >= 0;
+      if (!text->empty())
+        ok = ok && H5Dwrite(id, H5T_NATIVE_CHAR, H5S_ALL, H5S_ALL, H5P_DEFAULT, text->data()) >= 0;
   }
   for (auto& [id, d] : datasets) {
     if (d->owner != comm.rank()) continue;
@@ -130,7 +136,8 @@ std::vector<H5DatasetInfo> write_h5(const std::string& path, const Communicator&
       if (g.name != d->group) continue;
       for (const auto& [name, data] : g.datasets) {
         if (name == d->name && !data.empty()) {
-          ok = ok && H5Dwrite(id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0;
+          ok = ok &&
+               H5Dwrite(id, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()) >= 0;
         }
       }
     }

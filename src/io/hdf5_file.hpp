@@ -34,7 +34,8 @@ struct H5DatasetInfo {
 /// Writes `path` (replacing it) and returns the layout of every rank's datasets, in rank
 /// order. Collective. Throws std::runtime_error on failure.
 std::vector<H5DatasetInfo> write_h5(const std::string& path, const Communicator& comm,
-              const std::vector<H5Group>& local_groups, const H5Metadata& meta);
+                                    const std::vector<H5Group>& local_groups,
+                                    const H5Metadata& meta);
 
 /// Reads a file written by write_h5. Opening is collective; group reads are not.
 class H5Reader {

@@ -13,8 +13,8 @@ const std::vector<ModuleInfo>& module_registry() {
   static const std::vector<ModuleInfo> modules = {
       {"advection_diffusion_1d", advection_diffusion_1d::parameter_table,
        [](const Parameters& p, const Communicator& c) -> std::unique_ptr<Module> {
-         return std::make_unique<
-             advection_diffusion_1d::AdvectionDiffusion1D<DefaultExecSpace>>(p, c);
+         return std::make_unique<advection_diffusion_1d::AdvectionDiffusion1D<DefaultExecSpace>>(p,
+                                                                                                 c);
        }},
       {"beam_channel", fsi::beam_channel_parameter_table, fsi::create_beam_channel},
       {"dem", dem::parameter_table,

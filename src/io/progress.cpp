@@ -7,8 +7,14 @@ namespace amphora {
 
 Progress::Progress(std::ostream& out, bool active, long long first_step, long long last_step,
                    std::string unit, double interval_seconds)
-    : out_(out), active_(active), first_(first_step), last_(last_step), unit_(std::move(unit)), interval_(interval_seconds),
-      start_(std::chrono::steady_clock::now()), last_print_(start_) {}
+    : out_(out),
+      active_(active),
+      first_(first_step),
+      last_(last_step),
+      unit_(std::move(unit)),
+      interval_(interval_seconds),
+      start_(std::chrono::steady_clock::now()),
+      last_print_(start_) {}
 
 double Progress::elapsed() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();

@@ -114,9 +114,9 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
     const std::string fp = restart->text("fingerprint");
     if (fp != scene.fingerprint) {
       throw RunError("restart file '" + options.restart + "' was written by scene '" +
-                     restart->text("scene") + "' (fingerprint " + fp +
-                     "), not by this scene '" + scene.name + "' (fingerprint " +
-                     scene.fingerprint + "): name, module and module parameters must match");
+                     restart->text("scene") + "' (fingerprint " + fp + "), not by this scene '" +
+                     scene.name + "' (fingerprint " + scene.fingerprint +
+                     "): name, module and module parameters must match");
     }
   }
   if (options.write_output) prepare_output_dir(dir, comm);
@@ -154,12 +154,12 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   RunResult result;
   result.work_per_step = module->work_per_step();
   result.work_unit = module->work_unit();
-  Progress progress(std::cout, comm.is_root() && !options.quiet, step, n_steps,
-                    result.work_unit, run.real("progress_seconds"));
+  Progress progress(std::cout, comm.is_root() && !options.quiet, step, n_steps, result.work_unit,
+                    run.real("progress_seconds"));
   double work = 0.0;  // work units done by this run (a module's work per step may change)
   Diagnostics last_diagnostics;  // at the final step, computed once
   const long long first_step = step;
-  double stepping = 0.0;  // wall time in advance() only
+  double stepping = 0.0;   // wall time in advance() only
   DeepCopyCounter copies;  // host-device traffic of the steps (not of output or checkpoints)
   DeepCopyCount copied;
   while (step < n_steps && (options.max_steps < 0 || step - first_step < options.max_steps)) {
@@ -174,11 +174,12 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
     if (auto bad = module->find_nonfinite()) {
       std::ostringstream m;
       m << "run diverged: " << (bad->reason.empty() ? "non-finite value" : bad->reason)
-        << " in field '" << bad->field << "' of block '"
-        << bad->block << "' at x = " << fmt(bad->x) << " (index " << bad->index << ") at step "
-        << step << ", t = " << fmt(t) << " (dt = " << fmt(dt) << "); last good output: "
-        << (series.last_file().empty() ? "none" : series.last_file() + " (step " +
-                                                      std::to_string(series.last_step()) + ")");
+        << " in field '" << bad->field << "' of block '" << bad->block << "' at x = " << fmt(bad->x)
+        << " (index " << bad->index << ") at step " << step << ", t = " << fmt(t)
+        << " (dt = " << fmt(dt) << "); last good output: "
+        << (series.last_file().empty()
+                ? "none"
+                : series.last_file() + " (step " + std::to_string(series.last_step()) + ")");
       result.diverged = true;
       result.message = m.str();
       result.steps = step - first_step;

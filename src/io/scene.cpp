@@ -11,20 +11,27 @@
 namespace amphora {
 
 ParamTable run_parameter_table() {
-  return {"run",
-          "what to run, for how long, and where its output goes",
-          {
-              string_param("name", std::nullopt, "scene name (default: the file's stem)"),
-              string_param("module", std::nullopt, "the physics module to run (required)", module_names()),
-              string_param("output_dir", std::string("output"), "output directory (fields, series, diagnostics, checkpoint)"),
-              real_param("end_time", std::nullopt, "s", above(0.0), "end time (required)"),
-              real_param("dt", std::nullopt, "s", above(0.0), "time step (default: cfl * stable step)"),
-              real_param("cfl", 0.8, "1", above(0.0) & at_most(1.0), "fraction of the module's stable step"),
-              int_param("output_every", 0, at_least(0), "steps between field outputs (0: first and last)"),
-              int_param("checkpoint_every", 0, at_least(0), "steps between checkpoints (0: at the end)"),
-              int_param("diagnostics_every", 10, at_least(1), "steps between diagnostics rows"),
-              real_param("progress_seconds", 2.0, "s", at_least(0.0), "wall time between progress lines"),
-          }};
+  return {
+      "run",
+      "what to run, for how long, and where its output goes",
+      {
+          string_param("name", std::nullopt, "scene name (default: the file's stem)"),
+          string_param("module", std::nullopt, "the physics module to run (required)",
+                       module_names()),
+          string_param("output_dir", std::string("output"),
+                       "output directory (fields, series, diagnostics, checkpoint)"),
+          real_param("end_time", std::nullopt, "s", above(0.0), "end time (required)"),
+          real_param("dt", std::nullopt, "s", above(0.0), "time step (default: cfl * stable step)"),
+          real_param("cfl", 0.8, "1", above(0.0) & at_most(1.0),
+                     "fraction of the module's stable step"),
+          int_param("output_every", 0, at_least(0),
+                    "steps between field outputs (0: first and last)"),
+          int_param("checkpoint_every", 0, at_least(0),
+                    "steps between checkpoints (0: at the end)"),
+          int_param("diagnostics_every", 10, at_least(1), "steps between diagnostics rows"),
+          real_param("progress_seconds", 2.0, "s", at_least(0.0),
+                     "wall time between progress lines"),
+      }};
 }
 
 namespace {
@@ -104,7 +111,8 @@ void apply_override(toml::table& root, const std::string& assignment) {
   const std::string key = assignment.substr(dot + 1, eq - dot - 1);
   toml::table parsed;
   try {
-    parsed = toml::parse(std::string_view("v = " + assignment.substr(eq + 1)), std::string_view("override"));
+    parsed = toml::parse(std::string_view("v = " + assignment.substr(eq + 1)),
+                         std::string_view("override"));
   } catch (const toml::parse_error& e) {
     throw SceneError("override '" + assignment + "': " + std::string(e.description()));
   }
@@ -171,14 +179,18 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     if (name == "run") continue;
     const std::string loc = where(path, node.source());
     if (!node.is_table()) {
-      throw SceneError(loc + ": top-level key '" + name + "' must be inside a table; allowed "
-                       "tables: [run], [" + scene.module + "]");
+      throw SceneError(loc + ": top-level key '" + name +
+                       "' must be inside a table; allowed "
+                       "tables: [run], [" +
+                       scene.module + "]");
     }
     if (name != scene.module) {
       const bool is_module = find_module(name) != nullptr;
       throw SceneError(loc + ": " +
-                       (is_module ? "table [" + name + "] is for a module this scene does not "
-                                    "run (run.module = \"" + scene.module + "\")"
+                       (is_module ? "table [" + name +
+                                        "] is for a module this scene does not "
+                                        "run (run.module = \"" +
+                                        scene.module + "\")"
                                   : "unknown table [" + name + "]") +
                        "; allowed tables: [run], [" + scene.module + "]");
     }

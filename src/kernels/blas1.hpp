@@ -19,43 +19,46 @@ RangePolicy<ExecSpace> range(const ExecSpace& exec, const View& x) {
 /// x(i) = value
 template <class ExecSpace, class X>
 void fill(const ExecSpace& exec, const X& x, typename X::non_const_value_type value) {
-  Kokkos::parallel_for("amphora::blas1::fill", detail::range(exec, x),
-                       KOKKOS_LAMBDA(int i) { x(i) = value; });
+  Kokkos::parallel_for(
+      "amphora::blas1::fill", detail::range(exec, x), KOKKOS_LAMBDA(int i) { x(i) = value; });
 }
 
 /// y(i) = x(i)
 template <class ExecSpace, class X, class Y>
 void copy(const ExecSpace& exec, const X& x, const Y& y) {
-  Kokkos::parallel_for("amphora::blas1::copy", detail::range(exec, y),
-                       KOKKOS_LAMBDA(int i) { y(i) = x(i); });
+  Kokkos::parallel_for(
+      "amphora::blas1::copy", detail::range(exec, y), KOKKOS_LAMBDA(int i) { y(i) = x(i); });
 }
 
 /// x(i) *= a
 template <class ExecSpace, class X>
 void scale(const ExecSpace& exec, typename X::non_const_value_type a, const X& x) {
-  Kokkos::parallel_for("amphora::blas1::scale", detail::range(exec, x),
-                       KOKKOS_LAMBDA(int i) { x(i) *= a; });
+  Kokkos::parallel_for(
+      "amphora::blas1::scale", detail::range(exec, x), KOKKOS_LAMBDA(int i) { x(i) *= a; });
 }
 
 /// y(i) += a x(i)
 template <class ExecSpace, class X, class Y>
 void axpy(const ExecSpace& exec, typename Y::non_const_value_type a, const X& x, const Y& y) {
-  Kokkos::parallel_for("amphora::blas1::axpy", detail::range(exec, y),
-                       KOKKOS_LAMBDA(int i) { y(i) += a * x(i); });
+  Kokkos::parallel_for(
+      "amphora::blas1::axpy", detail::range(exec, y), KOKKOS_LAMBDA(int i) { y(i) += a * x(i); });
 }
 
 /// x(i) = 1 / x(i) (a diagonal into its inverse, for Jacobi).
 template <class ExecSpace, class X>
 void reciprocal(const ExecSpace& exec, const X& x) {
-  Kokkos::parallel_for("amphora::blas1::reciprocal", detail::range(exec, x), KOKKOS_LAMBDA(int i) { x(i) = 1.0 / x(i); });
+  Kokkos::parallel_for(
+      "amphora::blas1::reciprocal", detail::range(exec, x),
+      KOKKOS_LAMBDA(int i) { x(i) = 1.0 / x(i); });
 }
 
 /// y(i) = a x(i) + b y(i)
 template <class ExecSpace, class X, class Y>
 void axpby(const ExecSpace& exec, typename Y::non_const_value_type a, const X& x,
            typename Y::non_const_value_type b, const Y& y) {
-  Kokkos::parallel_for("amphora::blas1::axpby", detail::range(exec, y),
-                       KOKKOS_LAMBDA(int i) { y(i) = a * x(i) + b * y(i); });
+  Kokkos::parallel_for(
+      "amphora::blas1::axpby", detail::range(exec, y),
+      KOKKOS_LAMBDA(int i) { y(i) = a * x(i) + b * y(i); });
 }
 
 /// y(i) = x(i) + b y(i), and y = x where b is 0 (y is not read: it may be uninitialised). CG's
@@ -65,8 +68,9 @@ void xpby(const ExecSpace& exec, const X& x, typename Y::non_const_value_type b,
   if (b == 0)
     copy(exec, x, y);
   else
-    Kokkos::parallel_for("amphora::blas1::xpby", detail::range(exec, y),
-                         KOKKOS_LAMBDA(int i) { y(i) = x(i) + b * y(i); });
+    Kokkos::parallel_for(
+        "amphora::blas1::xpby", detail::range(exec, y),
+        KOKKOS_LAMBDA(int i) { y(i) = x(i) + b * y(i); });
 }
 
 /// sum_i x(i) y(i). Each work item sums a block of 8 entries as a tree: without reassociation a
@@ -82,8 +86,10 @@ typename X::non_const_value_type dot(const ExecSpace& exec, const X& x, const Y&
       KOKKOS_LAMBDA(int blk, T& acc) {
         const int i = 8 * blk;
         if (blk < blocks) {
-          acc += ((x(i) * y(i) + x(i + 1) * y(i + 1)) + (x(i + 2) * y(i + 2) + x(i + 3) * y(i + 3))) +
-                 ((x(i + 4) * y(i + 4) + x(i + 5) * y(i + 5)) + (x(i + 6) * y(i + 6) + x(i + 7) * y(i + 7)));
+          acc +=
+              ((x(i) * y(i) + x(i + 1) * y(i + 1)) + (x(i + 2) * y(i + 2) + x(i + 3) * y(i + 3))) +
+              ((x(i + 4) * y(i + 4) + x(i + 5) * y(i + 5)) +
+               (x(i + 6) * y(i + 6) + x(i + 7) * y(i + 7)));
         } else {
           for (int m = i; m < n; ++m) acc += x(m) * y(m);
         }
@@ -95,7 +101,8 @@ typename X::non_const_value_type dot(const ExecSpace& exec, const X& x, const Y&
 /// The update of a CG iteration in one pass: x += a p, r -= a q; returns r.r (blocks of 8 as in
 /// dot).
 template <class ExecSpace, class P, class Q, class X, class R>
-typename X::non_const_value_type cg_update(const ExecSpace& exec, typename X::non_const_value_type a, const P& p,
+typename X::non_const_value_type cg_update(const ExecSpace& exec,
+                                           typename X::non_const_value_type a, const P& p,
                                            const Q& q, const X& x, const R& r) {
   using T = typename X::non_const_value_type;
   const int n = static_cast<int>(x.extent(0)), blocks = (n + 7) / 8;
@@ -122,8 +129,9 @@ template <class ExecSpace, class X>
 typename X::non_const_value_type sum(const ExecSpace& exec, const X& x) {
   using T = typename X::non_const_value_type;
   T result{};
-  Kokkos::parallel_reduce("amphora::blas1::sum", detail::range(exec, x),
-                          KOKKOS_LAMBDA(int i, T& acc) { acc += x(i); }, result);
+  Kokkos::parallel_reduce(
+      "amphora::blas1::sum", detail::range(exec, x), KOKKOS_LAMBDA(int i, T& acc) { acc += x(i); },
+      result);
   return result;
 }
 
@@ -132,8 +140,9 @@ template <class ExecSpace, class X>
 typename X::non_const_value_type norm1(const ExecSpace& exec, const X& x) {
   using T = typename X::non_const_value_type;
   T result{};
-  Kokkos::parallel_reduce("amphora::blas1::norm1", detail::range(exec, x),
-                          KOKKOS_LAMBDA(int i, T& acc) { acc += math::abs(x(i)); }, result);
+  Kokkos::parallel_reduce(
+      "amphora::blas1::norm1", detail::range(exec, x),
+      KOKKOS_LAMBDA(int i, T& acc) { acc += math::abs(x(i)); }, result);
   return result;
 }
 

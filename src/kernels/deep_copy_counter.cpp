@@ -10,14 +10,15 @@ namespace amphora {
 namespace {
 
 using Handle = Kokkos_Profiling_SpaceHandle;  // the C struct: the same name in Kokkos 3.4 and 4.x
-using Callback = void (*)(Handle, const char*, const void*, Handle, const char*, const void*, std::uint64_t);
+using Callback = void (*)(Handle, const char*, const void*, Handle, const char*, const void*,
+                          std::uint64_t);
 
 std::atomic<bool> active{false};
 Callback previous = nullptr;
 DeepCopyCount tally;
 
-void on_deep_copy(Handle dst, const char* dst_label, const void* dst_ptr, Handle src, const char* src_label,
-                  const void* src_ptr, std::uint64_t bytes) {
+void on_deep_copy(Handle dst, const char* dst_label, const void* dst_ptr, Handle src,
+                  const char* src_label, const void* src_ptr, std::uint64_t bytes) {
   // Kokkos labels the host side of a fill and of a rank-0 read "Scalar" (Kokkos_CopyViews.hpp).
   if (std::strcmp(src_label, "Scalar") == 0) {
     ++tally.fills;
@@ -40,7 +41,8 @@ void on_deep_copy(Handle dst, const char* dst_label, const void* dst_ptr, Handle
 }  // namespace
 
 DeepCopyCounter::DeepCopyCounter() {
-  if (active.exchange(true)) throw std::logic_error("amphora::DeepCopyCounter: one is already counting");
+  if (active.exchange(true))
+    throw std::logic_error("amphora::DeepCopyCounter: one is already counting");
   tally = {};
   previous = Kokkos::Tools::Experimental::get_callbacks().begin_deep_copy;
   Kokkos::Tools::Experimental::set_begin_deep_copy_callback(&on_deep_copy);

@@ -14,23 +14,33 @@ struct DeepCopyCount {
   long long bytes = 0;           ///< their bytes
   long long crossing = 0;        ///< of these, between two different memory spaces
   long long crossing_bytes = 0;  ///< their bytes
-  long long onto_itself = 0;     ///< of `copies`, onto the same memory (a host mirror on a host build)
+  long long onto_itself = 0;  ///< of `copies`, onto the same memory (a host mirror on a host build)
   long long onto_itself_bytes = 0;
-  long long fills = 0;           ///< a View set to one value
-  long long scalar_reads = 0;    ///< a rank-0 View read into a host value (a reduction's result)
+  long long fills = 0;         ///< a View set to one value
+  long long scalar_reads = 0;  ///< a rank-0 View read into a host value (a reduction's result)
 
   long long host_device() const { return crossing + onto_itself; }
   long long host_device_bytes() const { return crossing_bytes + onto_itself_bytes; }
 
   DeepCopyCount operator-(const DeepCopyCount& o) const {
-    return {copies - o.copies,   bytes - o.bytes,           crossing - o.crossing,
-            crossing_bytes - o.crossing_bytes, onto_itself - o.onto_itself,
-            onto_itself_bytes - o.onto_itself_bytes, fills - o.fills, scalar_reads - o.scalar_reads};
+    return {copies - o.copies,
+            bytes - o.bytes,
+            crossing - o.crossing,
+            crossing_bytes - o.crossing_bytes,
+            onto_itself - o.onto_itself,
+            onto_itself_bytes - o.onto_itself_bytes,
+            fills - o.fills,
+            scalar_reads - o.scalar_reads};
   }
   DeepCopyCount operator+(const DeepCopyCount& o) const {
-    return {copies + o.copies,   bytes + o.bytes,           crossing + o.crossing,
-            crossing_bytes + o.crossing_bytes, onto_itself + o.onto_itself,
-            onto_itself_bytes + o.onto_itself_bytes, fills + o.fills, scalar_reads + o.scalar_reads};
+    return {copies + o.copies,
+            bytes + o.bytes,
+            crossing + o.crossing,
+            crossing_bytes + o.crossing_bytes,
+            onto_itself + o.onto_itself,
+            onto_itself_bytes + o.onto_itself_bytes,
+            fills + o.fills,
+            scalar_reads + o.scalar_reads};
   }
 };
 

@@ -8,8 +8,10 @@
 namespace amphora {
 
 template <class MemSpace, class T, class Allocator>
-Kokkos::View<T*, MemSpace> to_view(const std::vector<T, Allocator>& v, const char* label = "amphora::vector") {
-  Kokkos::View<T*, MemSpace> d(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), v.size());
+Kokkos::View<T*, MemSpace> to_view(const std::vector<T, Allocator>& v,
+                                   const char* label = "amphora::vector") {
+  Kokkos::View<T*, MemSpace> d(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)),
+                               v.size());
   auto h = Kokkos::create_mirror_view(d);
   for (std::size_t i = 0; i < v.size(); ++i) h(i) = v[i];
   Kokkos::deep_copy(d, h);

@@ -22,7 +22,8 @@ inline constexpr bool is_memory_space_v = Kokkos::is_memory_space<T>::value;
 /// loops instead of atomics, SIMD lanes) go by this. It asks about the execution space, not its
 /// memory space: CUDA's UVM memory is host-accessible, yet its kernels run on the device.
 template <class ExecSpace>
-inline constexpr bool runs_on_host_v = Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible;
+inline constexpr bool runs_on_host_v =
+    Kokkos::SpaceAccessibility<ExecSpace, Kokkos::HostSpace>::accessible;
 
 /// Contiguous 1D array of T in memory space MemSpace (the SoA building block).
 template <class T, class MemSpace = DefaultMemSpace>
@@ -61,13 +62,13 @@ std::string enabled_backends();
 #endif
 // MACRO(space) for every enabled execution space: explicit instantiations of members defined
 // in another .cpp than their class's AMPHORA_INSTANTIATE_ON_EXEC_SPACES.
-#define AMPHORA_FOR_EACH_EXEC_SPACE(MACRO)      \
-  AMPHORA_IF_SERIAL(MACRO(Kokkos::Serial))      \
-  AMPHORA_IF_OPENMP(MACRO(Kokkos::OpenMP))      \
-  AMPHORA_IF_CUDA(MACRO(Kokkos::Cuda))          \
+#define AMPHORA_FOR_EACH_EXEC_SPACE(MACRO) \
+  AMPHORA_IF_SERIAL(MACRO(Kokkos::Serial)) \
+  AMPHORA_IF_OPENMP(MACRO(Kokkos::OpenMP)) \
+  AMPHORA_IF_CUDA(MACRO(Kokkos::Cuda))     \
   AMPHORA_IF_HIP(MACRO(Kokkos::Experimental::HIP))
-#define AMPHORA_INSTANTIATE_ON_EXEC_SPACES(CLASS)                \
-  AMPHORA_IF_SERIAL(template class CLASS<Kokkos::Serial>;)       \
-  AMPHORA_IF_OPENMP(template class CLASS<Kokkos::OpenMP>;)       \
-  AMPHORA_IF_CUDA(template class CLASS<Kokkos::Cuda>;)           \
+#define AMPHORA_INSTANTIATE_ON_EXEC_SPACES(CLASS)          \
+  AMPHORA_IF_SERIAL(template class CLASS<Kokkos::Serial>;) \
+  AMPHORA_IF_OPENMP(template class CLASS<Kokkos::OpenMP>;) \
+  AMPHORA_IF_CUDA(template class CLASS<Kokkos::Cuda>;)     \
   AMPHORA_IF_HIP(template class CLASS<Kokkos::Experimental::HIP>;)

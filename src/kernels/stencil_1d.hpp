@@ -23,8 +23,8 @@ void advection_diffusion_ftcs(const ExecSpace& exec, const ConstView& u_old, con
       "amphora::stencil::advection_diffusion_ftcs", RangePolicy<ExecSpace>(exec, first, last),
       KOKKOS_LAMBDA(int i) {
         const double um = u_old(i - 1), u0 = u_old(i), up = u_old(i + 1);
-        u_new(i) = u0 + c_adv * (up - um) + c_dif * (up - 2.0 * u0 + um) +
-                   dt * source(x0 + i * dx, t);
+        u_new(i) =
+            u0 + c_adv * (up - um) + c_dif * (up - 2.0 * u0 + um) + dt * source(x0 + i * dx, t);
       });
 }
 

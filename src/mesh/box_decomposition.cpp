@@ -21,7 +21,8 @@ BoxDecomposition::BoxDecomposition(Index3 global_cells, std::array<bool, 3> peri
   // Largest number of blocks per direction that keeps every block at least min_block_cells
   // wide; a direction that is not split may be thinner.
   Index3 max_blocks;
-  for (int d = 0; d < 3; ++d) max_blocks[d] = splittable[d] ? std::max(1, global_[d] / min_block_cells) : 1;
+  for (int d = 0; d < 3; ++d)
+    max_blocks[d] = splittable[d] ? std::max(1, global_[d] / min_block_cells) : 1;
 
   double best_surface = std::numeric_limits<double>::max();
   bool found = false;
@@ -46,9 +47,9 @@ BoxDecomposition::BoxDecomposition(Index3 global_cells, std::array<bool, 3> peri
   }
   if (!found) {
     std::ostringstream msg;
-    msg << "more ranks (" << nranks << ") than blocks: a " << global_[0] << "x" << global_[1]
-        << "x" << global_[2] << "-cell box splits into at most " << max_blocks[0] << "x"
-        << max_blocks[1] << "x" << max_blocks[2] << " blocks of at least " << min_block_cells
+    msg << "more ranks (" << nranks << ") than blocks: a " << global_[0] << "x" << global_[1] << "x"
+        << global_[2] << "-cell box splits into at most " << max_blocks[0] << "x" << max_blocks[1]
+        << "x" << max_blocks[2] << " blocks of at least " << min_block_cells
         << " cells per direction, and " << nranks << " does not factor into that";
     throw DecompositionError(msg.str());
   }

@@ -21,7 +21,9 @@ class HaloExchange {
   using Buffer = Kokkos::View<double*, MemSpace>;
 
   HaloExchange(const BoxDecomposition& decomposition, const Communicator& comm, int ghost)
-      : decomposition_(decomposition), comm_(comm), ghost_(ghost),
+      : decomposition_(decomposition),
+        comm_(comm),
+        ghost_(ghost),
         box_(decomposition.box(comm.rank())) {}
 
   int ghost() const { return ghost_; }
@@ -54,9 +56,8 @@ class HaloExchange {
         auto recv_host = Kokkos::create_mirror_view(recv_buf);
         MPI_Sendrecv(send_host.data(), static_cast<int>(send.size()), MPI_DOUBLE,
                      to >= 0 ? to : MPI_PROC_NULL, 100 + 2 * d + side, recv_host.data(),
-                     static_cast<int>(recv.size()), MPI_DOUBLE,
-                     from >= 0 ? from : MPI_PROC_NULL, 100 + 2 * d + side, comm_.get(),
-                     MPI_STATUS_IGNORE);
+                     static_cast<int>(recv.size()), MPI_DOUBLE, from >= 0 ? from : MPI_PROC_NULL,
+                     100 + 2 * d + side, comm_.get(), MPI_STATUS_IGNORE);
         if (from >= 0) {
           Kokkos::deep_copy(recv_buf, recv_host);
           unpack(exec, field, recv, recv_buf);

@@ -19,8 +19,9 @@ OverlappingGrid1D::OverlappingGrid1D(int cells, double interface, double overlap
   const int n2p1 = static_cast<int>(std::ceil((1.0 - xa) / (spacing_ratio * h1) - 1e-12));
   const double h2 = (1.0 - xa) / n2p1;
   if (n1p1 < 3 || n2p1 < 3) {
-    throw std::invalid_argument("overlapping grid: each component grid needs at least 3 cells; "
-                                "increase cells or move the interface");
+    throw std::invalid_argument(
+        "overlapping grid: each component grid needs at least 3 cells; "
+        "increase cells or move the interface");
   }
   grids_[0] = ComponentGrid1D{0.0, h1, n1p1 + 1, 1, n1p1};
   grids_[1] = ComponentGrid1D{xa, h2, n2p1 + 2, 1, n2p1 + 1};

@@ -21,7 +21,6 @@ struct NonFiniteReport {
   std::string reason;  ///< empty: "non-finite value"
 };
 
-
 class Module {
  public:
   virtual ~Module() = default;

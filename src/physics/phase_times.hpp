@@ -14,7 +14,8 @@ namespace amphora {
 
 class PhaseTimes {
  public:
-  explicit PhaseTimes(std::vector<std::string> names) : names_(std::move(names)), seconds_(names_.size(), 0.0) {}
+  explicit PhaseTimes(std::vector<std::string> names)
+      : names_(std::move(names)), seconds_(names_.size(), 0.0) {}
 
   /// Starts the clock for the next lap.
   void start() {

@@ -33,7 +33,9 @@ class ChebyshevSmoother {
   ChebyshevSmoother(const ExecSpace& exec, const Operator& A, const Vector& inverse_diagonal,
                     const ChebyshevOptions& options = {}, const Inner& inner = Inner(),
                     const Vector& start = Vector())
-      : A_(&A), inv_diag_(inverse_diagonal), options_(options),
+      : A_(&A),
+        inv_diag_(inverse_diagonal),
+        options_(options),
         r_("amphora::chebyshev::r", inverse_diagonal.extent(0)),
         d_("amphora::chebyshev::d", inverse_diagonal.extent(0)) {
     if (options.lambda_max_bound > 0.0) {
@@ -58,9 +60,11 @@ class ChebyshevSmoother {
       if (!(first && zero_initial)) A_->apply(exec, x, r);  // r = A x
       const bool skip_ax = first && zero_initial;
       const double rho = first ? rho_old : 1.0 / (2.0 * sigma - rho_old);
-      const double c_old = first ? 0.0 : rho * rho_old, c_new = first ? 1.0 / theta : 2.0 * rho / delta;
+      const double c_old = first ? 0.0 : rho * rho_old,
+                   c_new = first ? 1.0 / theta : 2.0 * rho / delta;
       Kokkos::parallel_for(
-          "amphora::ChebyshevSmoother::step", RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
+          "amphora::ChebyshevSmoother::step", RangePolicy<ExecSpace>(exec, 0, n),
+          KOKKOS_LAMBDA(int i) {
             const double res = skip_ax ? b(i) : b(i) - r(i);
             const double di = (c_old != 0.0 ? c_old * d(i) : 0.0) + c_new * D(i) * res;
             d(i) = di;
@@ -71,7 +75,9 @@ class ChebyshevSmoother {
   }
 
   /// As a preconditioner: z = p(D^-1 A) D^-1 r (smoothing from zero).
-  void apply(const ExecSpace& exec, const Vector& r, const Vector& z) const { smooth(exec, r, z, true); }
+  void apply(const ExecSpace& exec, const Vector& r, const Vector& z) const {
+    smooth(exec, r, z, true);
+  }
 
  public:  // (CUDA: extended lambdas may not live in private member functions)
   double estimate_lambda_max(const ExecSpace& exec, const Inner& dot, const Vector& start) const {
@@ -80,15 +86,17 @@ class ChebyshevSmoother {
     Vector x("x", n), r("r", n), z("z", n), p("p", n), q("q", n);
     const Vector D = inv_diag_;
     const bool given = start.extent(0) > 0;
-    Kokkos::parallel_for("amphora::ChebyshevSmoother::start", RangePolicy<ExecSpace>(exec, 0, n),
-                         KOKKOS_LAMBDA(int i) {
-                           // deterministic, rich in every eigencomponent
-                           const double h = static_cast<double>((i * 2654435761u) % 1000003u) / 1000003.0;
-                           r(i) = (given ? start(i) : h - 0.5) * (D(i) != 0.0 ? 1.0 : 0.0);
-                         });
+    Kokkos::parallel_for(
+        "amphora::ChebyshevSmoother::start", RangePolicy<ExecSpace>(exec, 0, n),
+        KOKKOS_LAMBDA(int i) {
+          // deterministic, rich in every eigencomponent
+          const double h = static_cast<double>((i * 2654435761u) % 1000003u) / 1000003.0;
+          r(i) = (given ? start(i) : h - 0.5) * (D(i) != 0.0 ? 1.0 : 0.0);
+        });
     std::vector<double> alphas, betas;
-    Kokkos::parallel_for("amphora::ChebyshevSmoother::z", RangePolicy<ExecSpace>(exec, 0, n),
-                         KOKKOS_LAMBDA(int i) { z(i) = D(i) * r(i); });
+    Kokkos::parallel_for(
+        "amphora::ChebyshevSmoother::z", RangePolicy<ExecSpace>(exec, 0, n),
+        KOKKOS_LAMBDA(int i) { z(i) = D(i) * r(i); });
     blas1::copy(exec, z, p);
     double rz = dot(exec, r, z);
     for (int it = 0; it < options_.eigenvalue_iterations && rz > 0.0; ++it) {
@@ -98,8 +106,9 @@ class ChebyshevSmoother {
       const double alpha = rz / pq;
       alphas.push_back(alpha);
       blas1::axpy(exec, -alpha, q, r);
-      Kokkos::parallel_for("amphora::ChebyshevSmoother::z", RangePolicy<ExecSpace>(exec, 0, n),
-                           KOKKOS_LAMBDA(int i) { z(i) = D(i) * r(i); });
+      Kokkos::parallel_for(
+          "amphora::ChebyshevSmoother::z", RangePolicy<ExecSpace>(exec, 0, n),
+          KOKKOS_LAMBDA(int i) { z(i) = D(i) * r(i); });
       const double rz_new = dot(exec, r, z);
       const double beta = rz_new / rz;
       betas.push_back(beta);

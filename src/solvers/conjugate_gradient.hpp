@@ -26,18 +26,19 @@ struct has_fused_update<Inner, std::void_t<decltype(Inner::fuses_cg_update)>>
 template <class Operator, class ExecSpace, class View, class Inner, class = void>
 struct has_fused_direction : std::false_type {};
 template <class Operator, class ExecSpace, class View, class Inner>
-struct has_fused_direction<Operator, ExecSpace, View, Inner,
-                           std::void_t<decltype(std::declval<const Operator&>().apply_direction(
-                               std::declval<const ExecSpace&>(), std::declval<const View&>(), 0.0,
-                               std::declval<const View&>(), std::declval<const View&>(), std::declval<const Inner&>()))>>
+struct has_fused_direction<
+    Operator, ExecSpace, View, Inner,
+    std::void_t<decltype(std::declval<const Operator&>().apply_direction(
+        std::declval<const ExecSpace&>(), std::declval<const View&>(), 0.0,
+        std::declval<const View&>(), std::declval<const View&>(), std::declval<const Inner&>()))>>
     : std::true_type {};
 
 /// CG's direction step in three passes: p = z + beta p (p = z if beta is 0), q = A p; returns
 /// p.q under `dot`. What an operator without apply_direction gets, and what one with it falls
 /// back to where it cannot sweep.
 template <class ExecSpace, class Operator, class View, class Inner>
-double direction_in_passes(const ExecSpace& exec, const Operator& A, const View& z, double beta, const View& p,
-                           const View& q, const Inner& dot) {
+double direction_in_passes(const ExecSpace& exec, const Operator& A, const View& z, double beta,
+                           const View& p, const View& q, const Inner& dot) {
   blas1::xpby(exec, z, beta, p);
   A.apply(exec, p, q);
   return dot(exec, p, q);
@@ -65,8 +66,8 @@ struct LocalInnerProduct {
     return blas1::dot(exec, x, y);
   }
   template <class ExecSpace, class View>
-  double fused_update(const ExecSpace& exec, double alpha, const View& p, const View& q, const View& x,
-                      const View& r) const {
+  double fused_update(const ExecSpace& exec, double alpha, const View& p, const View& q,
+                      const View& x, const View& r) const {
     return blas1::cg_update(exec, alpha, p, q, x, r);
   }
 };
@@ -104,7 +105,9 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
   // formed: 32 of 136 bytes per unknown and iteration (the CEED BPs' CG).
   constexpr bool unpreconditioned = std::is_same_v<Preconditioner, IdentityPreconditioner>;
   View r(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::r"), n);
-  View z = unpreconditioned ? r : View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::z"), n);
+  View z = unpreconditioned
+               ? r
+               : View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::z"), n);
   View p(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::p"), n);
   View q(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::q"), n);
 

@@ -54,12 +54,15 @@ struct CsrMatrix {
 inline double jacobi_gershgorin_bound(const CsrMatrix& A, long first_column = 0) {
   double bound = 0.0;
   Kokkos::parallel_reduce(
-      "amphora::csr::gershgorin_bound", Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, A.n),
+      "amphora::csr::gershgorin_bound",
+      Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>(0, A.n),
       [&](long i, double& acc) {
         double diag = 0.0, off = 0.0;
         for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e)
-          if (A.cols[e] == first_column + i) diag = A.values[e];
-          else off += std::abs(A.values[e]);
+          if (A.cols[e] == first_column + i)
+            diag = A.values[e];
+          else
+            off += std::abs(A.values[e]);
         if (diag > 0.0) acc = std::max(acc, 1.0 + off / diag);
       },
       Kokkos::Max<double>(bound));

@@ -23,7 +23,8 @@ struct DeviceCsrMatrix {
 
   DeviceCsrMatrix() = default;
   /// A copy of A; with_inverse_diagonal: also 1 / a_ii (zero where a_ii is; a square matrix).
-  explicit DeviceCsrMatrix(const CsrMatrix& A, bool with_inverse_diagonal = true) : n(static_cast<int>(A.n)) {
+  explicit DeviceCsrMatrix(const CsrMatrix& A, bool with_inverse_diagonal = true)
+      : n(static_cast<int>(A.n)) {
     copy(A, with_inverse_diagonal);
   }
   /// A itself, where MemSpace is the host's: its columns and values are kept and viewed,
@@ -48,7 +49,8 @@ struct DeviceCsrMatrix {
     const auto c = cols;
     const auto v = values;
     Kokkos::parallel_for(
-        "amphora::DeviceCsrMatrix::apply", RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
+        "amphora::DeviceCsrMatrix::apply", RangePolicy<ExecSpace>(exec, 0, n),
+        KOKKOS_LAMBDA(int i) {
           double s = 0.0;
           for (int e = rp(i); e < rp(i + 1); ++e) s += v(e) * x(c(e));
           y(i) = s;
@@ -66,8 +68,8 @@ struct DeviceCsrMatrix {
   /// multigrid, whose finest matrix has about 650k entries in the deep splash).
   void finish(const CsrMatrix& A, bool with_inverse_diagonal) {
     using HostPolicy = Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>;
-    Kokkos::View<int*, Kokkos::HostSpace> rp(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::csr::row_ptr"),
-                                             A.row_ptr.size());
+    Kokkos::View<int*, Kokkos::HostSpace> rp(
+        Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::csr::row_ptr"), A.row_ptr.size());
     Kokkos::parallel_for("amphora::csr::row_ptr", HostPolicy(0, rp.extent(0)),
                          [&](std::size_t i) { rp(i) = static_cast<int>(A.row_ptr[i]); });
     row_ptr = Kokkos::create_mirror_view_and_copy(MemSpace(), rp);
@@ -91,8 +93,8 @@ namespace amphora::kernels::mac {
 
 /// r = b - A x for an assembled matrix.
 template <class ExecSpace, class MemSpace, class B, class X, class R>
-void residual_csr(const ExecSpace& exec, const solvers::DeviceCsrMatrix<MemSpace>& A, const B& b, const X& x,
-                  const R& r) {
+void residual_csr(const ExecSpace& exec, const solvers::DeviceCsrMatrix<MemSpace>& A, const B& b,
+                  const X& x, const R& r) {
   const auto rp = A.row_ptr;
   const auto c = A.cols;
   const auto v = A.values;

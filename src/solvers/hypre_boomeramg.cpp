@@ -58,7 +58,8 @@ void ensure_hypre_initialised() {
 BoomerAMG::BoomerAMG(const CsrMatrix& M, const BoomerAMGOptions& options)
     : BoomerAMG(MPI_COMM_SELF, 0, M, options) {}
 
-BoomerAMG::BoomerAMG(MPI_Comm comm, long first_row, const CsrMatrix& M, const BoomerAMGOptions& options)
+BoomerAMG::BoomerAMG(MPI_Comm comm, long first_row, const CsrMatrix& M,
+                     const BoomerAMGOptions& options)
     : impl_(std::make_unique<Impl>()) {
   ensure_hypre_initialised();
   auto& s = *impl_;
@@ -72,14 +73,15 @@ BoomerAMG::BoomerAMG(MPI_Comm comm, long first_row, const CsrMatrix& M, const Bo
   HYPRE_IJMatrixCreate(comm, lo, hi, lo, hi, &s.ij);
   HYPRE_IJMatrixSetObjectType(s.ij, HYPRE_PARCSR);
   std::vector<HYPRE_Int> row_sizes(M.n);
-  for (long i = 0; i < M.n; ++i) row_sizes[i] = static_cast<HYPRE_Int>(M.row_ptr[i + 1] - M.row_ptr[i]);
+  for (long i = 0; i < M.n; ++i)
+    row_sizes[i] = static_cast<HYPRE_Int>(M.row_ptr[i + 1] - M.row_ptr[i]);
   HYPRE_IJMatrixSetRowSizes(s.ij, row_sizes.data());
   HYPRE_IJMatrixInitialize(s.ij);
   s.index.resize(M.n);
   for (long i = 0; i < M.n; ++i) s.index[i] = lo + static_cast<HYPRE_BigInt>(i);
   std::vector<HYPRE_BigInt> cols(M.cols.begin(), M.cols.end());
-  HYPRE_IJMatrixSetValues(s.ij, static_cast<HYPRE_Int>(M.n), row_sizes.data(), s.index.data(), cols.data(),
-                          M.values.data());
+  HYPRE_IJMatrixSetValues(s.ij, static_cast<HYPRE_Int>(M.n), row_sizes.data(), s.index.data(),
+                          cols.data(), M.values.data());
   HYPRE_IJMatrixAssemble(s.ij);
   HYPRE_IJMatrixGetObject(s.ij, reinterpret_cast<void**>(&s.A));
   HYPRE_IJVectorCreate(comm, lo, hi, &s.bij);
@@ -112,7 +114,8 @@ void BoomerAMG::vcycle(const double* b, double* x) const {
   HYPRE_IJVectorGetValues(s.xij, static_cast<HYPRE_Int>(s.n), s.index.data(), x);
 }
 
-HypreSolveResult BoomerAMG::pcg(const double* b, double* x, double relative_tolerance, int max_iterations) const {
+HypreSolveResult BoomerAMG::pcg(const double* b, double* x, double relative_tolerance,
+                                int max_iterations) const {
   auto& s = *impl_;
   s.set_vectors(b, x);
   HYPRE_Solver pcg = nullptr, amg = nullptr;

@@ -16,10 +16,10 @@ namespace amphora::solvers {
 struct BoomerAMGOptions {
   double strong_threshold = 0.5;
   int aggressive_levels = 1;
-  int coarsen_type = 10;   // HMIS
-  int interp_type = 6;     // extended+i
-  int relax_type = 8;      // l1 symmetric hybrid Gauss–Seidel
-  int p_max = 4;           // interpolation entries per row
+  int coarsen_type = 10;  // HMIS
+  int interp_type = 6;    // extended+i
+  int relax_type = 8;     // l1 symmetric hybrid Gauss–Seidel
+  int p_max = 4;          // interpolation entries per row
 };
 
 struct HypreSolveResult {
@@ -32,7 +32,8 @@ class BoomerAMG {
   BoomerAMG(const CsrMatrix& A, const BoomerAMGOptions& options = {});
   /// This rank's rows [first_row, first_row + A.n) of a matrix distributed over comm
   /// (collective; vectors are this rank's n entries).
-  BoomerAMG(MPI_Comm comm, long first_row, const CsrMatrix& A, const BoomerAMGOptions& options = {});
+  BoomerAMG(MPI_Comm comm, long first_row, const CsrMatrix& A,
+            const BoomerAMGOptions& options = {});
   ~BoomerAMG();
   BoomerAMG(const BoomerAMG&) = delete;
   BoomerAMG& operator=(const BoomerAMG&) = delete;
@@ -41,7 +42,8 @@ class BoomerAMG {
   void vcycle(const double* b, double* x) const;
   /// BoomerAMG-preconditioned CG to ||r|| <= rel ||b||, from x (a fresh setup is done: its
   /// time is part of what a caller measures).
-  HypreSolveResult pcg(const double* b, double* x, double relative_tolerance, int max_iterations) const;
+  HypreSolveResult pcg(const double* b, double* x, double relative_tolerance,
+                       int max_iterations) const;
 
  private:
   struct Impl;

@@ -34,8 +34,9 @@ struct StructPfmgCG::Impl {
   }
 };
 
-StructPfmgCG::StructPfmgCG(MPI_Comm comm, const kernels::mac::MacGrid& g, std::array<int, 3> global_lower, const double* diag,
-                           const float* cx, const float* cy, const float* cz, const StructPfmgOptions& options)
+StructPfmgCG::StructPfmgCG(MPI_Comm comm, const kernels::mac::MacGrid& g,
+                           std::array<int, 3> global_lower, const double* diag, const float* cx,
+                           const float* cy, const float* cz, const StructPfmgOptions& options)
     : impl_(std::make_unique<Impl>()) {
   HYPRE_Init();  // idempotent in hypre 2.26
   Impl& s = *impl_;
@@ -50,7 +51,8 @@ StructPfmgCG::StructPfmgCG(MPI_Comm comm, const kernels::mac::MacGrid& g, std::a
   HYPRE_StructGridSetExtents(s.grid, s.lower, s.upper);
   HYPRE_StructGridAssemble(s.grid);
   HYPRE_StructStencilCreate(3, 7, &s.stencil);
-  HYPRE_Int offsets[7][3] = {{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
+  HYPRE_Int offsets[7][3] = {{0, 0, 0}, {-1, 0, 0}, {1, 0, 0}, {0, -1, 0},
+                             {0, 1, 0}, {0, 0, -1}, {0, 0, 1}};
   for (int e = 0; e < 7; ++e) HYPRE_StructStencilSetElement(s.stencil, e, offsets[e]);
   HYPRE_StructMatrixCreate(comm, s.grid, s.stencil, &s.A);
   HYPRE_StructMatrixInitialize(s.A);
@@ -65,7 +67,8 @@ StructPfmgCG::StructPfmgCG(MPI_Comm comm, const kernels::mac::MacGrid& g, std::a
         double* v = &values[7 * u];
         if (diag[c] > 0.0) {
           v[0] = diag[c];
-          v[1] = -cx[c - 1], v[2] = -cx[c], v[3] = -cy[c - sy], v[4] = -cy[c], v[5] = -cz[c - sz], v[6] = -cz[c];
+          v[1] = -cx[c - 1], v[2] = -cx[c], v[3] = -cy[c - sy], v[4] = -cy[c], v[5] = -cz[c - sz],
+          v[6] = -cz[c];
         } else {
           v[0] = 1.0;
           for (int e = 1; e < 7; ++e) v[e] = 0.0;
@@ -106,7 +109,8 @@ StructPfmgCG::~StructPfmgCG() {
   HYPRE_StructGridDestroy(s.grid);
 }
 
-HypreSolveResult StructPfmgCG::solve(const double* b, double* x, double relative_tolerance, int max_iterations) {
+HypreSolveResult StructPfmgCG::solve(const double* b, double* x, double relative_tolerance,
+                                     int max_iterations) {
   Impl& s = *impl_;
   s.pack(b);
   HYPRE_StructVectorSetBoxValues(s.b, s.lower, s.upper, s.buffer.data());

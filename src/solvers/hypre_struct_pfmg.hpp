@@ -14,9 +14,9 @@
 namespace amphora::solvers {
 
 struct StructPfmgOptions {
-  int relax_type = 2;   ///< symmetric red-black Gauss–Seidel
+  int relax_type = 2;  ///< symmetric red-black Gauss–Seidel
   int pre_relax = 1, post_relax = 1;
-  int rap_type = 0;     ///< Galerkin coarse operators
+  int rap_type = 0;  ///< Galerkin coarse operators
   int skip_relax = 1;
 };
 
@@ -24,8 +24,9 @@ class StructPfmgCG {
  public:
   /// diag/cx/cy/cz: host arrays on g's padded lattice (MacPoisson stencil form). Cells with
   /// diag 0 become identity rows (their right-hand side must be zero).
-  StructPfmgCG(MPI_Comm comm, const kernels::mac::MacGrid& g, std::array<int, 3> global_lower, const double* diag,
-               const float* cx, const float* cy, const float* cz, const StructPfmgOptions& options = {});
+  StructPfmgCG(MPI_Comm comm, const kernels::mac::MacGrid& g, std::array<int, 3> global_lower,
+               const double* diag, const float* cx, const float* cy, const float* cz,
+               const StructPfmgOptions& options = {});
   ~StructPfmgCG();
   StructPfmgCG(const StructPfmgCG&) = delete;
   StructPfmgCG& operator=(const StructPfmgCG&) = delete;

@@ -41,13 +41,15 @@ void ModifiedIncompleteCholesky::apply(const double* r, double* z) const {
   // (E + L) y = r, y in z
   for (long i = 0; i < n; ++i) {
     double s = r[i];
-    for (int k = lower_.row_ptr[i]; k < lower_.row_ptr[i + 1]; ++k) s -= lower_.values[k] * z[lower_.cols[k]];
+    for (int k = lower_.row_ptr[i]; k < lower_.row_ptr[i + 1]; ++k)
+      s -= lower_.values[k] * z[lower_.cols[k]];
     z[i] = s * inverse_e_[i];
   }
   // (E + L^T) z = E y
   for (long i = n - 1; i >= 0; --i) {
     double s = 0.0;
-    for (int k = upper_.row_ptr[i]; k < upper_.row_ptr[i + 1]; ++k) s += upper_.values[k] * z[upper_.cols[k]];
+    for (int k = upper_.row_ptr[i]; k < upper_.row_ptr[i + 1]; ++k)
+      s += upper_.values[k] * z[upper_.cols[k]];
     z[i] -= s * inverse_e_[i];
   }
 }

@@ -15,7 +15,9 @@ namespace {
 
 using namespace amphora::fsi;
 
-BeamChannelSetup setup(double rho_h, int n, BeamScheme scheme) { return beam_channel_wave_case(rho_h, n, scheme); }
+BeamChannelSetup setup(double rho_h, int n, BeamScheme scheme) {
+  return beam_channel_wave_case(rho_h, n, scheme);
+}
 
 void expect_second_order(double rho_h) {
   double pe = 0, ee = 0;

@@ -20,8 +20,8 @@ TEST(MpveDispersion, NewtonFindsTheQuotedRoot) {
   ASSERT_TRUE(r.converged) << r.iterations;
   EXPECT_NEAR(r.omega.real(), 1.42227, 5e-6) << r.omega;
   EXPECT_NEAR(r.omega.imag(), -0.37955, 5e-6) << r.omega;
-  std::printf("MP-VE check: omega = %.8f %+.8f i after %d Newton iterations\n", r.omega.real(), r.omega.imag(),
-              r.iterations);
+  std::printf("MP-VE check: omega = %.8f %+.8f i after %d Newton iterations\n", r.omega.real(),
+              r.omega.imag(), r.iterations);
 }
 
 TEST(MpveDispersion, ModeSolvesTheInterfaceSystem) {
@@ -60,7 +60,8 @@ TEST(MpveDispersion, ExactFieldsSatisfyTheEquationsAndInterfaceConditions) {
       return (g(x + dx, y + dy, t + dt) - g(x - dx, y - dy, t - dt)) / (2 * h);
     };
     auto lap = [&](auto g) {
-      return (g(x + h, y, t) + g(x - h, y, t) + g(x, y + h, t) + g(x, y - h, t) - 4 * g(x, y, t)) / (h * h);
+      return (g(x + h, y, t) + g(x - h, y, t) + g(x, y + h, t) + g(x, y - h, t) - 4 * g(x, y, t)) /
+             (h * h);
     };
     auto U = [&](double a, double b, double s) { return fl(a, b, s).u; };
     auto V = [&](double a, double b, double s) { return fl(a, b, s).v; };
@@ -81,9 +82,12 @@ TEST(MpveDispersion, ExactFieldsSatisfyTheEquationsAndInterfaceConditions) {
     auto SXX = [&](double a, double b, double s) { return so(a, b, s).sxx; };
     auto SXY = [&](double a, double b, double s) { return so(a, b, s).sxy; };
     auto SYY = [&](double a, double b, double s) { return so(a, b, s).syy; };
-    const double scale = std::abs(check.rho_bar * d(UT, 0, 0, h)) + std::abs(d(SXX, h, 0, 0)) + 1e-3;
-    EXPECT_NEAR(check.rho_bar * d(UT, 0, 0, h) - d(SXX, h, 0, 0) - d(SXY, 0, h, 0), 0.0, 1e-5 * scale);
-    EXPECT_NEAR(check.rho_bar * d(VT, 0, 0, h) - d(SXY, h, 0, 0) - d(SYY, 0, h, 0), 0.0, 1e-5 * scale);
+    const double scale =
+        std::abs(check.rho_bar * d(UT, 0, 0, h)) + std::abs(d(SXX, h, 0, 0)) + 1e-3;
+    EXPECT_NEAR(check.rho_bar * d(UT, 0, 0, h) - d(SXX, h, 0, 0) - d(SXY, 0, h, 0), 0.0,
+                1e-5 * scale);
+    EXPECT_NEAR(check.rho_bar * d(VT, 0, 0, h) - d(SXY, h, 0, 0) - d(SYY, 0, h, 0), 0.0,
+                1e-5 * scale);
   }
   const MpveFluidFields wall = fl(x, -check.H, t), f0 = fl(x, 0.0, t);
   const MpveSolidFields fixed = so(x, check.Hbar, t), s0 = so(x, 0.0, t);
@@ -109,7 +113,8 @@ TEST(MpveDispersion, ContinuationFollowsTheRootThereAndBack) {
   const DispersionRoot back = continue_mpve_dispersion(heavy, there.omega, check, 20);
   ASSERT_TRUE(back.converged);
   EXPECT_LT(std::abs(back.omega - w0), 1e-9 * std::abs(w0));
-  std::printf("MP-VE rho_bar = 0.5: omega = %.6f %+.6f i\n", there.omega.real(), there.omega.imag());
+  std::printf("MP-VE rho_bar = 0.5: omega = %.6f %+.6f i\n", there.omega.real(),
+              there.omega.imag());
 }
 
 }  // namespace

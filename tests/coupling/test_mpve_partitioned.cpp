@@ -40,12 +40,17 @@ TEST(MpvePartitioned, TraditionalConvergesForAHeavySolid) {
     const MpveRun r = run_mpve(s);
     ASSERT_TRUE(r.stable) << r.message;
     const MpveErrors& e = r.errors;
-    if (n > 16) std::printf("n %3d  sigma_bar %.2e (%.2f)\n", n, e.sigma, std::log2(prev.sigma / e.sigma));
     if (n > 16)
-      std::printf("n %3d omega %.5f%+.5fi  u %.2e (%.2f) v %.2e (%.2f) p %.2e (%.2f) ubar %.2e (%.2f) vbar %.2e (%.2f)\n", n,
-                  s.omega.real(), s.omega.imag(), e.u, std::log2(prev.u / e.u), e.v, std::log2(prev.v / e.v), e.p,
-                  std::log2(prev.p / e.p), e.ubar, std::log2(prev.ubar / e.ubar), e.vbar, std::log2(prev.vbar / e.vbar));
-    if (n == 128) {  // the solid and the fluid's normal velocity at second order; u nears it (1.59, 1.84)
+      std::printf("n %3d  sigma_bar %.2e (%.2f)\n", n, e.sigma, std::log2(prev.sigma / e.sigma));
+    if (n > 16)
+      std::printf(
+          "n %3d omega %.5f%+.5fi  u %.2e (%.2f) v %.2e (%.2f) p %.2e (%.2f) ubar %.2e (%.2f) vbar "
+          "%.2e (%.2f)\n",
+          n, s.omega.real(), s.omega.imag(), e.u, std::log2(prev.u / e.u), e.v,
+          std::log2(prev.v / e.v), e.p, std::log2(prev.p / e.p), e.ubar,
+          std::log2(prev.ubar / e.ubar), e.vbar, std::log2(prev.vbar / e.vbar));
+    if (n == 128) {  // the solid and the fluid's normal velocity at second order; u nears it
+                     // (1.59, 1.84)
       EXPECT_NEAR(std::log2(prev.v / e.v), 2.0, 0.2);
       EXPECT_NEAR(std::log2(prev.ubar / e.ubar), 2.0, 0.2);
       EXPECT_NEAR(std::log2(prev.vbar / e.vbar), 2.0, 0.2);
@@ -75,13 +80,19 @@ void expect_amp_second_order(double rho_bar, double mu) {
     const MpveRun r = run_mpve(s);
     ASSERT_TRUE(r.stable) << r.message;
     const MpveErrors& e = r.errors;
-    std::printf("amp rho_bar/rho %g n %3d omega %.5f%+.5fi  p %.2e (%.2f) u %.2e (%.2f) v %.2e (%.2f) ubar %.2e (%.2f) vbar %.2e (%.2f) sigma %.2e (%.2f)\n",
-                rho_bar, n, s.omega.real(), s.omega.imag(), e.p, std::log2(prev.p / e.p), e.u, std::log2(prev.u / e.u), e.v,
-                std::log2(prev.v / e.v), e.ubar, std::log2(prev.ubar / e.ubar), e.vbar, std::log2(prev.vbar / e.vbar), e.sigma,
-                std::log2(prev.sigma / e.sigma));
+    std::printf(
+        "amp rho_bar/rho %g n %3d omega %.5f%+.5fi  p %.2e (%.2f) u %.2e (%.2f) v %.2e (%.2f) ubar "
+        "%.2e (%.2f) vbar %.2e (%.2f) sigma %.2e (%.2f)\n",
+        rho_bar, n, s.omega.real(), s.omega.imag(), e.p, std::log2(prev.p / e.p), e.u,
+        std::log2(prev.u / e.u), e.v, std::log2(prev.v / e.v), e.ubar,
+        std::log2(prev.ubar / e.ubar), e.vbar, std::log2(prev.vbar / e.vbar), e.sigma,
+        std::log2(prev.sigma / e.sigma));
     if (n == 160) {  // the finest pair (80 -> 160); coarser pairs are pre-asymptotic for p and u
-      for (auto [name, a, b] : {std::tuple{"u", prev.u, e.u}, {"v", prev.v, e.v}, {"ubar", prev.ubar, e.ubar},
-                                {"vbar", prev.vbar, e.vbar}, {"sigma_bar", prev.sigma, e.sigma}})
+      for (auto [name, a, b] : {std::tuple{"u", prev.u, e.u},
+                                {"v", prev.v, e.v},
+                                {"ubar", prev.ubar, e.ubar},
+                                {"vbar", prev.vbar, e.vbar},
+                                {"sigma_bar", prev.sigma, e.sigma}})
         EXPECT_NEAR(std::log2(a / b), 2.0, 0.2) << name;
       // p: 2 +- 0.2, except that the heavy solid's pressure converges at 1.77 (80 -> 160) and
       // 1.80 (160 -> 320): its error sits in the cells next to the interface (the lower half of
@@ -96,7 +107,8 @@ TEST(MpvePartitioned, AmpStaysBoundedWhereTraditionalBlowsUp) {
   for (double rho_bar : {1.0, 0.1}) {
     const MpveRun tp = run_mpve(setup(rho_bar, 0.02, 64));
     const MpveRun amp = run_mpve(setup(rho_bar, 0.02, 64, MpveScheme::amp));
-    std::printf("rho_bar/rho %g: tp %s; amp %s, vbar error %.2e\n", rho_bar, tp.stable ? "stable" : tp.message.c_str(),
+    std::printf("rho_bar/rho %g: tp %s; amp %s, vbar error %.2e\n", rho_bar,
+                tp.stable ? "stable" : tp.message.c_str(),
                 amp.stable ? "stable" : amp.message.c_str(), amp.errors.vbar);
     EXPECT_FALSE(tp.stable);
     EXPECT_NE(tp.message.find("tp (MP-VE) unstable"), std::string::npos);
@@ -112,8 +124,10 @@ TEST(MpvePartitioned, AitkenSubiterationsStabiliseTraditional) {
   for (double rho_bar : {10.0, 1.0, 0.1, 0.01}) {
     const MpveRun amp = run_mpve(setup(rho_bar, 0.02, 40, MpveScheme::amp));
     const MpveRun tpa = run_mpve(setup(rho_bar, 0.02, 40, MpveScheme::tp_aitken));
-    std::printf("rho_bar/rho %g: tp_aitken %s, %.2f sub-iterations/step, vbar error %.2e (amp %.2e)\n", rho_bar,
-                tpa.stable ? "stable" : tpa.message.c_str(), tpa.mean_subiterations, tpa.errors.vbar, amp.errors.vbar);
+    std::printf(
+        "rho_bar/rho %g: tp_aitken %s, %.2f sub-iterations/step, vbar error %.2e (amp %.2e)\n",
+        rho_bar, tpa.stable ? "stable" : tpa.message.c_str(), tpa.mean_subiterations,
+        tpa.errors.vbar, amp.errors.vbar);
     ASSERT_TRUE(tpa.stable) << tpa.message;
     EXPECT_LT(tpa.errors.vbar, 1.2e-2);  // second order's level at h = 1/40 (AMP: 3e-3 .. 1e-2)
     EXPECT_GT(tpa.mean_subiterations, previous);

@@ -103,15 +103,17 @@ TEST(Scene, WrongType) {
   expect_contains(m, "run.end_time");
   expect_contains(m, "must be a real number > 0");
   expect_contains(m, "got a string");
-  m = error_of("type2", "[run]\nmodule = \"advection_diffusion_1d\"\nend_time = 1.0\n"
-                         "[advection_diffusion_1d]\ncells = 40.5\n");
+  m = error_of("type2",
+               "[run]\nmodule = \"advection_diffusion_1d\"\nend_time = 1.0\n"
+               "[advection_diffusion_1d]\ncells = 40.5\n");
   expect_contains(m, "test_scene_type2.toml:5:");
   expect_contains(m, "must be an integer");
 }
 
 TEST(Scene, NonPositiveResolutionTimeStepAndEndTime) {
-  auto m = error_of("res", "[run]\nmodule = \"advection_diffusion_1d\"\nend_time = 1.0\n"
-                           "[advection_diffusion_1d]\ncells = -3\n");
+  auto m = error_of("res",
+                    "[run]\nmodule = \"advection_diffusion_1d\"\nend_time = 1.0\n"
+                    "[advection_diffusion_1d]\ncells = -3\n");
   expect_contains(m, "test_scene_res.toml:5:");
   expect_contains(m, "'advection_diffusion_1d.cells' = -3 is out of range");
   expect_contains(m, "allowed: an integer in [8, ");
@@ -131,8 +133,7 @@ TEST(Scene, DefaultsAreThemselvesAValidScene) {
   // `amphora defaults` output, with the required keys filled in, loads unchanged.
   std::string text = describe_defaults(run_parameter_table()) +
                      describe_defaults(find_module("advection_diffusion_1d")->parameters());
-  text.insert(text.find("[run]\n") + 6,
-              "module = \"advection_diffusion_1d\"\nend_time = 1.0\n");
+  text.insert(text.find("[run]\n") + 6, "module = \"advection_diffusion_1d\"\nend_time = 1.0\n");
   const Scene s = load_scene(write_scene("defaults", text));
   EXPECT_EQ(s.module_parameters.real("nu"), 0.05);
 }

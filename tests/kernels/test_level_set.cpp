@@ -23,17 +23,21 @@ struct StretchedSphere {
   double distance(double x, double y, double z) const {
     return std::sqrt((x - cx) * (x - cx) + (y - cy) * (y - cy) + (z - cz) * (z - cz)) - R;
   }
-  double phi0(double x, double y, double z) const { return distance(x, y, z) * (0.5 + x + 0.5 * y * y); }
+  double phi0(double x, double y, double z) const {
+    return distance(x, y, z) * (0.5 + x + 0.5 * y * y);
+  }
 };
 
 // where the level set crosses zero between x-neighbours, as a fraction of h from the left one
-std::vector<std::pair<int, double>> x_crossings(const kernels::mac::MacGrid& g, const std::vector<double>& phi) {
+std::vector<std::pair<int, double>> x_crossings(const kernels::mac::MacGrid& g,
+                                                const std::vector<double>& phi) {
   std::vector<std::pair<int, double>> out;
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < g.ny; ++j)
       for (int i = 0; i + 1 < g.nx; ++i) {
         const int c = g.index(i, j, k);
-        if ((phi[c] < 0.0) != (phi[c + 1] < 0.0)) out.emplace_back(c, phi[c] / (phi[c] - phi[c + 1]));
+        if ((phi[c] < 0.0) != (phi[c + 1] < 0.0))
+          out.emplace_back(c, phi[c] / (phi[c] - phi[c + 1]));
       }
   return out;
 }
@@ -85,7 +89,8 @@ TEST(LevelSetReinitialisation, KeepsTheZeroSetAndReachesTheDistance) {
         if (std::abs(d) < 2 * g.h) err = std::max(err, std::abs(after[g.index(i, j, k)] - d));
       }
   EXPECT_LT(err, 0.15 * g.h) << "largest distance error near the sphere";
-  std::printf("reinitialisation: crossings moved by at most %.4f h, distance error %.4f h\n", moved, err / g.h);
+  std::printf("reinitialisation: crossings moved by at most %.4f h, distance error %.4f h\n", moved,
+              err / g.h);
 }
 
 }  // namespace

@@ -25,8 +25,8 @@ TEST(MacExtrapolation, LayersFromTheLowestAirRowEqualLayersOverTheWholeGrid) {
       for (int i = 0; i < g.nx; ++i) {
         const double surface = 13.0 + 4.0 * std::sin(0.5 * i) * std::cos(0.7 * k);
         type[g.index(i, j, k)] = j < 2 + (i + k) % 3 ? MacCellType::solid
-                                 : j < surface      ? MacCellType::fluid
-                                                    : MacCellType::air;
+                                 : j < surface       ? MacCellType::fluid
+                                                     : MacCellType::air;
       }
   const auto types = to_view<Mem>(type);
   const Exec exec;
@@ -48,7 +48,8 @@ TEST(MacExtrapolation, LayersFromTheLowestAirRowEqualLayersOverTheWholeGrid) {
       Kokkos::View<std::uint8_t*, Mem> mark("mark", g.padded_size());
       mark_fluid_faces(exec, g, d, types, mark);
       for (int layer = 2; layer < 5; ++layer)
-        extrapolate_layer(exec, g, d, types, f, mark, layer, kernels::mac::box_edges(), variant == 0 ? 0 : first);
+        extrapolate_layer(exec, g, d, types, f, mark, layer, kernels::mac::box_edges(),
+                          variant == 0 ? 0 : first);
       results[variant] = to_std_vector(f);
       const auto host_mark = Kokkos::create_mirror_view_and_copy(HostMemSpace(), mark);
       marks[variant].assign(host_mark.data(), host_mark.data() + host_mark.extent(0));

@@ -106,8 +106,13 @@ struct Pairs {
     live = Kokkos::View<unsigned*, Mem>("live", n);
   }
   SpringLaw law(bool by_particle) const {
-    return {Rows3<const double>(x), Rows3<double>(f), r, state, by_particle ? state_next : state,
-            100.0, 1.0};
+    return {Rows3<const double>(x),
+            Rows3<double>(f),
+            r,
+            state,
+            by_particle ? state_next : state,
+            100.0,
+            1.0};
   }
   HalfPairList<Mem> pairs() const { return {list.offsets, list.neighbors, half}; }
   Spheres<Mem> spheres() const { return {Rows3<const double>(x), r}; }

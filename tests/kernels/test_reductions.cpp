@@ -21,9 +21,7 @@ View ramp(int n) {
   return x;
 }
 
-void set(const View& x, int i, double v) {
-  Kokkos::deep_copy(Kokkos::subview(x, i), v);
-}
+void set(const View& x, int i, double v) { Kokkos::deep_copy(Kokkos::subview(x, i), v); }
 
 TEST(Reductions, MinMax) {
   const int n = 10007;  // prime, so (i * 37) % n is a permutation of 0..n-1

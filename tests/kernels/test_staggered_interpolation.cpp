@@ -20,14 +20,17 @@ using Mem = test::TestMemSpace;
 /// Samples of staggering s where velocity_at_sample differs from trilinear interpolation (a
 /// free function: CUDA's extended lambdas may not live in a test body, a private member).
 template <class V>
-int samples_differing(const kernels::mac::MacGrid& g, Staggering s, const V& u, const V& v, const V& w) {
+int samples_differing(const kernels::mac::MacGrid& g, Staggering s, const V& u, const V& v,
+                      const V& w) {
   const int st = static_cast<int>(s);
   const int ex = g.nx + (st == 0), ey = g.ny + (st == 1), ez = g.nz + (st == 2);
   Kokkos::View<int*, Mem> differ("differ", 1);
   Kokkos::parallel_for(
-      "test::velocity_at_sample", Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {ez, ey, ex}),
+      "test::velocity_at_sample",
+      Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
-        const double q[3] = {i + (st == 0 ? 0.0 : 0.5), j + (st == 1 ? 0.0 : 0.5), k + (st == 2 ? 0.0 : 0.5)};
+        const double q[3] = {i + (st == 0 ? 0.0 : 0.5), j + (st == 1 ? 0.0 : 0.5),
+                             k + (st == 2 ? 0.0 : 0.5)};
         double a[3], b[3];
         velocity_at_cells(g, u, v, w, q, a);
         velocity_at_sample(g, s, i, j, k, u, v, w, b);
@@ -38,7 +41,8 @@ int samples_differing(const kernels::mac::MacGrid& g, Staggering s, const V& u, 
 }
 
 TEST(StaggeredInterpolation, VelocityAtASampleIsTrilinearInterpolationThere) {
-  for (const kernels::mac::MacGrid g : {kernels::mac::MacGrid{5, 4, 3, 0.1, {0, 0, 0}}, kernels::mac::MacGrid{1, 3, 2, 0.2, {0.5, 0, 0}}}) {
+  for (const kernels::mac::MacGrid g : {kernels::mac::MacGrid{5, 4, 3, 0.1, {0, 0, 0}},
+                                        kernels::mac::MacGrid{1, 3, 2, 0.2, {0.5, 0, 0}}}) {
     std::mt19937 rng(17);
     std::uniform_real_distribution<double> U(-1.0, 1.0);
     std::vector<double> f[3];

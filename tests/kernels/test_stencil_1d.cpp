@@ -16,7 +16,8 @@ struct ConstantSource {
 
 /// u(i) = p + q x + r x^2 at x = x0 + i dx (a free function: CUDA's extended lambdas may not
 /// live in a test body, a private member).
-View quadratic(const TestExecSpace& exec, int n, double x0, double dx, double p, double q, double r) {
+View quadratic(const TestExecSpace& exec, int n, double x0, double dx, double p, double q,
+               double r) {
   View u("u", n);
   Kokkos::parallel_for(
       "test::quadratic", RangePolicy<TestExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {

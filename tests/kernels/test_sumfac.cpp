@@ -110,12 +110,17 @@ void check_evaluator() {
   auto dp = [](const double* x, int lane, int d) {
     const double z = dim == 3 ? x[2] : 0.0, zf = dim == 3 ? 1.0 + z : 1.0;
     if (d == 0) return k * std::pow(x[0], k - 1) * std::pow(x[1], k - 1) * zf;
-    if (d == 1) return (std::pow(x[0], k) * (k - 1) * std::pow(x[1], k - 2) + (dim == 3 ? 0.0 : 1.0 + lane)) * zf + (dim == 3 ? (1.0 + lane) * zf : 0.0);
+    if (d == 1)
+      return (std::pow(x[0], k) * (k - 1) * std::pow(x[1], k - 2) + (dim == 3 ? 0.0 : 1.0 + lane)) *
+                 zf +
+             (dim == 3 ? (1.0 + lane) * zf : 0.0);
     return std::pow(x[0], k) * std::pow(x[1], k - 1) + (1.0 + lane) * x[1] + k * std::pow(z, k - 1);
   };
-  std::vector<T> u(Eval::n_dofs), v(Eval::n_points), grad(dim * Eval::n_points), tmp(Eval::n_scratch);
+  std::vector<T> u(Eval::n_dofs), v(Eval::n_points), grad(dim * Eval::n_points),
+      tmp(Eval::n_scratch);
   for (int n = 0; n < Eval::n_dofs; ++n) {
-    const double x[3] = {nodes[n % n_p], nodes[(n / n_p) % n_p], dim == 3 ? nodes[n / (n_p * n_p)] : 0.0};
+    const double x[3] = {nodes[n % n_p], nodes[(n / n_p) % n_p],
+                         dim == 3 ? nodes[n / (n_p * n_p)] : 0.0};
     for (int l = 0; l < host_simd_width; ++l) u[n][l] = p(x, l);
   }
   Eval::values(shape, u.data(), v.data(), tmp.data());
@@ -124,7 +129,8 @@ void check_evaluator() {
     const double x[3] = {pts[q % n_q], pts[(q / n_q) % n_q], dim == 3 ? pts[q / (n_q * n_q)] : 0.0};
     for (int l = 0; l < host_simd_width; ++l) {
       EXPECT_NEAR(v[q][l], p(x, l), 1e-12);
-      for (int d = 0; d < dim; ++d) EXPECT_NEAR(grad[d * Eval::n_points + q][l], dp(x, l, d), 1e-11);
+      for (int d = 0; d < dim; ++d)
+        EXPECT_NEAR(grad[d * Eval::n_points + q][l], dp(x, l, d), 1e-11);
     }
   }
   // integrate_values is the transpose of values: <values(u), w> = <u, integrate(w)>
@@ -155,7 +161,8 @@ TEST(TensorProductEvaluator, ValuesAndGradientsOfPolynomialsAreExact) {
 template <int dim>
 void check_row_touch(int degree, const int* cells, const bool* periodic) {
   const auto lat = QkLattice<dim>::create(degree, cells, periodic, 0, 8);
-  SCOPED_TRACE(std::to_string(dim) + "D k " + std::to_string(degree) + " slabs " + std::to_string(lat.n_slabs()));
+  SCOPED_TRACE(std::to_string(dim) + "D k " + std::to_string(degree) + " slabs " +
+               std::to_string(lat.n_slabs()));
   const int slabs = lat.n_slabs(), rows = lat.rows_per_slab(), run = lat.slabs_per_block();
   const long line = lat.dofs[0], layer = dim == 3 ? line * lat.dofs[1] : line, n = lat.n_dofs();
   // the order of each (slab, row): colour, then block, then slab, then row
@@ -190,8 +197,10 @@ void check_row_touch(int degree, const int* cells, const bool* periodic) {
         });
     long not_once = 0;
     for (long d = 0; d < n; ++d) not_once += covered[d] != 1;
-    EXPECT_EQ(not_once, 0) << (at_last ? "last" : "first") << " touches: DoFs not in exactly one row's range";
-    EXPECT_EQ(wrong, 0) << (at_last ? "last" : "first") << " touches: DoFs in the range of another row";
+    EXPECT_EQ(not_once, 0) << (at_last ? "last" : "first")
+                           << " touches: DoFs not in exactly one row's range";
+    EXPECT_EQ(wrong, 0) << (at_last ? "last" : "first")
+                        << " touches: DoFs in the range of another row";
   }
 }
 

@@ -21,9 +21,11 @@ using kernels::mac::MacGrid;
 
 /// Columns with the given per-column terrain and band rows.
 template <class M = Mem>
-kernels::mac::TallCellColumns<M> columns(const MacGrid& g, const std::vector<int>& terrain, const std::vector<int>& band) {
+kernels::mac::TallCellColumns<M> columns(const MacGrid& g, const std::vector<int>& terrain,
+                                         const std::vector<int>& band) {
   kernels::mac::TallCellColumns<M> T(g);
-  std::vector<int> t(T.terrain.extent(0), 0), b(T.band.extent(0), 0);  // the ghost ring: no tall cells
+  std::vector<int> t(T.terrain.extent(0), 0),
+      b(T.band.extent(0), 0);  // the ghost ring: no tall cells
   for (int k = 0; k < g.nz; ++k)
     for (int i = 0; i < g.nx; ++i) {
       t[T.column(i, k)] = terrain[i + g.nx * k];
@@ -112,7 +114,8 @@ TEST(TallCellVelocity, FitSkipsOnlyTheColumnsWhoseTallRowsAreFitted) {
       old_band.push_back(band.back() + ((i * 3 + k) % 4 == 0));
     }
   const auto T = columns(g, terrain, band), old = columns(g, old_terrain, old_band);
-  const auto th = columns<HostMemSpace>(g, terrain, band), oh = columns<HostMemSpace>(g, old_terrain, old_band);
+  const auto th = columns<HostMemSpace>(g, terrain, band),
+             oh = columns<HostMemSpace>(g, old_terrain, old_band);
   std::mt19937 rng(5);
   long skipped = 0, refitted = 0;
   for (int d = 0; d < 3; ++d) {
@@ -132,7 +135,8 @@ TEST(TallCellVelocity, FitSkipsOnlyTheColumnsWhoseTallRowsAreFitted) {
           if (same)
             EXPECT_EQ(c[m], random[m]) << "a column whose tall rows did not change is left alone";
           else
-            EXPECT_EQ(c[m], a[m]) << "a column whose tall rows changed is fitted as without `fitted`";
+            EXPECT_EQ(c[m], a[m])
+                << "a column whose tall rows changed is fitted as without `fitted`";
         }
         if (hi - lo >= 3) (same ? skipped : refitted) += 1;
       }
@@ -187,20 +191,25 @@ TEST(TallCellVelocity, CourantSpeedFromTheEndsEqualsEveryRow) {
             const int col = th.column(i, k);
             for (int j = th.terrain(col); j < th.band(col); ++j) {
               const int c = g.index(i, j, k);
-              every_row = std::max(every_row, std::max(std::abs(m[0][c]), std::abs(m[0][c + 1])) +
-                                                  std::max(std::abs(m[1][c]), std::abs(m[1][c + sy])) +
-                                                  std::max(std::abs(m[2][c]), std::abs(m[2][c + sz])));
+              every_row =
+                  std::max(every_row, std::max(std::abs(m[0][c]), std::abs(m[0][c + 1])) +
+                                          std::max(std::abs(m[1][c]), std::abs(m[1][c + sy])) +
+                                          std::max(std::abs(m[2][c]), std::abs(m[2][c + sz])));
             }
           }
-        const double speed = tall_cell_speed(Exec(), T, to_view<Mem>(m[0]), to_view<Mem>(m[1]), to_view<Mem>(m[2]));
-        EXPECT_NEAR(speed, every_row, 1e-14 * every_row) << "column " << i0 << ", " << k0 << ", scale " << scale;
+        const double speed =
+            tall_cell_speed(Exec(), T, to_view<Mem>(m[0]), to_view<Mem>(m[1]), to_view<Mem>(m[2]));
+        EXPECT_NEAR(speed, every_row, 1e-14 * every_row)
+            << "column " << i0 << ", " << k0 << ", scale " << scale;
         const int col = th.column(i0, k0);
         skipping += th.band(col) - th.terrain(col) >= 6;
       }
   EXPECT_GT(skipping, 10);  // columns with rows the kernel need not read
   // no tall cell at all: no speed limit from them
   const auto uniform = columns(g, terrain, terrain);
-  EXPECT_EQ(tall_cell_speed(Exec(), uniform, to_view<Mem>(f[0]), to_view<Mem>(f[1]), to_view<Mem>(f[2])), 0.0);
+  EXPECT_EQ(
+      tall_cell_speed(Exec(), uniform, to_view<Mem>(f[0]), to_view<Mem>(f[1]), to_view<Mem>(f[2])),
+      0.0);
 }
 
 TEST(TallCellVelocity, MaxAbsFromTheEndsOfLinearRowsEqualsEveryRow) {
@@ -230,10 +239,12 @@ TEST(TallCellVelocity, MaxAbsFromTheEndsOfLinearRowsEqualsEveryRow) {
         for (int i = 0; i < g.nx + (d == 0); ++i) {
           int lo, hi;
           th.tall_rows(d, i, k, lo, hi);
-          for (int j = lo; j < std::min(hi, below); ++j) every_row = std::max(every_row, std::abs(f[g.index(i, j, k)]));
+          for (int j = lo; j < std::min(hi, below); ++j)
+            every_row = std::max(every_row, std::abs(f[g.index(i, j, k)]));
           cut += lo < below && below < hi - 1;
         }
-      EXPECT_EQ(tall_rows_max_abs(Exec(), T, d, scaled, below), every_row) << "component " << d << ", below " << below;
+      EXPECT_EQ(tall_rows_max_abs(Exec(), T, d, scaled, below), every_row)
+          << "component " << d << ", below " << below;
     }
   }
   EXPECT_GT(cut, 50);  // cuts through tall rows, so the top end read is not the rows' own
@@ -251,13 +262,15 @@ TEST(TallCellVelocity, LevelSetKernelsFromTheFirstRowEqualTheWholeLatticeAbove) 
     for (int j = -1; j <= g.ny; ++j)
       for (int i = -1; i <= g.nx; ++i) {
         const auto x = g.cell_centre(i, j, k);
-        phi[g.index(i, j, k)] = x[1] - 0.9 + 0.2 * std::sin(4 * x[0]) * std::cos(3 * x[2]) + 0.02 * R(rng);
+        phi[g.index(i, j, k)] =
+            x[1] - 0.9 + 0.2 * std::sin(4 * x[0]) * std::cos(3 * x[2]) + 0.02 * R(rng);
       }
   for (auto& v : vel) {
     v.resize(g.padded_size());
     for (auto& x : v) x = 0.5 * R(rng);
   }
-  const auto P = to_view<Mem>(phi), U = to_view<Mem>(vel[0]), V = to_view<Mem>(vel[1]), W = to_view<Mem>(vel[2]);
+  const auto P = to_view<Mem>(phi), U = to_view<Mem>(vel[0]), V = to_view<Mem>(vel[1]),
+             W = to_view<Mem>(vel[2]);
   const double sentinel = 7.0;
   const auto run = [&](int first_row, bool advection) {
     const Kokkos::View<double*, Mem> out("out", g.padded_size());
@@ -281,8 +294,8 @@ TEST(TallCellVelocity, LevelSetKernelsFromTheFirstRowEqualTheWholeLatticeAbove) 
             if (j < first_row) {
               EXPECT_EQ(part[c], sentinel) << "row " << j << " below " << first_row;
             } else {
-              EXPECT_EQ(part[c], whole[c]) << (advection ? "advection" : "reinitialisation") << " at (" << i << ", "
-                                           << j << ", " << k << ")";
+              EXPECT_EQ(part[c], whole[c]) << (advection ? "advection" : "reinitialisation")
+                                           << " at (" << i << ", " << j << ", " << k << ")";
               changed += whole[c] != phi[c];
             }
           }
@@ -316,7 +329,8 @@ TEST(TallCellVelocity, UpwindAdvectionInTallCellsConservesMomentum) {
           double p[3];
           sample_position(g, static_cast<Staggering>(d), i, j, k, p);
           const double a[3] = {0.8, -0.5, 0.3};
-          f[d][g.index(i, j, k)] = a[d] * bump(g, p[0], p[1], p[2]) * (1.0 + 0.5 * std::sin(7 * p[(d + 1) % 3]));
+          f[d][g.index(i, j, k)] =
+              a[d] * bump(g, p[0], p[1], p[2]) * (1.0 + 0.5 * std::sin(7 * p[(d + 1) % 3]));
         }
   }
   const auto u = to_view<Mem>(f[0]), v = to_view<Mem>(f[1]), w = to_view<Mem>(f[2]);
@@ -366,13 +380,15 @@ TEST(TallCellVelocity, AdvectionPerTallCellEqualsEveryRowThenTheFit) {
     fit_linear_in_tall_cells(Exec(), T, d, vel[d]);  // linear in the tall cells
     f[d] = to_std_vector(vel[d]);
   }
-  const auto hu = to_view<HostMemSpace>(f[0]), hv = to_view<HostMemSpace>(f[1]), hw = to_view<HostMemSpace>(f[2]);
+  const auto hu = to_view<HostMemSpace>(f[0]), hv = to_view<HostMemSpace>(f[1]),
+             hw = to_view<HostMemSpace>(f[2]);
   const Kokkos::View<double*, Mem> all_fluid("phi", g.padded_size()), out("out", g.padded_size());
   Kokkos::deep_copy(all_fluid, -1.0);
   const double dt = 0.05;
   long whole = 0, sign_changes = 0;
   for (int d = 0; d < 3; ++d) {
-    advect(Exec(), T, static_cast<Staggering>(d), vel[d], out, vel[0], vel[1], vel[2], dt, all_fluid, 1.0);
+    advect(Exec(), T, static_cast<Staggering>(d), vel[d], out, vel[0], vel[1], vel[2], dt,
+           all_fluid, 1.0);
     const auto got = to_std_vector(out);
     // the reference: every tall row by conservative_upwind_sample, then the fit
     const auto hq = d == 0 ? hu : d == 1 ? hv : hw;
@@ -383,7 +399,8 @@ TEST(TallCellVelocity, AdvectionPerTallCellEqualsEveryRowThenTheFit) {
         int lo, hi;
         th.tall_rows(d, i, k, lo, hi);
         for (int j = lo; j < hi; ++j)
-          ref(g.index(i, j, k)) = conservative_upwind_sample(g, d, g.index(i, j, k), hq, hu, hv, hw, dt);
+          ref(g.index(i, j, k)) =
+              conservative_upwind_sample(g, d, g.index(i, j, k), hq, hu, hv, hw, dt);
         if (hi - lo >= min_tall_sample_rows) ++whole;
         for (int j = lo + 1; j < hi; ++j)  // the column's own flux changes sign in the range
           sign_changes += (hq(g.index(i, j, k)) > 0) != (hq(g.index(i, j - 1, k)) > 0);

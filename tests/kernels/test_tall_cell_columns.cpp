@@ -26,9 +26,9 @@ struct Pool {
       for (int i = 0; i < g.nx; ++i) {
         const int surface = surface_lo + (i * 5 + k) % (surface_hi - surface_lo + 1);
         for (int j = 0; j < g.ny; ++j)
-          type[g.index(i, j, k)] = j < floor(i, k)  ? MacCellType::solid
-                                   : j < surface    ? MacCellType::fluid
-                                                    : MacCellType::air;
+          type[g.index(i, j, k)] = j < floor(i, k) ? MacCellType::solid
+                                   : j < surface   ? MacCellType::fluid
+                                                   : MacCellType::air;
       }
     if (cave) type[g.index(0, 0, 1)] = MacCellType::air;
   }
@@ -51,7 +51,9 @@ void check(const Pool& p, int D, int expected) {
       for (int j = 0; j <= std::min(lowest, g.ny - 1); ++j) {
         const bool tall = band[col] > terrain[col] && j >= terrain[col] && j < band[col];
         const bool skipped = tall || p.type[g.index(i, j, k)] == MacCellType::solid;
-        if (j < lowest) EXPECT_TRUE(skipped) << "cell (" << i << ", " << j << ", " << k << ") below row " << lowest;
+        if (j < lowest)
+          EXPECT_TRUE(skipped) << "cell (" << i << ", " << j << ", " << k << ") below row "
+                               << lowest;
         if (j == lowest && !skipped) bound_is_tight = true;
       }
     }

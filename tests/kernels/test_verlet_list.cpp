@@ -19,8 +19,7 @@ struct Device {
   Vec x;
   Kokkos::View<double*, Mem> r;
   Kokkos::View<std::int64_t*, Mem> gid;
-  explicit Device(const test::RandomSpheres& s)
-      : x("x", s.n), r("r", s.n), gid("gid", s.n) {
+  explicit Device(const test::RandomSpheres& s) : x("x", s.n), r("r", s.n), gid("gid", s.n) {
     auto hx = Kokkos::create_mirror_view(x);
     auto hr = Kokkos::create_mirror_view(r);
     auto hg = Kokkos::create_mirror_view(gid);

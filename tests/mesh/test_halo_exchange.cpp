@@ -35,8 +35,8 @@ TEST(HaloExchange, GhostsHoldTheirImagesAcrossRanks) {
         gi = (gi + global[0]) % global[0];  // periodic in x
         const bool outside = gj < 0 || gj >= global[1] || gk < 0 || gk >= global[2];
         const double expected = outside ? -1.0 : tag(gi, gj, gk);
-        ASSERT_EQ(h(i, j, k), expected) << "rank " << comm.rank() << " local " << i << "," << j
-                                        << "," << k;
+        ASSERT_EQ(h(i, j, k), expected)
+            << "rank " << comm.rank() << " local " << i << "," << j << "," << k;
         ++checked;
       }
     }

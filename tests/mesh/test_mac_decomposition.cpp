@@ -39,7 +39,9 @@ double sq(double a) { return a * a; }
 double level_set(const std::array<double, 3>& x) {
   return std::sqrt(sq(x[0] - 0.5) + sq(x[1] - 0.45) + sq(x[2] - 0.5)) - 0.37;
 }
-bool solid(const std::array<double, 3>& x) { return x[1] < 0.15 + 0.07 * std::sin(9 * x[0]) * std::cos(7 * x[2]); }
+bool solid(const std::array<double, 3>& x) {
+  return x[1] < 0.15 + 0.07 * std::sin(9 * x[0]) * std::cos(7 * x[2]);
+}
 double source(const std::array<double, 3>& x) { return 1.0 + x[0] * x[2]; }
 
 struct Block {
@@ -53,17 +55,25 @@ struct Block {
 template <class T>
 void exchange(const mesh::LatticeGhostExchange& halo, const MacGrid& g, T* data) {
   Kokkos::View<T*, Mem> v("v", g.padded_size());
-  Kokkos::deep_copy(v, Kokkos::View<T*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(data, g.padded_size()));
+  Kokkos::deep_copy(v, Kokkos::View<T*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(
+                           data, g.padded_size()));
   halo.exchange(Exec(), g, v);
-  Kokkos::deep_copy(Kokkos::View<T*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(data, g.padded_size()), v);
+  Kokkos::deep_copy(Kokkos::View<T*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(
+                        data, g.padded_size()),
+                    v);
 }
 
 /// The block of `box` (global cell indices) with the given box faces; ghost types and phi come
 /// from the neighbours by halo exchange when `halo` is given, else the block is the whole box.
-Block make_block(const Box& box, const kernels::mac::MacBoxBoundaries& faces, const mesh::LatticeGhostExchange* halo) {
+Block make_block(const Box& box, const kernels::mac::MacBoxBoundaries& faces,
+                 const mesh::LatticeGhostExchange* halo) {
   Block B;
   const double h = 1.0 / N;
-  B.grid = MacGrid{box.extent(0), box.extent(1), box.extent(2), h, {box.lo[0] * h, box.lo[1] * h, box.lo[2] * h}};
+  B.grid = MacGrid{box.extent(0),
+                   box.extent(1),
+                   box.extent(2),
+                   h,
+                   {box.lo[0] * h, box.lo[1] * h, box.lo[2] * h}};
   B.faces = faces;
   const MacGrid& g = B.grid;
   std::vector<std::uint8_t> type(g.padded_size(), std::uint8_t(MacCellType::solid));
@@ -75,7 +85,9 @@ Block make_block(const Box& box, const kernels::mac::MacBoxBoundaries& faces, co
         const auto x = g.cell_centre(i, j, k);
         const int c = g.index(i, j, k);
         phi[c] = level_set(x);
-        type[c] = std::uint8_t(solid(x) ? MacCellType::solid : phi[c] < 0 ? MacCellType::fluid : MacCellType::air);
+        type[c] = std::uint8_t(solid(x)     ? MacCellType::solid
+                               : phi[c] < 0 ? MacCellType::fluid
+                                            : MacCellType::air);
       }
   if (halo) {
     exchange(*halo, g, type.data());
@@ -100,8 +112,8 @@ Block make_block(const Box& box, const kernels::mac::MacBoxBoundaries& faces, co
 }
 
 std::vector<double> solve(MPI_Comm comm, const Block& B, const Index3& lower) {
-  solvers::StructPfmgCG pfmg(comm, B.grid, {lower[0], lower[1], lower[2]}, B.A.diag.data(), B.A.cx.data(),
-                             B.A.cy.data(), B.A.cz.data());
+  solvers::StructPfmgCG pfmg(comm, B.grid, {lower[0], lower[1], lower[2]}, B.A.diag.data(),
+                             B.A.cx.data(), B.A.cy.data(), B.A.cz.data());
   std::vector<double> x(B.grid.padded_size(), 0.0);
   const auto r = pfmg.solve(B.b.data(), x.data(), 1e-11, 200);
   EXPECT_LE(r.final_relative_residual, 1e-11);
@@ -120,15 +132,17 @@ SplitScene split_scene(const Communicator& comm, int direction) {
   SplitScene S;
   const Index3 global{N, N, N};
   // horizontal only: the vertical (y) is never split
-  const BoxDecomposition dec(global, {false, false, false}, comm.size(), 4, {direction == 0, false, direction == 2});
+  const BoxDecomposition dec(global, {false, false, false}, comm.size(), 4,
+                             {direction == 0, false, direction == 2});
   EXPECT_EQ(dec.blocks()[1], 1);
   EXPECT_EQ(dec.blocks()[direction], comm.size());
   S.box = dec.box(comm.rank());
   kernels::mac::MacBoxBoundaries faces;
   for (int d = 0; d < 3; ++d)
     for (int side = 0; side < 2; ++side)
-      faces[2 * d + side] = dec.neighbor(comm.rank(), d, side) >= 0 ? kernels::mac::MacBoundary::neighbour
-                                                                     : kernels::mac::MacBoundary::wall;
+      faces[2 * d + side] = dec.neighbor(comm.rank(), d, side) >= 0
+                                ? kernels::mac::MacBoundary::neighbour
+                                : kernels::mac::MacBoundary::wall;
   S.block = mesh::MacBlock::of(dec, comm.get(), comm.rank());
   const mesh::LatticeGhostExchange halo(S.block);
   S.local = make_block(S.box, faces, &halo);
@@ -142,8 +156,8 @@ SplitScene split_scene(const Communicator& comm, int direction) {
 struct Difference {
   double max = 0, scale = 0;
 };
-Difference block_difference(const Communicator& comm, const SplitScene& S, const std::vector<double>& block,
-                            const std::vector<double>& whole) {
+Difference block_difference(const Communicator& comm, const SplitScene& S,
+                            const std::vector<double>& block, const std::vector<double>& whole) {
   Difference d;
   const MacGrid &g = S.local.grid, &w = S.whole.grid;
   for (int k = 0; k < g.nz; ++k)
@@ -176,10 +190,10 @@ TEST_P(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock)
       for (int i = 0; i < local.grid.nx; ++i) {
         const int c = local.grid.index(i, j, k);
         const int w = whole.grid.index(box.lo[0] + i, box.lo[1] + j, box.lo[2] + k);
-        const double a[7] = {local.A.diag(c), local.A.cx(c - 1), local.A.cx(c), local.A.cy(c - sy), local.A.cy(c),
-                             local.A.cz(c - sz), local.A.cz(c)};
-        const double e[7] = {whole.A.diag(w), whole.A.cx(w - 1), whole.A.cx(w), whole.A.cy(w - wy), whole.A.cy(w),
-                             whole.A.cz(w - wz), whole.A.cz(w)};
+        const double a[7] = {local.A.diag(c), local.A.cx(c - 1),  local.A.cx(c), local.A.cy(c - sy),
+                             local.A.cy(c),   local.A.cz(c - sz), local.A.cz(c)};
+        const double e[7] = {whole.A.diag(w), whole.A.cx(w - 1),  whole.A.cx(w), whole.A.cy(w - wy),
+                             whole.A.cy(w),   whole.A.cz(w - wz), whole.A.cz(w)};
         for (int m = 0; m < 7; ++m, ++compared) differ += a[m] != e[m];
       }
   EXPECT_EQ(differ, 0) << "of " << compared << " coefficients on rank " << comm.rank();
@@ -194,7 +208,8 @@ TEST_P(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock)
 
   // the same through the pressure-solver interface; MIC(0) refuses a block
   const auto A = kernels::mac::copy_stencil<Mem>(local.A);
-  auto hypre = solvers::mac::make_pressure_solver(solvers::mac::PressureBackend::hypre, Exec(), A, block);
+  auto hypre =
+      solvers::mac::make_pressure_solver(solvers::mac::PressureBackend::hypre, Exec(), A, block);
   Kokkos::View<double*, Mem> x("x", local.grid.padded_size());
   solvers::SolverControl control;
   control.relative_tolerance = 1e-11;
@@ -204,8 +219,9 @@ TEST_P(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock)
   for (std::size_t c = 0; c < xh.size(); ++c) d2 = std::max(d2, std::abs(xh[c] - p[c]));
   EXPECT_LT(d2, 1e-12 * scale);
   if (comm.size() > 1) {
-    EXPECT_THROW(solvers::mac::make_pressure_solver(solvers::mac::PressureBackend::mic0, Exec(), A, block),
-                 std::invalid_argument);
+    EXPECT_THROW(
+        solvers::mac::make_pressure_solver(solvers::mac::PressureBackend::mic0, Exec(), A, block),
+        std::invalid_argument);
   }
 
   // multigrid-CG on the blocks takes the single block's V-cycle: the same iterations and pressure
@@ -223,7 +239,8 @@ TEST_P(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock)
   const int whole_iterations = solve_mg(whole, mesh::MacBlock{}, qm);
   EXPECT_EQ(split_iterations, whole_iterations) << "ranks " << comm.size();
   const double d3 = block_difference(comm, S, pm, qm).max;
-  EXPECT_LT(d3, 1e-9 * scale) << "multigrid on " << comm.size() << " ranks, " << split_iterations << " iterations";
+  EXPECT_LT(d3, 1e-9 * scale) << "multigrid on " << comm.size() << " ranks, " << split_iterations
+                              << " iterations";
   // and one V-cycle on the blocks is the single block's V-cycle, to single-precision round-off
   using MG = solvers::mac::MacMultigrid<Exec>;
   const MG split_mg(Exec(), kernels::mac::copy_stencil<Mem>(local.A), {}, block);
@@ -235,11 +252,11 @@ TEST_P(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock)
   const Difference z = block_difference(comm, S, to_std_vector(zs), to_std_vector(zw));
   const double d4 = z.max, zmax = z.scale;
   EXPECT_LT(d4, 1e-6 * zmax) << "V-cycle on " << comm.size() << " ranks";
+  if (comm.rank() == 0) std::printf("V-cycle: max difference %.3g of %.3g\n", d4, zmax);
   if (comm.rank() == 0)
-    std::printf("V-cycle: max difference %.3g of %.3g\n", d4, zmax);
-  if (comm.rank() == 0)
-    std::printf("multigrid-CG: %d iterations on %d rank(s), %d on one block; max difference %.3g of %.3g\n",
-                split_iterations, comm.size(), whole_iterations, d3, scale);
+    std::printf(
+        "multigrid-CG: %d iterations on %d rank(s), %d on one block; max difference %.3g of %.3g\n",
+        split_iterations, comm.size(), whole_iterations, d3, scale);
 }
 
 // The tall-cell system on the blocks: each block's rows of P^T A P equal the single block's
@@ -263,7 +280,8 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
       const mesh::TallCellColumn& w = W.column(box.lo[0] + i, box.lo[2] + k);
       ASSERT_EQ(c.terrain, w.terrain);
       ASSERT_EQ(c.band, w.band);
-      if (c.has_tall_cell()) mine[c.first_unknown] = w.first_unknown, mine[c.first_unknown + 1] = w.first_unknown + 1;
+      if (c.has_tall_cell())
+        mine[c.first_unknown] = w.first_unknown, mine[c.first_unknown + 1] = w.first_unknown + 1;
       for (int j = c.band; j < local.grid.ny; ++j) {
         const int u = T.cell_unknown()[local.grid.index(i, j, k)];
         if (u >= 0) mine[u] = W.cell_unknown()[whole.grid.index(box.lo[0] + i, j, box.lo[2] + k)];
@@ -277,8 +295,10 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   for (long r = 0; r < M.n; ++r) {
     const long wr = mine[r];
     std::vector<std::pair<long, double>> a, e;
-    for (long m = M.row_ptr[r]; m < M.row_ptr[r + 1]; ++m) a.emplace_back(to_whole.at(M.cols[m]), M.values[m]);
-    for (long m = Mw.row_ptr[wr]; m < Mw.row_ptr[wr + 1]; ++m) e.emplace_back(Mw.cols[m], Mw.values[m]);
+    for (long m = M.row_ptr[r]; m < M.row_ptr[r + 1]; ++m)
+      a.emplace_back(to_whole.at(M.cols[m]), M.values[m]);
+    for (long m = Mw.row_ptr[wr]; m < Mw.row_ptr[wr + 1]; ++m)
+      e.emplace_back(Mw.cols[m], Mw.values[m]);
     std::sort(a.begin(), a.end());
     double diagonal = 0;
     for (const auto& [c, v] : e) diagonal = c == wr ? v : diagonal;
@@ -295,12 +315,12 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   control.relative_tolerance = 1e-11;
   using solvers::mac::PressureBackend;
   int iterations[2] = {0, 0};
-  const auto solve_tall = [&](PressureBackend backend, const mesh::TallCellGrid& grid, const Block& B,
-                              const solvers::CsrMatrix& A_t, int& its) {
+  const auto solve_tall = [&](PressureBackend backend, const mesh::TallCellGrid& grid,
+                              const Block& B, const solvers::CsrMatrix& A_t, int& its) {
     std::vector<double> bt(grid.unknowns()), lattice(B.grid.padded_size());
     grid.restrict_to_unknowns(B.b.data(), bt.data());
-    auto solver = solvers::mac::make_tall_cell_pressure_solver(backend, Exec(), grid, A_t,
-                                                               kernels::mac::copy_stencil<Mem>(B.A));
+    auto solver = solvers::mac::make_tall_cell_pressure_solver(
+        backend, Exec(), grid, A_t, kernels::mac::copy_stencil<Mem>(B.A));
     Kokkos::View<double*, Mem> y("y", grid.unknowns());
     const auto r = solver->solve(Exec(), to_view<Mem>(bt), y, control);
     EXPECT_TRUE(r.converged);
@@ -314,15 +334,18 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
                                            solve_tall(backend, W, whole, Mw, iterations[1]));
     const double diff = pq.max, scale = pq.scale;
     EXPECT_GT(scale, 0.0);
-    EXPECT_LT(diff, 1e-8 * scale) << solvers::mac::to_string(backend) << " on " << comm.size() << " ranks";
+    EXPECT_LT(diff, 1e-8 * scale) << solvers::mac::to_string(backend) << " on " << comm.size()
+                                  << " ranks";
     // the V-cycle on the blocks is the single block's up to the eigenvalue estimates' start
     // vectors: as many iterations within 2
     EXPECT_LE(std::abs(iterations[0] - iterations[1]), 2) << solvers::mac::to_string(backend);
     if (comm.rank() == 0)
-      std::printf("tall cells (depth %d): %ld unknowns, %ld rows compared on rank 0; %s-CG on %d rank(s): %d "
-                  "iterations (%d on one block), max difference %.3g of %.3g\n",
-                  depth, W.unknowns(), rows_compared, solvers::mac::to_string(backend), comm.size(), iterations[0],
-                  iterations[1], diff, scale);
+      std::printf(
+          "tall cells (depth %d): %ld unknowns, %ld rows compared on rank 0; %s-CG on %d rank(s): "
+          "%d "
+          "iterations (%d on one block), max difference %.3g of %.3g\n",
+          depth, W.unknowns(), rows_compared, solvers::mac::to_string(backend), comm.size(),
+          iterations[0], iterations[1], diff, scale);
   }
   // one V-cycle of the tall-cell multigrid on the blocks is the single block's, to round-off
   using TallMG = solvers::mac::TallCellMultigrid<Exec>;
@@ -339,20 +362,24 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
     grid.prolongate(to_std_vector(z).data(), lattice.data());
     return lattice;
   };
-  const Difference z = block_difference(comm, S, vcycle(split_mg, T, local), vcycle(whole_mg, W, whole));
+  const Difference z =
+      block_difference(comm, S, vcycle(split_mg, T, local), vcycle(whole_mg, W, whole));
   const double dz = z.max, zmax = z.scale;
   EXPECT_LT(dz, 1e-10 * zmax) << "tall-cell V-cycle on " << comm.size() << " ranks";
   if (comm.rank() == 0)
-    std::printf("tall-cell V-cycle (%d levels): max difference %.3g of %.3g\n", split_mg.levels(), dz, zmax);
+    std::printf("tall-cell V-cycle (%d levels): max difference %.3g of %.3g\n", split_mg.levels(),
+                dz, zmax);
   if (comm.size() > 1) {  // MIC(0) solves one block only
-    EXPECT_THROW(solvers::mac::make_tall_cell_pressure_solver(PressureBackend::mic0, Exec(), T, M,
-                                                              kernels::mac::copy_stencil<Mem>(local.A)),
+    EXPECT_THROW(solvers::mac::make_tall_cell_pressure_solver(
+                     PressureBackend::mic0, Exec(), T, M, kernels::mac::copy_stencil<Mem>(local.A)),
                  std::invalid_argument);
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(SplitDirection, MacDecomposition, ::testing::Values(0, 2),
-                         [](const ::testing::TestParamInfo<int>& direction) { return direction.param == 0 ? "x" : "z"; });
+                         [](const ::testing::TestParamInfo<int>& direction) {
+                           return direction.param == 0 ? "x" : "z";
+                         });
 
 }  // namespace
 }  // namespace amphora

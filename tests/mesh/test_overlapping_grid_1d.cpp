@@ -23,9 +23,9 @@ TEST(OverlappingGrid1D, GeometryAndInterpolationPoints) {
   const ComponentGrid1D& g1 = g.grid(0);
   const ComponentGrid1D& g2 = g.grid(1);
   EXPECT_DOUBLE_EQ(g1.x(0), 0.0);
-  EXPECT_DOUBLE_EQ(g1.x(g1.size - 1), 0.5);              // interpolation point x_b
-  EXPECT_NEAR(g2.x(g2.last - 1), 1.0, 1e-14);           // Neumann boundary point
-  EXPECT_NEAR(g2.x(0), 0.5 - 1.5 / 80, 1e-15);          // interpolation point x_a
+  EXPECT_DOUBLE_EQ(g1.x(g1.size - 1), 0.5);     // interpolation point x_b
+  EXPECT_NEAR(g2.x(g2.last - 1), 1.0, 1e-14);   // Neumann boundary point
+  EXPECT_NEAR(g2.x(0), 0.5 - 1.5 / 80, 1e-15);  // interpolation point x_a
   // Each interpolation point lies inside its donor stencil, at offset alpha or beta.
   const auto& ia = g.interpolation(0);
   const auto& ib = g.interpolation(1);

@@ -37,7 +37,8 @@ DemSystem<ExecSpace> shaken_packing(int n, double L) {
   InsertionRegion box;
   for (int d = 0; d < 3; ++d) box.hi[d] = L;
   auto ps = lattice_insertion(box, {r, 0.3}, 2.7 * r, n, 0.5 * r, 7, 0, {1.0});
-  if (int(ps.size()) != n) throw std::logic_error("shaken_packing: the box does not hold n particles");
+  if (int(ps.size()) != n)
+    throw std::logic_error("shaken_packing: the box does not hold n particles");
   for (auto& p : ps)
     for (int d = 0; d < 3; ++d) p.v[d] = 0.3 * (uniform01(11, d, p.gid) - 0.5);
   s.add_particles(ps);

@@ -23,14 +23,27 @@ constexpr double kPi = 3.141592653589793;
 double kMu = 0.1;  // the viscosity (the impedance cases lower it)
 constexpr double kRho = 1.3, kK = 2 * kPi, kL = 3.0, kW = 2.0, kDepth = 0.5;
 
-// Stream function psi = sin(kx) cos(ly) cos(wt): u = psi_y, v = -psi_x; p = cos(kx) sin(ly) sin(wt).
-double u_exact(double x, double y, double t) { return -kL * std::sin(kK * x) * std::sin(kL * y) * std::cos(kW * t); }
-double v_exact(double x, double y, double t) { return -kK * std::cos(kK * x) * std::cos(kL * y) * std::cos(kW * t); }
-double p_exact(double x, double y, double t) { return std::cos(kK * x) * std::sin(kL * y) * std::sin(kW * t); }
+// Stream function psi = sin(kx) cos(ly) cos(wt): u = psi_y, v = -psi_x; p = cos(kx) sin(ly)
+// sin(wt).
+double u_exact(double x, double y, double t) {
+  return -kL * std::sin(kK * x) * std::sin(kL * y) * std::cos(kW * t);
+}
+double v_exact(double x, double y, double t) {
+  return -kK * std::cos(kK * x) * std::cos(kL * y) * std::cos(kW * t);
+}
+double p_exact(double x, double y, double t) {
+  return std::cos(kK * x) * std::sin(kL * y) * std::sin(kW * t);
+}
 
-double u_y_exact(double x, double y, double t) { return -kL * kL * std::sin(kK * x) * std::cos(kL * y) * std::cos(kW * t); }
-double v_x_exact(double x, double y, double t) { return kK * kK * std::sin(kK * x) * std::cos(kL * y) * std::cos(kW * t); }
-double v_y_exact(double x, double y, double t) { return kK * kL * std::cos(kK * x) * std::sin(kL * y) * std::cos(kW * t); }
+double u_y_exact(double x, double y, double t) {
+  return -kL * kL * std::sin(kK * x) * std::cos(kL * y) * std::cos(kW * t);
+}
+double v_x_exact(double x, double y, double t) {
+  return kK * kK * std::sin(kK * x) * std::cos(kL * y) * std::cos(kW * t);
+}
+double v_y_exact(double x, double y, double t) {
+  return kK * kL * std::cos(kK * x) * std::sin(kL * y) * std::cos(kW * t);
+}
 
 StokesData data() {
   const double lap = -(kK * kK + kL * kL);  // lap u = lap * u for both components
@@ -38,11 +51,13 @@ StokesData data() {
   // f = rho v_t + grad p - mu lap v.
   d.fx = [lap](double x, double y, double t) {
     return kRho * kL * kW * std::sin(kK * x) * std::sin(kL * y) * std::sin(kW * t) -
-           kK * std::sin(kK * x) * std::sin(kL * y) * std::sin(kW * t) - kMu * lap * u_exact(x, y, t);
+           kK * std::sin(kK * x) * std::sin(kL * y) * std::sin(kW * t) -
+           kMu * lap * u_exact(x, y, t);
   };
   d.fy = [lap](double x, double y, double t) {
     return kRho * kK * kW * std::cos(kK * x) * std::cos(kL * y) * std::sin(kW * t) +
-           kL * std::cos(kK * x) * std::cos(kL * y) * std::sin(kW * t) - kMu * lap * v_exact(x, y, t);
+           kL * std::cos(kK * x) * std::cos(kL * y) * std::sin(kW * t) -
+           kMu * lap * v_exact(x, y, t);
   };
   d.u_bottom = [](double x, double t) { return u_exact(x, -kDepth, t); };
   d.u_top = [](double x, double t) { return u_exact(x, 0.0, t); };
@@ -72,7 +87,8 @@ Errors run(int n, std::optional<TopImpedance> top = std::nullopt) {
       u[size_t(j) * g.nx + i] = u_exact(s.u_x(i), s.u_y(j), 0.0);
       p[size_t(j) * g.nx + i] = p_exact(s.v_x(i), s.u_y(j), -0.5 * s.dt());
     }
-  std::vector<double> top_state;  // impedance top: u on the wall, the ghost v above it, p on the wall at -3dt/2
+  std::vector<double>
+      top_state;  // impedance top: u on the wall, the ghost v above it, p on the wall at -3dt/2
   if (top) {
     for (int i = 0; i < g.nx; ++i) top_state.push_back(u_exact(s.u_x(i), 0.0, 0.0));
   }
@@ -80,7 +96,9 @@ Errors run(int n, std::optional<TopImpedance> top = std::nullopt) {
   StokesData d = data();
   if (top) {  // the characteristics sigma n + z v of the exact solution
     const TopImpedance z = *top;
-    d.g_top_x = [z](double x, double t) { return kMu * (u_y_exact(x, 0, t) + v_x_exact(x, 0, t)) + z.z_shear * u_exact(x, 0, t); };
+    d.g_top_x = [z](double x, double t) {
+      return kMu * (u_y_exact(x, 0, t) + v_x_exact(x, 0, t)) + z.z_shear * u_exact(x, 0, t);
+    };
     d.g_top_y = [z](double x, double t) {
       return -p_exact(x, 0, t) + 2 * kMu * v_y_exact(x, 0, t) + z.z_normal * v_exact(x, 0, t);
     };
@@ -91,7 +109,11 @@ Errors run(int n, std::optional<TopImpedance> top = std::nullopt) {
     v_old[i] = v_exact(s.v_x(i), 0.0, -s.dt());
     v_now[i] = v_exact(s.v_x(i), 0.0, 0.0);
   }
-  if (top) d.v_top = [&](double x, double) { const int i = int(std::floor(x * g.nx)); return 2 * v_now[i] - v_old[i]; };
+  if (top)
+    d.v_top = [&](double x, double) {
+      const int i = int(std::floor(x * g.nx));
+      return 2 * v_now[i] - v_old[i];
+    };
   for (int k = 0; k < steps; ++k) {
     s.step(d);
     v_old = v_now;
@@ -104,10 +126,13 @@ Errors run(int n, std::optional<TopImpedance> top = std::nullopt) {
     for (double x : s.p()) mean += x / s.p().size();
   for (int j = 0; j <= g.ny; ++j)
     for (int i = 0; i < g.nx; ++i) {
-      e.v = std::max(e.v, std::abs(s.v()[size_t(j) * g.nx + i] - v_exact(s.v_x(i), s.v_y(j), s.time())));
+      e.v = std::max(e.v,
+                     std::abs(s.v()[size_t(j) * g.nx + i] - v_exact(s.v_x(i), s.v_y(j), s.time())));
       if (j == g.ny) continue;
-      e.u = std::max(e.u, std::abs(s.u()[size_t(j) * g.nx + i] - u_exact(s.u_x(i), s.u_y(j), s.time())));
-      e.p = std::max(e.p, std::abs(s.p()[size_t(j) * g.nx + i] - mean - p_exact(s.v_x(i), s.u_y(j), tp)));
+      e.u = std::max(e.u,
+                     std::abs(s.u()[size_t(j) * g.nx + i] - u_exact(s.u_x(i), s.u_y(j), s.time())));
+      e.p = std::max(
+          e.p, std::abs(s.p()[size_t(j) * g.nx + i] - mean - p_exact(s.v_x(i), s.u_y(j), tp)));
     }
   return e;
 }
@@ -133,7 +158,9 @@ void expect_second_order(std::optional<TopImpedance> top, double mu) {
   }
 }
 
-TEST(ChannelStokes, ManufacturedFlowConvergesAtSecondOrder) { expect_second_order(std::nullopt, 0.1); }
+TEST(ChannelStokes, ManufacturedFlowConvergesAtSecondOrder) {
+  expect_second_order(std::nullopt, 0.1);
+}
 
 TEST(ChannelStokes, ImpedanceTopConvergesAtSecondOrderForEveryImpedance) {
   // mu dt / (rho h^2) up to 0.25 (mu = 0.01) and 12 (mu = 0.5): the normal viscous stress's

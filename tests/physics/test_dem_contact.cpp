@@ -69,8 +69,8 @@ TEST(DemContact, DampingCalibrationHitsTheRestitution) {
   EXPECT_EQ(damping_for_restitution(1.0), 0.0);
   // Undamped Hertz (Johnson, Contact Mechanics, 11.1): tau = 2 s_max int_0^1 du/sqrt(1-u^{5/2})
   // with s_max = (5/4)^{2/5}, the integral being B(2/5, 1/2) / (5/2); t_c = 2.8686 (...)^{1/5}.
-  const double tau = 2 * std::pow(1.25, 0.4) * 0.4 * std::tgamma(0.4) * std::tgamma(0.5) /
-                     std::tgamma(0.9);
+  const double tau =
+      2 * std::pow(1.25, 0.4) * 0.4 * std::tgamma(0.4) * std::tgamma(0.5) / std::tgamma(0.9);
   EXPECT_NEAR(scaled_contact_duration(0.0), tau, 1e-6);
 }
 
@@ -116,8 +116,8 @@ TEST(DemContact, HeadOnCollisionRestitutionAndHertzDuration) {
       const auto [e_meas, dur] = collide(e, 0.2, steps);
       EXPECT_NEAR(e_meas / e, 1.0, 0.01) << "target restitution " << e;
       // Damping shortens the contact as the calibrated scaled duration predicts.
-      const double expected = scaled_contact_duration(damping_for_restitution(e)) /
-                              scaled_contact_duration(0.0);
+      const double expected =
+          scaled_contact_duration(damping_for_restitution(e)) / scaled_contact_duration(0.0);
       EXPECT_NEAR(dur / expected, 1.0, 0.02) << "damped contact duration, e = " << e;
     }
   }

@@ -76,7 +76,8 @@ TEST(DemContactDetection, ParticleScheduleEqualsSlabScheduleToRoundOff) {
   std::map<std::int64_t, int> where;
   for (int i = 0; i < particles.particles().n_owned; ++i) where[gb(i)] = i;
   for (int i = 0; i < slabs.particles().n_owned; ++i)
-    for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(xa(i, d) - xb(where.at(ga(i)), d)));
+    for (int d = 0; d < 3; ++d)
+      worst = std::max(worst, std::abs(xa(i, d) - xb(where.at(ga(i)), d)));
   // positions of order 1e-2 m: 60 steps of round-off stay far below 1e-12 m; a wrong sign or a
   // missing pair in either schedule moves a particle by ~1e-7 m or more within these steps
   EXPECT_LT(worst, 1e-12);

@@ -75,9 +75,10 @@ TEST(EulerBernoulliBeam, LoadedStandingWaveConvergesAtSecondOrder) {
   const BeamParameters p = beam(8);
   const double k = 4 * kPi;
   const double factor = -9 * p.rho_h + p.spring + p.tension * k * k + p.stiffness * k * k * k * k;
-  expect_second_order([=](double x, double t) { return std::sin(k * x) * std::cos(3 * t); },
-                      [=](double x, double t) { return -3 * std::sin(k * x) * std::sin(3 * t); },
-                      [=](double x, double t) { return factor * std::sin(k * x) * std::cos(3 * t); });
+  expect_second_order(
+      [=](double x, double t) { return std::sin(k * x) * std::cos(3 * t); },
+      [=](double x, double t) { return -3 * std::sin(k * x) * std::sin(3 * t); },
+      [=](double x, double t) { return factor * std::sin(k * x) * std::cos(3 * t); });
 }
 
 TEST(EulerBernoulliBeam, UnloadedEnergyIsConserved) {

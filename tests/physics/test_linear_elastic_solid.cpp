@@ -22,12 +22,15 @@ constexpr double kPi = 3.141592653589793;
 struct Manufactured {
   double a = 1.0, b = 0.5, k = 2 * kPi, l = 3.0, s = 0.4, w = 5.0;
   KOKKOS_INLINE_FUNCTION double operator()(double x, double y, double t, int c) const {
-    return c == 0 ? a * amphora::math::sin(k * x) * amphora::math::cos(l * y + s) * amphora::math::cos(w * t)
-                  : b * amphora::math::cos(k * x) * amphora::math::sin(l * y + s) * amphora::math::cos(w * t);
+    return c == 0 ? a * amphora::math::sin(k * x) * amphora::math::cos(l * y + s) *
+                        amphora::math::cos(w * t)
+                  : b * amphora::math::cos(k * x) * amphora::math::sin(l * y + s) *
+                        amphora::math::cos(w * t);
   }
 };
 
-/// Its traction on y = const: (sigma_xy, sigma_yy) = (mu (u1_y + u2_x), (lambda + 2 mu) u2_y + lambda u1_x).
+/// Its traction on y = const: (sigma_xy, sigma_yy) = (mu (u1_y + u2_x), (lambda + 2 mu) u2_y +
+/// lambda u1_x).
 struct Traction {
   Manufactured u;
   ElasticMaterial m;
@@ -52,11 +55,13 @@ struct Forcing {
     const double lm = m.lambda + m.mu, l2m = m.lambda + 2 * m.mu, ct = amphora::math::cos(u.w * t);
     if (c == 0) {
       const double u1 = u(x, y, t, 0);
-      const double u2_xy = -u.b * u.k * u.l * amphora::math::sin(u.k * x) * amphora::math::cos(u.l * y + u.s) * ct;
+      const double u2_xy =
+          -u.b * u.k * u.l * amphora::math::sin(u.k * x) * amphora::math::cos(u.l * y + u.s) * ct;
       return -m.rho * u.w * u.w * u1 - (-l2m * u.k * u.k * u1 - m.mu * u.l * u.l * u1 + lm * u2_xy);
     }
     const double u2 = u(x, y, t, 1);
-    const double u1_xy = -u.a * u.k * u.l * amphora::math::cos(u.k * x) * amphora::math::sin(u.l * y + u.s) * ct;
+    const double u1_xy =
+        -u.a * u.k * u.l * amphora::math::cos(u.k * x) * amphora::math::sin(u.l * y + u.s) * ct;
     return -m.rho * u.w * u.w * u2 - (-m.mu * u.k * u.k * u2 - l2m * u.l * u.l * u2 + lm * u1_xy);
   }
 };
@@ -79,7 +84,8 @@ double error_at(int n, bool traction = false) {
   g.hy = 0.5 / g.ny;
   const ElasticMaterial m = material();
   const double t_end = 0.5;
-  const int steps = static_cast<int>(std::ceil(t_end / (0.8 * amphora::elastic::elastic_wave_dt_limit(g, m))));
+  const int steps =
+      static_cast<int>(std::ceil(t_end / (0.8 * amphora::elastic::elastic_wave_dt_limit(g, m))));
   LinearElasticSolid<Exec> solid(g, m, t_end / steps);
   const Manufactured exact;
   const Forcing force{exact, m};
@@ -107,7 +113,8 @@ void expect_second_order(bool traction) {
     const double e = error_at(n, traction);
     if (n > 16) {
       const double order = std::log2(previous / e);
-      std::printf("%s n %4d  max error %.3e  order %.3f\n", traction ? "traction" : "dirichlet", n, e, order);
+      std::printf("%s n %4d  max error %.3e  order %.3f\n", traction ? "traction" : "dirichlet", n,
+                  e, order);
       if (n >= 64) {
         EXPECT_NEAR(order, 2.0, 0.2) << "n = " << n;
       }
@@ -126,7 +133,8 @@ auto run_on(int n) {
   ElasticGrid g{n, n / 2, 1.0 / n, 0.5 / (n / 2)};
   const ElasticMaterial m = material();
   const double t_end = 0.5;
-  const int steps = static_cast<int>(std::ceil(t_end / (0.8 * amphora::elastic::elastic_wave_dt_limit(g, m))));
+  const int steps =
+      static_cast<int>(std::ceil(t_end / (0.8 * amphora::elastic::elastic_wave_dt_limit(g, m))));
   LinearElasticSolid<E> solid(g, m, t_end / steps);
   const Manufactured exact;
   solid.set_state(0.0, exact);

@@ -54,9 +54,11 @@ DeepCopyCount water_step_copies(int optical_depth) {
   const int steps = 3;
   for (int s = 1; s <= steps; ++s) m->advance(s * dt, dt);
   DeepCopyCount c = counter.count();
-  std::printf("[transfers] water step, optical depth %d: %.1f deep copies, %.0f B; host-device %.1f, %.0f B\n",
-              optical_depth, double(c.copies) / steps, double(c.bytes) / steps, double(c.host_device()) / steps,
-              double(c.host_device_bytes()) / steps);
+  std::printf(
+      "[transfers] water step, optical depth %d: %.1f deep copies, %.0f B; host-device %.1f, %.0f "
+      "B\n",
+      optical_depth, double(c.copies) / steps, double(c.bytes) / steps,
+      double(c.host_device()) / steps, double(c.host_device_bytes()) / steps);
   return c;
 }
 

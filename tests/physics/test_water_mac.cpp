@@ -46,7 +46,8 @@ StillWater run_still(int optical_depth, const char* solver) {
       for (double x : b.x) {
         (void)x, (void)z;
         if ((*phi)[c] < 0 && (*pressure)[c] != 0.0)  // fluid (solid cells carry no pressure)
-          r.pressure_error = std::max(r.pressure_error, std::abs((*pressure)[c] - rho_g * (0.63 - y)) / (rho_g * 0.63));
+          r.pressure_error = std::max(
+              r.pressure_error, std::abs((*pressure)[c] - rho_g * (0.63 - y)) / (rho_g * 0.63));
         ++c;
       }
   return r;
@@ -80,9 +81,10 @@ TEST(StokerDamBreak, SatisfiesTheJumpConditionsAndTheLimits) {
     EXPECT_LT(s.hm, h0);
     // in the bore's frame the still water enters at -S and leaves at um - S
     const double w1 = -s.bore_speed, wm = s.um - s.bore_speed;
-    EXPECT_NEAR(h1 * w1, s.hm * wm, 1e-12) << ratio;                                          // mass
-    EXPECT_NEAR(h1 * w1 * w1 + 0.5 * g * h1 * h1, s.hm * wm * wm + 0.5 * g * s.hm * s.hm, 1e-12) << ratio;  // momentum
-    EXPECT_NEAR(s.um + 2.0 * std::sqrt(g * s.hm), 2.0 * c0, 1e-12) << ratio;                  // Riemann invariant
+    EXPECT_NEAR(h1 * w1, s.hm * wm, 1e-12) << ratio;  // mass
+    EXPECT_NEAR(h1 * w1 * w1 + 0.5 * g * h1 * h1, s.hm * wm * wm + 0.5 * g * s.hm * s.hm, 1e-12)
+        << ratio;                                                             // momentum
+    EXPECT_NEAR(s.um + 2.0 * std::sqrt(g * s.hm), 2.0 * c0, 1e-12) << ratio;  // Riemann invariant
   }
   EXPECT_NEAR(stoker_dam_break(g, h0, 1e-9 * h0).bore_speed / (2.0 * c0), 1.0, 0.02);
   EXPECT_NEAR(stoker_dam_break(g, h0, (1 - 1e-6) * h0).bore_speed / c0, 1.0, 1e-5);

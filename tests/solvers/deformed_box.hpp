@@ -13,7 +13,8 @@ template <int dim>
 void deform(mesh::StructuredHexMesh<dim>& m, const std::string& shape) {
   if (shape == "affine") {
     m.deformation = [](const mesh::Point3& X) {
-      return mesh::Point3{X[0] + 0.2 * X[1] + 0.1 * X[2], 0.1 * X[0] + 1.1 * X[1], 0.3 * X[1] + 0.9 * X[2]};
+      return mesh::Point3{X[0] + 0.2 * X[1] + 0.1 * X[2], 0.1 * X[0] + 1.1 * X[1],
+                          0.3 * X[1] + 0.9 * X[2]};
     };
     m.affine_deformation = true;
   } else if (shape == "curved") {

@@ -19,10 +19,11 @@ namespace amphora::solvers::mac::test_problems {
 /// MG-CG iterations for a box of fluid with the given faces (a tank: walls and an open top, or
 /// open all round) filled to height `fill` + `wave` sin(2 pi x) cos(2 pi z) (air above; theta
 /// from the level set).
-inline int box_iterations(int n, const kernels::mac::MacBoxBoundaries& faces, double fill, double wave = 0.0) {
+inline int box_iterations(int n, const kernels::mac::MacBoxBoundaries& faces, double fill,
+                          double wave = 0.0) {
+  using kernels::mac::MacCellType;
   using test::TestExecSpace;
   using test::TestMemSpace;
-  using kernels::mac::MacCellType;
   const TestExecSpace exec;
   const kernels::mac::MacGrid g{n, n, n, 1.0 / n, {0, 0, 0}};
   std::vector<MacCellType> t(g.padded_size(), MacCellType::solid);
@@ -34,7 +35,8 @@ inline int box_iterations(int n, const kernels::mac::MacBoxBoundaries& faces, do
         const int c = g.index(i, j, k);
         phi[c] = x[1] - fill - wave * std::sin(2 * M_PI * x[0]) * std::cos(2 * M_PI * x[2]);
         t[c] = phi[c] < 0 ? MacCellType::fluid : MacCellType::air;
-        if (t[c] == MacCellType::fluid) b[c] = g.h * g.h * (1.0 + std::sin(7 * x[0]) * std::cos(5 * x[2]));
+        if (t[c] == MacCellType::fluid)
+          b[c] = g.h * g.h * (1.0 + std::sin(7 * x[0]) * std::cos(5 * x[2]));
       }
   const auto A = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
       exec, g, to_view<TestMemSpace>(t), to_view<TestMemSpace>(phi), faces);
@@ -49,7 +51,8 @@ inline int box_iterations(int n, const kernels::mac::MacBoxBoundaries& faces, do
 
 /// The faces of the box problems.
 struct BoxFaces {
-  kernels::mac::MacBoxBoundaries open, bottom, tank;  ///< open all round; a wall below only; walls and an open top
+  kernels::mac::MacBoxBoundaries open, bottom,
+      tank;  ///< open all round; a wall below only; walls and an open top
   BoxFaces() {
     open.fill(kernels::mac::MacBoundary::open);
     bottom = open;
@@ -64,7 +67,8 @@ struct IterationCase {
   const char* name;
   kernels::mac::MacBoxBoundaries faces;
   double fill;
-  int spread;  ///< largest difference of the counts over the sizes (the issue's +-2, or more where not met)
+  int spread;  ///< largest difference of the counts over the sizes (the issue's +-2, or more where
+               ///< not met)
   int most;    ///< largest count at the last size
   double wave = 0.0;  ///< the surface's amplitude (flat: 0)
 };
@@ -79,8 +83,9 @@ struct IterationCounts {
 inline IterationCounts iteration_counts(const int (&n)[3], const IterationCase& c) {
   IterationCounts r{};
   for (int m = 0; m < 3; ++m) r.at[m] = box_iterations(n[m], c.faces, c.fill, c.wave);
-  std::printf("%-24s MG-CG iterations to 1e-8 at %d^3, %d^3, %d^3: %d %d %d%s\n", c.name, n[0], n[1], n[2], r.at[0],
-              r.at[1], r.at[2], c.spread > 2 ? "  (not within the issue's +-2)" : "");
+  std::printf("%-24s MG-CG iterations to 1e-8 at %d^3, %d^3, %d^3: %d %d %d%s\n", c.name, n[0],
+              n[1], n[2], r.at[0], r.at[1], r.at[2],
+              c.spread > 2 ? "  (not within the issue's +-2)" : "");
   return r;
 }
 

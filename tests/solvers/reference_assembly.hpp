@@ -15,8 +15,9 @@
 namespace amphora::test {
 
 template <int dim, class Space>
-Eigen::SparseMatrix<double> assemble_reference(const Space& space, solvers::OperatorKind kind, int n_q,
-                                               bool gauss_lobatto, const std::vector<double>& field) {
+Eigen::SparseMatrix<double> assemble_reference(const Space& space, solvers::OperatorKind kind,
+                                               int n_q, bool gauss_lobatto,
+                                               const std::vector<double>& field) {
   const auto& lat = space.lattice();
   const int k = lat.degree, np = k + 1;
   const std::vector<double> nodes = sumfac::gauss_lobatto(np).points;
@@ -60,7 +61,8 @@ Eigen::SparseMatrix<double> assemble_reference(const Space& space, solvers::Oper
       double J[9] = {0}, inv[9] = {0};
       for (int j = 0; j < nd; ++j)
         for (int a = 0; a < dim; ++a)
-          for (int b = 0; b < dim; ++b) J[a * dim + b] += coords(a * n_nodes + node[j]) * dphi[j * dim + b];
+          for (int b = 0; b < dim; ++b)
+            J[a * dim + b] += coords(a * n_nodes + node[j]) * dphi[j * dim + b];
       const double det = sumfac::inverse<dim>(J, inv);
       // field at the point (coefficient or velocity), from the DoF values
       double f[3] = {1.0, 0.0, 0.0};

@@ -40,7 +40,9 @@ CsrMatrix laplacian_csr(int n, double shift, long first_column = 0) {
 }
 
 /// Eigenvalue k (1..n) of D^-1 A.
-double jacobi_eigenvalue(int k, int n, double shift) { return 1.0 - 2.0 * std::cos(k * pi / (n + 1)) / (2.0 + shift); }
+double jacobi_eigenvalue(int k, int n, double shift) {
+  return 1.0 - 2.0 * std::cos(k * pi / (n + 1)) / (2.0 + shift);
+}
 
 TEST(Chebyshev, GershgorinBoundIsExactForTheTridiagonalLaplacian) {
   for (const double shift : {0.0, 0.5, 4.0}) {
@@ -54,7 +56,8 @@ TEST(Chebyshev, GershgorinBoundIsExactForTheTridiagonalLaplacian) {
 }
 
 /// ||p(D^-1 A) v|| / ||v|| for the sine mode k after one smoothing pass from b = 0.
-double mode_reduction(const ChebyshevSmoother<TestExecSpace, Laplacian1D, View>& smoother, int n, int k) {
+double mode_reduction(const ChebyshevSmoother<TestExecSpace, Laplacian1D, View>& smoother, int n,
+                      int k) {
   const TestExecSpace exec;
   View x("x", n), b("b", n);
   auto xh = Kokkos::create_mirror_view(x);
@@ -78,7 +81,8 @@ TEST(Chebyshev, DampsTheModesOfItsIntervalByTheChebyshevFactor) {
   estimated.smoothing_range = 8.0;
   ChebyshevOptions bounded = estimated;
   bounded.lambda_max_bound = bound;
-  const ChebyshevSmoother<TestExecSpace, Laplacian1D, View> by_estimate(exec, A, inv_diag, estimated);
+  const ChebyshevSmoother<TestExecSpace, Laplacian1D, View> by_estimate(exec, A, inv_diag,
+                                                                        estimated);
   const ChebyshevSmoother<TestExecSpace, Laplacian1D, View> by_bound(exec, A, inv_diag, bounded);
   // the estimate approaches the largest eigenvalue from below; the bound is the bound
   EXPECT_LE(by_estimate.lambda_max(), jacobi_eigenvalue(n, n, shift) * (1 + 1e-12));

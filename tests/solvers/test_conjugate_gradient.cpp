@@ -67,8 +67,8 @@ TEST(ConjugateGradient, JacobiOnAShiftedOperatorConvergesFast) {
   blas1::fill(exec, inv_diag, 1.0 / 12.0);
   SolverControl control;
   control.relative_tolerance = 1e-10;
-  // A = tridiag(-1, 12, -1): cond <= 14/10, so CG needs ~ log(2/1e-10)/log((sqrt(1.4)+1)/(sqrt(1.4)-1))
-  // ~ 10 iterations.
+  // A = tridiag(-1, 12, -1): cond <= 14/10, so CG needs ~
+  // log(2/1e-10)/log((sqrt(1.4)+1)/(sqrt(1.4)-1)) ~ 10 iterations.
   const SolverResult r = conjugate_gradient(exec, Laplacian1D{10.0}, b, x, control,
                                             JacobiPreconditioner<View>{inv_diag});
   EXPECT_TRUE(r.converged);

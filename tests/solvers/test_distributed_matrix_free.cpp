@@ -27,7 +27,7 @@ template <int dim>
 mesh::StructuredHexMesh<dim> box(int n, const std::string& shape, bool periodic_split) {
   mesh::StructuredHexMesh<dim> m;
   m.cells = {n + 1, n, n + 2};
-  m.faces = {FaceCondition::dirichlet, FaceCondition::neumann, FaceCondition::periodic,
+  m.faces = {FaceCondition::dirichlet, FaceCondition::neumann,   FaceCondition::periodic,
              FaceCondition::periodic,  FaceCondition::dirichlet, FaceCondition::dirichlet};
   if (dim == 2) m.faces[2] = m.faces[3] = FaceCondition::dirichlet;
   if (periodic_split) m.faces[2 * (dim - 1)] = m.faces[2 * (dim - 1) + 1] = FaceCondition::periodic;
@@ -53,7 +53,8 @@ void check(const Case& c, int n) {
   SCOPED_TRACE("dim " + std::to_string(dim) + " k " + std::to_string(c.degree) + " kind " +
                std::to_string(static_cast<int>(c.kind)) + " " + c.shape +
                (c.periodic_split ? " periodic split" : "") + (c.gauss_lobatto ? " GL" : "") +
-               " components " + std::to_string(c.components) + " ranks " + std::to_string(comm.size()));
+               " components " + std::to_string(c.components) + " ranks " +
+               std::to_string(comm.size()));
   const TestExecSpace exec;
   const auto m = box<dim>(n, c.shape, c.periodic_split);
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
@@ -161,7 +162,8 @@ TEST(DistributedMatrixFree, ConjugateGradientOnSlabsReachesTheUndistributedSolut
   auto inv = to_std_vector(dgv);
   for (auto& v : inv) v = 1.0 / v;
   const JacobiPreconditioner<Vector> mg{to_view<test::TestMemSpace>(inv)};
-  const SolverResult rg = conjugate_gradient(exec, reference, to_view<test::TestMemSpace>(bg), xg, control, mg);
+  const SolverResult rg =
+      conjugate_gradient(exec, reference, to_view<test::TestMemSpace>(bg), xg, control, mg);
   ASSERT_TRUE(rg.converged);
 
   const mesh::DistributedQkSpace<dim, TestExecSpace> space(m, k, comm);
@@ -174,16 +176,18 @@ TEST(DistributedMatrixFree, ConjugateGradientOnSlabsReachesTheUndistributedSolut
   auto invl = to_std_vector(dl);
   for (auto& v : invl) v = 1.0 / v;  // ghost layer: partial sums, never used
   const JacobiPreconditioner<Vector> ml{to_view<test::TestMemSpace>(invl)};
-  const SolverResult rl = conjugate_gradient(exec, op, to_view<test::TestMemSpace>(bl), xl, control, ml,
-                                             space.inner_product());
+  const SolverResult rl = conjugate_gradient(exec, op, to_view<test::TestMemSpace>(bl), xl, control,
+                                             ml, space.inner_product());
   ASSERT_TRUE(rl.converged);
   EXPECT_NEAR(rl.iterations, rg.iterations, 1);
 
   const auto xgh = to_std_vector(xg), xlh = to_std_vector(xl);
   double scale = 0, err = 0;
   for (double v : xgh) scale = std::max(scale, std::abs(v));
-  for (long i = 0; i < space.n_owned(); ++i) err = std::max(err, std::abs(xlh[i] - xgh[space.global_index(i)]));
-  EXPECT_LE(comm.max(err), 1e-10 * scale) << "iterations " << rl.iterations << " / " << rg.iterations;
+  for (long i = 0; i < space.n_owned(); ++i)
+    err = std::max(err, std::abs(xlh[i] - xgh[space.global_index(i)]));
+  EXPECT_LE(comm.max(err), 1e-10 * scale)
+      << "iterations " << rl.iterations << " / " << rg.iterations;
 }
 
 // Multigrid-CG (p-levels, h-levels while the slabs allow, BoomerAMG on the gathered coarsest
@@ -203,29 +207,32 @@ TEST(DistributedMatrixFree, MultigridOnSlabsMatchesOneRank) {
     SolverControl control;
     control.relative_tolerance = 1e-10;
     control.max_iterations = 100;
-    auto solve = [&](const mesh::DistributedQkSpace<dim, TestExecSpace>& space, std::vector<double>& x_global,
-                     std::string& levels) {
+    auto solve = [&](const mesh::DistributedQkSpace<dim, TestExecSpace>& space,
+                     std::vector<double>& x_global, std::string& levels) {
       const DistributedOperator<dim, TestExecSpace> A(space, o);
       const MatrixFreeMultigrid<dim, TestExecSpace> mg(exec, A, mo);
       levels = mg.describe();
-      const auto f = space.local().interpolate([](const mesh::Point3& x, int) {
-        return std::exp(x[0]) * std::sin(3 * x[1]) + x[2];
-      });
-      const Vector b = load_vector(exec, space.local(), to_view<test::TestMemSpace>(f), GeometryMode::stored, k + 1);
+      const auto f = space.local().interpolate(
+          [](const mesh::Point3& x, int) { return std::exp(x[0]) * std::sin(3 * x[1]) + x[2]; });
+      const Vector b = load_vector(exec, space.local(), to_view<test::TestMemSpace>(f),
+                                   GeometryMode::stored, k + 1);
       space.compress_add(exec, b);
       Vector x("x", space.n_local());
       const SolverResult r = conjugate_gradient(exec, A, b, x, control, mg, space.inner_product());
       EXPECT_TRUE(r.converged);
       const auto xh = to_std_vector(x);
-      x_global = space.communicator().allgatherv(std::vector<double>(xh.begin(), xh.begin() + space.n_owned()));
+      x_global = space.communicator().allgatherv(
+          std::vector<double>(xh.begin(), xh.begin() + space.n_owned()));
       return r.iterations;
     };
     std::vector<double> x1, xp;
     std::string levels1, levelsp;
-    const int it1 = solve(mesh::DistributedQkSpace<dim, TestExecSpace>(m, k, Communicator(MPI_COMM_SELF)), x1, levels1);
+    const int it1 =
+        solve(mesh::DistributedQkSpace<dim, TestExecSpace>(m, k, Communicator(MPI_COMM_SELF)), x1,
+              levels1);
     const int itp = solve(mesh::DistributedQkSpace<dim, TestExecSpace>(m, k, comm), xp, levelsp);
-    SCOPED_TRACE("k " + std::to_string(k) + ": 1 rank " + levels1 + "; " + std::to_string(comm.size()) +
-                 " ranks " + levelsp);
+    SCOPED_TRACE("k " + std::to_string(k) + ": 1 rank " + levels1 + "; " +
+                 std::to_string(comm.size()) + " ranks " + levelsp);
     EXPECT_LE(it1, 12);
     EXPECT_NEAR(itp, it1, 1);
     ASSERT_EQ(x1.size(), xp.size());
@@ -236,8 +243,8 @@ TEST(DistributedMatrixFree, MultigridOnSlabsMatchesOneRank) {
     }
     EXPECT_LE(err, 1e-12 * scale);
     if (comm.is_root())
-      std::printf("k %d: %d iterations on 1 rank, %d on %d; max difference %.2e of max |x| %.3f\n", k, it1, itp,
-                  comm.size(), err, scale);
+      std::printf("k %d: %d iterations on 1 rank, %d on %d; max difference %.2e of max |x| %.3f\n",
+                  k, it1, itp, comm.size(), err, scale);
   }
 }
 
@@ -252,7 +259,8 @@ TEST(DistributedMatrixFree, TooFewCellsForTheRanksAreRefused) {
       mesh::DistributedQkSpace<3, TestExecSpace> s(m, 2, comm);
       FAIL() << "1 cell over 2 ranks accepted";
     } catch (const DecompositionError& e) {
-      EXPECT_NE(std::string(e.what()).find("more ranks (2) than blocks"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("more ranks (2) than blocks"), std::string::npos)
+          << e.what();
     }
   }
   // Slabs given by hand that do not tile the box are refused on every rank (no rank is left

@@ -14,13 +14,14 @@ namespace {
 
 TEST(MacMultigrid, IterationsOver64To192) {
   const test_problems::BoxFaces f;
-  const test_problems::IterationCase cases[] = {{"open box", f.open, 2.0, 2, 7},
-                                                {"bottom wall", f.bottom, 2.0, 2, 7},
-                                                {"tank", f.tank, 2.0, 2, 7},
-                                                {"open box, free surface", f.open, 0.63, 2, 8},
-                                                {"tank, free surface", f.tank, 0.63, 2, 9},
-                                                {"open box, wavy surface", f.open, 0.63, 2, 8, 0.15},
-                                                {"tank, wavy surface", f.tank, 0.63, 2, 9, 0.15}};
+  const test_problems::IterationCase cases[] = {
+      {"open box", f.open, 2.0, 2, 7},
+      {"bottom wall", f.bottom, 2.0, 2, 7},
+      {"tank", f.tank, 2.0, 2, 7},
+      {"open box, free surface", f.open, 0.63, 2, 8},
+      {"tank, free surface", f.tank, 0.63, 2, 9},
+      {"open box, wavy surface", f.open, 0.63, 2, 8, 0.15},
+      {"tank, wavy surface", f.tank, 0.63, 2, 9, 0.15}};
   for (const auto& c : cases) {
     const auto r = test_problems::iteration_counts({64, 128, 192}, c);
     EXPECT_LE(r.spread(), c.spread) << c.name;

@@ -44,7 +44,8 @@ struct SphereScene {
           const int c = grid.index(i, j, k);
           p[c] = r - R;
           t[c] = p[c] < 0 ? MacCellType::fluid : MacCellType::air;
-          if (with_terrain && x[1] < 0.2 + 0.1 * std::sin(9 * x[0]) * std::cos(7 * x[2])) t[c] = MacCellType::solid;
+          if (with_terrain && x[1] < 0.2 + 0.1 * std::sin(9 * x[0]) * std::cos(7 * x[2]))
+            t[c] = MacCellType::solid;
         }
     type = to_view<TestMemSpace>(t, "type");
     phi = to_view<TestMemSpace>(p, "phi");
@@ -53,7 +54,8 @@ struct SphereScene {
   kernels::mac::PoissonStencil<TestMemSpace> stencil() const {
     kernels::mac::MacBoxBoundaries walls;
     walls.fill(kernels::mac::MacBoundary::wall);
-    return kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), grid, type, phi, walls);
+    return kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), grid,
+                                                                            type, phi, walls);
   }
   /// p = (R^2 - r^2) e^x: zero on the sphere; f = -lap p = e^x (6 + 4 (x - cx) - (R^2 - r^2)).
   double exact(const std::array<double, 3>& x) const {
@@ -97,7 +99,8 @@ TEST(MacSmoothers, RedBlackSweepsSolveTheirColourAndJacobiIsItsFormula) {
         for (int i = 0; i < g.nx; ++i) {
           const int c = g.index(i, j, k);
           if (d[c] == 0) continue;
-          ((i + j + k) % 2 == colour ? on : off) = std::max((i + j + k) % 2 == colour ? on : off, std::abs(rh[c]));
+          ((i + j + k) % 2 == colour ? on : off) =
+              std::max((i + j + k) % 2 == colour ? on : off, std::abs(rh[c]));
         }
     EXPECT_LT(on, 1e-12) << "colour " << colour << (sweep < 2 ? ", rows" : ", cells");
     EXPECT_GT(off, 1e-3) << "colour " << colour;  // the other colour was not touched
@@ -183,15 +186,16 @@ TEST(MacMultigrid, GhostFluidSphereConvergesAtSecondOrderWithFlatIterationCounts
   for (int n : {16, 32, 64}) runs.push_back(solve_sphere(n));
   for (std::size_t m = 1; m < runs.size(); ++m) {
     const double order = std::log2(runs[m - 1].first / runs[m].first);
-    EXPECT_GT(order, 1.8) << "max-norm order from " << (8 << m) << " to " << (16 << m) << " cells: errors "
-                          << runs[m - 1].first << " -> " << runs[m].first;
+    EXPECT_GT(order, 1.8) << "max-norm order from " << (8 << m) << " to " << (16 << m)
+                          << " cells: errors " << runs[m - 1].first << " -> " << runs[m].first;
   }
   int lo = 1 << 30, hi = 0;
   for (const auto& r : runs) lo = std::min(lo, r.second), hi = std::max(hi, r.second);
-  EXPECT_LE(hi - lo, 2) << "MG-CG iterations 16^3, 32^3, 64^3: " << runs[0].second << ", " << runs[1].second << ", "
-                        << runs[2].second;
-  std::printf("sphere ghost fluid: errors %.3e %.3e %.3e, MG-CG iterations %d %d %d\n", runs[0].first, runs[1].first,
-              runs[2].first, runs[0].second, runs[1].second, runs[2].second);
+  EXPECT_LE(hi - lo, 2) << "MG-CG iterations 16^3, 32^3, 64^3: " << runs[0].second << ", "
+                        << runs[1].second << ", " << runs[2].second;
+  std::printf("sphere ghost fluid: errors %.3e %.3e %.3e, MG-CG iterations %d %d %d\n",
+              runs[0].first, runs[1].first, runs[2].first, runs[0].second, runs[1].second,
+              runs[2].second);
 }
 
 // Flat for an open box (the benchmark's problem), a box with one wall and a tank (walls on five
@@ -257,10 +261,12 @@ TEST(MacProjection, ProjectedVelocityIsDiscretelyDivergenceFree) {
   std::uniform_real_distribution<double> U(-1, 1);
   std::vector<double> uh(g.padded_size()), vh(g.padded_size()), wh(g.padded_size());
   for (std::size_t c = 0; c < uh.size(); ++c) uh[c] = U(rng), vh[c] = U(rng), wh[c] = U(rng);
-  Vector u = to_view<TestMemSpace>(uh), v = to_view<TestMemSpace>(vh), w = to_view<TestMemSpace>(wh);
+  Vector u = to_view<TestMemSpace>(uh), v = to_view<TestMemSpace>(vh),
+         w = to_view<TestMemSpace>(wh);
   const double rho = 1000.0, dt = 0.01;
   const auto A = s.stencil();
-  for (auto [d, f] : {std::pair{0, u}, {1, v}, {2, w}}) kernels::mac::enforce_solid_faces(exec, kernels::mac::solid_faces(exec, g, d, s.type), f);
+  for (auto [d, f] : {std::pair{0, u}, {1, v}, {2, w}})
+    kernels::mac::enforce_solid_faces(exec, kernels::mac::solid_faces(exec, g, d, s.type), f);
   Vector b("b", g.padded_size()), p("p", g.padded_size()), after("after", g.padded_size());
   kernels::mac::pressure_rhs(exec, g, s.type, u, v, w, rho, dt, b);
   for (const char* backend : {"multigrid", "hypre", "mic0"}) {
@@ -269,15 +275,18 @@ TEST(MacProjection, ProjectedVelocityIsDiscretelyDivergenceFree) {
     Kokkos::deep_copy(p, 0.0);
     SolverControl control;
     control.relative_tolerance = 1e-9;
-    const SolverResult r = make_pressure_solver(parse_pressure_backend(backend), exec, A)->solve(exec, b, p, control);
+    const SolverResult r =
+        make_pressure_solver(parse_pressure_backend(backend), exec, A)->solve(exec, b, p, control);
     ASSERT_TRUE(r.converged) << backend;
     kernels::mac::subtract_pressure_gradient(exec, g, 0, s.type, s.phi, p, rho, dt, uu);
     kernels::mac::subtract_pressure_gradient(exec, g, 1, s.type, s.phi, p, rho, dt, vv);
     kernels::mac::subtract_pressure_gradient(exec, g, 2, s.type, s.phi, p, rho, dt, ww);
     kernels::mac::pressure_rhs(exec, g, s.type, uu, vv, ww, rho, dt, after);
-    const double before_norm = std::sqrt(blas1::dot(exec, b, b)), after_norm = std::sqrt(blas1::dot(exec, after, after));
+    const double before_norm = std::sqrt(blas1::dot(exec, b, b)),
+                 after_norm = std::sqrt(blas1::dot(exec, after, after));
     EXPECT_LE(after_norm, 1.01e-9 * before_norm) << backend;
-    EXPECT_NEAR(after_norm, r.final_residual, 1e-6 * r.final_residual + 1e-14 * before_norm) << backend;
+    EXPECT_NEAR(after_norm, r.final_residual, 1e-6 * r.final_residual + 1e-14 * before_norm)
+        << backend;
   }
 }
 
@@ -289,7 +298,8 @@ TEST(MacProjection, SolidFacesListsEveryFaceTouchingASolidOrTheBoxInOrder) {
   std::mt19937 rng(13);
   std::uniform_real_distribution<double> R(0.0, 1.0);
   std::vector<MacCellType> t(g.padded_size());
-  for (auto& c : t) c = R(rng) < 0.2 ? MacCellType::solid : R(rng) < 0.5 ? MacCellType::fluid : MacCellType::air;
+  for (auto& c : t)
+    c = R(rng) < 0.2 ? MacCellType::solid : R(rng) < 0.5 ? MacCellType::fluid : MacCellType::air;
   kernels::mac::MacEdges edges = kernels::mac::box_edges();
   edges[0] = edges[5] = false;
   const auto type = to_view<TestMemSpace>(t);
@@ -301,15 +311,16 @@ TEST(MacProjection, SolidFacesListsEveryFaceTouchingASolidOrTheBoxInOrder) {
         for (int i = 0; i < g.nx + (d == 0); ++i) {
           const int idx[3] = {i, j, k}, c = g.index(i, j, k);
           const bool edge = (idx[d] == 0 && edges[2 * d]) || (idx[d] == n[d] && edges[2 * d + 1]);
-          if (edge || t[c] == MacCellType::solid || t[c - stride[d]] == MacCellType::solid) expected.push_back(c);
+          if (edge || t[c] == MacCellType::solid || t[c - stride[d]] == MacCellType::solid)
+            expected.push_back(c);
         }
     const auto list = to_std_vector(kernels::mac::solid_faces(TestExecSpace(), g, d, type, edges));
     EXPECT_EQ(list, std::vector<double>(expected.begin(), expected.end())) << "component " << d;
     EXPECT_GT(expected.size(), 50u);
     std::vector<double> f(g.padded_size(), 1.0);
     const auto face = to_view<TestMemSpace>(f);
-    kernels::mac::enforce_solid_faces(TestExecSpace(), kernels::mac::solid_faces(TestExecSpace(), g, d, type, edges),
-                                      face);
+    kernels::mac::enforce_solid_faces(
+        TestExecSpace(), kernels::mac::solid_faces(TestExecSpace(), g, d, type, edges), face);
     const auto zeroed = to_std_vector(face);
     long zeros = 0;
     for (double v : zeroed) zeros += v == 0.0;
@@ -323,8 +334,8 @@ TEST(MacProjection, SolidFacesListsEveryFaceTouchingASolidOrTheBoxInOrder) {
 // new state bit for bit, and writes no coefficient below row r - 1.
 /// A new state of the scene: from row r up the level set moves by up to half a cell and the
 /// cell types follow it (solids kept). Returns how many cells changed type.
-long move_surface_from_row(const SphereScene& scene, int r, Kokkos::View<MacCellType*, TestMemSpace>& type2,
-                           Vector& phi2) {
+long move_surface_from_row(const SphereScene& scene, int r,
+                           Kokkos::View<MacCellType*, TestMemSpace>& type2, Vector& phi2) {
   const MacGrid& g = scene.grid;
   // a copy (create_mirror_view would alias scene.type on the host)
   auto types = Kokkos::create_mirror(scene.type);
@@ -377,14 +388,14 @@ TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
   Vector phi2;
   EXPECT_GT(move_surface_from_row(scene, r, type2, phi2), 10);
   auto types = Kokkos::create_mirror(scene.type);
-  const auto full = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, type2, phi2,
-                                                                                     box);
+  const auto full = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
+      TestExecSpace(), g, type2, phi2, box);
   const auto same = [&](const auto& a, const auto& b, int from_row, const char* name) {
     EXPECT_EQ(lattice_differences(g, a, b, from_row), 0) << name;
   };
   // from a full build of the old state
-  auto A = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, scene.type, scene.phi,
-                                                                            box);
+  auto A = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
+      TestExecSpace(), g, scene.type, scene.phi, box);
   kernels::mac::build_poisson_stencil(TestExecSpace(), g, type2, phi2, box, A, r - 1);
   same(A.diag, full.diag, -1, "diag");
   same(A.inverse_diag, full.inverse_diag, -1, "inverse_diag");
@@ -395,13 +406,14 @@ TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
   same(A.solid_share, full.solid_share, -1, "solid_share");
   EXPECT_EQ(A.any_solid, full.any_solid);
   // rows below r - 1 are not written: marked coefficients there stay marked
-  auto B = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, scene.type, scene.phi,
-                                                                            box);
+  auto B = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
+      TestExecSpace(), g, scene.type, scene.phi, box);
   const auto cy_marked = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), B.cy);
   const auto d_marked = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), B.diag);
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < r - 1; ++j)
-      for (int i = 0; i < g.nx; ++i) cy_marked(g.index(i, j, k)) = 7.0f, d_marked(g.index(i, j, k)) = 7.0;
+      for (int i = 0; i < g.nx; ++i)
+        cy_marked(g.index(i, j, k)) = 7.0f, d_marked(g.index(i, j, k)) = 7.0;
   Kokkos::deep_copy(B.cy, cy_marked);
   Kokkos::deep_copy(B.diag, d_marked);
   kernels::mac::build_poisson_stencil(TestExecSpace(), g, type2, phi2, box, B, r - 1);
@@ -410,7 +422,8 @@ TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
   long kept = 0;
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < r - 1; ++j)
-      for (int i = 0; i < g.nx; ++i) kept += cy_after(g.index(i, j, k)) == 7.0f && d_after(g.index(i, j, k)) == 7.0;
+      for (int i = 0; i < g.nx; ++i)
+        kept += cy_after(g.index(i, j, k)) == 7.0f && d_after(g.index(i, j, k)) == 7.0;
   EXPECT_EQ(kept, static_cast<long>(g.nx) * g.nz * (r - 1));
   same(B.diag, full.diag, r - 1, "diag from row r - 1");
   same(B.cy, full.cy, r - 1, "cy from row r - 1");
@@ -424,16 +437,17 @@ TEST(MacPoissonStencil, RebuildFromARowEqualsAFullBuildAndLeavesTheRowsBelow) {
   long flipped = 0;
   for (int k = 0; k < g.nz; ++k)
     for (int i = 0; i < g.nx; ++i)
-      if (types(g.index(i, q - 1, k)) == MacCellType::solid && types(g.index(i, q, k)) == MacCellType::fluid) {
+      if (types(g.index(i, q - 1, k)) == MacCellType::solid &&
+          types(g.index(i, q, k)) == MacCellType::fluid) {
         types(g.index(i, q, k)) = MacCellType::air;
         ++flipped;
       }
   EXPECT_GT(flipped, 3);
   Kokkos::deep_copy(type2, types);
-  const auto full_q = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, type2,
-                                                                                       scene.phi, box);
-  auto C = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(TestExecSpace(), g, scene.type, scene.phi,
-                                                                            box);
+  const auto full_q = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
+      TestExecSpace(), g, type2, scene.phi, box);
+  auto C = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
+      TestExecSpace(), g, scene.type, scene.phi, box);
   kernels::mac::build_poisson_stencil(TestExecSpace(), g, type2, scene.phi, box, C, q);
   same(C.solid_share, full_q.solid_share, -1, "solid_share after a change above the terrain");
   same(C.diag, full_q.diag, -1, "diag after a change above the terrain");
@@ -457,7 +471,8 @@ TEST(MacPoissonStencil, CoarseningFromARowEqualsAFullCoarsening) {
   // level set's: a coarse row reads more fine rows)
   for (const bool level_set : {false, true}) {
     SCOPED_TRACE(level_set ? "with the level set" : "without the level set");
-    auto fine = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(exec, g, scene.type, scene.phi, box);
+    auto fine = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
+        exec, g, scene.type, scene.phi, box);
     if (!level_set) fine.phi = {};
     auto kept = coarsen_stencil(exec, fine);
     const auto old_coarse = coarsen_stencil(exec, fine);
@@ -478,7 +493,8 @@ TEST(MacPoissonStencil, CoarseningFromARowEqualsAFullCoarsening) {
     const auto count_differ = [&](const auto& a, const auto& b, int from_row) {
       return lattice_differences(gc, a, b, from_row);
     };
-    // the new fine state differs from the old in the coarse rows from J0 (else the test proves nothing)
+    // the new fine state differs from the old in the coarse rows from J0 (else the test proves
+    // nothing)
     EXPECT_GT(count_differ(full.diag, old_coarse.diag, J0), 0);
     EXPECT_EQ(count_differ(kept.diag, full.diag, J0), 0);
     EXPECT_EQ(count_differ(kept.inverse_diag, full.inverse_diag, -1), 0);
@@ -488,17 +504,21 @@ TEST(MacPoissonStencil, CoarseningFromARowEqualsAFullCoarsening) {
     EXPECT_EQ(count_differ(kept.solid, full.solid, -1), 0);
     EXPECT_EQ(count_differ(kept.solid_share, full.solid_share, -1), 0);
     EXPECT_EQ(kept.any_solid, full.any_solid);
-    const auto free_kept = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), kept.surface_free_rows);
-    const auto free_full = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), full.surface_free_rows);
+    const auto free_kept =
+        Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), kept.surface_free_rows);
+    const auto free_full =
+        Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), full.surface_free_rows);
     long free_differ = 0;
-    for (std::size_t m = 0; m < free_kept.extent(0); ++m) free_differ += free_kept(m) != free_full(m);
+    for (std::size_t m = 0; m < free_kept.extent(0); ++m)
+      free_differ += free_kept(m) != free_full(m);
     EXPECT_EQ(free_differ, 0);
     // below J0 the marked diagonal stays
     const auto d_after = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), kept.diag);
     long marked = 0;
     for (int k = 0; k < gc.nz; ++k)
       for (int j = 0; j < J0; ++j)
-        for (int i = 0; i < gc.nx; ++i) marked += d_after(gc.index(i, j, k)) == d_marked(gc.index(i, j, k));
+        for (int i = 0; i < gc.nx; ++i)
+          marked += d_after(gc.index(i, j, k)) == d_marked(gc.index(i, j, k));
     EXPECT_EQ(marked, static_cast<long>(gc.nx) * gc.nz * J0);
   }
 }
@@ -522,8 +542,8 @@ TEST(MacPoissonStencil, CoarseLevelsWithALevelSetAreTheCoarseGridsBuilds) {
           phi[c] = g.cell_centre(i, j, k)[1] - 0.63;
           t[c] = phi[c] < 0 ? MacCellType::fluid : MacCellType::air;
         }
-    return kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(exec, g, to_view<TestMemSpace>(t),
-                                                                            to_view<TestMemSpace>(phi), box);
+    return kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
+        exec, g, to_view<TestMemSpace>(t), to_view<TestMemSpace>(phi), box);
   };
   kernels::mac::MacBoxBoundaries open;
   open.fill(kernels::mac::MacBoundary::open);
@@ -534,7 +554,9 @@ TEST(MacPoissonStencil, CoarseLevelsWithALevelSetAreTheCoarseGridsBuilds) {
       const auto direct = build(32 >> l, box);
       const double scale = 1 << l;
       const MacGrid& g = direct.grid;
-      const auto get = [](const auto& v) { return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v); };
+      const auto get = [](const auto& v) {
+        return Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+      };
       const auto d = get(level.diag), D = get(direct.diag);
       const auto x = get(level.cx), y = get(level.cy), z = get(level.cz);
       const auto X = get(direct.cx), Y = get(direct.cy), Z = get(direct.cz);
@@ -544,8 +566,8 @@ TEST(MacPoissonStencil, CoarseLevelsWithALevelSetAreTheCoarseGridsBuilds) {
           for (int i = 0; i < g.nx; ++i) {
             const int c = g.index(i, j, k);
             unknowns += D(c) != 0.0;
-            differ += std::abs(d(c) - scale * D(c)) > 1e-12 * scale * D(c) || x(c) != scale * X(c) ||
-                      y(c) != scale * Y(c) || z(c) != scale * Z(c);
+            differ += std::abs(d(c) - scale * D(c)) > 1e-12 * scale * D(c) ||
+                      x(c) != scale * X(c) || y(c) != scale * Y(c) || z(c) != scale * Z(c);
           }
       EXPECT_GT(unknowns, g.cells() / 2) << "level " << l;
       EXPECT_EQ(differ, 0) << "level " << l << ", box face 0 " << int(box[0]);

@@ -55,24 +55,30 @@ void check(const Case& c, int nx, int ny, int nz) {
   SCOPED_TRACE("dim " + std::to_string(dim) + " k " + std::to_string(c.degree) + " kind " +
                std::to_string(static_cast<int>(c.kind)) + " geometry " +
                std::to_string(static_cast<int>(c.geometry)) + " " + c.shape + " nq+" +
-               std::to_string(c.n_q_extra) + (c.gauss_lobatto ? " GL" : "") + (c.with_field ? " field" : ""));
+               std::to_string(c.n_q_extra) + (c.gauss_lobatto ? " GL" : "") +
+               (c.with_field ? " field" : ""));
   const TestExecSpace exec;
   const auto m = mixed_mesh<dim>(nx, ny, nz, c.shape);
   const mesh::QkSpace<dim, TestExecSpace> space(m, c.degree);
   const long n = space.n_dofs();
   std::vector<double> field;
   if (c.kind == OperatorKind::convection) {
-    field = space.interpolate([](const mesh::Point3& x, int a) {
-      return a == 0 ? std::sin(3 * x[1]) : a == 1 ? std::cos(2 * x[0]) : 0.5;
-    }, dim);
+    field = space.interpolate(
+        [](const mesh::Point3& x, int a) {
+          return a == 0 ? std::sin(3 * x[1]) : a == 1 ? std::cos(2 * x[0]) : 0.5;
+        },
+        dim);
   } else if (c.with_field) {
-    field = space.interpolate([](const mesh::Point3& x, int) { return 1.0 + 0.5 * std::sin(3 * x[0]) * std::cos(2 * x[1]); });
+    field = space.interpolate([](const mesh::Point3& x, int) {
+      return 1.0 + 0.5 * std::sin(3 * x[0]) * std::cos(2 * x[1]);
+    });
   }
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
   o.kind = c.kind;
   o.geometry = c.geometry;
   o.n_q = c.degree + 1 + c.n_q_extra;
-  o.quadrature = c.gauss_lobatto ? sumfac::QuadratureKind::gauss_lobatto : sumfac::QuadratureKind::gauss;
+  o.quadrature =
+      c.gauss_lobatto ? sumfac::QuadratureKind::gauss_lobatto : sumfac::QuadratureKind::gauss;
   o.components = c.components;
   o.generic_kernel = c.generic;
   if (!field.empty()) o.field = to_device(field);
@@ -103,7 +109,8 @@ void check(const Case& c, int nx, int ny, int nz) {
     double derr = 0.0, dscale = 0.0;
     for (long i = 0; i < n; ++i) {
       dscale = std::max(dscale, std::abs(A.coeff(i, i)));
-      for (int comp = 0; comp < c.components; ++comp) derr = std::max(derr, std::abs(A.coeff(i, i) - d[comp * n + i]));
+      for (int comp = 0; comp < c.components; ++comp)
+        derr = std::max(derr, std::abs(A.coeff(i, i) - d[comp * n + i]));
     }
     EXPECT_LT(derr, 1e-12 * dscale) << "diagonal";
   }
@@ -180,9 +187,11 @@ TEST(MatrixFreeOperator, GenericKernelElementMatricesEqualTheCompiledKernels) {
     typename MatrixFreeOperator<3, TestExecSpace>::Options o;
     o.kind = kind;
     o.geometry = GeometryMode::on_the_fly;
-    const std::vector<double> compiled = MatrixFreeOperator<3, TestExecSpace>(space, o).element_matrices(exec);
+    const std::vector<double> compiled =
+        MatrixFreeOperator<3, TestExecSpace>(space, o).element_matrices(exec);
     o.generic_kernel = true;
-    const std::vector<double> generic = MatrixFreeOperator<3, TestExecSpace>(space, o).element_matrices(exec);
+    const std::vector<double> generic =
+        MatrixFreeOperator<3, TestExecSpace>(space, o).element_matrices(exec);
     ASSERT_EQ(generic.size(), compiled.size());
     ASSERT_EQ(generic.size(), static_cast<std::size_t>(12 * 27 * 27));
     double scale = 0.0, err = 0.0;
@@ -201,8 +210,8 @@ struct GenericBatches {
   Vector x;
   double* y;
   long n;
-  KOKKOS_INLINE_FUNCTION void operator()(const typename GenericCellKernel<dim, TestExecSpace>::Team& team, int b0,
-                                         int b1) const {
+  KOKKOS_INLINE_FUNCTION void operator()(
+      const typename GenericCellKernel<dim, TestExecSpace>::Team& team, int b0, int b1) const {
     k.template add_batches<true>(team, b0, b1, x, y, n, 1, 0);
   }
 };
@@ -227,14 +236,15 @@ TEST(MatrixFreeOperator, GenericKernelInTeamsOfTwoMatchesTheOperator) {
     for (double& e : xh) e = u(rng);
     const Vector x = to_device(xh), y_op("y_op", n), y_teams("y_teams", n);
     op.apply(exec, x, y_op);
-    const auto k = make_generic_cell_kernel<3, TestExecSpace>(space.lattice(), space.coordinates(), kind, 3, 6,
-                                                              sumfac::QuadratureKind::gauss);
-    for_each_batch_team_at_once(exec, k.lattice, "test::generic_in_teams", k.scratch_bytes(), team_size,
-                                GenericBatches<3>{k, x, y_teams.data(), n});
+    const auto k = make_generic_cell_kernel<3, TestExecSpace>(
+        space.lattice(), space.coordinates(), kind, 3, 6, sumfac::QuadratureKind::gauss);
+    for_each_batch_team_at_once(exec, k.lattice, "test::generic_in_teams", k.scratch_bytes(),
+                                team_size, GenericBatches<3>{k, x, y_teams.data(), n});
     exec.fence();
     const std::vector<double> a = to_host(y_op), b = to_host(y_teams);
     std::vector<char> constrained(n, 0);
-    const auto cons = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space.constrained_dofs());
+    const auto cons =
+        Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space.constrained_dofs());
     for (std::size_t i = 0; i < cons.extent(0); ++i) constrained[cons(i)] = 1;
     double scale = 0.0, err = 0.0;
     long rows = 0;
@@ -245,13 +255,14 @@ TEST(MatrixFreeOperator, GenericKernelInTeamsOfTwoMatchesTheOperator) {
       err = std::max(err, std::abs(a[i] - b[i]));
     }
     EXPECT_GT(rows, n / 2);
-    EXPECT_LT(err, 1e-13 * scale) << "kind " << static_cast<int>(kind) << ", teams of " << team_size;
+    EXPECT_LT(err, 1e-13 * scale) << "kind " << static_cast<int>(kind) << ", teams of "
+                                  << team_size;
   }
 }
 
 TEST(MatrixFreeOperator, CollocatedVectorVariableCoefficientAndConvectionOperatorsMatch) {
   for (int k : {2, 3}) {
-    check<2>({K::laplace, G::stored, "curved", k, 0, true}, 9, 3, 1);   // collocation (BP5)
+    check<2>({K::laplace, G::stored, "curved", k, 0, true}, 9, 3, 1);  // collocation (BP5)
     check<3>({K::laplace, G::cartesian, "cartesian", k, 0, true, false, 3}, 9, 3, 2);  // BP6
     check<3>({K::mass, G::cartesian, "cartesian", k, 1, false, false, 3}, 9, 3, 2);    // BP2
     check<2>({K::laplace, G::stored, "curved", k, 1, false, true}, 9, 3, 1);
@@ -308,10 +319,12 @@ TEST(MatrixFreeOperator, EqualCellsShareOneSetOfCoefficients) {
     typename Op::Options o;
     o.geometry = GeometryMode::cartesian;
     const mesh::QkSpace<3, TestExecSpace> box(mixed_mesh<3>(n, n, n, "cartesian"), 2);
-    EXPECT_EQ(Op(box, o).geometry_bytes(), 3 * simd) << "cartesian Laplace, n " << n;  // G_00, G_11, G_22
+    EXPECT_EQ(Op(box, o).geometry_bytes(), 3 * simd)
+        << "cartesian Laplace, n " << n;  // G_00, G_11, G_22
     o.geometry = GeometryMode::affine;
     const mesh::QkSpace<3, TestExecSpace> sheared(mixed_mesh<3>(n, n, n, "affine"), 2);
-    EXPECT_EQ(Op(sheared, o).geometry_bytes(), 6 * simd) << "affine Laplace, n " << n;  // packed symmetric G
+    EXPECT_EQ(Op(sheared, o).geometry_bytes(), 6 * simd)
+        << "affine Laplace, n " << n;  // packed symmetric G
     o.geometry = GeometryMode::stored;
     EXPECT_GT(Op(sheared, o).geometry_bytes(), std::size_t(n * n) * 6 * simd) << "stored, n " << n;
   }
@@ -333,7 +346,8 @@ TEST(MatrixFreeOperator, BadOptionsAreRefusedWithAReason) {
   o.n_q = 7;  // convection has no generic kernel
   o.field = Vector("velocity", 2 * curved.n_dofs());
   EXPECT_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)), std::invalid_argument);
-  EXPECT_THROW((mesh::QkSpace<2, TestExecSpace>(mixed_mesh<2>(4, 4, 1, ""), 9)), std::invalid_argument);
+  EXPECT_THROW((mesh::QkSpace<2, TestExecSpace>(mixed_mesh<2>(4, 4, 1, ""), 9)),
+               std::invalid_argument);
 }
 
 }  // namespace
@@ -347,15 +361,17 @@ namespace {
 // periodic cube (the passes); one and three components, 2D and 3D, k = 1..4, beta = 0 (p not
 // read: NaN before) and beta != 0, slab counts of one and several blocks.
 template <int dim>
-void check_direction(const mesh::StructuredHexMesh<dim>& m, int k, int components, bool gauss_lobatto) {
-  SCOPED_TRACE(std::to_string(dim) + "D k " + std::to_string(k) + " components " + std::to_string(components) +
-               (gauss_lobatto ? " GL" : ""));
+void check_direction(const mesh::StructuredHexMesh<dim>& m, int k, int components,
+                     bool gauss_lobatto) {
+  SCOPED_TRACE(std::to_string(dim) + "D k " + std::to_string(k) + " components " +
+               std::to_string(components) + (gauss_lobatto ? " GL" : ""));
   const TestExecSpace exec;
   const mesh::QkSpace<dim, TestExecSpace> space(m, k);
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
   o.geometry = G::cartesian;
   o.components = components;
-  o.quadrature = gauss_lobatto ? sumfac::QuadratureKind::gauss_lobatto : sumfac::QuadratureKind::gauss;
+  o.quadrature =
+      gauss_lobatto ? sumfac::QuadratureKind::gauss_lobatto : sumfac::QuadratureKind::gauss;
   const MatrixFreeOperator<dim, TestExecSpace> op(space, o);
   const long n = op.size();
   std::vector<double> z(n), p0(n);
@@ -401,13 +417,16 @@ TEST(MatrixFreeOperator, DirectionStepInOneSweepEqualsItsPasses) {
 template <class Op>
 struct ApplyOnly {
   const Op* op;
-  void apply(const TestExecSpace& exec, const Vector& x, const Vector& y) const { op->apply(exec, x, y); }
+  void apply(const TestExecSpace& exec, const Vector& x, const Vector& y) const {
+    op->apply(exec, x, y);
+  }
 };
 
 TEST(MatrixFreeOperator, ConjugateGradientTakesTheSweepAndMatchesThePasses) {
   using Op = MatrixFreeOperator<3, TestExecSpace>;
   static_assert(has_fused_direction<Op, TestExecSpace, Vector, LocalInnerProduct>::value);
-  static_assert(!has_fused_direction<ApplyOnly<Op>, TestExecSpace, Vector, LocalInnerProduct>::value);
+  static_assert(
+      !has_fused_direction<ApplyOnly<Op>, TestExecSpace, Vector, LocalInnerProduct>::value);
   const TestExecSpace exec;
   const mesh::QkSpace<3, TestExecSpace> space(mesh::unit_cube<3>(10, FaceCondition::dirichlet), 2);
   Op::Options o;
@@ -435,10 +454,12 @@ TEST(MatrixFreeOperator, ConjugateGradientTakesTheSweepAndMatchesThePasses) {
     }
     EXPECT_EQ(sweep.iterations, 10);
     EXPECT_EQ(passes.iterations, 10);
-    EXPECT_NEAR(sweep.final_residual, passes.final_residual, 1e-9 * passes.final_residual) << "jacobi " << jacobi;
+    EXPECT_NEAR(sweep.final_residual, passes.final_residual, 1e-9 * passes.final_residual)
+        << "jacobi " << jacobi;
     const auto xs = to_host(x_sweep), xp = to_host(x_passes);
     double err = 0.0, scale = 0.0;
-    for (long i = 0; i < n; ++i) err = std::max(err, std::abs(xs[i] - xp[i])), scale = std::max(scale, std::abs(xp[i]));
+    for (long i = 0; i < n; ++i)
+      err = std::max(err, std::abs(xs[i] - xp[i])), scale = std::max(scale, std::abs(xp[i]));
     // CG amplifies the round-off of a different summation order: the passes alone differ by
     // ~1e-10 of |x| between Serial and OpenMP after 10 iterations here; a wrong p.q by O(1)
     EXPECT_LT(err, 1e-8 * scale) << "jacobi " << jacobi;

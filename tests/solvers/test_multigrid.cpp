@@ -23,7 +23,8 @@ Vector device(const std::vector<double>& v) { return to_view<test::TestMemSpace>
 std::vector<double> host(const Vector& d) { return to_std_vector(d); }
 
 template <int dim>
-void check_transfer(const mesh::StructuredHexMesh<dim>& mc, int kc, const mesh::StructuredHexMesh<dim>& mf, int kf) {
+void check_transfer(const mesh::StructuredHexMesh<dim>& mc, int kc,
+                    const mesh::StructuredHexMesh<dim>& mf, int kf) {
   const TestExecSpace exec;
   const mesh::QkSpace<dim, TestExecSpace> coarse(mc, kc), fine(mf, kf);
   const MatrixFreeTransfer<dim, TestExecSpace> t(coarse, fine);
@@ -40,13 +41,15 @@ void check_transfer(const mesh::StructuredHexMesh<dim>& mc, int kc, const mesh::
   };
   Vector xf("xf", fine.n_dofs());
   // Dirichlet: compare only away from constrained DoFs (coarse boundary values are zeroed)
-  const bool dirichlet = mc.dirichlet_faces() != 0 || mc.periodic(0);  // (periodic: polynomials are not)
+  const bool dirichlet =
+      mc.dirichlet_faces() != 0 || mc.periodic(0);  // (periodic: polynomials are not)
   if (!dirichlet) {
     t.prolongate(exec, device(pc), xf);
     const auto got = host(xf);
     double err = 0.0;
     for (std::size_t i = 0; i < got.size(); ++i) err = std::max(err, std::abs(got[i] - pf[i]));
-    EXPECT_LT(err, 1e-12) << "prolongation of a coarse polynomial, dim " << dim << " " << kc << " -> " << kf << " cells " << mc.cells[0] << " -> " << mf.cells[0];
+    EXPECT_LT(err, 1e-12) << "prolongation of a coarse polynomial, dim " << dim << " " << kc
+                          << " -> " << kf << " cells " << mc.cells[0] << " -> " << mf.cells[0];
   }
   // <P xc, yf> = <xc, R yf> for random vectors
   std::mt19937 rng(3);
@@ -67,11 +70,13 @@ void check_transfer(const mesh::StructuredHexMesh<dim>& mc, int kc, const mesh::
 }
 
 TEST(MatrixFreeTransfer, ProlongationReproducesPolynomialsAndRestrictionIsItsTranspose) {
-  for (FaceCondition f : {FaceCondition::neumann, FaceCondition::periodic, FaceCondition::dirichlet}) {
+  for (FaceCondition f :
+       {FaceCondition::neumann, FaceCondition::periodic, FaceCondition::dirichlet}) {
     const auto m2 = mesh::unit_cube<2>(9, f);
     const auto m3 = mesh::unit_cube<3>(9, f);
     for (auto [kc, kf] : {std::pair{1, 2}, {1, 3}, {2, 4}, {2, 5}, {3, 6}, {3, 7}, {4, 8}}) {
-      if (f != FaceCondition::periodic) check_transfer<2>(m2, kc, m2, kf);  // periodic polys aren't periodic
+      if (f != FaceCondition::periodic)
+        check_transfer<2>(m2, kc, m2, kf);  // periodic polys aren't periodic
       if (kf <= 4 && f != FaceCondition::periodic) check_transfer<3>(m3, kc, m3, kf);
     }
     const auto c2 = mesh::unit_cube<2>(5, f);
@@ -100,9 +105,8 @@ int mg_iterations(int k, int n) {
   MultigridOptions mo;
   mo.max_coarse_dofs = 200;
   const MatrixFreeMultigrid<dim, TestExecSpace> mg(exec, A, mo);
-  const std::vector<double> f = space.interpolate([](const mesh::Point3& x, int) {
-    return std::exp(x[0]) * std::sin(3 * x[1]) + x[dim - 1];
-  });
+  const std::vector<double> f = space.interpolate(
+      [](const mesh::Point3& x, int) { return std::exp(x[0]) * std::sin(3 * x[1]) + x[dim - 1]; });
   const Vector b = load_vector(exec, space, device(f), GeometryMode::stored, k + 1);
   Vector x("x", space.n_dofs());
   SolverControl control;
@@ -110,7 +114,8 @@ int mg_iterations(int k, int n) {
   control.max_iterations = 200;
   const auto r = conjugate_gradient(exec, A, b, x, control, mg);
   EXPECT_TRUE(r.converged);
-  std::printf("dim %d k %d n %d: %d iterations (%s)\n", dim, k, n, r.iterations, mg.describe().c_str());
+  std::printf("dim %d k %d n %d: %d iterations (%s)\n", dim, k, n, r.iterations,
+              mg.describe().c_str());
   return r.iterations;
 }
 
@@ -120,7 +125,8 @@ TEST(MatrixFreeMultigrid, IterationsDoNotGrowWithRefinement) {
     for (int n : {8, 16, 32}) it2.push_back(mg_iterations<2>(k, k == 4 ? n / 2 : n));
     for (int n : {4, 8, 16}) it3.push_back(mg_iterations<3>(k, k == 4 ? n / 2 : n));
     for (const auto& it : {it2, it3}) {
-      EXPECT_LE(*std::max_element(it.begin(), it.end()) - *std::min_element(it.begin(), it.end()), 2);
+      EXPECT_LE(*std::max_element(it.begin(), it.end()) - *std::min_element(it.begin(), it.end()),
+                2);
       EXPECT_LE(it.back(), 20);
     }
   }

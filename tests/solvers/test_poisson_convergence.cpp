@@ -30,7 +30,8 @@ ErrorNorms solve(int k, int n) {
   const mesh::QkSpace<dim, TestExecSpace> space(m, k);
   const long N = space.n_dofs();
   const SineSolution<dim> exact;
-  const Vector f = to_view<test::TestMemSpace>(space.interpolate([&](const mesh::Point3& x, int) { return exact.source(x); }));
+  const Vector f = to_view<test::TestMemSpace>(
+      space.interpolate([&](const mesh::Point3& x, int) { return exact.source(x); }));
   const Vector b = load_vector(exec, space, f, GeometryMode::stored, k + 2);
   Vector u("u", N), diag("diag", N);
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;

@@ -29,7 +29,9 @@ struct Basin {
   double eta;
   HostStencil A;
   std::vector<MacCellType> type;
-  double terrain(double x, double z) const { return 0.12 + 0.08 * std::sin(5 * x) * std::cos(3 * z + 0.4); }
+  double terrain(double x, double z) const {
+    return 0.12 + 0.08 * std::sin(5 * x) * std::cos(3 * z + 0.4);
+  }
 
   Basin(int n, int ny, double eta_) : grid{n, ny, n, 1.0 / n, {0, 0, 0}}, eta(eta_) {
     type.assign(grid.padded_size(), MacCellType::solid);
@@ -56,7 +58,8 @@ struct Basin {
 Eigen::SparseMatrix<double> to_eigen(const CsrMatrix& M, long cols) {
   std::vector<Eigen::Triplet<double>> t;
   for (long r = 0; r < M.n; ++r)
-    for (long e = M.row_ptr[r]; e < M.row_ptr[r + 1]; ++e) t.emplace_back(r, M.cols[e], M.values[e]);
+    for (long e = M.row_ptr[r]; e < M.row_ptr[r + 1]; ++e)
+      t.emplace_back(r, M.cols[e], M.values[e]);
   Eigen::SparseMatrix<double> S(M.n, cols);
   S.setFromTriplets(t.begin(), t.end());
   return S;
@@ -106,8 +109,9 @@ TEST(TallCellMatrix, IsSymmetricAndEqualsPtAPWithTallCells) {
     const Eigen::SparseMatrix<double> MeT = Me.transpose();
     EXPECT_EQ((Me - MeT).norm(), 0.0) << "depth " << depth;
     EXPECT_LT((Me - PtAP).norm(), 1e-12 * Me.norm()) << "depth " << depth;
-    std::printf("optical depth %d: %ld tall-cell unknowns for %ld uniform (%.1fx fewer), %ld tall cells\n", depth,
-                T.unknowns(), U.n, double(U.n) / T.unknowns(), T.tall_cells());
+    std::printf(
+        "optical depth %d: %ld tall-cell unknowns for %ld uniform (%.1fx fewer), %ld tall cells\n",
+        depth, T.unknowns(), U.n, double(U.n) / T.unknowns(), T.tall_cells());
   }
 }
 
@@ -139,8 +143,10 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
       for (int i = 0; i < b.grid.nx; ++i) {
         const auto x = b.grid.cell_centre(i, j, k);
         const int c = b.grid.index(i, j, k);
-        phi[c] = x[1] - (x[0] < 0.5 ? b.eta : b.eta - 0.375) - 0.03 * std::sin(7 * x[0]) * std::sin(5 * x[2]);
-        if (type[c] != MacCellType::solid) type[c] = phi[c] < 0 ? MacCellType::fluid : MacCellType::air;
+        phi[c] = x[1] - (x[0] < 0.5 ? b.eta : b.eta - 0.375) -
+                 0.03 * std::sin(7 * x[0]) * std::sin(5 * x[2]);
+        if (type[c] != MacCellType::solid)
+          type[c] = phi[c] < 0 ? MacCellType::fluid : MacCellType::air;
       }
   kernels::mac::MacBoxBoundaries faces;
   faces.fill(kernels::mac::MacBoundary::wall);
@@ -169,7 +175,8 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
   for (int depth : {2, 4}) {
     const mesh::TallCellGrid T(A, depth);
     EXPECT_GT(T.tall_cells(), 100);
-    expect_same_matrix(assemble_tall_cell_matrix(T, A), assemble_tall_cell_matrix(T, without_hints(A)));
+    expect_same_matrix(assemble_tall_cell_matrix(T, A),
+                       assemble_tall_cell_matrix(T, without_hints(A)));
     // the next multigrid level, with the level set (the coarse level set's marks) and without
     // (the children's)
     HostStencil A_halved = A;
@@ -178,7 +185,8 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
       const HostStencil C = kernels::mac::coarsen_stencil(HostExecSpace(), fine);
       EXPECT_FALSE(C.unit_fluid_faces);
       long coarse_free = 0;
-      for (std::size_t r = 0; r < C.surface_free_rows.extent(0); ++r) coarse_free += C.surface_free_rows(r);
+      for (std::size_t r = 0; r < C.surface_free_rows.extent(0); ++r)
+        coarse_free += C.surface_free_rows(r);
       EXPECT_GT(coarse_free, 0);
       if (fine.phi.extent(0) > 0) {  // with the level set: marked exactly where no D != 0
         const MacGrid& gc = C.grid;
@@ -188,8 +196,9 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
             bool surface = false;
             for (int i = 0; i < gc.nx; ++i) {
               const int c = gc.index(i, j, k);
-              const double D = C.diag(c) - (double(C.cx(c - 1)) + double(C.cx(c)) + double(C.cy(c - gc.stride_y())) +
-                                            double(C.cy(c)) + double(C.cz(c - gc.stride_z())) + double(C.cz(c)));
+              const double D = C.diag(c) - (double(C.cx(c - 1)) + double(C.cx(c)) +
+                                            double(C.cy(c - gc.stride_y())) + double(C.cy(c)) +
+                                            double(C.cz(c - gc.stride_z())) + double(C.cz(c)));
               surface = surface || (C.diag(c) != 0.0 && std::abs(D) > 1e-12 * C.diag(c));
             }
             wrong += (C.surface_free_rows(C.surface_free_row(j, k)) != 0) == surface;
@@ -198,7 +207,8 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
       }
       const mesh::TallCellGrid Tc(C, T);
       EXPECT_GT(Tc.tall_cells(), 10);
-      expect_same_matrix(assemble_tall_cell_matrix(Tc, C), assemble_tall_cell_matrix(Tc, without_hints(C)));
+      expect_same_matrix(assemble_tall_cell_matrix(Tc, C),
+                         assemble_tall_cell_matrix(Tc, without_hints(C)));
     }
   }
 }
@@ -242,7 +252,8 @@ double hydrostatic_error(const Basin& b, int depth) {
 
 TEST(TallCellMatrix, HydrostaticPressureIsExactWithAndWithoutTallCells) {
   const Basin b(16, 32, 0.77);
-  for (int depth : {32, 6, 3}) EXPECT_LT(hydrostatic_error(b, depth), 1e-9) << "optical depth " << depth;
+  for (int depth : {32, 6, 3})
+    EXPECT_LT(hydrostatic_error(b, depth), 1e-9) << "optical depth " << depth;
 }
 
 TEST(TallCellTransfer, GramSolveInvertsPtP) {
@@ -256,7 +267,8 @@ TEST(TallCellTransfer, GramSolveInvertsPtP) {
   std::vector<double> y(T.unknowns());
   for (std::size_t u = 0; u < y.size(); ++u) y[u] = std::sin(0.37 * u) + 0.1 * (u % 7);
   const auto yv = to_view<TestMemSpace>(y);
-  Kokkos::View<double*, TestMemSpace> lattice("lattice", b.grid.padded_size()), z("z", T.unknowns());
+  Kokkos::View<double*, TestMemSpace> lattice("lattice", b.grid.padded_size()),
+      z("z", T.unknowns());
   kernels::mac::tall_cell_prolongate(exec, layout, yv, lattice);
   kernels::mac::tall_cell_restrict(exec, layout, lattice, z);
   kernels::mac::tall_cell_gram_solve(exec, layout, z);
@@ -276,7 +288,8 @@ std::pair<int, std::vector<double>> solve_basin(const Basin& b, int depth, const
     for (int j = 0; j < b.grid.ny; ++j)
       for (int i = 0; i < b.grid.nx; ++i) {
         const auto x = b.grid.cell_centre(i, j, k);
-        f[b.grid.index(i, j, k)] = b.grid.h * b.grid.h * (1.0 + std::sin(6 * x[0]) * std::cos(4 * x[2]) * x[1]);
+        f[b.grid.index(i, j, k)] =
+            b.grid.h * b.grid.h * (1.0 + std::sin(6 * x[0]) * std::cos(4 * x[2]) * x[1]);
       }
   T.restrict_to_unknowns(f.data(), bt.data());
   // the uniform stencil in the test's memory space
@@ -310,11 +323,12 @@ TEST(TallCellPressure, ThreeBackEndsAgree) {
 // 16^3 solve, which flatters it (11); from 64^3 on the count is flat (15, 16 at 64^3, 128^3).
 TEST(TallCellPressure, MultigridIterationsDoNotGrowWithRefinement) {
   std::vector<int> its;
-  for (int n : {32, 64, 128}) its.push_back(solve_basin(Basin(n, n, 0.8), n / 8, "multigrid").first);
+  for (int n : {32, 64, 128})
+    its.push_back(solve_basin(Basin(n, n, 0.8), n / 8, "multigrid").first);
   EXPECT_LE(std::abs(its[2] - its[1]), 2) << its[0] << " " << its[1] << " " << its[2];
   EXPECT_LE(its[2], 18);
-  std::printf("tall-cell MG-CG iterations to 1e-10, optical depth n/8, n = 32, 64, 128: %d %d %d\n", its[0], its[1],
-              its[2]);
+  std::printf("tall-cell MG-CG iterations to 1e-10, optical depth n/8, n = 32, 64, 128: %d %d %d\n",
+              its[0], its[1], its[2]);
 }
 
 }  // namespace

@@ -69,14 +69,15 @@ BeamChannelFsi::BeamChannelFsi(const BeamChannelSetup& s)
   beam_.set_state(0.0, eta, v, p_top);
   p_.assign(size_t(grid_.ny + 1) * nx, 0.0);
   for (int j = 0; j <= grid_.ny; ++j)
-    for (int i = 0; i < nx; ++i) p_[size_t(j) * nx + i] = exact_pressure(i * hx, -s.depth + j * grid_.hy(), 0.0);
+    for (int i = 0; i < nx; ++i)
+      p_[size_t(j) * nx + i] = exact_pressure(i * hx, -s.depth + j * grid_.hy(), 0.0);
 }
 
 double BeamChannelFsi::exact_eta(double x, double t) const { return std::cos(k_ * x - omega_ * t); }
 
 double BeamChannelFsi::exact_pressure(double x, double y, double t) const {
-  return s_.rho * omega_ * omega_ * std::cosh(k_ * (y + s_.depth)) / (k_ * std::sinh(k_ * s_.depth)) *
-         std::cos(k_ * x - omega_ * t);
+  return s_.rho * omega_ * omega_ * std::cosh(k_ * (y + s_.depth)) /
+         (k_ * std::sinh(k_ * s_.depth)) * std::cos(k_ * x - omega_ * t);
 }
 
 void BeamChannelFsi::step() {

@@ -49,13 +49,13 @@ struct BeamChannelSetup {
 
 struct BeamChannelResult {
   bool stable = true;
-  int steps = 0;            ///< steps taken (up to the blow-up)
-  double time = 0;          ///< time reached
-  double omega = 0;         ///< the exact wave's frequency
-  double eta_error = 0;     ///< max-norm errors at `time` (if stable)
+  int steps = 0;         ///< steps taken (up to the blow-up)
+  double time = 0;       ///< time reached
+  double omega = 0;      ///< the exact wave's frequency
+  double eta_error = 0;  ///< max-norm errors at `time` (if stable)
   double pressure_error = 0;
-  double max_eta = 0;       ///< largest |eta| seen
-  std::string message;      ///< where and when it blew up, if it did
+  double max_eta = 0;   ///< largest |eta| seen
+  std::string message;  ///< where and when it blew up, if it did
   double mean_subiterations = 0;
 };
 

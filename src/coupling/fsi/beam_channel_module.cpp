@@ -11,25 +11,34 @@
 namespace amphora::fsi {
 
 ParamTable beam_channel_parameter_table() {
-  return {"beam_channel",
-          "a periodic Euler-Bernoulli beam over a channel of inviscid fluid, partitioned (tp | amp), " "from the exact traveling wave",
-          {
-              string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp", "tp_aitken"}),
-              real_param("rho_h", 1.0, "kg/m^2", above(0.0), "beam mass per unit length (density x thickness)"),
-              real_param("spring", 0.5, "N/m^3", at_least(0.0), "K: restoring spring"),
-              real_param("tension", 1.0, "N/m", at_least(0.0), "T: tension"),
-              real_param("stiffness", 0.01, "N m", at_least(0.0), "B = E I: bending stiffness"),
-              real_param("length", 1.0, "m", above(0.0), "period in x"),
-              real_param("depth", 0.5, "m", above(0.0), "channel depth H"),
-              real_param("density", 1.0, "kg/m^3", above(0.0), "fluid density rho"),
-              int_param("points", 80, at_least(8) & at_most(1 << 14), "beam points = fluid columns (h = length / points)"),
-              int_param("fluid_rows", 40, at_least(2) & at_most(1 << 14), "fluid cells across the channel"),
-              int_param("mode", 1, at_least(1), "wave number k = 2 pi mode / length"),
-              real_param("blowup_factor", 10.0, "1", above(1.0), "stop as unstable when max |eta| exceeds this multiple of the amplitude"),
-              real_param("subiteration_tolerance", 1e-10, "1", above(0.0), "tp_aitken: relative change of the interface acceleration that ends a step"),
-              int_param("max_subiterations", 500, at_least(1), "tp_aitken: sub-iterations allowed per step"),
-              real_param("initial_relaxation", 0.1, "1", above(0.0) & at_most(1.0), "tp_aitken: first relaxation factor"),
-          }};
+  return {
+      "beam_channel",
+      "a periodic Euler-Bernoulli beam over a channel of inviscid fluid, partitioned (tp | amp), "
+      "from the exact traveling wave",
+      {
+          string_param("scheme", std::string("amp"), "coupling scheme", {"amp", "tp", "tp_aitken"}),
+          real_param("rho_h", 1.0, "kg/m^2", above(0.0),
+                     "beam mass per unit length (density x thickness)"),
+          real_param("spring", 0.5, "N/m^3", at_least(0.0), "K: restoring spring"),
+          real_param("tension", 1.0, "N/m", at_least(0.0), "T: tension"),
+          real_param("stiffness", 0.01, "N m", at_least(0.0), "B = E I: bending stiffness"),
+          real_param("length", 1.0, "m", above(0.0), "period in x"),
+          real_param("depth", 0.5, "m", above(0.0), "channel depth H"),
+          real_param("density", 1.0, "kg/m^3", above(0.0), "fluid density rho"),
+          int_param("points", 80, at_least(8) & at_most(1 << 14),
+                    "beam points = fluid columns (h = length / points)"),
+          int_param("fluid_rows", 40, at_least(2) & at_most(1 << 14),
+                    "fluid cells across the channel"),
+          int_param("mode", 1, at_least(1), "wave number k = 2 pi mode / length"),
+          real_param("blowup_factor", 10.0, "1", above(1.0),
+                     "stop as unstable when max |eta| exceeds this multiple of the amplitude"),
+          real_param("subiteration_tolerance", 1e-10, "1", above(0.0),
+                     "tp_aitken: relative change of the interface acceleration that ends a step"),
+          int_param("max_subiterations", 500, at_least(1),
+                    "tp_aitken: sub-iterations allowed per step"),
+          real_param("initial_relaxation", 0.1, "1", above(0.0) & at_most(1.0),
+                     "tp_aitken: first relaxation factor"),
+      }};
 }
 
 namespace {
@@ -112,12 +121,10 @@ class BeamChannelModule final : public Module {
   }
 
   Diagnostics diagnostics(double) const override {
-    return {{"max_eta", fsi_->max_abs_eta()},
-            {"beam_energy", fsi_->beam().energy()},
-            {"eta_error", fsi_->eta_error()},
-            {"pressure_error", fsi_->pressure_error()},
-            {"omega", fsi_->omega()},
-            {"subiterations", double(fsi_->last_subiterations())}};
+    return {
+        {"max_eta", fsi_->max_abs_eta()}, {"beam_energy", fsi_->beam().energy()},
+        {"eta_error", fsi_->eta_error()}, {"pressure_error", fsi_->pressure_error()},
+        {"omega", fsi_->omega()},         {"subiterations", double(fsi_->last_subiterations())}};
   }
   std::string error_diagnostic() const override { return "eta_error"; }
 
@@ -126,9 +133,10 @@ class BeamChannelModule final : public Module {
     // Unbounded growth is the failure this problem exists to show: stop like a divergence.
     NonFiniteReport r;
     std::ostringstream f;
-    f << "the " << to_string(s_.scheme) << " coupling is unstable at rho_h / rho = "
-      << s_.beam.rho_h / s_.rho << " (max |eta| = " << fsi_->max_abs_eta() << " > "
-      << s_.blowup_factor << " x the wave amplitude)";
+    f << "the " << to_string(s_.scheme)
+      << " coupling is unstable at rho_h / rho = " << s_.beam.rho_h / s_.rho
+      << " (max |eta| = " << fsi_->max_abs_eta() << " > " << s_.blowup_factor
+      << " x the wave amplitude)";
     r.reason = f.str();
     r.field = "eta";
     r.block = "beam";
@@ -144,8 +152,11 @@ class BeamChannelModule final : public Module {
 
   std::vector<StateBlock> state() const override {
     const auto& b = fsi_->beam();
-    return {{"beam", {{"time", {b.time()}}, {"eta", b.displacement()}, {"eta_t", b.velocity()},
-                      {"eta_tt", b.acceleration()}}}};
+    return {{"beam",
+             {{"time", {b.time()}},
+              {"eta", b.displacement()},
+              {"eta_t", b.velocity()},
+              {"eta_tt", b.acceleration()}}}};
   }
   void restore(const std::vector<StateBlock>& blocks) override {
     for (const auto& blk : blocks) {
@@ -157,7 +168,8 @@ class BeamChannelModule final : public Module {
         if (key == "eta_t") v = values;
         if (key == "eta_tt") a = values;
       }
-      if (t.size() != 1) throw std::runtime_error("beam_channel: checkpoint without the beam's time");
+      if (t.size() != 1)
+        throw std::runtime_error("beam_channel: checkpoint without the beam's time");
       fsi_->beam().restore_state(t[0], eta, v, a);
       fsi_->refresh_pressure();
     }

@@ -33,7 +33,9 @@ struct ExactDisplacement {
 struct NodeTraction {
   Kokkos::View<double* [2], Kokkos::HostSpace> values;
   double hx;
-  double operator()(double x, double, int c) const { return values(std::lround(x / hx) % values.extent(0), c); }
+  double operator()(double x, double, int c) const {
+    return values(std::lround(x / hx) % values.extent(0), c);
+  }
 };
 
 struct Fixed {
@@ -43,7 +45,8 @@ struct Fixed {
 std::optional<channel::TopImpedance> fluid_top(const MpveSetup& s) {
   if (s.scheme != MpveScheme::amp) return std::nullopt;
   const auto& P = s.physics;
-  return channel::TopImpedance{std::sqrt(P.rho_bar * (P.lambda_bar + 2 * P.mu_bar)), std::sqrt(P.rho_bar * P.mu_bar)};
+  return channel::TopImpedance{std::sqrt(P.rho_bar * (P.lambda_bar + 2 * P.mu_bar)),
+                               std::sqrt(P.rho_bar * P.mu_bar)};
 }
 
 }  // namespace
@@ -66,17 +69,18 @@ struct MpvePartitioned::State {
   elastic::ElasticGrid sg;
   channel::ChannelStokes fluid;
   Solid solid;
-  std::vector<double> p_prev;                 // fluid pressure at t - 3 dt / 2
-  std::vector<double> row_prev, row_now;      // solid interface displacement (u, v) at t - dt, t
-  std::vector<double> gu_now, gv_now;         // the fluid's wall velocity at t (u at x_i, v at x_{i+1/2})
-  std::vector<double> gv_prev;                // AMP: the fluid's wall v at t - dt
-  std::vector<double> g_now;                  // AMP: the characteristics sent at t (x, y per node)
-  std::vector<double> traction_prev;          // TP-Aitken: the traction at t - dt (x, y per node)
-  channel::TopImpedance z;                    // AMP: the solid's impedances (z_p, z_s)
-  double z_fluid = 0;                         // AMP: the discrete fluid's impedance (fluid_traction)
-  int subiterations = 1;                      // of the last step
+  std::vector<double> p_prev;             // fluid pressure at t - 3 dt / 2
+  std::vector<double> row_prev, row_now;  // solid interface displacement (u, v) at t - dt, t
+  std::vector<double> gu_now, gv_now;  // the fluid's wall velocity at t (u at x_i, v at x_{i+1/2})
+  std::vector<double> gv_prev;         // AMP: the fluid's wall v at t - dt
+  std::vector<double> g_now;           // AMP: the characteristics sent at t (x, y per node)
+  std::vector<double> traction_prev;   // TP-Aitken: the traction at t - dt (x, y per node)
+  channel::TopImpedance z;             // AMP: the solid's impedances (z_p, z_s)
+  double z_fluid = 0;                  // AMP: the discrete fluid's impedance (fluid_traction)
+  int subiterations = 1;               // of the last step
   double v_scale = 0;
-  Kokkos::View<double* [2], Kokkos::HostSpace> traction;  // the fluid's, on the solid's interface nodes
+  Kokkos::View<double* [2], Kokkos::HostSpace>
+      traction;  // the fluid's, on the solid's interface nodes
 
   static channel::ChannelGrid fluid_grid(const MpveSetup& s) {
     const double L = 2 * M_PI / s.physics.k, h = L / s.nx;
@@ -94,7 +98,8 @@ struct MpvePartitioned::State {
         fg(fluid_grid(setup)),
         sg(solid_grid(setup)),
         fluid(fg, setup.physics.rho, setup.physics.mu, setup.dt, fluid_top(setup)),
-        solid(sg, {setup.physics.rho_bar, setup.physics.lambda_bar, setup.physics.mu_bar}, setup.dt) {
+        solid(sg, {setup.physics.rho_bar, setup.physics.lambda_bar, setup.physics.mu_bar},
+              setup.dt) {
     const int nx = fg.nx, ny = fg.ny;
     const auto& P = s.physics;
     auto F = [&](double x, double y, double t) { return mpve_fluid(P, s.omega, mode, x, y, t); };
@@ -142,10 +147,13 @@ struct MpvePartitioned::State {
   /// name: save() and restore() both go through this one list.
   template <class Self>
   static auto coupling_arrays(Self& st) {
-    using Array = std::conditional_t<std::is_const_v<Self>, const std::vector<double>, std::vector<double>>;
+    using Array =
+        std::conditional_t<std::is_const_v<Self>, const std::vector<double>, std::vector<double>>;
     return std::vector<std::pair<const char*, Array*>>{
-        {"p_prev", &st.p_prev}, {"row_prev", &st.row_prev}, {"row_now", &st.row_now}, {"gu_now", &st.gu_now},
-        {"gv_now", &st.gv_now}, {"gv_prev", &st.gv_prev},   {"g_now", &st.g_now},     {"traction_prev", &st.traction_prev}};
+        {"p_prev", &st.p_prev},   {"row_prev", &st.row_prev},
+        {"row_now", &st.row_now}, {"gu_now", &st.gu_now},
+        {"gv_now", &st.gv_now},   {"gv_prev", &st.gv_prev},
+        {"g_now", &st.g_now},     {"traction_prev", &st.traction_prev}};
   }
 
   std::vector<double> interface_row(const Solid::Field& f) const {
@@ -178,13 +186,17 @@ struct MpvePartitioned::State {
     const auto& p = fluid.p();
     for (int i = 0; i < nx; ++i) {
       const double g = gu_now[i];
-      const double u_y = (8 * g - 9 * u[size_t(ny - 1) * nx + i] + u[size_t(ny - 2) * nx + i]) / (3 * hy);
+      const double u_y =
+          (8 * g - 9 * u[size_t(ny - 1) * nx + i] + u[size_t(ny - 2) * nx + i]) / (3 * hy);
       const double v_x = (gv_now[i] - gv_now[wrap(i - 1)]) / hx;
-      const double v_y = -(gu_now[wrap(i + 1)] - gu_now[wrap(i - 1)]) / (2 * hx);  // div v = 0 on the wall
-      auto wall_p = [&](const std::vector<double>& q, int col) {  // to y = 0, second order
+      const double v_y =
+          -(gu_now[wrap(i + 1)] - gu_now[wrap(i - 1)]) / (2 * hx);  // div v = 0 on the wall
+      auto wall_p = [&](const std::vector<double>& q, int col) {    // to y = 0, second order
         return 0.5 * (3 * q[size_t(ny - 1) * nx + col] - q[size_t(ny - 2) * nx + col]);
       };
-      auto at_xi = [&](const std::vector<double>& q) { return 0.5 * (wall_p(q, wrap(i - 1)) + wall_p(q, i)); };
+      auto at_xi = [&](const std::vector<double>& q) {
+        return 0.5 * (wall_p(q, wrap(i - 1)) + wall_p(q, i));
+      };
       const double p0 = 0.5 * (3 * at_xi(p) - at_xi(p_prev));  // t - dt/2, t - 3dt/2 -> t
       tr(i, 0) = mu * (u_y + v_x);
       tr(i, 1) = -p0 + 2 * mu * v_y;
@@ -200,7 +212,9 @@ struct MpvePartitioned::State {
         // at h = 1/320, mu = 0.02.
         const double zf = z_fluid;
         const double v_i = 0.5 * (gv_now[wrap(i - 1)] + gv_now[i]);
-        auto weigh = [zf](double own, double solid_side, double zs) { return (zs * own + zf * solid_side) / (zs + zf); };
+        auto weigh = [zf](double own, double solid_side, double zs) {
+          return (zs * own + zf * solid_side) / (zs + zf);
+        };
         tr(i, 0) = weigh(tr(i, 0), g_now[2 * i] - z.z_shear * gu_now[i], z.z_shear);
         tr(i, 1) = weigh(tr(i, 1), g_now[2 * i + 1] - z.z_normal * v_i, z.z_normal);
       }
@@ -228,7 +242,8 @@ struct MpvePartitioned::State {
     }
     // 4. The fluid to t + dt.
     const double t0 = fluid.time();
-    auto pick = [t0, dt](const std::vector<double>& a, const std::vector<double>& b, double t) -> const std::vector<double>& {
+    auto pick = [t0, dt](const std::vector<double>& a, const std::vector<double>& b,
+                         double t) -> const std::vector<double>& {
       return std::abs(t - t0) < 0.25 * dt ? a : b;
     };
     channel::StokesData d;
@@ -251,7 +266,9 @@ struct MpvePartitioned::State {
   /// step from the saved state until the fluid's traction at t + dt matches the guess.
   void aitken_step() {
     const int nx = fg.nx;
-    auto field = [](const Solid::Field& f) { return std::vector<double>(f.data(), f.data() + f.size()); };
+    auto field = [](const Solid::Field& f) {
+      return std::vector<double>(f.data(), f.data() + f.size());
+    };
     const double t0 = fluid.time();
     const std::vector<double> su = field(solid.displacement()), so = field(solid.previous());
     const std::vector<double> fu = fluid.u(), fv = fluid.v(), fp = fluid.p(), pp = p_prev;
@@ -276,7 +293,8 @@ struct MpvePartitioned::State {
       }
       for (int i = 0; i < nx; ++i)
         for (int c = 0; c < 2; ++c)
-          traction(i, c) = 0.25 * (guess[2 * i + c] + 2 * s_now[2 * i + c] + traction_prev[2 * i + c]);
+          traction(i, c) =
+              0.25 * (guess[2 * i + c] + 2 * s_now[2 * i + c] + traction_prev[2 * i + c]);
       solid.step_with_bottom_traction(NodeTraction{traction, sg.hx}, Fixed{});
       Kokkos::fence();
       tp_fluid();
@@ -289,7 +307,8 @@ struct MpvePartitioned::State {
         dr_r += r_old[j] * (r[j] - r_old[j]);
         dr_dr += (r[j] - r_old[j]) * (r[j] - r_old[j]);
       }
-      if (!std::isfinite(rr) || rr <= s.subiteration_tolerance * s.subiteration_tolerance * std::max(ss, 1e-300) ||
+      if (!std::isfinite(rr) ||
+          rr <= s.subiteration_tolerance * s.subiteration_tolerance * std::max(ss, 1e-300) ||
           k + 1 >= s.max_subiterations)
         break;
       if (k > 0 && dr_dr > 0) omega = -omega * dr_r / dr_dr;
@@ -317,7 +336,9 @@ struct MpvePartitioned::State {
       const int e = wrap(i + 1), w = wrap(i - 1);
       auto dy = [&](int c) { return (-3 * d(1, i, c) + 4 * d(2, i, c) - d(3, i, c)) / (2 * hy); };
       auto dx = [&](int c) { return (d(1, e, c) - d(1, w, c)) / (2 * hx); };
-      auto vel = [&](int c) { return (3 * row_pred[2 * i + c] - 4 * row_now[2 * i + c] + row_prev[2 * i + c]) / (2 * dt); };
+      auto vel = [&](int c) {
+        return (3 * row_pred[2 * i + c] - 4 * row_now[2 * i + c] + row_prev[2 * i + c]) / (2 * dt);
+      };
       gx[i] = mb * (dy(0) + dx(1)) + z.z_shear * vel(0);
       gy_node[i] = (lb + 2 * mb) * dy(1) + lb * dx(0) + z.z_normal * vel(1);
     }
@@ -343,7 +364,8 @@ struct MpvePartitioned::State {
     std::vector<double> gv1(fluid.v().end() - nx, fluid.v().end());
     std::vector<double> row_next(2 * nx);
     for (int i = 0; i < nx; ++i) {
-      const double v0 = 0.5 * (gv_now[wrap(i - 1)] + gv_now[i]), v1 = 0.5 * (gv1[wrap(i - 1)] + gv1[i]);
+      const double v0 = 0.5 * (gv_now[wrap(i - 1)] + gv_now[i]),
+                   v1 = 0.5 * (gv1[wrap(i - 1)] + gv1[i]);
       row_next[2 * i] = row_now[2 * i] + 0.5 * dt * (gu_now[i] + gu1[i]);
       row_next[2 * i + 1] = row_now[2 * i + 1] + 0.5 * dt * (v0 + v1);
       d(1, i, 0) = row_next[2 * i];
@@ -368,7 +390,9 @@ double MpvePartitioned::max_fluid_speed() const {
   return m;
 }
 
-bool MpvePartitioned::blown_up() const { return !(max_fluid_speed() <= s_->s.blowup_factor * s_->v_scale); }
+bool MpvePartitioned::blown_up() const {
+  return !(max_fluid_speed() <= s_->s.blowup_factor * s_->v_scale);
+}
 
 MpvePartitioned::Snapshot MpvePartitioned::snapshot() const {
   const State& st = *s_;
@@ -406,18 +430,22 @@ MpvePartitioned::Snapshot MpvePartitioned::snapshot() const {
 
 std::vector<std::pair<std::string, std::vector<double>>> MpvePartitioned::save() const {
   const State& st = *s_;
-  auto field = [](const Solid::Field& f) { return std::vector<double>(f.data(), f.data() + f.size()); };
-  std::vector<std::pair<std::string, std::vector<double>>> out = {{"time", {time()}},
-                                                                  {"u", st.fluid.u()},
-                                                                  {"v", st.fluid.v()},
-                                                                  {"p", st.fluid.p()},
-                                                                  {"solid", field(st.solid.displacement())},
-                                                                  {"solid_prev", field(st.solid.previous())}};
+  auto field = [](const Solid::Field& f) {
+    return std::vector<double>(f.data(), f.data() + f.size());
+  };
+  std::vector<std::pair<std::string, std::vector<double>>> out = {
+      {"time", {time()}},
+      {"u", st.fluid.u()},
+      {"v", st.fluid.v()},
+      {"p", st.fluid.p()},
+      {"solid", field(st.solid.displacement())},
+      {"solid_prev", field(st.solid.previous())}};
   for (const auto& [name, array] : State::coupling_arrays(st)) out.emplace_back(name, *array);
   return out;
 }
 
-void MpvePartitioned::restore(const std::vector<std::pair<std::string, std::vector<double>>>& arrays) {
+void MpvePartitioned::restore(
+    const std::vector<std::pair<std::string, std::vector<double>>>& arrays) {
   State& st = *s_;
   std::map<std::string, std::vector<double>> a(arrays.begin(), arrays.end());
   auto need = [&a](const std::string& key) -> const std::vector<double>& {
@@ -426,7 +454,8 @@ void MpvePartitioned::restore(const std::vector<std::pair<std::string, std::vect
   };
   const double t = need("time").at(0);
   for (const auto& [name, array] : State::coupling_arrays(st)) *array = need(name);
-  st.fluid.set_state(t, need("u"), need("v"), need("p"), st.s.scheme == MpveScheme::amp ? st.gu_now : std::vector<double>{});
+  st.fluid.set_state(t, need("u"), need("v"), need("p"),
+                     st.s.scheme == MpveScheme::amp ? st.gu_now : std::vector<double>{});
   st.solid.restore(t, need("solid"), need("solid_prev"));
 }
 
@@ -441,10 +470,13 @@ MpveErrors MpvePartitioned::errors() const {
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i < nx; ++i) {
       const auto& f = st.fluid;
-      e.v = std::max(e.v, std::abs(f.v()[size_t(j) * nx + i] - mpve_fluid(P, st.s.omega, st.mode, f.v_x(i), f.v_y(j), t).v));
+      e.v = std::max(e.v, std::abs(f.v()[size_t(j) * nx + i] -
+                                   mpve_fluid(P, st.s.omega, st.mode, f.v_x(i), f.v_y(j), t).v));
       if (j == ny) continue;
-      e.u = std::max(e.u, std::abs(f.u()[size_t(j) * nx + i] - mpve_fluid(P, st.s.omega, st.mode, f.u_x(i), f.u_y(j), t).u));
-      e.p = std::max(e.p, std::abs(f.p()[size_t(j) * nx + i] - mpve_fluid(P, st.s.omega, st.mode, f.v_x(i), f.u_y(j), tp).p));
+      e.u = std::max(e.u, std::abs(f.u()[size_t(j) * nx + i] -
+                                   mpve_fluid(P, st.s.omega, st.mode, f.u_x(i), f.u_y(j), t).u));
+      e.p = std::max(e.p, std::abs(f.p()[size_t(j) * nx + i] -
+                                   mpve_fluid(P, st.s.omega, st.mode, f.v_x(i), f.u_y(j), tp).p));
     }
   const auto d = st.solid.displacement();
   const double hx = st.sg.hx, hy = st.sg.hy, lb = P.lambda_bar, mb = P.mu_bar;
@@ -455,9 +487,12 @@ MpveErrors MpvePartitioned::errors() const {
       e.vbar = std::max(e.vbar, std::abs(d(j + 1, i, 1) - ex.vbar));
       if (j == 0 || j == st.sg.ny) continue;
       const int ie = (i + 1) % nx, iw = (i + nx - 1) % nx;
-      const double ux = (d(j + 1, ie, 0) - d(j + 1, iw, 0)) / (2 * hx), uy = (d(j + 2, i, 0) - d(j, i, 0)) / (2 * hy);
-      const double vx = (d(j + 1, ie, 1) - d(j + 1, iw, 1)) / (2 * hx), vy = (d(j + 2, i, 1) - d(j, i, 1)) / (2 * hy);
-      e.sigma = std::max({e.sigma, std::abs(lb * (ux + vy) + 2 * mb * ux - ex.sxx), std::abs(mb * (uy + vx) - ex.sxy),
+      const double ux = (d(j + 1, ie, 0) - d(j + 1, iw, 0)) / (2 * hx),
+                   uy = (d(j + 2, i, 0) - d(j, i, 0)) / (2 * hy);
+      const double vx = (d(j + 1, ie, 1) - d(j + 1, iw, 1)) / (2 * hx),
+                   vy = (d(j + 2, i, 1) - d(j, i, 1)) / (2 * hy);
+      e.sigma = std::max({e.sigma, std::abs(lb * (ux + vy) + 2 * mb * ux - ex.sxx),
+                          std::abs(mb * (uy + vx) - ex.sxy),
                           std::abs(lb * (ux + vy) + 2 * mb * vy - ex.syy)});
     }
   return e;
@@ -477,8 +512,8 @@ MpveRun run_mpve(const MpveSetup& s) {
     if (m.blown_up()) {
       r.stable = false;
       std::ostringstream msg;
-      msg << to_string(s.scheme) << " (MP-VE) unstable at step " << r.steps << ", t = " << r.time << " (rho_bar / rho = "
-          << s.physics.rho_bar / s.physics.rho << ")";
+      msg << to_string(s.scheme) << " (MP-VE) unstable at step " << r.steps << ", t = " << r.time
+          << " (rho_bar / rho = " << s.physics.rho_bar / s.physics.rho << ")";
       r.message = msg.str();
       return r;
     }

@@ -44,9 +44,9 @@ struct MpveSetup {
 };
 
 struct MpveErrors {
-  double u = 0, v = 0, p = 0;            ///< fluid
-  double ubar = 0, vbar = 0;             ///< solid displacement
-  double sigma = 0;                      ///< solid stress (max over xx, xy, yy; centred differences, interior rows)
+  double u = 0, v = 0, p = 0;  ///< fluid
+  double ubar = 0, vbar = 0;   ///< solid displacement
+  double sigma = 0;  ///< solid stress (max over xx, xy, yy; centred differences, interior rows)
 };
 
 class MpvePartitioned {

@@ -20,8 +20,10 @@ std::array<Complex, 64> mpve_matrix(const MpveParameters& p, Complex w) {
     for (int c = 0; c < 8; ++c) M[8 * r + c] = v[c];
   };
   const double H = p.H, Hb = p.Hbar;
-  const Complex chk = std::cosh(-k * H), shk = std::sinh(-k * H), chq = std::cosh(-q * H), shq = std::sinh(-q * H);
-  const Complex cha = std::cosh(a * Hb), sha = std::sinh(a * Hb), chb = std::cosh(b * Hb), shb = std::sinh(b * Hb);
+  const Complex chk = std::cosh(-k * H), shk = std::sinh(-k * H), chq = std::cosh(-q * H),
+                shq = std::sinh(-q * H);
+  const Complex cha = std::cosh(a * Hb), sha = std::sinh(a * Hb), chb = std::cosh(b * Hb),
+                shb = std::sinh(b * Hb);
   // no slip at y = -H: u = ik phi + psi' = 0, v = phi' - ik psi = 0
   row(0, {ik * chk, ik * shk, q * shq, q * chq, 0., 0., 0., 0.});
   row(1, {k * shk, k * chk, -ik * chq, -ik * shq, 0., 0., 0., 0.});
@@ -48,7 +50,8 @@ Complex mpve_determinant(const MpveParameters& p, Complex omega) {
   return M.partialPivLu().determinant();
 }
 
-DispersionRoot solve_mpve_dispersion(const MpveParameters& p, Complex omega0, double tolerance, int max_iterations) {
+DispersionRoot solve_mpve_dispersion(const MpveParameters& p, Complex omega0, double tolerance,
+                                     int max_iterations) {
   DispersionRoot root{omega0, 0, false};
   Complex w = omega0;
   for (int it = 1; it <= max_iterations; ++it) {
@@ -68,13 +71,18 @@ DispersionRoot solve_mpve_dispersion(const MpveParameters& p, Complex omega0, do
   return root;
 }
 
-DispersionRoot continue_mpve_dispersion(const MpveParameters& from, Complex omega_from, const MpveParameters& to,
-                                        int steps) {
+DispersionRoot continue_mpve_dispersion(const MpveParameters& from, Complex omega_from,
+                                        const MpveParameters& to, int steps) {
   auto at = [&](double t) {
     auto lerp = [t](double a, double b) { return a + t * (b - a); };
-    return MpveParameters{lerp(from.k, to.k),     lerp(from.H, to.H),           lerp(from.Hbar, to.Hbar),
-                          lerp(from.rho, to.rho), lerp(from.mu, to.mu),         lerp(from.rho_bar, to.rho_bar),
-                          lerp(from.lambda_bar, to.lambda_bar), lerp(from.mu_bar, to.mu_bar)};
+    return MpveParameters{lerp(from.k, to.k),
+                          lerp(from.H, to.H),
+                          lerp(from.Hbar, to.Hbar),
+                          lerp(from.rho, to.rho),
+                          lerp(from.mu, to.mu),
+                          lerp(from.rho_bar, to.rho_bar),
+                          lerp(from.lambda_bar, to.lambda_bar),
+                          lerp(from.mu_bar, to.mu_bar)};
   };
   // Predictor: the secant through the last two roots; a step is accepted when Newton converges
   // quickly and stays near the prediction (else the step is halved: the root can move fast,
@@ -88,7 +96,8 @@ DispersionRoot continue_mpve_dispersion(const MpveParameters& from, Complex omeg
     const Complex guess = root.omega + slope * step;
     const DispersionRoot next = solve_mpve_dispersion(at(t + step), guess, 1e-12, 12);
     total += next.iterations;
-    const bool near = std::abs(next.omega - guess) <= 0.05 * std::abs(root.omega) + 0.5 * std::abs(slope * step);
+    const bool near =
+        std::abs(next.omega - guess) <= 0.05 * std::abs(root.omega) + 0.5 * std::abs(slope * step);
     if (next.converged && near) {
       previous = root.omega;
       root.omega = next.omega;

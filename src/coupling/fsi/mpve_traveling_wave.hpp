@@ -11,7 +11,8 @@
 // omega^2/cp^2, beta^2 = k^2 - omega^2/cs^2. With phi = A cosh ky + B sinh ky, psi = C cosh qy +
 // D sinh qy, Phi = E cosh alpha y + F sinh alpha y, Psi = G cosh beta y + H sinh beta y:
 //   u = ik phi + psi',  v = phi' - ik psi,
-//   sigma_xy = mu (2ik phi' + (q^2 + k^2) psi),  sigma_yy = (-i omega rho + 2 mu k^2) phi - 2ik mu psi',
+//   sigma_xy = mu (2ik phi' + (q^2 + k^2) psi),  sigma_yy = (-i omega rho + 2 mu k^2) phi - 2ik mu
+//   psi',
 // and the same for the solid with (lambda + 2 mu) alpha^2 - lambda k^2 in place of the fluid's
 // normal-stress factor. Eight conditions (no slip at -H, fixed at Hbar, velocity u = -i omega
 // ubar and traction continuity at 0) give M(omega) c = 0; the dispersion relation is
@@ -24,9 +25,9 @@ namespace amphora::fsi {
 using Complex = std::complex<double>;
 
 struct MpveParameters {
-  double k = 2 * 3.141592653589793;  ///< wave number
-  double H = 1.0, Hbar = 0.5;         ///< fluid and solid depths
-  double rho = 1.0, mu = 0.01;        ///< fluid density and viscosity
+  double k = 2 * 3.141592653589793;                         ///< wave number
+  double H = 1.0, Hbar = 0.5;                               ///< fluid and solid depths
+  double rho = 1.0, mu = 0.01;                              ///< fluid density and viscosity
   double rho_bar = 0.05, lambda_bar = 0.05, mu_bar = 0.05;  ///< solid density and Lame constants
 };
 
@@ -41,13 +42,13 @@ struct DispersionRoot {
 };
 
 /// Newton's method on det M(omega) = 0 from omega0 (derivative by central differences).
-DispersionRoot solve_mpve_dispersion(const MpveParameters& p, Complex omega0, double tolerance = 1e-12,
-                                     int max_iterations = 60);
+DispersionRoot solve_mpve_dispersion(const MpveParameters& p, Complex omega0,
+                                     double tolerance = 1e-12, int max_iterations = 60);
 
 /// Newton with continuation: follows the root omega_from of parameters `from` to parameters `to`
 /// along the straight line between them in `steps` steps (each solve starts from the last root).
-DispersionRoot continue_mpve_dispersion(const MpveParameters& from, Complex omega_from, const MpveParameters& to,
-                                        int steps);
+DispersionRoot continue_mpve_dispersion(const MpveParameters& from, Complex omega_from,
+                                        const MpveParameters& to, int steps);
 
 /// The MP-VE check case: k = 2 pi, H = 1, Hbar = 0.5, rho = 1, mu = 0.01,
 /// rho_bar = lambda_bar = mu_bar = 0.05 (omega ~ 1.42227 - 0.37955 i).
@@ -62,8 +63,8 @@ std::array<Complex, 8> mpve_mode(const MpveParameters& p, Complex omega);
 
 /// The exact fields (real parts) of a mode at (x, y, t): the fluid for -H <= y <= 0 ...
 struct MpveFluidFields {
-  double u, v, p;        ///< velocity and pressure
-  double sxy, syy;       ///< stress mu (u_y + v_x), -p + 2 mu v_y
+  double u, v, p;   ///< velocity and pressure
+  double sxy, syy;  ///< stress mu (u_y + v_x), -p + 2 mu v_y
 };
 MpveFluidFields mpve_fluid(const MpveParameters& p, Complex omega, const std::array<Complex, 8>& c,
                            double x, double y, double t);

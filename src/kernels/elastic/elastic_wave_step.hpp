@@ -17,7 +17,7 @@ template <class MemSpace>
 using NodeField = Kokkos::View<double** [2], Kokkos::LayoutRight, MemSpace>;
 
 struct ElasticGrid {
-  int nx = 0, ny = 0;      ///< columns (periodic) and cells in y (rows 0..ny)
+  int nx = 0, ny = 0;  ///< columns (periodic) and cells in y (rows 0..ny)
   double hx = 0, hy = 0;
 };
 

@@ -8,7 +8,8 @@
 //   the box first take the mean of their fluid face neighbours (an extension E that reflects
 //   across flat terrain as a wall does), air cells stay zero, and non-fluid fine cells take
 //   nothing;
-// - restriction R = P^T exactly (E^T included) (so a symmetric smoother gives a symmetric V-cycle, as CG needs);
+// - restriction R = P^T exactly (E^T included) (so a symmetric smoother gives a symmetric V-cycle,
+// as CG needs);
 // - coarse matrix by re-discretisation in conductance form: a coarse face conducts half the sum
 //   of its four fine faces, a coarse cell keeps half the open-box-face terms of its eight children.
 //   For full faces that is the rediscretised Laplacian at 2h (c = 2 in fine units: area 4h^2 over
@@ -31,8 +32,8 @@ namespace detail {
 /// inner cell. (Fine cells beyond an edge are ghosts holding zero; their weight does not matter.
 /// Beyond another block's face they hold that block's values.)
 template <class S>
-KOKKOS_INLINE_FUNCTION void restriction_weights(int I, int n_c, bool edge_below, bool edge_above, bool wall_below,
-                                                bool wall_above, S w[4]) {
+KOKKOS_INLINE_FUNCTION void restriction_weights(int I, int n_c, bool edge_below, bool edge_above,
+                                                bool wall_below, bool wall_above, S w[4]) {
   w[0] = S(0.25);
   w[1] = I == 0 && edge_below ? (wall_below ? S(1) : S(0.5)) : S(0.75);
   w[2] = I == n_c - 1 && edge_above ? (wall_above ? S(1) : S(0.5)) : S(0.75);
@@ -50,7 +51,8 @@ KOKKOS_INLINE_FUNCTION S reflected_weight(bool wall) {
 /// coarse = R fine, on coarse fluid cells (zero elsewhere). fine must be zero on ghost cells.
 template <class ExecSpace, class MemSpace, class S, class FineView, class CoarseView>
 void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& fine_A,
-                        const PoissonStencil<MemSpace, S>& coarse_A, const FineView& fine, const CoarseView& coarse) {
+                        const PoissonStencil<MemSpace, S>& coarse_A, const FineView& fine,
+                        const CoarseView& coarse) {
   const kernels::mac::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto active = coarse_A.inverse_diag;
   const auto solid = coarse_A.solid;
@@ -90,7 +92,8 @@ void restrict_to_coarse(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
 /// 3x3x3 neighbourhood (clamped at the box), one direction at a time.
 template <class ExecSpace, class MemSpace, class S, class CoarseView, class FineView>
 void prolongate_add(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& coarse_A,
-                    const PoissonStencil<MemSpace, S>& fine_A, const CoarseView& coarse, const FineView& fine) {
+                    const PoissonStencil<MemSpace, S>& fine_A, const CoarseView& coarse,
+                    const FineView& fine) {
   const kernels::mac::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto active = fine_A.inverse_diag;
   const int fsy = gf.stride_y(), fsz = gf.stride_z();
@@ -145,7 +148,8 @@ void prolongate_add(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& co
 namespace detail {
 /// Fluid face neighbours of cell c.
 template <class Active>
-KOKKOS_INLINE_FUNCTION int fluid_neighbours(const Active& active, int c, int sy, int sz, int nbr[6]) {
+KOKKOS_INLINE_FUNCTION int fluid_neighbours(const Active& active, int c, int sy, int sz,
+                                            int nbr[6]) {
   const int offsets[6] = {-1, 1, -sy, sy, -sz, sz};
   int n = 0;
   for (int f = 0; f < 6; ++f)
@@ -162,7 +166,8 @@ void extend_into_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
   const auto solid = A.solid;
   const int sy = g.stride_y(), sz = g.stride_z();
   Kokkos::parallel_for(
-      "amphora::mac::extend_into_solids", RangePolicy<ExecSpace>(exec, g.first_plane_index(), g.end_plane_index()),
+      "amphora::mac::extend_into_solids",
+      RangePolicy<ExecSpace>(exec, g.first_plane_index(), g.end_plane_index()),
       KOKKOS_LAMBDA(int c) {
         if (!solid(c)) return;
         int nbr[6];
@@ -184,7 +189,8 @@ void gather_from_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
   const int sy = g.stride_y(), sz = g.stride_z();
   const int first = g.first_plane_index(), end = g.end_plane_index();
   Kokkos::parallel_for(
-      "amphora::mac::gather_from_solids", RangePolicy<ExecSpace>(exec, first, end), KOKKOS_LAMBDA(int c) {
+      "amphora::mac::gather_from_solids", RangePolicy<ExecSpace>(exec, first, end),
+      KOKKOS_LAMBDA(int c) {
         if (active(c) == 0) return;
         const int offsets[6] = {-1, 1, -sy, sy, -sz, sz};
         typename V::non_const_value_type add = 0;
@@ -195,7 +201,8 @@ void gather_from_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
         v(c) += add;
       });
   Kokkos::parallel_for(
-      "amphora::mac::zero_non_fluid", RangePolicy<ExecSpace>(exec, first, end), KOKKOS_LAMBDA(int c) {
+      "amphora::mac::zero_non_fluid", RangePolicy<ExecSpace>(exec, first, end),
+      KOKKOS_LAMBDA(int c) {
         if (active(c) == 0) v(c) = 0;
       });
 }
@@ -203,7 +210,8 @@ void gather_from_solids(const ExecSpace& exec, const PoissonStencil<MemSpace, S>
 /// The restriction of a multigrid cycle: coarse = R fine = E^T P^T fine (zero off the fluid).
 template <class ExecSpace, class MemSpace, class S, class FineView, class CoarseView>
 void restrict_residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& fine_A,
-                       const PoissonStencil<MemSpace, S>& coarse_A, const FineView& fine, const CoarseView& coarse) {
+                       const PoissonStencil<MemSpace, S>& coarse_A, const FineView& fine,
+                       const CoarseView& coarse) {
   restrict_to_coarse(exec, fine_A, coarse_A, fine, coarse);
   if (coarse_A.any_solid) gather_from_solids(exec, coarse_A, coarse);
 }
@@ -211,7 +219,8 @@ void restrict_residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>&
 /// The prolongation of a multigrid cycle: fine += P E coarse (E writes coarse's solid cells).
 template <class ExecSpace, class MemSpace, class S, class CoarseView, class FineView>
 void prolongate_correction(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& coarse_A,
-                           const PoissonStencil<MemSpace, S>& fine_A, const CoarseView& coarse, const FineView& fine) {
+                           const PoissonStencil<MemSpace, S>& fine_A, const CoarseView& coarse,
+                           const FineView& fine) {
   if (coarse_A.any_solid) extend_into_solids(exec, coarse_A, coarse);
   prolongate_add(exec, coarse_A, fine_A, coarse, fine);
 }
@@ -224,8 +233,9 @@ void prolongate_correction(const ExecSpace& exec, const PoissonStencil<MemSpace,
 /// after the exchange); otherwise a coarse face towards a ghost cell counts as one between
 /// unknowns.
 template <class ExecSpace, class MemSpace>
-void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A, const PoissonStencil<MemSpace>& coarse_A,
-                     int first_row = 0, bool ghosts_known = false) {
+void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A,
+                     const PoissonStencil<MemSpace>& coarse_A, int first_row = 0,
+                     bool ghosts_known = false) {
   const kernels::mac::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const auto fd = fine_A.diag;
   const auto fcx = fine_A.cx, fcy = fine_A.cy, fcz = fine_A.cz;
@@ -240,16 +250,19 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
   const int sy = gf.stride_y(), sz = gf.stride_z();
   const int csy = gc.stride_y(), csz = gc.stride_z();
   const int J0 = math::clamp(first_row, 0, gc.ny);
-  const auto cells = Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, J0, 0}, {gc.nz, gc.ny, gc.nx});
+  const auto cells =
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, J0, 0}, {gc.nz, gc.ny, gc.nx});
   // With a level set, first each coarse cell's level set (the children's mean), solid flag and
   // whether it is an unknown (a fluid child and a negative level set), which its neighbours read.
   // (From the row under the first one: the first one reads it.)
   Kokkos::View<std::uint8_t*, MemSpace> unknown;
   if (level_set) {
-    unknown = Kokkos::View<std::uint8_t*, MemSpace>("amphora::mac::coarse_unknown", gc.padded_size());
+    unknown =
+        Kokkos::View<std::uint8_t*, MemSpace>("amphora::mac::coarse_unknown", gc.padded_size());
     Kokkos::parallel_for(
         "amphora::mac::coarsen_stencil::level_set",
-        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::max(J0 - 1, 0), 0}, {gc.nz, gc.ny, gc.nx}),
+        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::max(J0 - 1, 0), 0},
+                                                          {gc.nz, gc.ny, gc.nx}),
         KOKKOS_LAMBDA(int K, int J, int I) {
           bool fluid = false, all_solid = true;
           double phi = 0.0;
@@ -275,7 +288,8 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
     return at[e] == 0 && edge[e];
   };
   const auto neighbour = KOKKOS_LAMBDA(int I, int J, int K, int e, double& phi_n, bool& solid_n) {
-    const int NI = I + (e == 1) - (e == 0), NJ = J + (e == 3) - (e == 2), NK = K + (e == 5) - (e == 4);
+    const int NI = I + (e == 1) - (e == 0), NJ = J + (e == 3) - (e == 2),
+              NK = K + (e == 5) - (e == 4);
     const bool ghost = NI < 0 || NJ < 0 || NK < 0 || NI >= gc.nx || NJ >= gc.ny || NK >= gc.nz;
     if (ghost && !ghosts_known) {
       phi_n = 0.0, solid_n = false;
@@ -294,8 +308,9 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
         bool beyond[6];
         for (int e = 0; e < 6; ++e) beyond[e] = beyond_box(I, J, K, e);
         // (a wall adds no term)
-        const bool open_face = (beyond[0] && !wall[0]) || (beyond[1] && !wall[1]) || (beyond[2] && !wall[2]) ||
-                               (beyond[3] && !wall[3]) || (beyond[4] && !wall[4]) || (beyond[5] && !wall[5]);
+        const bool open_face = (beyond[0] && !wall[0]) || (beyond[1] && !wall[1]) ||
+                               (beyond[2] && !wall[2]) || (beyond[3] && !wall[3]) ||
+                               (beyond[4] && !wall[4]) || (beyond[5] && !wall[5]);
         double dirichlet = 0.0;
         bool any_fluid = false, all_solid = true;
         const int offset[6] = {-1, 1, -sy, sy, -sz, sz};
@@ -306,14 +321,15 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
               all_solid = all_solid && fsolid(f);
               if (fd(f) == 0.0) continue;
               any_fluid = true;
-              const double c[6] = {double(fcx(f - 1)), double(fcx(f)), double(fcy(f - sy)), double(fcy(f)),
-                                   double(fcz(f - sz)), double(fcz(f))};
+              const double c[6] = {double(fcx(f - 1)), double(fcx(f)),      double(fcy(f - sy)),
+                                   double(fcy(f)),     double(fcz(f - sz)), double(fcz(f))};
               if (!level_set) {
                 dirichlet += fd(f) - (c[0] + c[1] + c[2] + c[3] + c[4] + c[5]);
                 continue;
               }
-              const bool child_beyond[6] = {a == 0 && beyond[0], a == 1 && beyond[1], b == 0 && beyond[2],
-                                            b == 1 && beyond[3], c3 == 0 && beyond[4], c3 == 1 && beyond[5]};
+              const bool child_beyond[6] = {a == 0 && beyond[0],  a == 1 && beyond[1],
+                                            b == 0 && beyond[2],  b == 1 && beyond[3],
+                                            c3 == 0 && beyond[4], c3 == 1 && beyond[5]};
               double d = fd(f);
               for (int e = 0; e < 6; ++e) {
                 if (child_beyond[e]) continue;
@@ -328,8 +344,8 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
         const int c = gc.index(I, J, K);
         double diag = 0.0;
         if (level_set ? unknown(c) != 0 : any_fluid) {
-          const double cc[6] = {double(ccx(c - 1)), double(ccx(c)), double(ccy(c - csy)), double(ccy(c)),
-                                double(ccz(c - csz)), double(ccz(c))};
+          const double cc[6] = {double(ccx(c - 1)), double(ccx(c)),       double(ccy(c - csy)),
+                                double(ccy(c)),     double(ccz(c - csz)), double(ccz(c))};
           diag = 0.5 * dirichlet;
           for (int e = 0; e < 6; ++e) {
             if (beyond[e]) continue;
@@ -353,7 +369,8 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
   // the conductances of faces with a non-unknown on either side (no unknown couples through
   // them); none beyond a box face
   Kokkos::parallel_for(
-      "amphora::mac::coarsen_stencil::faces_of_unknowns", cells, KOKKOS_LAMBDA(int K, int J, int I) {
+      "amphora::mac::coarsen_stencil::faces_of_unknowns", cells,
+      KOKKOS_LAMBDA(int K, int J, int I) {
         const int c = gc.index(I, J, K);
         if (!unknown(c)) {
           ccx(c) = ccy(c) = ccz(c) = 0.0f;
@@ -370,8 +387,8 @@ void coarse_diagonal(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
   const auto cfree = coarse_A.surface_free_rows;
   const int rows = gc.ny - J0;
   Kokkos::parallel_for(
-      "amphora::mac::coarsen_stencil::surface_free_rows", RangePolicy<ExecSpace>(exec, 0, rows * gc.nz),
-      KOKKOS_LAMBDA(int m) {
+      "amphora::mac::coarsen_stencil::surface_free_rows",
+      RangePolicy<ExecSpace>(exec, 0, rows * gc.nz), KOKKOS_LAMBDA(int m) {
         const int J = J0 + m % rows, K = m / rows;
         bool row_free = true;
         for (int I = 0; I < gc.nx && row_free; ++I) {
@@ -404,8 +421,8 @@ inline int first_coarse_row_changed(int first_row, bool level_set = false) {
 /// first_coarse_row_changed(the fine row from which the fine stencil changed since coarse_A was
 /// coarsened from it).
 template <class ExecSpace, class MemSpace>
-void coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A, PoissonStencil<MemSpace>& coarse_A,
-                     int first_row) {
+void coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A,
+                     PoissonStencil<MemSpace>& coarse_A, int first_row) {
   const kernels::mac::MacGrid gf = fine_A.grid, gc = coarse_A.grid;
   const bool level_set = fine_A.phi.extent(0) > 0;
   const int J0 = math::clamp(first_row, 0, gc.ny);
@@ -442,8 +459,8 @@ void coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
   const int rows = gc.ny - J0;
   if (!level_set) {
     Kokkos::parallel_for(
-        "amphora::mac::coarsen_stencil::surface_free_rows", RangePolicy<ExecSpace>(exec, 0, rows * gc.nz),
-        KOKKOS_LAMBDA(int m) {
+        "amphora::mac::coarsen_stencil::surface_free_rows",
+        RangePolicy<ExecSpace>(exec, 0, rows * gc.nz), KOKKOS_LAMBDA(int m) {
           const int J = J0 + m % rows, K = m / rows;
           std::uint8_t all = 1;
           for (int c3 = 0; c3 < 2; ++c3)
@@ -459,7 +476,8 @@ void coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine
 
 /// A new coarse matrix of a fine one, every row coarsened.
 template <class ExecSpace, class MemSpace>
-PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace>& fine_A) {
+PoissonStencil<MemSpace> coarsen_stencil(const ExecSpace& exec,
+                                         const PoissonStencil<MemSpace>& fine_A) {
   PoissonStencil<MemSpace> coarse_A(fine_A.grid.coarsened());
   coarsen_stencil(exec, fine_A, coarse_A, 0);
   return coarse_A;

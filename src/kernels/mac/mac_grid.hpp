@@ -18,7 +18,7 @@ enum class MacCellType : std::uint8_t { fluid = 0, air = 1, solid = 2 };
 
 struct MacGrid {
   int nx = 0, ny = 0, nz = 0;
-  double h = 1.0;                       ///< cell width (cubic cells)
+  double h = 1.0;  ///< cell width (cubic cells)
   /// lower corner of cell (0, 0, 0); a Kokkos::Array, as kernels read it (std::array's
   /// operator[] is host-only on CUDA without relaxed constexpr)
   Kokkos::Array<double, 3> origin{0, 0, 0};

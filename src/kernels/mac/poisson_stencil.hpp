@@ -30,7 +30,9 @@ KOKKOS_INLINE_FUNCTION double ghost_fluid_weight(double phi_fluid, double phi_ai
 }
 
 /// The index of the interior x-row (j, k) among g's ny * nz x-rows (per-row data of a lattice).
-KOKKOS_INLINE_FUNCTION int x_row(const kernels::mac::MacGrid& g, int j, int k) { return j + g.ny * k; }
+KOKKOS_INLINE_FUNCTION int x_row(const kernels::mac::MacGrid& g, int j, int k) {
+  return j + g.ny * k;
+}
 
 template <class MemSpace, class Scalar = double>
 struct PoissonStencil {
@@ -65,8 +67,9 @@ struct PoissonStencil {
   template <class X>
   KOKKOS_INLINE_FUNCTION Scalar neighbour_sum(const X& x, int c) const {
     const int sy = grid.stride_y(), sz = grid.stride_z();
-    return Scalar(cx(c - 1)) * x(c - 1) + Scalar(cx(c)) * x(c + 1) + Scalar(cy(c - sy)) * x(c - sy) +
-           Scalar(cy(c)) * x(c + sy) + Scalar(cz(c - sz)) * x(c - sz) + Scalar(cz(c)) * x(c + sz);
+    return Scalar(cx(c - 1)) * x(c - 1) + Scalar(cx(c)) * x(c + 1) +
+           Scalar(cy(c - sy)) * x(c - sy) + Scalar(cy(c)) * x(c + sy) +
+           Scalar(cz(c - sz)) * x(c - sz) + Scalar(cz(c)) * x(c + sz);
   }
 
   /// Which box faces are walls, as a device-copyable array.
@@ -92,7 +95,8 @@ struct PoissonStencil {
         cz("amphora::mac::cz", g.padded_size()),
         solid("amphora::mac::solid", g.padded_size()),
         solid_share("amphora::mac::solid_share", g.padded_size()),
-        surface_free_rows("amphora::mac::surface_free_rows", static_cast<std::size_t>(g.ny) * g.nz) {}
+        surface_free_rows("amphora::mac::surface_free_rows",
+                          static_cast<std::size_t>(g.ny) * g.nz) {}
 };
 
 /// v = 0 on the ghost planes k = -1 and k = nz, which the flat stencil loops do not visit (the
@@ -101,7 +105,8 @@ template <class ExecSpace, class V>
 void zero_ghost_planes(const ExecSpace& exec, const kernels::mac::MacGrid& g, const V& v) {
   const int plane = g.stride_z(), last = g.end_plane_index();
   Kokkos::parallel_for(
-      "amphora::mac::zero_ghost_planes", RangePolicy<ExecSpace>(exec, 0, plane), KOKKOS_LAMBDA(int c) {
+      "amphora::mac::zero_ghost_planes", RangePolicy<ExecSpace>(exec, 0, plane),
+      KOKKOS_LAMBDA(int c) {
         v(c) = 0.0;
         v(last + c) = 0.0;
       });
@@ -113,7 +118,8 @@ template <class ExecSpace, class V>
 void zero_ghost_cells(const ExecSpace& exec, const kernels::mac::MacGrid& g, const V& v) {
   zero_ghost_planes(exec, g, v);
   Kokkos::parallel_for(
-      "amphora::mac::zero_ghost_columns", RangePolicy<ExecSpace>(exec, 0, (g.ny + 2) * g.nz), KOKKOS_LAMBDA(int row) {
+      "amphora::mac::zero_ghost_columns", RangePolicy<ExecSpace>(exec, 0, (g.ny + 2) * g.nz),
+      KOKKOS_LAMBDA(int row) {
         const int j = row % (g.ny + 2) - 1, k = row / (g.ny + 2);
         v(g.index(-1, j, k)) = 0.0;
         v(g.index(g.nx, j, k)) = 0.0;
@@ -149,14 +155,14 @@ void residual(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const
 /// red_black_gauss_seidel's schedule on devices: one work item per cell of the colour, so
 /// neighbouring threads touch neighbouring addresses (every other cell of an x-row).
 template <class ExecSpace, class MemSpace, class S, class B, class X>
-void red_black_gauss_seidel_cells(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b,
-                                  const X& x, int colour) {
+void red_black_gauss_seidel_cells(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A,
+                                  const B& b, const X& x, int colour) {
   const PoissonStencil<MemSpace, S> a = A;
   const kernels::mac::MacGrid g = A.grid;
   const int half = (g.nx + 1) / 2;
   Kokkos::parallel_for(
-      "amphora::mac::red_black_gauss_seidel_cells", RangePolicy<ExecSpace>(exec, 0, half * g.ny * g.nz),
-      KOKKOS_LAMBDA(int t) {
+      "amphora::mac::red_black_gauss_seidel_cells",
+      RangePolicy<ExecSpace>(exec, 0, half * g.ny * g.nz), KOKKOS_LAMBDA(int t) {
         const int row = t / half, j = row % g.ny, k = row / g.ny;
         const int i = 2 * (t % half) + ((j + k + colour) & 1);
         if (i >= g.nx) return;
@@ -219,7 +225,8 @@ int count_solid(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
   const auto solid = A.solid;
   int n = 0;
   Kokkos::parallel_reduce(
-      "amphora::mac::count_solid", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(solid.extent(0))),
+      "amphora::mac::count_solid",
+      RangePolicy<ExecSpace>(exec, 0, static_cast<int>(solid.extent(0))),
       KOKKOS_LAMBDA(int c, int& acc) { acc += solid(c); }, n);
   return n;
 }
@@ -229,7 +236,8 @@ int count_solid(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
 /// face once exchanged).
 /// Rows below first_row are left as they are.
 template <class ExecSpace, class MemSpace, class S>
-void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, int first_row = 0) {
+void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A,
+                          int first_row = 0) {
   const kernels::mac::MacGrid g = A.grid;
   const auto active = A.inverse_diag;
   const auto solid = A.solid;
@@ -237,8 +245,8 @@ void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, 
   const int sy = g.stride_y(), sz = g.stride_z();
   Kokkos::parallel_for(
       "amphora::mac::compute_solid_shares",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::clamp(first_row, 0, g.ny), 0},
-                                                        {g.nz, g.ny, g.nx}),
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(
+          exec, {0, math::clamp(first_row, 0, g.ny), 0}, {g.nz, g.ny, g.nx}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         const int c = g.index(i, j, k);
         int n = 0;
@@ -263,8 +271,9 @@ void compute_solid_shares(const ExecSpace& exec, const PoissonStencil<MemSpace, 
 /// below which nothing that the stencil reads has changed since A was built (the water module
 /// on tall cells: the row under the lowest band, below which every cell is fluid or solid).
 template <class ExecSpace, class MemSpace, class Types, class Phi>
-void build_poisson_stencil(const ExecSpace& exec, const kernels::mac::MacGrid& g, const Types& type, const Phi& phi,
-                           const kernels::mac::MacBoxBoundaries& box, PoissonStencil<MemSpace>& A, int first_row) {
+void build_poisson_stencil(const ExecSpace& exec, const kernels::mac::MacGrid& g, const Types& type,
+                           const Phi& phi, const kernels::mac::MacBoxBoundaries& box,
+                           PoissonStencil<MemSpace>& A, int first_row) {
   A.box = box;
   const auto d = A.diag, inv = A.inverse_diag;
   const auto cx = A.cx, cy = A.cy, cz = A.cz;
@@ -283,7 +292,8 @@ void build_poisson_stencil(const ExecSpace& exec, const kernels::mac::MacGrid& g
   const int sy = g.stride_y(), sz = g.stride_z();
   const int j0 = math::clamp(first_row, 0, g.ny), rows = g.ny - j0;
   Kokkos::parallel_for(
-      "amphora::mac::build_poisson_stencil", RangePolicy<ExecSpace>(exec, 0, rows * g.nz), KOKKOS_LAMBDA(int row) {
+      "amphora::mac::build_poisson_stencil", RangePolicy<ExecSpace>(exec, 0, rows * g.nz),
+      KOKKOS_LAMBDA(int row) {
         const int j = j0 + row % rows, k = row / rows;
         // per direction -x, +x, -y, +y, -z, +z: the neighbour lies beyond a box face (not
         // another block's), and that face is open
@@ -342,8 +352,9 @@ void build_poisson_stencil(const ExecSpace& exec, const kernels::mac::MacGrid& g
 
 /// A new stencil, every row built.
 template <class ExecSpace, class MemSpace, class Types, class Phi>
-PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec, const kernels::mac::MacGrid& g,
-                                               const Types& type, const Phi& phi,
+PoissonStencil<MemSpace> build_poisson_stencil(const ExecSpace& exec,
+                                               const kernels::mac::MacGrid& g, const Types& type,
+                                               const Phi& phi,
                                                const kernels::mac::MacBoxBoundaries& box) {
   PoissonStencil<MemSpace> A(g);
   build_poisson_stencil(exec, g, type, phi, box, A, 0);
@@ -387,7 +398,8 @@ PoissonStencil<HostMemSpace, S> host_stencil(const PoissonStencil<MemSpace, S>& 
 
 /// The same matrix with d and 1/d in another precision.
 template <class Scalar, class ExecSpace, class MemSpace, class S>
-PoissonStencil<MemSpace, Scalar> convert_stencil(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A) {
+PoissonStencil<MemSpace, Scalar> convert_stencil(const ExecSpace& exec,
+                                                 const PoissonStencil<MemSpace, S>& A) {
   PoissonStencil<MemSpace, Scalar> B;
   B.grid = A.grid;
   B.box = A.box;
@@ -402,8 +414,8 @@ PoissonStencil<MemSpace, Scalar> convert_stencil(const ExecSpace& exec, const Po
   const auto d = A.diag, inv = A.inverse_diag;
   const auto bd = B.diag, binv = B.inverse_diag;
   Kokkos::parallel_for(
-      "amphora::mac::convert_stencil", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(d.extent(0))),
-      KOKKOS_LAMBDA(int c) {
+      "amphora::mac::convert_stencil",
+      RangePolicy<ExecSpace>(exec, 0, static_cast<int>(d.extent(0))), KOKKOS_LAMBDA(int c) {
         bd(c) = static_cast<Scalar>(d(c));
         binv(c) = static_cast<Scalar>(inv(c));
       });

@@ -17,9 +17,11 @@ namespace amphora::kernels::mac {
 namespace detail {
 /// The two cells of face c of component d: L = c - stride, R = c; false if the face is on an
 /// edge of the domain (i == 0 or i == n along d, on a face that is an edge).
-KOKKOS_INLINE_FUNCTION bool face_cells(const kernels::mac::MacGrid& g, const kernels::mac::MacEdges& edges, int d, int i, int j, int k,
-                                       int& L, int& R) {
-  const int idx[3] = {i, j, k}, n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
+KOKKOS_INLINE_FUNCTION bool face_cells(const kernels::mac::MacGrid& g,
+                                       const kernels::mac::MacEdges& edges, int d, int i, int j,
+                                       int k, int& L, int& R) {
+  const int idx[3] = {i, j, k}, n[3] = {g.nx, g.ny, g.nz},
+            stride[3] = {1, g.stride_y(), g.stride_z()};
   R = g.index(i, j, k);
   L = R - stride[d];
   return (idx[d] > 0 || !edges[2 * d]) && (idx[d] < n[d] || !edges[2 * d + 1]);
@@ -31,9 +33,9 @@ KOKKOS_INLINE_FUNCTION bool face_cells(const kernels::mac::MacGrid& g, const ker
 /// costs per listed face, not per face of the lattice (3.6 m pool: the terrain's rows and the
 /// walls, 4 % of the faces).
 template <class ExecSpace, class T>
-Kokkos::View<int*, typename ExecSpace::memory_space> solid_faces(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d,
-                                                                 const T& type,
-                                                                 const kernels::mac::MacEdges& edges = kernels::mac::box_edges()) {
+Kokkos::View<int*, typename ExecSpace::memory_space> solid_faces(
+    const ExecSpace& exec, const kernels::mac::MacGrid& g, int d, const T& type,
+    const kernels::mac::MacEdges& edges = kernels::mac::box_edges()) {
   using kernels::mac::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   const auto touches_solid = KOKKOS_LAMBDA(int n, int& c) {
@@ -68,19 +70,20 @@ Kokkos::View<int*, typename ExecSpace::memory_space> solid_faces(const ExecSpace
 template <class ExecSpace, class L, class F>
 void enforce_solid_faces(const ExecSpace& exec, const L& list, const F& face) {
   Kokkos::parallel_for(
-      "amphora::mac::enforce_solid_faces", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(list.extent(0))),
+      "amphora::mac::enforce_solid_faces",
+      RangePolicy<ExecSpace>(exec, 0, static_cast<int>(list.extent(0))),
       KOKKOS_LAMBDA(int n) { face(list(n)) = 0.0; });
 }
 
 /// b = -(rho h / dt) (sum of outward face velocities) on fluid cells, zero elsewhere.
 template <class ExecSpace, class T, class U, class V, class W, class B>
-void pressure_rhs(const ExecSpace& exec, const kernels::mac::MacGrid& g, const T& type, const U& u, const V& v, const W& w,
-                  double rho, double dt, const B& b) {
+void pressure_rhs(const ExecSpace& exec, const kernels::mac::MacGrid& g, const T& type, const U& u,
+                  const V& v, const W& w, double rho, double dt, const B& b) {
   const int sy = g.stride_y(), sz = g.stride_z();
   const double scale = -rho * g.h / dt;
   Kokkos::parallel_for(
-      "amphora::mac::pressure_rhs", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(g.padded_size())),
-      KOKKOS_LAMBDA(int c) {
+      "amphora::mac::pressure_rhs",
+      RangePolicy<ExecSpace>(exec, 0, static_cast<int>(g.padded_size())), KOKKOS_LAMBDA(int c) {
         int i, j, k;
         g.ijk(c, i, j, k);
         if (!g.interior(i, j, k) || type(c) != kernels::mac::MacCellType::fluid) {
@@ -94,8 +97,9 @@ void pressure_rhs(const ExecSpace& exec, const kernels::mac::MacGrid& g, const T
 /// u -= dt/(rho h) dp on the faces of component d next to fluid (ghost fluid at the surface);
 /// zero on faces touching a solid or the box.
 template <class ExecSpace, class T, class Phi, class P, class F>
-void subtract_pressure_gradient(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d, const T& type, const Phi& phi,
-                                const P& p, double rho, double dt, const F& face,
+void subtract_pressure_gradient(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d,
+                                const T& type, const Phi& phi, const P& p, double rho, double dt,
+                                const F& face,
                                 const kernels::mac::MacEdges& edges = kernels::mac::box_edges()) {
   using kernels::mac::MacCellType;
   const double scale = dt / (rho * g.h);
@@ -125,17 +129,21 @@ void subtract_pressure_gradient(const ExecSpace& exec, const kernels::mac::MacGr
 /// valid(face) = 1 where the face of component d touches fluid and no solid (its velocity is
 /// known after the projection), else 0; on the faces of rows first_row.. (the others keep theirs).
 template <class ExecSpace, class T, class M>
-void mark_fluid_faces(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d, const T& type, const M& valid,
-                      const kernels::mac::MacEdges& edges = kernels::mac::box_edges(), int first_row = 0) {
+void mark_fluid_faces(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d, const T& type,
+                      const M& valid,
+                      const kernels::mac::MacEdges& edges = kernels::mac::box_edges(),
+                      int first_row = 0) {
   using kernels::mac::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   Kokkos::parallel_for(
       "amphora::mac::mark_fluid_faces",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::min(first_row, ey), 0}, {ez, ey, ex}),
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::min(first_row, ey), 0},
+                                                        {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         int L, R;
         const bool inside = detail::face_cells(g, edges, d, i, j, k, L, R);
-        const bool solid = !inside || type(L) == MacCellType::solid || type(R) == MacCellType::solid;
+        const bool solid =
+            !inside || type(L) == MacCellType::solid || type(R) == MacCellType::solid;
         valid(R) = !solid && (type(L) == MacCellType::fluid || type(R) == MacCellType::fluid);
       });
 }
@@ -163,18 +171,22 @@ int lowest_air_row(const ExecSpace& exec, const kernels::mac::MacGrid& g, const 
 /// second buffer. Marks: 1 = known (next to fluid), 0 = unknown. Rows below first_row are
 /// skipped: pass lowest_air_row(), below which no face lies between two air cells.
 template <class ExecSpace, class T, class F, class M>
-void extrapolate_layer(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d, const T& type, const F& face,
-                       const M& mark, int layer, const kernels::mac::MacEdges& edges = kernels::mac::box_edges(), int first_row = 0) {
+void extrapolate_layer(const ExecSpace& exec, const kernels::mac::MacGrid& g, int d, const T& type,
+                       const F& face, const M& mark, int layer,
+                       const kernels::mac::MacEdges& edges = kernels::mac::box_edges(),
+                       int first_row = 0) {
   using kernels::mac::MacCellType;
   const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
   const int sy = g.stride_y(), sz = g.stride_z();
   Kokkos::parallel_for(
       "amphora::mac::extrapolate_layer",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::min(first_row, ey), 0}, {ez, ey, ex}),
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::min(first_row, ey), 0},
+                                                        {ez, ey, ex}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         int L, R;
         const bool inside = detail::face_cells(g, edges, d, i, j, k, L, R);
-        if (mark(R) || !inside || type(L) == MacCellType::solid || type(R) == MacCellType::solid) return;
+        if (mark(R) || !inside || type(L) == MacCellType::solid || type(R) == MacCellType::solid)
+          return;
         const int idx[3] = {i, j, k}, ext[3] = {ex, ey, ez}, stride[3] = {1, sy, sz};
         // the last face before another block is that block's first: it computes it (its
         // neighbours beyond lie outside this block's lattice) and the exchange brings it
@@ -183,7 +195,8 @@ void extrapolate_layer(const ExecSpace& exec, const kernels::mac::MacGrid& g, in
         int n = 0;
         for (int e = 0; e < 3; ++e) {
           for (int side = -1; side <= 1; side += 2) {
-            if ((side < 0 && idx[e] == 0 && edges[2 * e]) || (side > 0 && idx[e] + 1 >= ext[e] && edges[2 * e + 1]))
+            if ((side < 0 && idx[e] == 0 && edges[2 * e]) ||
+                (side > 0 && idx[e] + 1 >= ext[e] && edges[2 * e + 1]))
               continue;
             const int nb = R + side * stride[e];
             const int m = mark(nb);

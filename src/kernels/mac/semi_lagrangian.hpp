@@ -12,8 +12,10 @@ namespace detail {
 /// The departure point, in cell widths, of sample (i, j, k) of staggering s at q (cell widths)
 /// traced back over dt with the midpoint rule.
 template <class U, class V, class W>
-KOKKOS_FORCEINLINE_FUNCTION void departure_point(const kernels::mac::MacGrid& g, Staggering s, int i, int j, int k, const U& u,
-                                                 const V& v, const W& w, double dt, const double q[3], double out[3]) {
+KOKKOS_FORCEINLINE_FUNCTION void departure_point(const kernels::mac::MacGrid& g, Staggering s,
+                                                 int i, int j, int k, const U& u, const V& v,
+                                                 const W& w, double dt, const double q[3],
+                                                 double out[3]) {
   const double scale = dt / g.h;  // velocity x dt in cell widths
   double vel[3], mid[3];
   velocity_at_sample(g, s, i, j, k, u, v, w, vel);
@@ -25,8 +27,10 @@ KOKKOS_FORCEINLINE_FUNCTION void departure_point(const kernels::mac::MacGrid& g,
 
 /// The semi-Lagrangian value of sample (i, j, k) of q (staggering s) after dt.
 template <class Q, class U, class V, class W>
-KOKKOS_FORCEINLINE_FUNCTION double semi_lagrangian_sample(const kernels::mac::MacGrid& g, Staggering s, int i, int j, int k, const Q& q,
-                                                     const U& u, const V& v, const W& w, double dt) {
+KOKKOS_FORCEINLINE_FUNCTION double semi_lagrangian_sample(const kernels::mac::MacGrid& g,
+                                                          Staggering s, int i, int j, int k,
+                                                          const Q& q, const U& u, const V& v,
+                                                          const W& w, double dt) {
   // the sample's position in cell widths from the box corner
   const double x[3] = {i + (s == Staggering::x ? 0.0 : 0.5), j + (s == Staggering::y ? 0.0 : 0.5),
                        k + (s == Staggering::z ? 0.0 : 0.5)};

@@ -33,16 +33,18 @@ KOKKOS_INLINE_FUNCTION double component(int e, const U& u, const V& v, const W& 
 /// q - dt/h sum_e (F_e+ - F_e-), F = U q_upwind with U the velocity normal to the control
 /// volume's face (component e averaged over the two samples that share it).
 template <class Q, class U, class V, class W>
-KOKKOS_INLINE_FUNCTION double conservative_upwind_sample(const kernels::mac::MacGrid& g, int d, int c, const Q& q, const U& u,
-                                                         const V& v, const W& w, double dt) {
+KOKKOS_INLINE_FUNCTION double conservative_upwind_sample(const kernels::mac::MacGrid& g, int d,
+                                                         int c, const Q& q, const U& u, const V& v,
+                                                         const W& w, double dt) {
   const int stride[3] = {1, g.stride_y(), g.stride_z()};
   const int sd = stride[d];
   double net = 0.0;
   for (int e = 0; e < 3; ++e) {
     const int se = stride[e];
     // along d the control volume's faces are cell centres; across it, cell edges
-    const double up = e == d ? 0.5 * (component(e, u, v, w, c) + component(e, u, v, w, c + sd))
-                             : 0.5 * (component(e, u, v, w, c + se) + component(e, u, v, w, c + se - sd));
+    const double up =
+        e == d ? 0.5 * (component(e, u, v, w, c) + component(e, u, v, w, c + sd))
+               : 0.5 * (component(e, u, v, w, c + se) + component(e, u, v, w, c + se - sd));
     const double down = e == d ? 0.5 * (component(e, u, v, w, c - sd) + component(e, u, v, w, c))
                                : 0.5 * (component(e, u, v, w, c) + component(e, u, v, w, c - sd));
     net += up * (up > 0.0 ? q(c) : q(c + se)) - down * (down > 0.0 ? q(c - se) : q(c));
@@ -52,8 +54,8 @@ KOKKOS_INLINE_FUNCTION double conservative_upwind_sample(const kernels::mac::Mac
 
 namespace detail {
 /// sum_{x = x0}^{x1 - 1} (a0 + a1 x)(b0 + b1 x)(w0 + w1 x), by the power sums of x^0..x^3.
-KOKKOS_INLINE_FUNCTION double cubic_sum(double a0, double a1, double b0, double b1, double w0, double w1, int x0,
-                                        int x1) {
+KOKKOS_INLINE_FUNCTION double cubic_sum(double a0, double a1, double b0, double b1, double w0,
+                                        double w1, int x0, int x1) {
   if (x1 <= x0) return 0.0;
   const auto powers = [](double n, double S[4]) {  // sum_{x=0}^{n-1} x^k
     const double t = 0.5 * n * (n - 1.0);
@@ -72,8 +74,8 @@ KOKKOS_INLINE_FUNCTION double cubic_sum(double a0, double a1, double b0, double 
 /// The rows [lo, hi) where the samples of component e in sample column (i, k) are linear in
 /// height (its tall rows; none for a column outside the block and its ghost ring).
 template <class MemSpace>
-KOKKOS_INLINE_FUNCTION void linear_rows(const kernels::mac::TallCellColumns<MemSpace>& T, int e, int i, int k, int& lo,
-                                        int& hi) {
+KOKKOS_INLINE_FUNCTION void linear_rows(const kernels::mac::TallCellColumns<MemSpace>& T, int e,
+                                        int i, int k, int& lo, int& hi) {
   const kernels::mac::MacGrid& g = T.grid;
   const bool inside = i >= (e == 0 ? 0 : -1) && i <= g.nx && k >= (e == 2 ? 0 : -1) && k <= g.nz;
   lo = hi = 0;
@@ -87,8 +89,9 @@ KOKKOS_INLINE_FUNCTION void linear_rows(const kernels::mac::TallCellColumns<MemS
 /// all four samples are linear in height (rows [lin_lo, lin_hi)) the sums come in closed form
 /// from each sample's two end values, split where U changes sign; elsewhere row by row.
 template <class Q, class U, class V, class W>
-KOKKOS_INLINE_FUNCTION void upwind_flux_sums(const kernels::mac::MacGrid& g, int e, int a, int b, int l, int r, int lo, int hi,
-                                             int lin_lo, int lin_hi, double mid, const Q& q, const U& u, const V& v,
+KOKKOS_INLINE_FUNCTION void upwind_flux_sums(const kernels::mac::MacGrid& g, int e, int a, int b,
+                                             int l, int r, int lo, int hi, int lin_lo, int lin_hi,
+                                             double mid, const Q& q, const U& u, const V& v,
                                              const W& w, double& sum, double& moment) {
   const int sy = g.stride_y();
   int s0 = math::max(lo, lin_lo), s1 = math::min(hi, lin_hi);
@@ -103,10 +106,13 @@ KOKKOS_INLINE_FUNCTION void upwind_flux_sums(const kernels::mac::MacGrid& g, int
   if (s1 == s0) return;
   // x = j - s0 in [0, n): each sample f0 + f1 x from its values at both ends
   const int n = s1 - s0, top = (n - 1) * sy;
-  const auto line = [&](double at0, double at1, double& f0, double& f1) { f0 = at0, f1 = (at1 - at0) / (n - 1); };
+  const auto line = [&](double at0, double at1, double& f0, double& f1) {
+    f0 = at0, f1 = (at1 - at0) / (n - 1);
+  };
   double U0, U1, L0, L1, R0, R1;
   line(0.5 * (component(e, u, v, w, a + s0 * sy) + component(e, u, v, w, b + s0 * sy)),
-       0.5 * (component(e, u, v, w, a + s0 * sy + top) + component(e, u, v, w, b + s0 * sy + top)), U0, U1);
+       0.5 * (component(e, u, v, w, a + s0 * sy + top) + component(e, u, v, w, b + s0 * sy + top)),
+       U0, U1);
   line(q(l + s0 * sy), q(l + s0 * sy + top), L0, L1);
   line(q(r + s0 * sy), q(r + s0 * sy + top), R0, R1);
   // the rows [x_pos, x_end) where U > 0 (a prefix or a suffix of [0, n))
@@ -120,7 +126,7 @@ KOKKOS_INLINE_FUNCTION void upwind_flux_sums(const kernels::mac::MacGrid& g, int
     else
       x_end = math::max(static_cast<int>(math::ceil(root)), 0);
   }
-  const double t0 = s0 - mid;  // j - mid = t0 + x
+  const double t0 = s0 - mid;                                                // j - mid = t0 + x
   const int neg_lo = x_pos > 0 ? 0 : x_end, neg_hi = x_pos > 0 ? x_pos : n;  // the other rows
   sum += detail::cubic_sum(U0, U1, L0, L1, 1.0, 0.0, x_pos, x_end) +
          detail::cubic_sum(U0, U1, R0, R1, 1.0, 0.0, neg_lo, neg_hi);
@@ -140,9 +146,10 @@ constexpr int min_tall_sample_rows = 3;
 /// not per lattice row inside it. The fields must be linear in height in the tall cells of T
 /// (fit_linear_in_tall_cells; the pressure projection keeps them so).
 template <class MemSpace, class Q, class U, class V, class W>
-KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const kernels::mac::TallCellColumns<MemSpace>& T, int d, int i, int k,
-                                                  int lo, int hi, const Q& q, const U& u, const V& v, const W& w,
-                                                  double dt, double& mean, double& slope) {
+KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const kernels::mac::TallCellColumns<MemSpace>& T,
+                                                  int d, int i, int k, int lo, int hi, const Q& q,
+                                                  const U& u, const V& v, const W& w, double dt,
+                                                  double& mean, double& slope) {
   const kernels::mac::MacGrid& g = T.grid;
   const int sy = g.stride_y(), c0 = g.index(i, 0, k);
   const int stride[3] = {1, sy, g.stride_z()};
@@ -171,7 +178,8 @@ KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const kernels::mac::TallCellCo
         lin_lo = math::max(lin_lo, a - off[m][1]), lin_hi = math::min(lin_hi, b - off[m][1]);
       }
       double S = 0.0, M = 0.0;
-      upwind_flux_sums(g, e, idx[0], idx[1], idx[2], idx[3], lo, hi, lin_lo, lin_hi, mid, q, u, v, w, S, M);
+      upwind_flux_sums(g, e, idx[0], idx[1], idx[2], idx[3], lo, hi, lin_lo, lin_hi, mid, q, u, v,
+                       w, S, M);
       sum += side == 0 ? S : -S, moment += side == 0 ? M : -M;
     }
   // q itself is linear here: its sum and first moment from its end values
@@ -200,12 +208,13 @@ KOKKOS_INLINE_FUNCTION void tall_range_upwind_fit(const kernels::mac::TallCellCo
 /// q, u, v, w, phi and T live on T.grid; q_new on `out`, whose sample (i, j, k) is T.grid's
 /// (i + out_offset[0], j, k + out_offset[2]) (a block inside its widened grid: the traces near
 /// the block's faces read the neighbours' cells). Cell samples (s == centre) in rows below
-/// first_row are not written: pass kernels::mac::lowest_band(), below which they all lie in tall cells or
-/// under the terrain, with q_new holding q there already.
+/// first_row are not written: pass kernels::mac::lowest_band(), below which they all lie in tall
+/// cells or under the terrain, with q_new holding q there already.
 template <class ExecSpace, class MemSpace, class Q, class QN, class U, class V, class W, class P>
-void advect(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, Staggering s, const Q& q, const QN& q_new,
-            const U& u, const V& v, const W& w, double dt, const P& phi, double reach, const kernels::mac::MacGrid& out,
-            const int out_offset[3], int first_row = 0) {
+void advect(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, Staggering s,
+            const Q& q, const QN& q_new, const U& u, const V& v, const W& w, double dt,
+            const P& phi, double reach, const kernels::mac::MacGrid& out, const int out_offset[3],
+            int first_row = 0) {
   const kernels::mac::MacGrid g = T.grid, go = out;
   const int d = static_cast<int>(s), oi = out_offset[0], ok = out_offset[2];
   const int ex = go.nx + (d == 0), ey = go.ny + (d == 1), ez = go.nz + (d == 2);
@@ -213,12 +222,13 @@ void advect(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>
   const int below = d == 0 ? 1 : d == 1 ? g.stride_y() : d == 2 ? g.stride_z() : 0;
   // per sample column: its tall rows [lo, hi), the rows [wlo, whi) written from the line (or
   // copied, for cell samples), and the line
-  Kokkos::View<int* [4], MemSpace> rows(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::mac::tall_rows"),
-                                        ex * ez);
-  Kokkos::View<double* [2], MemSpace> line(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::mac::tall_line"),
-                                           ex * ez);
+  Kokkos::View<int* [4], MemSpace> rows(
+      Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::mac::tall_rows"), ex * ez);
+  Kokkos::View<double* [2], MemSpace> line(
+      Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::mac::tall_line"), ex * ez);
   Kokkos::parallel_for(
-      "amphora::mac::advect::tall_lines", RangePolicy<ExecSpace>(exec, 0, ex * ez), KOKKOS_LAMBDA(int m) {
+      "amphora::mac::advect::tall_lines", RangePolicy<ExecSpace>(exec, 0, ex * ez),
+      KOKKOS_LAMBDA(int m) {
         const int I = m % ex + oi, K = m / ex + ok;
         int lo, hi;
         T.tall_rows(d, I, K, lo, hi);
@@ -229,7 +239,8 @@ void advect(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>
           tall_range_upwind_fit(T, d, I, K, lo, hi, q, u, v, w, dt, line(m, 0), line(m, 1));
       });
   Kokkos::parallel_for(
-      "amphora::mac::advect::samples", RangePolicy<ExecSpace>(exec, 0, rows_written * ez), KOKKOS_LAMBDA(int row) {
+      "amphora::mac::advect::samples", RangePolicy<ExecSpace>(exec, 0, rows_written * ez),
+      KOKKOS_LAMBDA(int row) {
         const int j = j0 + row % rows_written, k = row / rows_written, K = k + ok;
         for (int i = 0; i < ex; ++i) {
           const int m = i + ex * k, I = i + oi;
@@ -249,26 +260,31 @@ void advect(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>
 
 /// The same on T.grid itself.
 template <class ExecSpace, class MemSpace, class Q, class QN, class U, class V, class W, class P>
-void advect(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, Staggering s, const Q& q, const QN& q_new,
-            const U& u, const V& v, const W& w, double dt, const P& phi, double reach) {
+void advect(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, Staggering s,
+            const Q& q, const QN& q_new, const U& u, const V& v, const W& w, double dt,
+            const P& phi, double reach) {
   const int none[3] = {0, 0, 0};
   advect(exec, T, s, q, q_new, u, v, w, dt, phi, reach, T.grid, none);
 }
 
 /// One pseudo-time step of reinitialisation in the uniform cells (tall cells keep phi). Rows
-/// below first_row are not written (as in advect: pass kernels::mac::lowest_band(), phi_new holding phi
-/// there already).
+/// below first_row are not written (as in advect: pass kernels::mac::lowest_band(), phi_new holding
+/// phi there already).
 template <class ExecSpace, class MemSpace, class P0, class P, class PN>
-void reinitialise_step(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, const P0& phi0, const P& phi,
-                       const PN& phi_new, const kernels::mac::MacEdges& edges = kernels::mac::box_edges(), int first_row = 0) {
+void reinitialise_step(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T,
+                       const P0& phi0, const P& phi, const PN& phi_new,
+                       const kernels::mac::MacEdges& edges = kernels::mac::box_edges(),
+                       int first_row = 0) {
   const kernels::mac::MacGrid g = T.grid;
   Kokkos::parallel_for(
       "amphora::mac::reinitialise_step_tall_cells",
-      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, math::clamp(first_row, 0, g.ny), 0},
-                                                        {g.nz, g.ny, g.nx}),
+      Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(
+          exec, {0, math::clamp(first_row, 0, g.ny), 0}, {g.nz, g.ny, g.nx}),
       KOKKOS_LAMBDA(int k, int j, int i) {
         const int c = g.index(i, j, k);
-        phi_new(c) = T.in_tall_cell(-1, i, j, k) ? double(phi(c)) : reinitialised_value(g, edges, phi0, phi, i, j, k);
+        phi_new(c) = T.in_tall_cell(-1, i, j, k)
+                         ? double(phi(c))
+                         : reinitialised_value(g, edges, phi0, phi, i, j, k);
       });
 }
 
@@ -278,13 +294,15 @@ void reinitialise_step(const ExecSpace& exec, const kernels::mac::TallCellColumn
 /// tall rows are the same under T and `fitted` is left alone: refitting a line changes it only
 /// at round-off. Most columns keep their rows from one sub-step to the next.
 template <class ExecSpace, class MemSpace, class F>
-void fit_linear_in_tall_cells(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, int d, const F& f,
+void fit_linear_in_tall_cells(const ExecSpace& exec,
+                              const kernels::mac::TallCellColumns<MemSpace>& T, int d, const F& f,
                               const kernels::mac::TallCellColumns<MemSpace>& fitted = {}) {
   const kernels::mac::MacGrid g = T.grid;
   const int ex = g.nx + (d == 0), ez = g.nz + (d == 2), sy = g.stride_y();
   const bool skip_fitted = fitted.terrain.extent(0) > 0;
   Kokkos::parallel_for(
-      "amphora::mac::fit_linear_in_tall_cells", RangePolicy<ExecSpace>(exec, 0, ex * ez), KOKKOS_LAMBDA(int m) {
+      "amphora::mac::fit_linear_in_tall_cells", RangePolicy<ExecSpace>(exec, 0, ex * ez),
+      KOKKOS_LAMBDA(int m) {
         const int i = m % ex, k = m / ex;
         int lo, hi;
         T.tall_rows(d, i, k, lo, hi);
@@ -316,8 +334,8 @@ void fit_linear_in_tall_cells(const ExecSpace& exec, const kernels::mac::TallCel
 /// cell's are, the sum is convex in height (a sum of maxima of |linear|), so only the ends of
 /// those rows are read, whatever the tall cell's height.
 template <class ExecSpace, class MemSpace, class U, class V, class W>
-double tall_cell_speed(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, const U& u, const V& v,
-                       const W& w) {
+double tall_cell_speed(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T,
+                       const U& u, const V& v, const W& w) {
   const kernels::mac::MacGrid g = T.grid;
   const int sy = g.stride_y(), sz = g.stride_z();
   double speed = 0.0;
@@ -354,8 +372,8 @@ double tall_cell_speed(const ExecSpace& exec, const kernels::mac::TallCellColumn
 /// must be linear in height there (as for tall_cell_speed), so only the ends of each sample
 /// column's rows are read: the caller measures the lattice from `below` up.
 template <class ExecSpace, class MemSpace, class F>
-double tall_rows_max_abs(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T, int d, const F& f,
-                         int below) {
+double tall_rows_max_abs(const ExecSpace& exec, const kernels::mac::TallCellColumns<MemSpace>& T,
+                         int d, const F& f, int below) {
   const kernels::mac::MacGrid g = T.grid;
   const int ex = g.nx + (d == 0), ez = g.nz + (d == 2);
   double largest = 0.0;

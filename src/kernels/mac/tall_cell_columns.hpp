@@ -29,14 +29,17 @@ KOKKOS_INLINE_FUNCTION void fluid_run(int ny, const IsFluid& fluid, int& terrain
 
 /// A column's band for a tall cell from the terrain up to `band`: band itself, or the terrain
 /// (no tall cell) if that leaves fewer than the two rows its two samples need.
-KOKKOS_INLINE_FUNCTION int tall_cell_band(int terrain, int band) { return band - terrain < 2 ? terrain : band; }
+KOKKOS_INLINE_FUNCTION int tall_cell_band(int terrain, int band) {
+  return band - terrain < 2 ? terrain : band;
+}
 
 /// Rows of one column from its fluid cells: terrain = the lowest fluid row, band = the lowest
 /// uniform row, optical_depth uniform rows below the lowest non-fluid row above the terrain
 /// (tall_cell_band: no tall cell of fewer than two rows).
 AMPHORA_EXEC_CHECK_DISABLE
 template <class IsFluid>
-KOKKOS_INLINE_FUNCTION void tall_cell_rows(int ny, int optical_depth, const IsFluid& fluid, int& terrain, int& band) {
+KOKKOS_INLINE_FUNCTION void tall_cell_rows(int ny, int optical_depth, const IsFluid& fluid,
+                                           int& terrain, int& band) {
   int top;
   fluid_run(ny, fluid, terrain, top);
   band = tall_cell_band(terrain, top - optical_depth);
@@ -57,7 +60,9 @@ struct TallCellColumns {
         band("amphora::tall::band", static_cast<std::size_t>(g.nx + 2) * (g.nz + 2)) {}
 
   /// Index of column (i, k), i = -1..nx, k = -1..nz.
-  KOKKOS_INLINE_FUNCTION int column(int i, int k) const { return (i + 1) + (grid.nx + 2) * (k + 1); }
+  KOKKOS_INLINE_FUNCTION int column(int i, int k) const {
+    return (i + 1) + (grid.nx + 2) * (k + 1);
+  }
 
   /// Rows [lo, hi) of the samples in tall cells of the field with staggering d (-1: cell
   /// centres, 0/1/2: faces normal to x/y/z) in sample column (i, k): the tall cell's rows for
@@ -96,7 +101,8 @@ void find_tall_cell_columns(const ExecSpace& exec, const Types& type, int optica
   const auto terrain = columns.terrain, band = columns.band;
   const int nx2 = g.nx + 2;
   Kokkos::parallel_for(
-      "amphora::mac::find_tall_cell_columns", RangePolicy<ExecSpace>(exec, 0, nx2 * (g.nz + 2)), KOKKOS_LAMBDA(int col) {
+      "amphora::mac::find_tall_cell_columns", RangePolicy<ExecSpace>(exec, 0, nx2 * (g.nz + 2)),
+      KOKKOS_LAMBDA(int col) {
         const int i = col % nx2 - 1, k = col / nx2 - 1;
         const auto fluid = [&](int j) { return type(g.index(i, j, k)) == MacCellType::fluid; };
         int t, b;
@@ -117,7 +123,8 @@ int lowest_band(const ExecSpace& exec, const TallCellColumns<MemSpace>& T, const
   Kokkos::parallel_reduce(
       "amphora::mac::lowest_band", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz),
       KOKKOS_LAMBDA(int m, int& acc) {
-        const int i = m % g.nx, k = m / g.nx, col = T.column(i, k), t = T.terrain(col), b = T.band(col);
+        const int i = m % g.nx, k = m / g.nx, col = T.column(i, k), t = T.terrain(col),
+                  b = T.band(col);
         int j = 0;
         while (j < t && type(g.index(i, j, k)) == MacCellType::solid) ++j;
         acc = math::min(acc, b > t && j == t ? b : 0);

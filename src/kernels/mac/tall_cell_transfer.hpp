@@ -10,19 +10,24 @@
 namespace amphora::kernels::mac {
 
 template <class ExecSpace, class MemSpace, class Y, class L>
-void tall_cell_prolongate(const ExecSpace& exec, const kernels::mac::TallCellLayout<MemSpace>& T, const Y& y, const L& lattice) {
+void tall_cell_prolongate(const ExecSpace& exec, const kernels::mac::TallCellLayout<MemSpace>& T,
+                          const Y& y, const L& lattice) {
   const kernels::mac::MacGrid g = T.grid;
   Kokkos::parallel_for(
       "amphora::mac::tall_cell_prolongate",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz, g.ny, g.nx}),
-      KOKKOS_LAMBDA(int k, int j, int i) { lattice(g.index(i, j, k)) = T.lattice_value(i, j, k, y); });
+      KOKKOS_LAMBDA(int k, int j, int i) {
+        lattice(g.index(i, j, k)) = T.lattice_value(i, j, k, y);
+      });
 }
 
 template <class ExecSpace, class MemSpace, class L, class Y>
-void tall_cell_restrict(const ExecSpace& exec, const kernels::mac::TallCellLayout<MemSpace>& T, const L& lattice, const Y& y) {
+void tall_cell_restrict(const ExecSpace& exec, const kernels::mac::TallCellLayout<MemSpace>& T,
+                        const L& lattice, const Y& y) {
   const kernels::mac::MacGrid g = T.grid;
   Kokkos::parallel_for(
-      "amphora::mac::tall_cell_restrict", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz), KOKKOS_LAMBDA(int col) {
+      "amphora::mac::tall_cell_restrict", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz),
+      KOKKOS_LAMBDA(int col) {
         const int i = col % g.nx, k = col / g.nx;
         const int j0 = T.terrain(col), jb = T.band(col);
         if (jb > j0) {
@@ -58,10 +63,12 @@ struct TallCellGram {
 
 /// y = (P^T P)^-1 y, tall cell by tall cell.
 template <class ExecSpace, class MemSpace, class Y>
-void tall_cell_gram_solve(const ExecSpace& exec, const kernels::mac::TallCellLayout<MemSpace>& T, const Y& y) {
+void tall_cell_gram_solve(const ExecSpace& exec, const kernels::mac::TallCellLayout<MemSpace>& T,
+                          const Y& y) {
   const kernels::mac::MacGrid g = T.grid;
   Kokkos::parallel_for(
-      "amphora::mac::tall_cell_gram_solve", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz), KOKKOS_LAMBDA(int col) {
+      "amphora::mac::tall_cell_gram_solve", RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz),
+      KOKKOS_LAMBDA(int col) {
         const int j0 = T.terrain(col), jb = T.band(col);
         if (jb <= j0) return;
         const TallCellGram G(jb - j0);

@@ -96,8 +96,7 @@ Bins<typename ExecSpace::memory_space> bin_points(const ExecSpace& exec, const C
       });
   // The fill order within a cell depends on thread timing: sort each (short) cell list.
   Kokkos::parallel_for(
-      "amphora::bin_points::sort_cells", RangePolicy<ExecSpace>(exec, 0, nc),
-      KOKKOS_LAMBDA(int c) {
+      "amphora::bin_points::sort_cells", RangePolicy<ExecSpace>(exec, 0, nc), KOKKOS_LAMBDA(int c) {
         for (int a = offsets(c) + 1; a < offsets(c + 1); ++a) {
           const int p = perm(a);
           const auto k = key(p);

@@ -66,7 +66,8 @@ KOKKOS_INLINE_FUNCTION int own_entry(const List& L, const Keys& key, int j, std:
 /// with more than 32 own pairs keep their tail always "set"); it spares the loop the state
 /// traffic of the many listed neighbours that do not touch, and is kept up to date here.
 template <class ExecSpace, class Law>
-void pair_sums_by_slabs(const ExecSpace& exec, const SlabSchedule<typename ExecSpace::memory_space>& S,
+void pair_sums_by_slabs(const ExecSpace& exec,
+                        const SlabSchedule<typename ExecSpace::memory_space>& S,
                         const HalfPairList<typename ExecSpace::memory_space>& L,
                         const Spheres<typename ExecSpace::memory_space>& G, int n_owned,
                         const Kokkos::View<unsigned*, typename ExecSpace::memory_space>& live,
@@ -81,8 +82,8 @@ void pair_sums_by_slabs(const ExecSpace& exec, const SlabSchedule<typename ExecS
   const int n = n_owned;
   for (int colour = 0; colour < 2; ++colour) {
     // Slabs hold unequal numbers of rows: one at a time to whichever thread is free.
-    using Slabs = Kokkos::RangePolicy<ExecSpace, Kokkos::Schedule<Kokkos::Dynamic>,
-                                      Kokkos::IndexType<int>>;
+    using Slabs =
+        Kokkos::RangePolicy<ExecSpace, Kokkos::Schedule<Kokkos::Dynamic>, Kokkos::IndexType<int>>;
     Kokkos::parallel_for(
         "amphora::particles::pair_sums_by_slabs",
         Slabs(exec, S.colour_slabs[colour], S.colour_slabs[colour + 1], Kokkos::ChunkSize(1)),

@@ -22,7 +22,8 @@ struct CellNeighborSearch {
   template <class Visitor>
   KOKKOS_INLINE_FUNCTION void for_each(int i, Visitor&& visit) const {
     const int c = cell(i);
-    const int ci = c % grid.n[0], cj = (c / grid.n[0]) % grid.n[1], ck = c / (grid.n[0] * grid.n[1]);
+    const int ci = c % grid.n[0], cj = (c / grid.n[0]) % grid.n[1],
+              ck = c / (grid.n[0] * grid.n[1]);
     const double xi = x(i, 0), yi = x(i, 1), zi = x(i, 2), ri = radius(i);
     for (int kk = ck > 0 ? ck - 1 : 0; kk <= ck + 1 && kk < grid.n[2]; ++kk) {
       for (int jj = cj > 0 ? cj - 1 : 0; jj <= cj + 1 && jj < grid.n[1]; ++jj) {
@@ -59,8 +60,8 @@ NeighborList<typename ExecSpace::memory_space> build_verlet_list(
   list.offsets = Kokkos::View<int*, Mem>("amphora::build_verlet_list::offsets", n_rows + 1);
   const auto offsets = list.offsets;
 
-  const CellNeighborSearch<Mem, Positions, Radii> search{grid, bins.offsets, bins.permutation,
-                                                        bins.cell, x, radius, skin};
+  const CellNeighborSearch<Mem, Positions, Radii> search{
+      grid, bins.offsets, bins.permutation, bins.cell, x, radius, skin};
   Kokkos::parallel_for(
       "amphora::build_verlet_list::count", RangePolicy<ExecSpace>(exec, 0, n_rows),
       KOKKOS_LAMBDA(int i) {
@@ -108,8 +109,7 @@ Kokkos::View<int*, typename ExecSpace::memory_space> half_starts(
     const ExecSpace& exec, const NeighborList<typename ExecSpace::memory_space>& list,
     const Ids& key) {
   const int rows = list.rows();
-  Kokkos::View<int*, typename ExecSpace::memory_space> half("amphora::particles::half_start",
-                                                             rows);
+  Kokkos::View<int*, typename ExecSpace::memory_space> half("amphora::particles::half_start", rows);
   const auto off = list.offsets;
   const auto nbr = list.neighbors;
   Kokkos::parallel_for(

@@ -52,7 +52,8 @@ struct BatchDofAccess {
       const int ny = cell[1] * k + r % n_p;
       const int nz = dim == 3 ? cell[2] * k + r / n_p : 0;
       ix.rows[r] = sx * lattice.dof_1d(1, ny) + (dim == 3 ? sxy * lattice.dof_1d(2, nz) : 0);
-      ix.row_constrained[r] = lattice.constrained_1d(1, ny) || (dim == 3 && lattice.constrained_1d(2, nz));
+      ix.row_constrained[r] =
+          lattice.constrained_1d(1, ny) || (dim == 3 && lattice.constrained_1d(2, nz));
     }
   }
   /// The rest, for the batch whose lane 0 is cell `cell` (batch_cell), after row_index for its
@@ -152,9 +153,11 @@ struct BatchDofAccess {
   /// Asks for the cache lines of a fast batch's rows, moved along them by `shift` entries (the
   /// next batch of the row: W k), to be brought into L2 (for writing with `write`). A hint:
   /// does nothing on devices (prefetch_line).
-  KOKKOS_INLINE_FUNCTION void prefetch(const double* base, const BatchIndex& ix, bool write, long shift = 0) const {
+  KOKKOS_INLINE_FUNCTION void prefetch(const double* base, const BatchIndex& ix, bool write,
+                                       long shift = 0) const {
     if (!ix.fast) return;
-    for (int r = 0; r < n_rows; ++r) prefetch_row<into_l2>(base + ix.rows[r] + ix.start + shift, write);
+    for (int r = 0; r < n_rows; ++r)
+      prefetch_row<into_l2>(base + ix.rows[r] + ix.start + shift, write);
   }
   /// The lines of one fast row of a batch (its W cells' nodes, W k + 1 entries) from p.
   template <int target>
@@ -165,8 +168,10 @@ struct BatchDofAccess {
 
   template <bool atomic>
   KOKKOS_INLINE_FUNCTION static void add(double* p, double v) {
-    if constexpr (atomic) Kokkos::atomic_add(p, v);
-    else *p += v;
+    if constexpr (atomic)
+      Kokkos::atomic_add(p, v);
+    else
+      *p += v;
   }
 
   /// f(n, l, node) for every local node n and lane l of batch b, with the lattice node of that
@@ -190,17 +195,20 @@ struct BatchDofAccess {
 
   /// x = a blocked field on the unwrapped node lattice (coordinates), lanes clamped.
   KOKKOS_INLINE_FUNCTION void gather_nodes(const double* src, int b, T* x) const {
-    for_each_lane_node(b, [&](int n, int l, const int* node) { x[n][l] = src[lattice.node_index(node)]; });
+    for_each_lane_node(
+        b, [&](int n, int l, const int* node) { x[n][l] = src[lattice.node_index(node)]; });
   }
 
   /// u = src at the batch's nodes, constrained DoFs included (fields, not unknowns).
   KOKKOS_INLINE_FUNCTION void gather_unconstrained(const double* src, int b, T* u) const {
-    for_each_lane_node(b, [&](int n, int l, const int* node) { u[n][l] = src[lattice.dof_index(node)]; });
+    for_each_lane_node(
+        b, [&](int n, int l, const int* node) { u[n][l] = src[lattice.dof_index(node)]; });
   }
 
   /// Inverse multiplicities of the batch's nodes (cells sharing each node), lanes clamped.
   KOKKOS_INLINE_FUNCTION void inverse_multiplicity(int b, T* w) const {
-    for_each_lane_node(b, [&](int n, int l, const int* node) { w[n][l] = 1.0 / lattice.multiplicity(node); });
+    for_each_lane_node(
+        b, [&](int n, int l, const int* node) { w[n][l] = 1.0 / lattice.multiplicity(node); });
   }
 };
 

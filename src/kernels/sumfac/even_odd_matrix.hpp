@@ -66,7 +66,8 @@ KOKKOS_FORCEINLINE_FUNCTION void even_odd_parts(const T* xl, T* e, T* d, T& mid)
 /// takes a test and branch out of every output pair of the hot sweeps. In place (x == y) is
 /// allowed when n_rows == n_cols and xs == ys.
 template <int n_rows, int n_cols, int xs, int ys, bool add, int sign = 0, class T>
-KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_line(const EvenOddMatrix<n_rows, n_cols>& m, const T* xl, T* yl) {
+KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_line(const EvenOddMatrix<n_rows, n_cols>& m,
+                                                     const T* xl, T* yl) {
   constexpr int hc = EvenOddMatrix<n_rows, n_cols>::half_cols;
   constexpr int hr = EvenOddMatrix<n_rows, n_cols>::half_rows;
   constexpr int hcs = hc > 0 ? hc : 1;
@@ -81,8 +82,10 @@ KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_line(const EvenOddMatrix<n_rows,
       od += T(m.odd[o][i]) * d[i];
     }
     if (2 * o + 1 == n_rows) {
-      if (add) yl[o * ys] += ev + od;
-      else yl[o * ys] = ev + od;
+      if (add)
+        yl[o * ys] += ev + od;
+      else
+        yl[o * ys] = ev + od;
     } else {
       const T lo = ev + od, hi = negate ? od - ev : ev - od;
       if (add) {
@@ -117,14 +120,18 @@ KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_pair_line(const EvenOddMatrix<n,
       ob += T(b.odd[o][i]) * d[i];
     }
     const T lo1 = s1 * (ea + oa), lo2 = s2 * (eb + ob);
-    if (add2) y2[o * ys] += lo2;
-    else y2[o * ys] = lo2;
+    if (add2)
+      y2[o * ys] += lo2;
+    else
+      y2[o * ys] = lo2;
     y1[o * ys] = lo1;
     if (2 * o + 1 != n) {
       const T hi1 = s1 * (ea - oa), hi2 = s2 * (eb - ob);
       y1[(n - 1 - o) * ys] = hi1;
-      if (add2) y2[(n - 1 - o) * ys] += hi2;
-      else y2[(n - 1 - o) * ys] = hi2;
+      if (add2)
+        y2[(n - 1 - o) * ys] += hi2;
+      else
+        y2[(n - 1 - o) * ys] = hi2;
     }
   }
 }
@@ -133,7 +140,8 @@ KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_pair_line(const EvenOddMatrix<n,
 /// y == x2) is allowed: both lines are read whole before y is written.
 template <int n, int s, class T>
 KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_sum_line(const EvenOddMatrix<n, n>& a, const T* x1,
-                                                         const EvenOddMatrix<n, n>& b, const T* x2, T* y) {
+                                                         const EvenOddMatrix<n, n>& b, const T* x2,
+                                                         T* y) {
   using M = EvenOddMatrix<n, n>;
   constexpr int hc = M::half_cols, hr = M::half_rows, hcs = hc > 0 ? hc : 1;
   T e1[hcs], d1[hcs], m1, e2[hcs], d2[hcs], m2;
@@ -154,12 +162,12 @@ KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd_sum_line(const EvenOddMatrix<n, 
 /// (0 <= s < stride) reads x[(p n_cols + i) stride + s] and writes y[(p n_rows + o) stride + s].
 /// With `add`, y += M x. In place (x == y) is allowed when n_rows == n_cols.
 template <int n_rows, int n_cols, int stride, int n_post, bool add, int sign = 0, class T>
-KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd(const EvenOddMatrix<n_rows, n_cols>& m,
-                                                const T* x, T* y) {
+KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd(const EvenOddMatrix<n_rows, n_cols>& m, const T* x,
+                                                T* y) {
   for (int p = 0; p < n_post; ++p)
     for (int s = 0; s < stride; ++s)
       apply_even_odd_line<n_rows, n_cols, stride, stride, add, sign>(m, x + p * n_cols * stride + s,
-                                                                      y + p * n_rows * stride + s);
+                                                                     y + p * n_rows * stride + s);
 }
 
 }  // namespace amphora::sumfac

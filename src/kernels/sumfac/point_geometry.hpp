@@ -11,7 +11,7 @@
 namespace amphora::sumfac {
 
 template <int dim>
-inline constexpr int n_symmetric = dim * (dim + 1) / 2;
+inline constexpr int n_symmetric = dim*(dim + 1) / 2;
 
 /// Index of (a, b), a <= b, in the packed symmetric storage.
 template <int dim>

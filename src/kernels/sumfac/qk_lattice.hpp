@@ -16,10 +16,10 @@ struct QkLattice {
   int nodes[3] = {2, 2, 2};  ///< node layers per direction, periodic wrap not applied
   int dofs[3] = {2, 2, 2};   ///< distinct DoFs per direction (nodes - 1 if periodic)
   bool periodic[3] = {false, false, false};
-  int dirichlet_faces = 0;   ///< bit 2d: face x_d = lower; bit 2d+1: face x_d = upper
-  int shared_faces = 0;      ///< as dirichlet_faces: faces shared with another rank's lattice
-  int width = 1;             ///< cells per batch
-  int batches_x = 1;         ///< batches per row of cells along x
+  int dirichlet_faces = 0;  ///< bit 2d: face x_d = lower; bit 2d+1: face x_d = upper
+  int shared_faces = 0;     ///< as dirichlet_faces: faces shared with another rank's lattice
+  int width = 1;            ///< cells per batch
+  int batches_x = 1;        ///< batches per row of cells along x
 
   static QkLattice create(int degree, const int* cells, const bool* periodic, int dirichlet_faces,
                           int width) {
@@ -74,7 +74,9 @@ struct QkLattice {
     const int nb = n_slab_blocks();
     return (periodic[dim - 1] && nb % 2 == 1 && nb > 1 && B == nb - 1) ? 2 : B % 2;
   }
-  KOKKOS_INLINE_FUNCTION int slab_colour(int s) const { return block_colour(s / slabs_per_block()); }
+  KOKKOS_INLINE_FUNCTION int slab_colour(int s) const {
+    return block_colour(s / slabs_per_block());
+  }
   /// Whether slab t runs before slab s: an earlier colour, or earlier in the same block.
   KOKKOS_INLINE_FUNCTION bool slab_runs_before(int t, int s) const {
     const int ct = slab_colour(t), cs = slab_colour(s), r = slabs_per_block();
@@ -89,7 +91,8 @@ struct QkLattice {
     const int upper = s < n - 1 ? s + 1 : (per ? 0 : -1);
     first = (lower < 0 || lower == s || !slab_runs_before(lower, s)) ? s * k : s * k + 1;
     const bool upper_wraps = per && s == n - 1;
-    end = (!upper_wraps && (upper < 0 || !slab_runs_before(upper, s))) ? (s + 1) * k + 1 : (s + 1) * k;
+    end = (!upper_wraps && (upper < 0 || !slab_runs_before(upper, s))) ? (s + 1) * k + 1
+                                                                       : (s + 1) * k;
   }
 
   /// Rows of batches in a slab: the rows of cells along direction 1 in 3D, the slab itself in
@@ -107,7 +110,9 @@ struct QkLattice {
   /// Whether the DoFs a row of batches writes last (slab_last_layers, row_last_layers) form
   /// ranges of lines: not so across a periodic wrap of direction 1 or of the slab direction,
   /// whose last layer is the first.
-  KOKKOS_INLINE_FUNCTION bool last_touch_ranges() const { return !periodic[dim - 1] && (dim == 2 || !periodic[1]); }
+  KOKKOS_INLINE_FUNCTION bool last_touch_ranges() const {
+    return !periodic[dim - 1] && (dim == 2 || !periodic[1]);
+  }
   /// Node layers along the last direction that slab s writes last when slabs run by colour:
   /// [first, end). A layer shared with a slab that runs later is left to that slab. Only where
   /// last_touch_ranges().
@@ -176,8 +181,9 @@ struct QkLattice {
     for (int d = 0; d < dim; ++d) {
       const int i = node[d];
       const bool vertex_layer = i % degree == 0;
-      const bool boundary = !periodic[d] && ((i == 0 && !(shared_faces >> (2 * d) & 1)) ||
-                                             (i == nodes[d] - 1 && !(shared_faces >> (2 * d + 1) & 1)));
+      const bool boundary =
+          !periodic[d] && ((i == 0 && !(shared_faces >> (2 * d) & 1)) ||
+                           (i == nodes[d] - 1 && !(shared_faces >> (2 * d + 1) & 1)));
       m *= (vertex_layer && !boundary) ? 2 : 1;
     }
     return m;

@@ -20,14 +20,16 @@ struct TouchedDofs {
   AMPHORA_EXEC_CHECK_DISABLE
   template <class F>
   KOKKOS_INLINE_FUNCTION void for_each_range(const F& f) const {
-    for (int l = layer_first; l < layer_end; ++l) f(l * layer + line_first * line, l * layer + line_end * line);
+    for (int l = layer_first; l < layer_end; ++l)
+      f(l * layer + line_first * line, l * layer + line_end * line);
   }
 };
 
 /// The DoFs row `row` of slab `slab` touches first (or last): its slab's layers and its lines,
 /// whole.
 template <int dim>
-KOKKOS_INLINE_FUNCTION TouchedDofs row_touch(const QkLattice<dim>& lattice, int slab, int row, bool last) {
+KOKKOS_INLINE_FUNCTION TouchedDofs row_touch(const QkLattice<dim>& lattice, int slab, int row,
+                                             bool last) {
   TouchedDofs t;
   if (last)
     lattice.slab_last_layers(slab, t.layer_first, t.layer_end);
@@ -109,7 +111,8 @@ struct LastTouchDot {
           for (int m = 0; m < 8; ++m) s[m] += p[i + m] * q[i + m];
         for (int m = 0; i < c * n + end; ++i, ++m) s[m] += p[i] * q[i];
       });
-    partial[slab * lattice.rows_per_slab() + row] = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+    partial[slab * lattice.rows_per_slab() + row] =
+        ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
   }
 };
 

@@ -37,11 +37,14 @@ struct ShapeData {
     const Quadrature1D q = kind == QuadratureKind::gauss ? gauss(n_q) : gauss_lobatto(n_q);
     ShapeData s{};
     s.values = EvenOddMatrix<n_q, n_p>::from_dense(lagrange_values(nodes, q.points), 1);
-    s.values_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(lagrange_values(nodes, q.points), n_q, n_p), 1);
+    s.values_t = EvenOddMatrix<n_p, n_q>::from_dense(
+        transpose(lagrange_values(nodes, q.points), n_q, n_p), 1);
     {
-      const std::vector<double> v = lagrange_values(nodes, q.points), g = lagrange_derivatives(nodes, q.points);
+      const std::vector<double> v = lagrange_values(nodes, q.points),
+                                g = lagrange_derivatives(nodes, q.points);
       std::vector<double> ss(v.size()), sd(v.size()), dd(v.size());
-      for (std::size_t i = 0; i < v.size(); ++i) ss[i] = v[i] * v[i], sd[i] = v[i] * g[i], dd[i] = g[i] * g[i];
+      for (std::size_t i = 0; i < v.size(); ++i)
+        ss[i] = v[i] * v[i], sd[i] = v[i] * g[i], dd[i] = g[i] * g[i];
       s.ss_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(ss, n_q, n_p), 1);
       s.sd_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(sd, n_q, n_p), -1);
       s.dd_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(dd, n_q, n_p), 1);
@@ -72,7 +75,8 @@ struct ShapeData {
     const std::vector<double> from = gauss_lobatto(n_p).points, to = gauss_lobatto(n_q).points;
     ShapeData s{};
     s.values = EvenOddMatrix<n_q, n_p>::from_dense(lagrange_values(from, to), 1);
-    s.values_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(lagrange_values(from, to), n_q, n_p), 1);
+    s.values_t =
+        EvenOddMatrix<n_p, n_q>::from_dense(transpose(lagrange_values(from, to), n_q, n_p), 1);
     s.collocated = false;
     return s;
   }

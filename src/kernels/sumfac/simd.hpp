@@ -23,7 +23,8 @@ inline constexpr int host_simd_width = 2;
 template <class ExecSpace>
 inline constexpr int simd_width_v = runs_on_host_v<ExecSpace> ? host_simd_width : 1;
 
-#if (defined(__GNUC__) || defined(__clang__)) && !defined(__CUDA_ARCH__) && !defined(__HIP_DEVICE_COMPILE__)
+#if (defined(__GNUC__) || defined(__clang__)) && !defined(__CUDA_ARCH__) && \
+    !defined(__HIP_DEVICE_COMPILE__)
 #define AMPHORA_SIMD_VECTOR_EXTENSIONS 1
 #endif
 
@@ -38,14 +39,38 @@ struct alignas(W * sizeof(double)) Simd {
   }
   Simd() = default;
   KOKKOS_INLINE_FUNCTION Simd(double s) : v(s - native{}) {}
-  KOKKOS_INLINE_FUNCTION Simd& operator+=(const Simd& o) { v += o.v; return *this; }
-  KOKKOS_INLINE_FUNCTION Simd& operator-=(const Simd& o) { v -= o.v; return *this; }
-  KOKKOS_INLINE_FUNCTION Simd& operator*=(const Simd& o) { v *= o.v; return *this; }
-  KOKKOS_INLINE_FUNCTION friend Simd operator+(Simd a, const Simd& b) { a.v += b.v; return a; }
-  KOKKOS_INLINE_FUNCTION friend Simd operator-(Simd a, const Simd& b) { a.v -= b.v; return a; }
-  KOKKOS_INLINE_FUNCTION friend Simd operator*(Simd a, const Simd& b) { a.v *= b.v; return a; }
-  KOKKOS_INLINE_FUNCTION friend Simd operator/(Simd a, const Simd& b) { a.v /= b.v; return a; }
-  KOKKOS_INLINE_FUNCTION friend Simd operator-(Simd a) { a.v = -a.v; return a; }
+  KOKKOS_INLINE_FUNCTION Simd& operator+=(const Simd& o) {
+    v += o.v;
+    return *this;
+  }
+  KOKKOS_INLINE_FUNCTION Simd& operator-=(const Simd& o) {
+    v -= o.v;
+    return *this;
+  }
+  KOKKOS_INLINE_FUNCTION Simd& operator*=(const Simd& o) {
+    v *= o.v;
+    return *this;
+  }
+  KOKKOS_INLINE_FUNCTION friend Simd operator+(Simd a, const Simd& b) {
+    a.v += b.v;
+    return a;
+  }
+  KOKKOS_INLINE_FUNCTION friend Simd operator-(Simd a, const Simd& b) {
+    a.v -= b.v;
+    return a;
+  }
+  KOKKOS_INLINE_FUNCTION friend Simd operator*(Simd a, const Simd& b) {
+    a.v *= b.v;
+    return a;
+  }
+  KOKKOS_INLINE_FUNCTION friend Simd operator/(Simd a, const Simd& b) {
+    a.v /= b.v;
+    return a;
+  }
+  KOKKOS_INLINE_FUNCTION friend Simd operator-(Simd a) {
+    a.v = -a.v;
+    return a;
+  }
 #else
   double v[W];
   KOKKOS_INLINE_FUNCTION double& operator[](int l) { return v[l]; }
@@ -54,14 +79,14 @@ struct alignas(W * sizeof(double)) Simd {
   KOKKOS_INLINE_FUNCTION Simd(double s) {
     for (int l = 0; l < W; ++l) v[l] = s;
   }
-#define AMPHORA_SIMD_OP(op)                                                      \
-  KOKKOS_INLINE_FUNCTION Simd& operator op##=(const Simd& o) {                   \
-    for (int l = 0; l < W; ++l) v[l] op## = o.v[l];                              \
-    return *this;                                                                \
-  }                                                                              \
-  KOKKOS_INLINE_FUNCTION friend Simd operator op(Simd a, const Simd& b) {        \
-    a op## = b;                                                                  \
-    return a;                                                                    \
+#define AMPHORA_SIMD_OP(op)                                               \
+  KOKKOS_INLINE_FUNCTION Simd& operator op##=(const Simd& o) {            \
+    for (int l = 0; l < W; ++l) v[l] op## = o.v[l];                       \
+    return *this;                                                         \
+  }                                                                       \
+  KOKKOS_INLINE_FUNCTION friend Simd operator op(Simd a, const Simd& b) { \
+    a op## = b;                                                           \
+    return a;                                                             \
   }
   AMPHORA_SIMD_OP(+)
   AMPHORA_SIMD_OP(-)

@@ -64,7 +64,8 @@ KOKKOS_FORCEINLINE_FUNCTION void add_strided_row(double* p, const Simd<W>* u) {
     // degree 1: p[0 .. W) += u[0] + u[1] shifted up one lane, then the last node; one
     // read-modify-write of a whole vector (two overlapping ones would stall on store
     // forwarding)
-    const typename Simd<W>::native row = u[0].v + detail::up_one_lane<W>(u[1].v, std::make_index_sequence<W>());
+    const typename Simd<W>::native row =
+        u[0].v + detail::up_one_lane<W>(u[1].v, std::make_index_sequence<W>());
     typename Simd<W>::native dst;
     __builtin_memcpy(&dst, p, sizeof(dst));
     dst += row;

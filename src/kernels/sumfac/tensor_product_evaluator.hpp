@@ -50,8 +50,8 @@ struct TensorProductEvaluator {
 
   /// u = integral of v against the basis (transpose of values()); v is overwritten.
   template <class T>
-  KOKKOS_FORCEINLINE_FUNCTION static void integrate_values(const ShapeData<n_p, n_q>& s, T* v,
-                                                           T* u, T* tmp) {
+  KOKKOS_FORCEINLINE_FUNCTION static void integrate_values(const ShapeData<n_p, n_q>& s, T* v, T* u,
+                                                           T* tmp) {
     if constexpr (n_p == n_q) {
       if (s.collocated) {
         for (int i = 0; i < n_dofs; ++i) u[i] = v[i];
@@ -75,8 +75,8 @@ struct TensorProductEvaluator {
   /// u (+)= integral of v with a different 1D matrix per direction (m[d], each n_p x n_q);
   /// v is overwritten.
   template <bool add, class T>
-  KOKKOS_FORCEINLINE_FUNCTION static void integrate_tensor(const EvenOddMatrix<n_p, n_q>* const* m, T* v,
-                                                           T* u, T* tmp) {
+  KOKKOS_FORCEINLINE_FUNCTION static void integrate_tensor(const EvenOddMatrix<n_p, n_q>* const* m,
+                                                           T* v, T* u, T* tmp) {
     if constexpr (dim == 2) {
       apply_even_odd<n_p, n_q, n_q, 1, false>(*m[1], v, tmp);
       apply_even_odd<n_p, n_q, 1, n_p, add>(*m[0], tmp, u);
@@ -115,8 +115,8 @@ struct TensorProductEvaluator {
   /// instead of 12 through the points (4 instead of 8 in 2D). Planes of u along z are consumed
   /// one at a time into two arrays, which the z sweeps combine into u. tmp: n_dofs.
   template <class T>
-  KOKKOS_FORCEINLINE_FUNCTION static void cartesian_laplace(const ShapeData<n_p, n_q>& s, const T* c, T* u,
-                                                            T* tmp) {
+  KOKKOS_FORCEINLINE_FUNCTION static void cartesian_laplace(const ShapeData<n_p, n_q>& s,
+                                                            const T* c, T* u, T* tmp) {
     constexpr int nn = n_p * n_p;
     if constexpr (dim == 2) {
       T a[nn], b[nn];
@@ -157,8 +157,8 @@ struct TensorProductEvaluator {
   /// 3 sweeps where the path through the points takes 6 (2 and 4 in 2D). The x and y sweeps
   /// of a plane go into tmp (n_dofs); the z sweep adds them into u in place.
   template <class T>
-  KOKKOS_FORCEINLINE_FUNCTION static void collocated_cartesian_laplace(const ShapeData<n_p, n_q>& s, const T* c,
-                                                                       T* u, T* tmp) {
+  KOKKOS_FORCEINLINE_FUNCTION static void collocated_cartesian_laplace(const ShapeData<n_p, n_q>& s,
+                                                                       const T* c, T* u, T* tmp) {
     static_assert(n_p == n_q, "collocation needs the points to be the nodes");
     const double* w = s.weights;
     if constexpr (dim == 2) {
@@ -171,21 +171,24 @@ struct TensorProductEvaluator {
       for (int k = 0; k < n_p; ++k) {
         T* const t = tmp + k * nn;
         for (int j = 0; j < n_p; ++j)  // along x
-          scaled_stiffness_line<1, 1, false>(s, u + k * nn + j * n_p, c[0] * T(w[j] * w[k]), t + j * n_p);
+          scaled_stiffness_line<1, 1, false>(s, u + k * nn + j * n_p, c[0] * T(w[j] * w[k]),
+                                             t + j * n_p);
         for (int i = 0; i < n_p; ++i)  // along y
-          scaled_stiffness_line<n_p, n_p, true>(s, u + k * nn + i, c[1] * T(w[i] * w[k]), t + i, t + i);
+          scaled_stiffness_line<n_p, n_p, true>(s, u + k * nn + i, c[1] * T(w[i] * w[k]), t + i,
+                                                t + i);
       }
       for (int j = 0; j < n_p; ++j)  // along z, in place
         for (int i = 0; i < n_p; ++i)
-          scaled_stiffness_line<nn, nn, true>(s, u + j * n_p + i, c[2] * T(w[i] * w[j]), u + j * n_p + i,
-                                              tmp + j * n_p + i);
+          scaled_stiffness_line<nn, nn, true>(s, u + j * n_p + i, c[2] * T(w[i] * w[j]),
+                                              u + j * n_p + i, tmp + j * n_p + i);
     }
   }
   /// One line: y = scale (K x), with `add` y = base + scale (K x). x is read whole before y
   /// is written, so y may be x or base.
   template <int xs, int ys, bool add, class T>
-  KOKKOS_FORCEINLINE_FUNCTION static void scaled_stiffness_line(const ShapeData<n_p, n_q>& s, const T* x,
-                                                                const T& scale, T* y, const T* base = nullptr) {
+  KOKKOS_FORCEINLINE_FUNCTION static void scaled_stiffness_line(const ShapeData<n_p, n_q>& s,
+                                                                const T* x, const T& scale, T* y,
+                                                                const T* base = nullptr) {
     T g[n_p];
     apply_even_odd_line<n_p, n_p, xs, 1, false, 1>(s.stiffness, x, g);
     for (int o = 0; o < n_p; ++o) y[o * ys] = add ? base[o * ys] + scale * g[o] : scale * g[o];
@@ -196,7 +199,8 @@ struct TensorProductEvaluator {
   /// quadrature factors), in dim in-place sweeps of n_p x n_p where the path through the
   /// points takes 2 dim of n_p x n_q.
   template <class T>
-  KOKKOS_FORCEINLINE_FUNCTION static void per_cell_mass(const ShapeData<n_p, n_q>& s, const T& c, T* u) {
+  KOKKOS_FORCEINLINE_FUNCTION static void per_cell_mass(const ShapeData<n_p, n_q>& s, const T& c,
+                                                        T* u) {
     if constexpr (dim == 2) {
       apply_even_odd<n_p, n_p, 1, n_p, false, 1>(s.mass, u, u);
       apply_even_odd<n_p, n_p, n_p, 1, false, 1>(s.mass, u, u);
@@ -211,7 +215,8 @@ struct TensorProductEvaluator {
   /// f(q, weight(q)) for every point q in order, without weight()'s divisions (the same
   /// products in the same order, so the same numbers).
   template <class F>
-  KOKKOS_FORCEINLINE_FUNCTION static void for_each_weighted_point(const ShapeData<n_p, n_q>& s, const F& f) {
+  KOKKOS_FORCEINLINE_FUNCTION static void for_each_weighted_point(const ShapeData<n_p, n_q>& s,
+                                                                  const F& f) {
     constexpr int n_outer = dim == 3 ? n_q : 1;
     for (int k = 0; k < n_outer; ++k)
       for (int j = 0; j < n_q; ++j)
@@ -219,7 +224,8 @@ struct TensorProductEvaluator {
   }
 
   /// Tensor weight w_i w_j (w_k) of point (i, j, k) (k ignored in 2D).
-  KOKKOS_FORCEINLINE_FUNCTION static double weight(const ShapeData<n_p, n_q>& s, int i, int j, int k) {
+  KOKKOS_FORCEINLINE_FUNCTION static double weight(const ShapeData<n_p, n_q>& s, int i, int j,
+                                                   int k) {
     double w = s.weights[i] * s.weights[j];
     if constexpr (dim == 3) w *= s.weights[k];
     return w;

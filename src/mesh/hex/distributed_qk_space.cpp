@@ -69,12 +69,13 @@ DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<d
   const std::vector<int> bounds = comm.allgatherv(std::vector<int>{first_cell, end_cell});
   bool tiles = bounds.front() == 0 && bounds.back() == n;
   for (int q = 0; q < ranks; ++q)
-    tiles = tiles && bounds[2 * q] < bounds[2 * q + 1] && (q == 0 || bounds[2 * q] == bounds[2 * q - 1]);
+    tiles = tiles && bounds[2 * q] < bounds[2 * q + 1] &&
+            (q == 0 || bounds[2 * q] == bounds[2 * q - 1]);
   if (!tiles)
-    throw std::invalid_argument("DistributedQkSpace: the ranks' slabs (rank " + std::to_string(r) +
-                                ": cells [" + std::to_string(first_cell) + ", " + std::to_string(end_cell) +
-                                ")) do not tile the " + std::to_string(n) +
-                                " cells along the last direction in rank order, each non-empty");
+    throw std::invalid_argument(
+        "DistributedQkSpace: the ranks' slabs (rank " + std::to_string(r) + ": cells [" +
+        std::to_string(first_cell) + ", " + std::to_string(end_cell) + ")) do not tile the " +
+        std::to_string(n) + " cells along the last direction in rank order, each non-empty");
 
   StructuredHexMesh<dim> slab = global;
   if (ranks > 1) {
@@ -106,8 +107,9 @@ DistributedQkSpace<dim, ExecSpace>::DistributedQkSpace(const StructuredHexMesh<d
   for (std::size_t a = 0; a < ch.extent(0); ++a)
     if (ch(a) < layer_) fh(ch(a)) = 0.0;
   Kokkos::deep_copy(free_bottom_, fh);
-  received_ = Vector(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::DistributedQkSpace::received"),
-                     layer_);
+  received_ = Vector(
+      Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::DistributedQkSpace::received"),
+      layer_);
 }
 
 template <int dim, class ExecSpace>
@@ -122,7 +124,8 @@ std::unique_ptr<DistributedQkSpace<dim, ExecSpace>> DistributedQkSpace<dim, Exec
     int degree) const {
   if (first_cell_ % 2 != 0 || end_cell_ % 2 != 0)
     throw std::invalid_argument("DistributedQkSpace: slab [" + std::to_string(first_cell_) + ", " +
-                                std::to_string(end_cell_) + ") has an odd boundary; cannot coarsen");
+                                std::to_string(end_cell_) +
+                                ") has an odd boundary; cannot coarsen");
   return std::make_unique<DistributedQkSpace>(global_.coarsened(), degree, comm_, first_cell_ / 2,
                                               end_cell_ / 2);
 }
@@ -134,8 +137,8 @@ std::unique_ptr<DistributedQkSpace<dim, ExecSpace>> DistributedQkSpace<dim, Exec
 }
 
 template <int dim, class ExecSpace>
-Kokkos::View<long*, typename ExecSpace::memory_space> DistributedQkSpace<dim, ExecSpace>::global_indices()
-    const {
+Kokkos::View<long*, typename ExecSpace::memory_space>
+DistributedQkSpace<dim, ExecSpace>::global_indices() const {
   Kokkos::View<long*, memory_space> g("amphora::DistributedQkSpace::global_indices", n_local());
   auto h = Kokkos::create_mirror_view(g);
   for (long i = 0; i < n_local(); ++i) h(i) = global_index(i);
@@ -223,7 +226,7 @@ double DistributedQkSpace<dim, ExecSpace>::fused_cg_update(const ExecSpace& exec
   return comm_.sum(local);
 }
 
-#define AMPHORA_DISTRIBUTED_QK_SPACE(E) \
+#define AMPHORA_DISTRIBUTED_QK_SPACE(E)    \
   template class DistributedQkSpace<2, E>; \
   template class DistributedQkSpace<3, E>;
 AMPHORA_IF_SERIAL(AMPHORA_DISTRIBUTED_QK_SPACE(Kokkos::Serial))

@@ -85,7 +85,8 @@ class DistributedQkSpace {
     /// CG's x += a p, r -= a q on the owned entries in one pass; returns r.r over all ranks.
     /// (Ghost layers are left stale: an operator application updates them first.)
     template <class E, class V>
-    double fused_update(const E& exec, double alpha, const V& p, const V& q, const V& x, const V& r) const {
+    double fused_update(const E& exec, double alpha, const V& p, const V& q, const V& x,
+                        const V& r) const {
       return space->fused_cg_update(exec, alpha, p, q, x, r, components);
     }
   };
@@ -101,10 +102,10 @@ class DistributedQkSpace {
   Communicator comm_;
   std::unique_ptr<Space> local_;
   int first_cell_ = 0, end_cell_ = 0;
-  long layer_ = 0;    // DoFs per node layer of the last direction
+  long layer_ = 0;  // DoFs per node layer of the last direction
   long n_owned_ = 0;
-  int prev_ = -1;     // rank holding our bottom layer as its ghosts, or MPI_PROC_NULL
-  int next_ = -1;     // rank owning our top layer, or MPI_PROC_NULL (we own it)
+  int prev_ = -1;       // rank holding our bottom layer as its ghosts, or MPI_PROC_NULL
+  int next_ = -1;       // rank owning our top layer, or MPI_PROC_NULL (we own it)
   Vector free_bottom_;  // 1 on free DoFs of the bottom layer, 0 on constrained ones
   Vector received_;     // compress_add's receive buffer (one layer)
 };

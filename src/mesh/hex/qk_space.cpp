@@ -16,9 +16,8 @@ QkSpace<dim, ExecSpace>::QkSpace(const StructuredHexMesh<dim>& mesh, int degree)
                                 " outside the supported range 1.." + std::to_string(max_qk_degree));
   bool periodic[3] = {false, false, false};
   for (int d = 0; d < dim; ++d) periodic[d] = mesh.periodic(d);
-  lattice_ = sumfac::QkLattice<dim>::create(degree, mesh.cells.data(), periodic,
-                                            mesh.dirichlet_faces(),
-                                            sumfac::simd_width_v<ExecSpace>);
+  lattice_ = sumfac::QkLattice<dim>::create(
+      degree, mesh.cells.data(), periodic, mesh.dirichlet_faces(), sumfac::simd_width_v<ExecSpace>);
   lattice_.shared_faces = mesh.interface_faces();
 
   // Node coordinates: Gauss–Lobatto points in each cell of the box, then the deformation.
@@ -32,8 +31,9 @@ QkSpace<dim, ExecSpace>::QkSpace(const StructuredHexMesh<dim>& mesh, int degree)
     x1d[d].back() = mesh.upper[d];
   }
   const long n_nodes = lattice_.n_nodes();
-  coordinates_ = Vector(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::QkSpace::coordinates"),
-                        dim * n_nodes);
+  coordinates_ =
+      Vector(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::QkSpace::coordinates"),
+             dim * n_nodes);
   auto xh = Kokkos::create_mirror_view(coordinates_);
   std::vector<long> constrained;
   for (long node = 0; node < n_nodes; ++node) {
@@ -52,7 +52,8 @@ QkSpace<dim, ExecSpace>::QkSpace(const StructuredHexMesh<dim>& mesh, int degree)
     if (!wrapped && lattice_.constrained(ijk)) constrained.push_back(lattice_.dof_index(ijk));
   }
   Kokkos::deep_copy(coordinates_, xh);
-  constrained_ = Kokkos::View<long*, memory_space>("amphora::QkSpace::constrained", constrained.size());
+  constrained_ =
+      Kokkos::View<long*, memory_space>("amphora::QkSpace::constrained", constrained.size());
   auto ch = Kokkos::create_mirror_view(constrained_);
   for (std::size_t i = 0; i < constrained.size(); ++i) ch(i) = constrained[i];
   Kokkos::deep_copy(constrained_, ch);
@@ -79,7 +80,7 @@ std::vector<double> QkSpace<dim, ExecSpace>::dof_points() const {
   return p;
 }
 
-#define AMPHORA_QK_SPACE(E) \
+#define AMPHORA_QK_SPACE(E)     \
   template class QkSpace<2, E>; \
   template class QkSpace<3, E>;
 AMPHORA_IF_SERIAL(AMPHORA_QK_SPACE(Kokkos::Serial))

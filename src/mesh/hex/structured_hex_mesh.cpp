@@ -9,11 +9,11 @@ template <int dim>
 void StructuredHexMesh<dim>::validate() const {
   for (int d = 0; d < dim; ++d) {
     if (cells[d] < 1)
-      throw std::invalid_argument("mesh: cells[" + std::to_string(d) + "] = " +
-                                  std::to_string(cells[d]) + ", must be at least 1");
+      throw std::invalid_argument("mesh: cells[" + std::to_string(d) +
+                                  "] = " + std::to_string(cells[d]) + ", must be at least 1");
     if (!(upper[d] > lower[d]))
-      throw std::invalid_argument("mesh: upper[" + std::to_string(d) +
-                                  "] must exceed lower[" + std::to_string(d) + "]");
+      throw std::invalid_argument("mesh: upper[" + std::to_string(d) + "] must exceed lower[" +
+                                  std::to_string(d) + "]");
     if ((faces[2 * d] == FaceCondition::periodic) != (faces[2 * d + 1] == FaceCondition::periodic))
       throw std::invalid_argument("mesh: direction " + std::to_string(d) +
                                   " is periodic on one face only; periodic faces come in pairs");
@@ -53,7 +53,8 @@ std::function<Point3(const Point3&)> sinusoidal_deformation(int dim, double ampl
     double bump = std::sin(pi * X[0]) * std::sin(pi * X[1]);
     if (dim == 3) bump *= std::sin(pi * X[2]);
     Point3 x = X;
-    for (int d = 0; d < dim; ++d) x[d] += amplitude * bump * std::cos(1.3 * d + 2.0 * X[(d + 1) % dim]);
+    for (int d = 0; d < dim; ++d)
+      x[d] += amplitude * bump * std::cos(1.3 * d + 2.0 * X[(d + 1) % dim]);
     return x;
   };
 }

@@ -88,12 +88,13 @@ class LatticeGhostExchange {
     // x planes: rows j = -1..ny of planes k = 0..nz-1; z planes: i = -1..nx, j = -1..ny
     for (int side = 0; side < 2; ++side) {
       const int out = side == 0 ? 0 : g.nx - 1, in = side == 0 ? g.nx : -1;
-      shift(exec, v, Region{g, out, 1, -1, g.ny + 2, 0, g.nz}, v, Region{g, in, 1, -1, g.ny + 2, 0, g.nz}, 0, side);
+      shift(exec, v, Region{g, out, 1, -1, g.ny + 2, 0, g.nz}, v,
+            Region{g, in, 1, -1, g.ny + 2, 0, g.nz}, 0, side);
     }
     for (int side = 0; side < 2; ++side) {
       const int out = side == 0 ? 0 : g.nz - 1, in = side == 0 ? g.nz : -1;
-      shift(exec, v, Region{g, -1, g.nx + 2, -1, g.ny + 2, out, 1}, v, Region{g, -1, g.nx + 2, -1, g.ny + 2, in, 1}, 2,
-            side);
+      shift(exec, v, Region{g, -1, g.nx + 2, -1, g.ny + 2, out, 1}, v,
+            Region{g, -1, g.nx + 2, -1, g.ny + 2, in, 1}, 2, side);
     }
     exec.fence();
   }
@@ -104,7 +105,8 @@ class LatticeGhostExchange {
     WideGrid w;
     w.width = width;
     w.grid = g;
-    const int lo_x = block_.neighbours[0] >= 0 ? width : 0, lo_z = block_.neighbours[4] >= 0 ? width : 0;
+    const int lo_x = block_.neighbours[0] >= 0 ? width : 0,
+              lo_z = block_.neighbours[4] >= 0 ? width : 0;
     w.offset[0] = lo_x;
     w.offset[2] = lo_z;
     w.grid.nx = g.nx + lo_x + (block_.neighbours[1] >= 0 ? width : 0);
@@ -118,20 +120,23 @@ class LatticeGhostExchange {
   /// from the neighbouring blocks' cells (x first, then z including the x widening, so corners
   /// come from the diagonal neighbours).
   template <class ExecSpace, class View, class WideView>
-  void fill_widened(const ExecSpace& exec, const kernels::mac::MacGrid& g, const View& v, const WideGrid& W,
-                    const WideView& wide) const {
+  void fill_widened(const ExecSpace& exec, const kernels::mac::MacGrid& g, const View& v,
+                    const WideGrid& W, const WideView& wide) const {
     const kernels::mac::MacGrid wg = W.grid;
     const int oi = W.offset[0], ok = W.offset[2], n = W.width;
     Kokkos::parallel_for(
         "amphora::lattice_halo::widen",
-        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0}, {g.nz + 2, g.ny + 2, g.nx + 2}),
+        Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<3>>(exec, {0, 0, 0},
+                                                          {g.nz + 2, g.ny + 2, g.nx + 2}),
         KOKKOS_LAMBDA(int k, int j, int i) {  // padded (i, j, k) - 1: the ghost layer too
           wide(wg.index(i - 1 + oi, j - 1, k - 1 + ok)) = v(g.index(i - 1, j - 1, k - 1));
         });
     if (!block_.split()) return;
     // towards -x the first n planes go, from +x the neighbour's first n arrive beyond the last
-    shift(exec, v, Region{g, 0, n, -1, g.ny + 2, 0, g.nz}, wide, Region{wg, oi + g.nx, n, -1, g.ny + 2, ok, g.nz}, 0, 0);
-    shift(exec, v, Region{g, g.nx - n, n, -1, g.ny + 2, 0, g.nz}, wide, Region{wg, 0, n, -1, g.ny + 2, ok, g.nz}, 0, 1);
+    shift(exec, v, Region{g, 0, n, -1, g.ny + 2, 0, g.nz}, wide,
+          Region{wg, oi + g.nx, n, -1, g.ny + 2, ok, g.nz}, 0, 0);
+    shift(exec, v, Region{g, g.nx - n, n, -1, g.ny + 2, 0, g.nz}, wide,
+          Region{wg, 0, n, -1, g.ny + 2, ok, g.nz}, 0, 1);
     shift(exec, wide, Region{wg, -1, wg.nx + 2, -1, g.ny + 2, ok, n}, wide,
           Region{wg, -1, wg.nx + 2, -1, g.ny + 2, ok + g.nz, n}, 2, 0);
     shift(exec, wide, Region{wg, -1, wg.nx + 2, -1, g.ny + 2, ok + g.nz - n, n}, wide,
@@ -150,8 +155,12 @@ class LatticeGhostExchange {
     const int to = block_.neighbours[2 * d + side], from = block_.neighbours[2 * d + 1 - side];
     if (to < 0 && from < 0) return;
     const int size = from_region.size();
-    Buffer send(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::lattice_halo::send")), size);
-    Buffer recv(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::lattice_halo::recv")), size);
+    Buffer send(
+        Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::lattice_halo::send")),
+        size);
+    Buffer recv(
+        Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::lattice_halo::recv")),
+        size);
     auto send_host = Kokkos::create_mirror_view(send);
     auto recv_host = Kokkos::create_mirror_view(recv);
     if (to >= 0) {
@@ -163,9 +172,10 @@ class LatticeGhostExchange {
       exec.fence();
     }
     const int bytes = static_cast<int>(size * sizeof(T));
-    MPI_Sendrecv(send_host.data(), to >= 0 ? bytes : 0, MPI_BYTE, to >= 0 ? to : MPI_PROC_NULL, 300 + 2 * d + side,
-                 recv_host.data(), from >= 0 ? bytes : 0, MPI_BYTE, from >= 0 ? from : MPI_PROC_NULL,
-                 300 + 2 * d + side, block_.comm, MPI_STATUS_IGNORE);
+    MPI_Sendrecv(send_host.data(), to >= 0 ? bytes : 0, MPI_BYTE, to >= 0 ? to : MPI_PROC_NULL,
+                 300 + 2 * d + side, recv_host.data(), from >= 0 ? bytes : 0, MPI_BYTE,
+                 from >= 0 ? from : MPI_PROC_NULL, 300 + 2 * d + side, block_.comm,
+                 MPI_STATUS_IGNORE);
     if (from >= 0) {
       const Region at = to_region;
       Kokkos::deep_copy(exec, recv, recv_host);

@@ -14,17 +14,21 @@ using kernels::mac::tall_cell_band;
 TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth,
                            const MacBlock& block)
     : grid_(A.grid), block_(block), optical_depth_(optical_depth) {
-  if (optical_depth < 1) throw std::invalid_argument("tall cells: the optical depth must be at least one cell");
+  if (optical_depth < 1)
+    throw std::invalid_argument("tall cells: the optical depth must be at least one cell");
   // the rule of the water module's columns (TallCellColumns: tall_cell_rows)
-  build(A, [&](int, int, int terrain, int fluid_top) { return tall_cell_band(terrain, fluid_top - optical_depth); });
+  build(A, [&](int, int, int terrain, int fluid_top) {
+    return tall_cell_band(terrain, fluid_top - optical_depth);
+  });
 }
 
-TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, const TallCellGrid& finer,
-                           const MacBlock& block)
+TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A,
+                           const TallCellGrid& finer, const MacBlock& block)
     : grid_(A.grid), block_(block), optical_depth_((finer.optical_depth() + 1) / 2) {
   const MacGrid& f = finer.grid();
   if (f.nx != 2 * grid_.nx || f.ny != 2 * grid_.ny || f.nz != 2 * grid_.nz)
-    throw std::invalid_argument("tall cells: a coarser level's lattice must have half the finer one's cells");
+    throw std::invalid_argument(
+        "tall cells: a coarser level's lattice must have half the finer one's cells");
   build(A, [&](int i, int k, int terrain, int fluid_top) {
     // the lowest band of the four finer columns, all with a tall cell (else none here)
     int lowest = f.ny;
@@ -47,33 +51,36 @@ void TallCellGrid::build(const kernels::mac::PoissonStencil<HostMemSpace>& A, co
   // Lines of columns in parallel: each column's rows and its number of unknowns, then (after the
   // running sum, in column order) its unknowns' numbers, so the numbering is the serial one.
   std::vector<int> count(columns_.size());
-  Kokkos::parallel_for("amphora::tall::grid_columns", Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
-    for (int i = 0; i < g.nx; ++i) {
-      TallCellColumn& col = columns_[i + g.nx * k];
-      // a fluid cell is one with a diagonal: the column's lowest run of them
-      int terrain, top;
-      fluid_run(g.ny, [&](int j) { return d(g.index(i, j, k)) != 0.0; }, terrain, top);
-      col.terrain = terrain;
-      col.band = band_of(i, k, terrain, top);
-      int n = col.has_tall_cell() ? 2 : 0;
-      for (int j = col.band; j < g.ny; ++j) n += d(g.index(i, j, k)) != 0.0;
-      count[i + g.nx * k] = n;
-    }
-  });
+  Kokkos::parallel_for(
+      "amphora::tall::grid_columns", Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
+        for (int i = 0; i < g.nx; ++i) {
+          TallCellColumn& col = columns_[i + g.nx * k];
+          // a fluid cell is one with a diagonal: the column's lowest run of them
+          int terrain, top;
+          fluid_run(
+              g.ny, [&](int j) { return d(g.index(i, j, k)) != 0.0; }, terrain, top);
+          col.terrain = terrain;
+          col.band = band_of(i, k, terrain, top);
+          int n = col.has_tall_cell() ? 2 : 0;
+          for (int j = col.band; j < g.ny; ++j) n += d(g.index(i, j, k)) != 0.0;
+          count[i + g.nx * k] = n;
+        }
+      });
   long next = 0;
   for (std::size_t c = 0; c < columns_.size(); ++c) {
     columns_[c].first_unknown = static_cast<int>(next);
     next += count[c];
     tall_cells_ += columns_[c].has_tall_cell();
   }
-  Kokkos::parallel_for("amphora::tall::grid_numbering", Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
-    for (int i = 0; i < g.nx; ++i) {
-      const TallCellColumn& col = columns_[i + g.nx * k];
-      int u = col.first_unknown + (col.has_tall_cell() ? 2 : 0);
-      for (int j = col.band; j < g.ny; ++j)
-        if (d(g.index(i, j, k)) != 0.0) cell_unknown_[g.index(i, j, k)] = u++;
-    }
-  });
+  Kokkos::parallel_for("amphora::tall::grid_numbering", Kokkos::RangePolicy<HostExecSpace>(0, g.nz),
+                       [&](int k) {
+                         for (int i = 0; i < g.nx; ++i) {
+                           const TallCellColumn& col = columns_[i + g.nx * k];
+                           int u = col.first_unknown + (col.has_tall_cell() ? 2 : 0);
+                           for (int j = col.band; j < g.ny; ++j)
+                             if (d(g.index(i, j, k)) != 0.0) cell_unknown_[g.index(i, j, k)] = u++;
+                         }
+                       });
   unknowns_ = next;
   global_unknowns_ = unknowns_;
   if (block_.split()) {
@@ -105,7 +112,8 @@ void TallCellGrid::learn_ghost_ring() {
       }
     }
   LatticeGhostExchange(block_).exchange(HostExecSpace(), g, code);
-  ring_columns_.assign(static_cast<std::size_t>(g.nx + 2) * (g.nz + 2), TallCellColumn{g.ny, g.ny, -1});
+  ring_columns_.assign(static_cast<std::size_t>(g.nx + 2) * (g.nz + 2),
+                       TallCellColumn{g.ny, g.ny, -1});
   ring_unknown_.assign(static_cast<std::size_t>(g.padded_size()), -1);
   for (int k = -1; k <= g.nz; ++k)
     for (int i = -1; i <= g.nx; ++i) {
@@ -118,7 +126,8 @@ void TallCellGrid::learn_ghost_ring() {
         col.first_unknown = static_cast<int>(-code(g.index(i, j, k)) - 2);
         while (col.band < g.ny && code(g.index(i, col.band, k)) < -1) ++col.band;
       }
-      for (int jj = col.band; jj < g.ny; ++jj) ring_unknown_[g.index(i, jj, k)] = static_cast<int>(code(g.index(i, jj, k)));
+      for (int jj = col.band; jj < g.ny; ++jj)
+        ring_unknown_[g.index(i, jj, k)] = static_cast<int>(code(g.index(i, jj, k)));
     }
 }
 
@@ -126,7 +135,8 @@ std::vector<int> TallCellGrid::unknown_cells() const {
   std::vector<int> cell(unknowns_, -1);
   for (int k = 0; k < grid_.nz; ++k)
     for (int i = 0; i < grid_.nx; ++i)
-      for_each_unknown_in_column(i, k, [&](int u, int ci, int cj, int ck) { cell[u] = grid_.index(ci, cj, ck); });
+      for_each_unknown_in_column(
+          i, k, [&](int u, int ci, int cj, int ck) { cell[u] = grid_.index(ci, cj, ck); });
   return cell;
 }
 
@@ -136,8 +146,9 @@ std::vector<std::pair<long, int>> TallCellGrid::ring_unknown_cells() const {
   for (int k = -1; k <= grid_.nz; ++k)
     for (int i = -1; i <= grid_.nx; ++i) {
       if (i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz) continue;
-      for_each_carrier(column(i, k), ring_unknown_, i, k,
-                       [&](int u, int ci, int cj, int ck) { out.emplace_back(u, grid_.index(ci, cj, ck)); });
+      for_each_carrier(column(i, k), ring_unknown_, i, k, [&](int u, int ci, int cj, int ck) {
+        out.emplace_back(u, grid_.index(ci, cj, ck));
+      });
     }
   return out;
 }

@@ -39,7 +39,8 @@ class TallCellGrid {
   /// non-fluid row above the terrain; a tall cell needs at least two rows (else the column stays
   /// uniform). A is on the host. On a split grid (block.split()) every rank of block.comm
   /// constructs its block's grid together (collective).
-  TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth, const MacBlock& block = {});
+  TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth,
+               const MacBlock& block = {});
   /// The next coarser multigrid level's grid over A, whose lattice has cells twice as wide as
   /// finer's: a column has a tall cell where the four finer columns under it all have one, and
   /// its band is the coarse row holding the lowest of their bands (rounded up), so the coarse
@@ -99,7 +100,8 @@ class TallCellGrid {
       u[1] = static_cast<int>(base + col.first_unknown + 1), w[1] = t;
       return 2;
     }
-    const int unknown = own ? cell_unknown_[grid_.index(i, j, k)] : ring_unknown_.at(grid_.index(i, j, k));
+    const int unknown =
+        own ? cell_unknown_[grid_.index(i, j, k)] : ring_unknown_.at(grid_.index(i, j, k));
     if (unknown < 0) return 0;
     u[0] = static_cast<int>(base + unknown), w[0] = 1.0;
     return 1;
@@ -118,7 +120,8 @@ class TallCellGrid {
   /// f(u, i, j, k) for the unknowns of column (i, k) as `uniform` (per padded cell) and the
   /// column number them.
   template <class F>
-  void for_each_carrier(const TallCellColumn& col, const std::vector<int>& uniform, int i, int k, const F& f) const {
+  void for_each_carrier(const TallCellColumn& col, const std::vector<int>& uniform, int i, int k,
+                        const F& f) const {
     if (col.has_tall_cell()) {
       f(col.first_unknown, i, col.terrain, k);
       f(col.first_unknown + 1, i, col.terrain + 1, k);
@@ -149,7 +152,8 @@ namespace amphora::mesh {
 template <class MemSpace>
 kernels::mac::TallCellLayout<MemSpace> make_layout(const TallCellGrid& T) {
   std::vector<int> t, b, f;
-  for (const TallCellColumn& c : T.columns()) t.push_back(c.terrain), b.push_back(c.band), f.push_back(c.first_unknown);
+  for (const TallCellColumn& c : T.columns())
+    t.push_back(c.terrain), b.push_back(c.band), f.push_back(c.first_unknown);
   kernels::mac::TallCellLayout<MemSpace> L;
   L.grid = T.grid();
   L.terrain = to_view<MemSpace>(t, "amphora::tall::terrain");

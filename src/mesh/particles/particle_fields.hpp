@@ -21,8 +21,9 @@ class ParticleFields {
   /// Adds an array whose particle i is the contiguous row i (rank 1, or LayoutRight).
   template <class View>
   ParticleFields& add(const View& v) {
-    static_assert(View::rank == 1 || std::is_same_v<typename View::array_layout, Kokkos::LayoutRight>,
-                  "a particle's row must be contiguous");
+    static_assert(
+        View::rank == 1 || std::is_same_v<typename View::array_layout, Kokkos::LayoutRight>,
+        "a particle's row must be contiguous");
     int inner = 1;
     for (unsigned r = 1; r < View::rank; ++r) inner *= static_cast<int>(v.extent(r));
     using T = typename View::non_const_value_type;
@@ -70,7 +71,8 @@ class ParticleFields {
     KOKKOS_INLINE_FUNCTION void operator()(int k) const {
       const size_t i = size_t(which(k)), to = size_t(k) * w;
       for (int a = 0; a < f.count; ++a)
-        for (int c = 0; c < f.inner[a]; ++c) buf(to + f.offset[a] + c) = f.data[a][i * f.inner[a] + c];
+        for (int c = 0; c < f.inner[a]; ++c)
+          buf(to + f.offset[a] + c) = f.data[a][i * f.inner[a] + c];
     }
   };
   struct UnpackDoubles {
@@ -80,7 +82,8 @@ class ParticleFields {
     KOKKOS_INLINE_FUNCTION void operator()(int k) const {
       const size_t i = size_t(first + k), from = size_t(k) * w;
       for (int a = 0; a < f.count; ++a)
-        for (int c = 0; c < f.inner[a]; ++c) f.data[a][i * f.inner[a] + c] = buf(from + f.offset[a] + c);
+        for (int c = 0; c < f.inner[a]; ++c)
+          f.data[a][i * f.inner[a] + c] = buf(from + f.offset[a] + c);
     }
   };
   /// Device functors (not lambdas: nvcc takes no extended lambda inside a host lambda).

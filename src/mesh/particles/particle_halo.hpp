@@ -74,7 +74,8 @@ class ParticleHalo {
       if (leg.buffer_width != w) {  // kept from step to step
         leg.buffer_width = w;
         leg.send_buf = Kokkos::View<double*, Mem>("amphora::halo::send_buf", size_t(ns) * w);
-        leg.recv_buf = Kokkos::View<double*, Mem>("amphora::halo::recv_buf", size_t(leg.recv_count) * w);
+        leg.recv_buf =
+            Kokkos::View<double*, Mem>("amphora::halo::recv_buf", size_t(leg.recv_count) * w);
       }
       moving.pack(exec, leg.send, ns, leg.send_buf);
       exec.fence();
@@ -97,7 +98,8 @@ class ParticleHalo {
     int count = 0;
     Kokkos::parallel_reduce(
         "amphora::halo::count", RangePolicy<ExecSpace>(exec, 0, candidates),
-        KOKKOS_LAMBDA(int i, int& c) { c += side == 0 ? x(i, d) < bound : x(i, d) >= bound; }, count);
+        KOKKOS_LAMBDA(int i, int& c) { c += side == 0 ? x(i, d) < bound : x(i, d) >= bound; },
+        count);
     Kokkos::View<int*, Mem> send("amphora::halo::send", count);
     Kokkos::parallel_scan(
         "amphora::halo::choose", RangePolicy<ExecSpace>(exec, 0, candidates),

@@ -18,7 +18,8 @@ class ParticleMigration {
   ParticleMigration(const SpatialDecomposition& dec, const Kokkos::View<int*, Mem>& dest, int n)
       : dec_(dec) {
     const int me = dec.comm().rank(), p = dec.comm().size();
-    auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(), Kokkos::subview(dest, Kokkos::make_pair(0, n)));
+    auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(),
+                                                 Kokkos::subview(dest, Kokkos::make_pair(0, n)));
     std::vector<int> order;  // staying ones first, then to rank 0, 1, ... (index order within)
     counts_.assign(p, 0);
     for (int i = 0; i < n; ++i)

@@ -15,7 +15,9 @@ Index3 cells_of(const std::array<double, 3>& lo, const std::array<double, 3>& hi
 SpatialDecomposition::SpatialDecomposition(const std::array<double, 3>& lo,
                                            const std::array<double, 3>& hi, double min_width,
                                            const Communicator& comm)
-    : comm_(comm), lo_(lo), hi_(hi),
+    : comm_(comm),
+      lo_(lo),
+      hi_(hi),
       boxes_(cells_of(lo, hi, min_width), {false, false, false}, comm.size(), 1) {
   for (int d = 0; d < 3; ++d) h_[d] = (hi_[d] - lo_[d]) / boxes_.global_cells()[d];
 }
@@ -81,13 +83,13 @@ std::vector<double> SpatialDecomposition::exchange_face(int d, int side,
   return in;
 }
 
-void SpatialDecomposition::exchange_face(int d, int side, const double* out, int n_out,
-                                         double* in, int n_in) const {
+void SpatialDecomposition::exchange_face(int d, int side, const double* out, int n_out, double* in,
+                                         int n_in) const {
   const int to = neighbor(d, side), from = neighbor(d, 1 - side);
   const int tag = 220 + 2 * d + side;
   MPI_Sendrecv(out, to >= 0 ? n_out : 0, MPI_DOUBLE, to >= 0 ? to : MPI_PROC_NULL, tag, in,
-               from >= 0 ? n_in : 0, MPI_DOUBLE, from >= 0 ? from : MPI_PROC_NULL, tag,
-               comm_.get(), MPI_STATUS_IGNORE);
+               from >= 0 ? n_in : 0, MPI_DOUBLE, from >= 0 ? from : MPI_PROC_NULL, tag, comm_.get(),
+               MPI_STATUS_IGNORE);
 }
 
 }  // namespace amphora::mesh

@@ -14,8 +14,8 @@ namespace amphora::advection_diffusion_1d {
 namespace initial_detail {
 /// u(s) = the exact solution at point s of grid cg at time t.
 template <class ExecSpace, class View>
-void fill_exact(const ExecSpace& exec, const View& u, const ManufacturedWave& exact, const ComponentGrid1D& grid,
-                double t) {
+void fill_exact(const ExecSpace& exec, const View& u, const ManufacturedWave& exact,
+                const ComponentGrid1D& grid, double t) {
   const ManufacturedWave ex = exact;
   const ComponentGrid1D cg = grid;
   Kokkos::parallel_for(
@@ -25,30 +25,34 @@ void fill_exact(const ExecSpace& exec, const View& u, const ManufacturedWave& ex
 }  // namespace initial_detail
 
 ParamTable parameter_table() {
-  return {"advection_diffusion_1d",
-          "u_t + a u_x = nu u_xx + f on (0,1), two overlapping grids, manufactured solution",
-          {
-              real_param("a", 1.0, "m/s", "advection speed"),
-              real_param("nu", 0.05, "m^2/s", above(0.0), "diffusivity (> 0: the centred scheme needs it)"),
-              int_param("cells", 40, at_least(8) & at_most(1 << 24), "grid-1 cells per unit length (h1 = 1/cells)"),
-              real_param("interface", 0.5, "m", above(0.2) & below(0.8), "right end of grid 1 (x_b)"),
-              real_param("overlap", 1.5, "1", above(0.0) & at_most(2.0), "overlap width x_b - x_a in grid-1 cells"),
-              real_param("spacing_ratio", 1.3, "1", at_least(0.5) & at_most(2.0), "grid-2 spacing over grid-1 spacing"),
-              real_param("amplitude", 1.0, "1", "manufactured solution amplitude A"),
-              real_param("offset", 0.5, "1", "manufactured solution offset B"),
-              real_param("wavenumber", 6.0, "1/m", "manufactured solution wavenumber k"),
-              real_param("frequency", 2.0, "1/s", "manufactured solution angular frequency omega"),
-              real_param("decay", 0.5, "1/s", at_least(0.0), "manufactured solution decay rate gamma"),
-          }};
+  return {
+      "advection_diffusion_1d",
+      "u_t + a u_x = nu u_xx + f on (0,1), two overlapping grids, manufactured solution",
+      {
+          real_param("a", 1.0, "m/s", "advection speed"),
+          real_param("nu", 0.05, "m^2/s", above(0.0),
+                     "diffusivity (> 0: the centred scheme needs it)"),
+          int_param("cells", 40, at_least(8) & at_most(1 << 24),
+                    "grid-1 cells per unit length (h1 = 1/cells)"),
+          real_param("interface", 0.5, "m", above(0.2) & below(0.8), "right end of grid 1 (x_b)"),
+          real_param("overlap", 1.5, "1", above(0.0) & at_most(2.0),
+                     "overlap width x_b - x_a in grid-1 cells"),
+          real_param("spacing_ratio", 1.3, "1", at_least(0.5) & at_most(2.0),
+                     "grid-2 spacing over grid-1 spacing"),
+          real_param("amplitude", 1.0, "1", "manufactured solution amplitude A"),
+          real_param("offset", 0.5, "1", "manufactured solution offset B"),
+          real_param("wavenumber", 6.0, "1/m", "manufactured solution wavenumber k"),
+          real_param("frequency", 2.0, "1/s", "manufactured solution angular frequency omega"),
+          real_param("decay", 0.5, "1/s", at_least(0.0), "manufactured solution decay rate gamma"),
+      }};
 }
 
 template <class ExecSpace>
-AdvectionDiffusion1D<ExecSpace>::AdvectionDiffusion1D(const Parameters& p,
-                                                      const Communicator& comm,
+AdvectionDiffusion1D<ExecSpace>::AdvectionDiffusion1D(const Parameters& p, const Communicator& comm,
                                                       const ExecSpace& exec)
     : comm_(comm),
       exec_(exec),
-      exact_{p.real("a"),         p.real("nu"),        p.real("amplitude"), p.real("offset"),
+      exact_{p.real("a"),          p.real("nu"),        p.real("amplitude"), p.real("offset"),
              p.real("wavenumber"), p.real("frequency"), p.real("decay")},
       grid_(static_cast<int>(p.integer("cells")), p.real("interface"), p.real("overlap"),
             p.real("spacing_ratio")) {
@@ -61,8 +65,7 @@ AdvectionDiffusion1D<ExecSpace>::AdvectionDiffusion1D(const Parameters& p,
     if (!owns(g)) continue;
     const ComponentGrid1D cg = grid_.grid(g);
     u_[g] = View(std::string("amphora::AdvectionDiffusion1D::u_") + block_name(g), cg.size);
-    u_new_[g] = View(std::string("amphora::AdvectionDiffusion1D::u_new_") + block_name(g),
-                     cg.size);
+    u_new_[g] = View(std::string("amphora::AdvectionDiffusion1D::u_new_") + block_name(g), cg.size);
     initial_detail::fill_exact(exec_, u_[g], exact_, cg, 0.0);
   }
   apply_boundary_conditions(0.0);

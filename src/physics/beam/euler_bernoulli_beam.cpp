@@ -55,7 +55,8 @@ EulerBernoulliBeam::EulerBernoulliBeam(const BeamParameters& p, double dt)
   s.setFromTriplets(entries.begin(), entries.end());
   factor_ = std::make_unique<Factor>();
   factor_->ldlt.compute(s);
-  if (factor_->ldlt.info() != Eigen::Success) throw std::runtime_error("beam: factorisation failed");
+  if (factor_->ldlt.info() != Eigen::Success)
+    throw std::runtime_error("beam: factorisation failed");
 }
 
 EulerBernoulliBeam::~EulerBernoulliBeam() = default;
@@ -83,7 +84,8 @@ void EulerBernoulliBeam::set_state(double t, const std::vector<double>& eta,
 void EulerBernoulliBeam::restore_state(double t, const std::vector<double>& eta,
                                        const std::vector<double>& v, const std::vector<double>& a) {
   const size_t n = p_.points;
-  require(eta.size() == n && v.size() == n && a.size() == n, "state arrays must have `points` entries");
+  require(eta.size() == n && v.size() == n && a.size() == n,
+          "state arrays must have `points` entries");
   t_ = t;
   eta_ = eta;
   v_ = v;
@@ -96,7 +98,8 @@ std::vector<double> EulerBernoulliBeam::predictor() const {
   return pred;
 }
 
-std::vector<double> EulerBernoulliBeam::acceleration_after(const std::vector<double>& f_next) const {
+std::vector<double> EulerBernoulliBeam::acceleration_after(
+    const std::vector<double>& f_next) const {
   const int n = p_.points;
   require(int(f_next.size()) == n, "load must have `points` entries");
   // (rho_h + dt^2/4 A) a_new = f - A eta*, eta* the predictor.

@@ -27,10 +27,14 @@ void laplacian(std::vector<Eigen::Triplet<double>>& t, int nx, int rows, double 
       double c = diagonal - 2 * cx - 2 * cy;
       t.emplace_back(r, j * nx + wrap(i - 1, nx), cx);
       t.emplace_back(r, j * nx + wrap(i + 1, nx), cx);
-      if (j > 0) t.emplace_back(r, r - nx, cy);
-      else c += bottom * cy;
-      if (j < rows - 1) t.emplace_back(r, r + nx, cy);
-      else c += top * cy;
+      if (j > 0)
+        t.emplace_back(r, r - nx, cy);
+      else
+        c += bottom * cy;
+      if (j < rows - 1)
+        t.emplace_back(r, r + nx, cy);
+      else
+        c += top * cy;
       t.emplace_back(r, r, c);
     }
 }
@@ -49,7 +53,8 @@ ChannelStokes::ChannelStokes(const ChannelGrid& g, double rho, double mu, double
     throw std::invalid_argument("channel Stokes: rho, mu and dt must be > 0");
   if (top && !(top->z_normal >= 0 && top->z_shear >= 0))
     throw std::invalid_argument("channel Stokes: the top impedances must be >= 0");
-  if (g.nx < 3 || g.ny < 2) throw std::invalid_argument("channel Stokes: grid needs nx >= 3, ny >= 2");
+  if (g.nx < 3 || g.ny < 2)
+    throw std::invalid_argument("channel Stokes: grid needs nx >= 3, ny >= 2");
   const int nx = g.nx, ny = g.ny;
   const double hx = g.hx(), hy = g.hy();
   f_ = std::make_unique<Factors>();
@@ -80,7 +85,8 @@ ChannelStokes::ChannelStokes(const ChannelGrid& g, double rho, double mu, double
   t.clear();
   laplacian(t, nx, ny, hx, hy, 1, top ? phi_ghost(hy) : 1, 1.0, 0.0);
   if (!top) {
-    t.erase(std::remove_if(t.begin(), t.end(), [](const auto& e) { return e.row() == 0; }), t.end());
+    t.erase(std::remove_if(t.begin(), t.end(), [](const auto& e) { return e.row() == 0; }),
+            t.end());
     t.emplace_back(0, 0, 1.0);
   } else {
     // The ghost's implicit viscous part eta L_x phi (header), in the top row's flux cy (a - b).
@@ -96,7 +102,8 @@ ChannelStokes::ChannelStokes(const ChannelGrid& g, double rho, double mu, double
     }
   }
   f_->mp.compute(build(nx * ny, t));
-  if (f_->mp.info() != Eigen::Success) throw std::runtime_error("channel Stokes: factorisation failed");
+  if (f_->mp.info() != Eigen::Success)
+    throw std::runtime_error("channel Stokes: factorisation failed");
   u_.assign(size_t(nx) * ny, 0.0);
   v_.assign(size_t(nx) * (ny + 1), 0.0);
   p_.assign(size_t(nx) * ny, 0.0);
@@ -157,7 +164,8 @@ void ChannelStokes::step(const StokesData& d) {
   const double m = top_ ? mu_ / hy + 0.5 * top_->z_shear : 1.0;
   if (top_)  // the u Robin condition at t1: ghost = cu u + data
     for (int i = 0; i < nx; ++i)
-      u_ghost_data[i] = (d.g_top_x(u_x(i), t1) - mu_ * (v_top1[i] - v_top1[wrap(i - 1, nx)]) / hx) / m;
+      u_ghost_data[i] =
+          (d.g_top_x(u_x(i), t1) - mu_ * (v_top1[i] - v_top1[wrap(i - 1, nx)]) / hx) / m;
   // u: explicit half of Crank–Nicolson, wall data of both levels, old pressure gradient, force.
   Vec un = Eigen::Map<const Vec>(u_.data(), nx * ny);
   Vec ru = (rho_ / dt_) * un + 0.5 * mu_ * (f_->lap_u * un);
@@ -185,7 +193,8 @@ void ChannelStokes::step(const StokesData& d) {
       const int r = (j - 1) * nx + i;
       const double x = v_x(i), y = v_y(j);
       if (j == 1) rv[r] += 0.5 * mu_ * (d.v_bottom(x, t0) + d.v_bottom(x, t1)) / (hy * hy);
-      if (j == ny - 1) rv[r] += 0.5 * mu_ * ((top_ ? v_[top_row + i] : d.v_top(x, t0)) + v_top1[i]) / (hy * hy);
+      if (j == ny - 1)
+        rv[r] += 0.5 * mu_ * ((top_ ? v_[top_row + i] : d.v_top(x, t0)) + v_top1[i]) / (hy * hy);
       rv[r] += -(p_[j * nx + i] - p_[(j - 1) * nx + i]) / hy + d.fy(x, y, th);
     }
   const Vec vs_in = f_->mv.solve(rv);

@@ -50,7 +50,8 @@ struct StokesData {
   std::function<double(double x, double t)> g_top_x, g_top_y;
 };
 
-/// The solid impedances of an impedance top wall: z_normal = rho_bar cp_bar, z_shear = rho_bar cs_bar.
+/// The solid impedances of an impedance top wall: z_normal = rho_bar cp_bar, z_shear = rho_bar
+/// cs_bar.
 struct TopImpedance {
   double z_normal = 0, z_shear = 0;
 };

@@ -8,20 +8,20 @@
 namespace amphora::dem {
 
 struct Material {
-  double density = 2500.0;          ///< kg/m^3
-  double youngs_modulus = 1e7;      ///< Pa
+  double density = 2500.0;      ///< kg/m^3
+  double youngs_modulus = 1e7;  ///< Pa
   double poisson_ratio = 0.3;
-  double restitution = 0.9;         ///< in (0, 1]
-  double friction = 0.5;            ///< Coulomb sliding friction
-  double rolling_friction = 0.0;    ///< constant-torque rolling resistance coefficient
+  double restitution = 0.9;              ///< in (0, 1]
+  double friction = 0.5;                 ///< Coulomb sliding friction
+  double rolling_friction = 0.0;         ///< constant-torque rolling resistance coefficient
   double cohesion_energy_density = 0.0;  ///< SJKR, J/m^3 (0: off)
 };
 
 /// Everything the point-wise force needs for one material pair, precomputed on the host.
 struct PairCoefficients {
-  double e_star = 0;    ///< effective Young's modulus E* [Pa]
-  double g_star = 0;    ///< effective shear modulus G* [Pa]
-  double damping = 0;   ///< eta: gamma = eta sqrt(S m*) for S = S_n = 2 E* a, S_t = 8 G* a
+  double e_star = 0;   ///< effective Young's modulus E* [Pa]
+  double g_star = 0;   ///< effective shear modulus G* [Pa]
+  double damping = 0;  ///< eta: gamma = eta sqrt(S m*) for S = S_n = 2 E* a, S_t = 8 G* a
   double friction = 0;
   double rolling_friction = 0;
   double cohesion = 0;  ///< SJKR energy density [J/m^3]

@@ -10,11 +10,12 @@ namespace amphora::dem {
 
 template <class ExecSpace>
 typename DemSystem<ExecSpace>::HostArrays DemSystem<ExecSpace>::to_host() const {
-  auto copy = [](const auto& view) { return Kokkos::create_mirror_view_and_copy(HostMemSpace(), view); };
-  return {copy(p_.x),        copy(p_.v),      copy(p_.omega),  copy(p_.force),
-          copy(p_.torque),   copy(x_build_),  copy(p_.radius), copy(p_.mass),
-          copy(p_.inertia),  copy(p_.material), copy(p_.gid),  copy(wall_shear_),
-          copy(rec_shear_),  copy(rec_gid_)};
+  auto copy = [](const auto& view) {
+    return Kokkos::create_mirror_view_and_copy(HostMemSpace(), view);
+  };
+  return {copy(p_.x),     copy(p_.v),        copy(p_.omega),   copy(p_.force),   copy(p_.torque),
+          copy(x_build_), copy(p_.radius),   copy(p_.mass),    copy(p_.inertia), copy(p_.material),
+          copy(p_.gid),   copy(wall_shear_), copy(rec_shear_), copy(rec_gid_)};
 }
 
 template <class ExecSpace>
@@ -44,12 +45,12 @@ typename DemSystem<ExecSpace>::HostState DemSystem<ExecSpace>::save() const {
   const int n = p_.n_owned, nw = int(wall_shear_.extent(1)), K = config_.max_contacts;
   const HostArrays h = to_host();
   const auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
-  const auto &r = h.radius;
-  const auto &mat = h.material;
-  const auto &gid = h.gid;
-  const auto &ws = h.wall_shear;
-  const auto &rg = h.rec_gid;
-  const auto &rs = h.rec_shear;
+  const auto& r = h.radius;
+  const auto& mat = h.material;
+  const auto& gid = h.gid;
+  const auto& ws = h.wall_shear;
+  const auto& rg = h.rec_gid;
+  const auto& rs = h.rec_shear;
   // Before the first rebuild there are no build positions yet.
   const bool built = has_lists() && n > 0;
   for (int i = 0; i < n; ++i) {
@@ -88,11 +89,11 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
   HostArrays h = to_host();
   auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
   auto &r = h.radius, &m = h.mass, &in = h.inertia;
-  auto &mat = h.material;
-  auto &gid = h.gid;
-  auto &ws = h.wall_shear;
-  auto &rg = h.rec_gid;
-  auto &rs = h.rec_shear;
+  auto& mat = h.material;
+  auto& gid = h.gid;
+  auto& ws = h.wall_shear;
+  auto& rg = h.rec_gid;
+  auto& rs = h.rec_shear;
   const bool have_build = s.x_build.size() == s.x.size();
   for (int a = 0; a < n; ++a) {
     const size_t i = mine[a];
@@ -128,7 +129,7 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
   forces_valid_ = true;
 }
 
-#define AMPHORA_DEM_CHECKPOINT(E)                                                   \
+#define AMPHORA_DEM_CHECKPOINT(E)                                                  \
   template typename DemSystem<E>::HostArrays DemSystem<E>::to_host() const;        \
   template void DemSystem<E>::from_host(const typename DemSystem<E>::HostArrays&); \
   template typename DemSystem<E>::HostState DemSystem<E>::save() const;            \

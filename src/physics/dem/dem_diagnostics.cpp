@@ -143,11 +143,10 @@ std::int64_t DemSystem<ExecSpace>::first_nonfinite() const {
   return global == std::numeric_limits<std::int64_t>::max() ? -1 : global;
 }
 
-#define AMPHORA_DEM_DIAGNOSTICS(E)                                                           \
-  template std::vector<std::pair<std::int64_t, std::int64_t>> DemSystem<E>::contact_pairs() \
-      const;                                                                                 \
-  template DemDiagnostics DemSystem<E>::diagnostics() const;                                 \
-  template std::vector<int> DemSystem<E>::contact_counts() const;                            \
+#define AMPHORA_DEM_DIAGNOSTICS(E)                                                                 \
+  template std::vector<std::pair<std::int64_t, std::int64_t>> DemSystem<E>::contact_pairs() const; \
+  template DemDiagnostics DemSystem<E>::diagnostics() const;                                       \
+  template std::vector<int> DemSystem<E>::contact_counts() const;                                  \
   template std::int64_t DemSystem<E>::first_nonfinite() const;
 AMPHORA_FOR_EACH_EXEC_SPACE(AMPHORA_DEM_DIAGNOSTICS)
 

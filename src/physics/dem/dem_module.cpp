@@ -10,44 +10,63 @@
 namespace amphora::dem {
 
 ParamTable parameter_table() {
-  return {"dem",
-          "discrete elements: Hertz-Mindlin spheres in a box or a rotating drum",
-          {
-              string_param("geometry", std::string("box"), "box (settling bed) or drum", {"box", "drum"}),
-              real_param("box_x", 0.03, "m", above(0.0), "box width"),
-              real_param("box_y", 0.03, "m", above(0.0), "box depth"),
-              real_param("box_z", 0.06, "m", above(0.0), "box height (particles above it are removed)"),
-              real_param("drum_radius", 0.04, "m", above(0.0), "drum inner radius"),
-              real_param("drum_length", 0.012, "m", above(0.0), "drum length (end caps turn with the drum)"),
-              real_param("froude", 0.1, "1", above(0.0), "drum Froude number omega^2 R / g"),
-              real_param("fill_level", 0.3, "1", above(0.0) & below(0.6), "bed volume over drum volume (drum)"),
-              real_param("settle_time", 0.2, "s", at_least(0.0), "the drum starts turning after this time"),
-              real_param("particle_radius", 1.5e-3, "m", above(0.0), "mean particle radius"),
-              real_param("radius_spread", 0.0, "1", at_least(0.0) & below(1.0), "radii uniform in r (1 -+ spread)"),
-              real_param("density", 2500.0, "kg/m^3", above(0.0), "particle density (glass)"),
-              real_param("youngs_modulus", 5e6, "Pa", above(0.0), "particle Young's modulus"),
-              real_param("poisson_ratio", 0.3, "1", above(-1.0) & below(0.5), "particle Poisson's ratio"),
-              real_param("restitution", 0.9, "1", above(0.0) & at_most(1.0), "particle-particle restitution coefficient"),
-              real_param("friction", 0.5, "1", at_least(0.0), "sliding friction coefficient"),
-              real_param("rolling_friction", 0.05, "1", at_least(0.0), "rolling friction coefficient"),
-              real_param("cohesion_energy_density", 0.0, "J/m^3", at_least(0.0), "SJKR cohesion (0: off)"),
-              real_param("second_material_fraction", 0.0, "1", at_least(0.0) & at_most(1.0), "share of particles of material 2"),
-              real_param("second_density", 1050.0, "kg/m^3", above(0.0), "material 2 density (ABS)"),
-              real_param("second_youngs_modulus", 5e6, "Pa", above(0.0), "material 2 Young's modulus"),
-              real_param("wall_youngs_modulus", 5e6, "Pa", above(0.0), "wall Young's modulus"),
-              real_param("wall_restitution", 0.9, "1", above(0.0) & at_most(1.0), "wall restitution coefficient"),
-              real_param("wall_friction", 0.5, "1", at_least(0.0), "wall friction coefficient"),
-              string_param("insertion", std::string("random"), "random (over time) or lattice", {"random", "lattice"}),
-              int_param("particle_count", 2000, at_least(0), "particles to insert (drum: 0 = from fill_level)"),
-              real_param("insertion_rate", 10000.0, "1/s", at_least(0.0), "random insertion rate (0: all at t = 0)"),
-              real_param("insertion_velocity", 1.0, "m/s", at_least(0.0), "downward speed of inserted particles"),
-              int_param("insertion_attempts", 100, at_least(1), "random draws per particle before giving up"),
-              real_param("gravity", 9.81, "m/s^2", at_least(0.0), "gravitational acceleration (-z box, -y drum)"),
-              real_param("verlet_skin", 0.25, "1", above(0.0) & at_most(2.0), "Verlet skin in largest diameters"),
-              int_param("max_contacts", 24, at_least(6), "contact histories a particle may carry"),
-              int_param("seed", 1, at_least(0), "seed of the insertion draws"),
-              bool_param("allow_large_dt", false, "accept a step over the Rayleigh/Hertz limit (at your risk)"),
-          }};
+  return {
+      "dem",
+      "discrete elements: Hertz-Mindlin spheres in a box or a rotating drum",
+      {
+          string_param("geometry", std::string("box"), "box (settling bed) or drum",
+                       {"box", "drum"}),
+          real_param("box_x", 0.03, "m", above(0.0), "box width"),
+          real_param("box_y", 0.03, "m", above(0.0), "box depth"),
+          real_param("box_z", 0.06, "m", above(0.0), "box height (particles above it are removed)"),
+          real_param("drum_radius", 0.04, "m", above(0.0), "drum inner radius"),
+          real_param("drum_length", 0.012, "m", above(0.0),
+                     "drum length (end caps turn with the drum)"),
+          real_param("froude", 0.1, "1", above(0.0), "drum Froude number omega^2 R / g"),
+          real_param("fill_level", 0.3, "1", above(0.0) & below(0.6),
+                     "bed volume over drum volume (drum)"),
+          real_param("settle_time", 0.2, "s", at_least(0.0),
+                     "the drum starts turning after this time"),
+          real_param("particle_radius", 1.5e-3, "m", above(0.0), "mean particle radius"),
+          real_param("radius_spread", 0.0, "1", at_least(0.0) & below(1.0),
+                     "radii uniform in r (1 -+ spread)"),
+          real_param("density", 2500.0, "kg/m^3", above(0.0), "particle density (glass)"),
+          real_param("youngs_modulus", 5e6, "Pa", above(0.0), "particle Young's modulus"),
+          real_param("poisson_ratio", 0.3, "1", above(-1.0) & below(0.5),
+                     "particle Poisson's ratio"),
+          real_param("restitution", 0.9, "1", above(0.0) & at_most(1.0),
+                     "particle-particle restitution coefficient"),
+          real_param("friction", 0.5, "1", at_least(0.0), "sliding friction coefficient"),
+          real_param("rolling_friction", 0.05, "1", at_least(0.0), "rolling friction coefficient"),
+          real_param("cohesion_energy_density", 0.0, "J/m^3", at_least(0.0),
+                     "SJKR cohesion (0: off)"),
+          real_param("second_material_fraction", 0.0, "1", at_least(0.0) & at_most(1.0),
+                     "share of particles of material 2"),
+          real_param("second_density", 1050.0, "kg/m^3", above(0.0), "material 2 density (ABS)"),
+          real_param("second_youngs_modulus", 5e6, "Pa", above(0.0), "material 2 Young's modulus"),
+          real_param("wall_youngs_modulus", 5e6, "Pa", above(0.0), "wall Young's modulus"),
+          real_param("wall_restitution", 0.9, "1", above(0.0) & at_most(1.0),
+                     "wall restitution coefficient"),
+          real_param("wall_friction", 0.5, "1", at_least(0.0), "wall friction coefficient"),
+          string_param("insertion", std::string("random"), "random (over time) or lattice",
+                       {"random", "lattice"}),
+          int_param("particle_count", 2000, at_least(0),
+                    "particles to insert (drum: 0 = from fill_level)"),
+          real_param("insertion_rate", 10000.0, "1/s", at_least(0.0),
+                     "random insertion rate (0: all at t = 0)"),
+          real_param("insertion_velocity", 1.0, "m/s", at_least(0.0),
+                     "downward speed of inserted particles"),
+          int_param("insertion_attempts", 100, at_least(1),
+                    "random draws per particle before giving up"),
+          real_param("gravity", 9.81, "m/s^2", at_least(0.0),
+                     "gravitational acceleration (-z box, -y drum)"),
+          real_param("verlet_skin", 0.25, "1", above(0.0) & at_most(2.0),
+                     "Verlet skin in largest diameters"),
+          int_param("max_contacts", 24, at_least(6), "contact histories a particle may carry"),
+          int_param("seed", 1, at_least(0), "seed of the insertion draws"),
+          bool_param("allow_large_dt", false,
+                     "accept a step over the Rayleigh/Hertz limit (at your risk)"),
+      }};
 }
 
 DemModule::DemModule(const Parameters& p, const Communicator& comm) : comm_(comm) {
@@ -111,7 +130,8 @@ DemModule::DemModule(const Parameters& p, const Communicator& comm) : comm_(comm
     drum_omega_ = std::sqrt(p.real("froude") * gravity_ / drum_radius_);
     settle_time_ = p.real("settle_time");
     if (drum_radius_ < 5 * radii_.max() || drum_length_ < 2.2 * radii_.max())
-      throw std::invalid_argument("dem: the drum must be at least 5 particle radii wide and 2.2 long");
+      throw std::invalid_argument(
+          "dem: the drum must be at least 5 particle radii wide and 2.2 long");
     c.gravity = {0, -gravity_, 0};
     c.domain_lo = {-drum_radius_, -drum_radius_, 0};
     c.domain_hi = {drum_radius_, drum_radius_, drum_length_};
@@ -133,7 +153,8 @@ DemModule::DemModule(const Parameters& p, const Communicator& comm) : comm_(comm
     if (a == &m2 && f2 == 0) continue;
     const double mass = a->density * 4.0 / 3.0 * M_PI * r_min * r_min * r_min;
     const PairCoefficients pc = pair_coefficients(*a, *a);
-    hertz_ = std::min(hertz_, hertz_contact_time(0.5 * mass, 0.5 * r_min, pc.e_star, impact_speed_));
+    hertz_ =
+        std::min(hertz_, hertz_contact_time(0.5 * mass, 0.5 * r_min, pc.e_star, impact_speed_));
   }
   dt_limit_ = std::min(0.2 * rayleigh_, 0.1 * hertz_);
   c.dt = dt_limit_;
@@ -149,9 +170,10 @@ DemModule::DemModule(const Parameters& p, const Communicator& comm) : comm_(comm
   }
   if (insertion_ == "random") {
     const double region = box_[0] * box_[1] * 0.5 * box_[2];
-    const double batch = insertion_rate_ > 0
-                             ? std::min<double>(particle_count_, insertion_rate_ * insertion_interval_)
-                             : double(particle_count_);
+    const double batch =
+        insertion_rate_ > 0
+            ? std::min<double>(particle_count_, insertion_rate_ * insertion_interval_)
+            : double(particle_count_);
     const double solid = batch * 4.0 / 3.0 * M_PI * std::pow(radii_.max(), 3);
     if (solid > 0.3 * region) {
       std::ostringstream m;
@@ -168,8 +190,8 @@ void DemModule::set_time_step(double dt) {
   if (dt > dt_limit_ * (1 + 1e-12) && !allow_large_dt_) {
     std::ostringstream m;
     m << "time step " << dt << " s exceeds the DEM stability limit " << dt_limit_
-      << " s = min(0.2 x Rayleigh time " << rayleigh_ << " s, 0.1 x Hertz contact time "
-      << hertz_ << " s at " << impact_speed_ << " m/s); lower run.dt or set "
+      << " s = min(0.2 x Rayleigh time " << rayleigh_ << " s, 0.1 x Hertz contact time " << hertz_
+      << " s at " << impact_speed_ << " m/s); lower run.dt or set "
       << "dem.allow_large_dt = true";
     throw std::invalid_argument(m.str());
   }
@@ -192,8 +214,9 @@ void DemModule::insert_due(double t) {
       auto all = lattice_insertion(region, radii_, spacing, 0, 0.02 * radii_.mean, seed_, 0,
                                    material_fractions_);
       // Fill from the bottom up.
-      std::stable_sort(all.begin(), all.end(),
-                       [](const ParticleSpec& a, const ParticleSpec& b) { return a.x[1] < b.x[1]; });
+      std::stable_sort(all.begin(), all.end(), [](const ParticleSpec& a, const ParticleSpec& b) {
+        return a.x[1] < b.x[1];
+      });
       if ((long long)all.size() < particle_count_) {
         std::ostringstream m;
         m << "dem: lattice insertion cannot fit " << particle_count_ << " particles in the drum ("
@@ -207,8 +230,8 @@ void DemModule::insert_due(double t) {
       region.hi[0] = box_[0];
       region.hi[1] = box_[1];
       region.hi[2] = box_[2];
-      batch = lattice_insertion(region, radii_, spacing, particle_count_, 0.02 * radii_.mean,
-                                seed_, 0, material_fractions_);
+      batch = lattice_insertion(region, radii_, spacing, particle_count_, 0.02 * radii_.mean, seed_,
+                                0, material_fractions_);
     }
     next_event_ = 1;
   } else {
@@ -219,11 +242,12 @@ void DemModule::insert_due(double t) {
     region.hi[0] = box_[0];
     region.hi[1] = box_[1];
     region.hi[2] = box_[2];
-    long long n = insertion_rate_ > 0 ? std::llround(insertion_rate_ * insertion_interval_)
-                                      : particle_count_;
+    long long n =
+        insertion_rate_ > 0 ? std::llround(insertion_rate_ * insertion_interval_) : particle_count_;
     n = std::max(1LL, std::min(n, particle_count_ - inserted_));
-    batch = random_insertion(*system_, region, radii_, n, insertion_attempts_, seed_,
-                             static_cast<std::uint64_t>(next_event_), inserted_, material_fractions_);
+    batch =
+        random_insertion(*system_, region, radii_, n, insertion_attempts_, seed_,
+                         static_cast<std::uint64_t>(next_event_), inserted_, material_fractions_);
     for (auto& q : batch) q.v[2] = -insertion_velocity_;
     ++next_event_;
   }
@@ -266,7 +290,8 @@ DemModule::System::HostState DemModule::gather() const {
   const size_t n = all.gid.size();
   std::vector<size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return all.gid[a] < all.gid[b]; });
+  std::sort(order.begin(), order.end(),
+            [&](size_t a, size_t b) { return all.gid[a] < all.gid[b]; });
   // Per-particle widths: wall history (3 per wall), contact records (gid, and 3 of history).
   const size_t nw = n ? all.wall_shear.size() / n : 0, nk = n ? all.contact_gid.size() / n : 0;
   System::HostState s;
@@ -311,8 +336,8 @@ std::vector<OutputBlock> DemModule::output(double) const {
     gid[i] = double(s.gid[i]);
     mat[i] = s.material[i];
   }
-  b.fields = {{"radius", s.radius}, {"gid", gid},     {"material", mat}, {"vx", vx},
-              {"vy", vy},           {"vz", vz},       {"speed", speed},  {"spin", spin}};
+  b.fields = {{"radius", s.radius}, {"gid", gid}, {"material", mat}, {"vx", vx},
+              {"vy", vy},           {"vz", vz},   {"speed", speed},  {"spin", spin}};
   return {b};
 }
 
@@ -352,12 +377,9 @@ DrumClassification DemModule::drum_regime() const {
 
 Diagnostics DemModule::diagnostics(double t) const {
   const DemDiagnostics d = system_->diagnostics();
-  Diagnostics out = {{"particles", double(d.particles)},
-                     {"contacts", double(d.contacts)},
-                     {"wall_contacts", double(d.wall_contacts)},
-                     {"kinetic_energy", d.kinetic},
-                     {"rotational_energy", d.rotational},
-                     {"max_overlap", d.max_overlap}};
+  Diagnostics out = {{"particles", double(d.particles)},         {"contacts", double(d.contacts)},
+                     {"wall_contacts", double(d.wall_contacts)}, {"kinetic_energy", d.kinetic},
+                     {"rotational_energy", d.rotational},        {"max_overlap", d.max_overlap}};
   if (drum_) {
     const DrumClassification c = drum_regime();
     // Average once the drum has turned a quarter revolution (and at least 0.3 s): the regime
@@ -418,9 +440,10 @@ std::vector<StateBlock> DemModule::state() const {
               {"wall_shear", s.wall_shear},
               {"contact_gid", as_double(s.contact_gid)},
               {"contact_shear", s.contact_shear},
-              {"module", {double(inserted_), double(next_event_), system_->time(),
-                          double(system_->steps()), drum_turning_ ? 1.0 : 0.0, regime_sums_[0],
-                          regime_sums_[1], regime_sums_[2], regime_sums_[3], regime_sums_[4]}}};
+              {"module",
+               {double(inserted_), double(next_event_), system_->time(), double(system_->steps()),
+                drum_turning_ ? 1.0 : 0.0, regime_sums_[0], regime_sums_[1], regime_sums_[2],
+                regime_sums_[3], regime_sums_[4]}}};
   return {b};
 }
 

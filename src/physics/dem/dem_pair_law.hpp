@@ -95,8 +95,8 @@ struct PairContact {
     const double vr[3] = {dv[0] + w[1] * nn[2] - w[2] * nn[1], dv[1] + w[2] * nn[0] - w[0] * nn[2],
                           dv[2] + w[0] * nn[1] - w[1] * nn[0]};
     const double wr[3] = {wi[0] - om(j, 0), wi[1] - om(j, 1), wi[2] - om(j, 2)};
-    return hertz_mindlin_force(pairs(mati, mat(j)), ri * rj * (mi + mj) * q, mi * mj * rsum * q,
-                               nn, rsum - dist, vn, vr, wr, dt, s);
+    return hertz_mindlin_force(pairs(mati, mat(j)), ri * rj * (mi + mj) * q, mi * mj * rsum * q, nn,
+                               rsum - dist, vn, vr, wr, dt, s);
   }
 };
 
@@ -127,8 +127,12 @@ struct HertzMindlinPairLaw {
   double t;
 
   KOKKOS_FORCEINLINE_FUNCTION Particle load(int i) const {
-    return {{x(i, 0), x(i, 1), x(i, 2)}, {v(i, 0), v(i, 1), v(i, 2)},
-            {om(i, 0), om(i, 1), om(i, 2)}, rad(i), mass(i), mat(i)};
+    return {{x(i, 0), x(i, 1), x(i, 2)},
+            {v(i, 0), v(i, 1), v(i, 2)},
+            {om(i, 0), om(i, 1), om(i, 2)},
+            rad(i),
+            mass(i),
+            mat(i)};
   }
   KOKKOS_FORCEINLINE_FUNCTION void body(int i, const Particle& p, Sum& s) const {
     body_forces(i, t, wall_near(i), p.x, p.v, p.w, s.F, s.T);

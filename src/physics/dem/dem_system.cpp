@@ -20,8 +20,7 @@ namespace amphora::dem {
 namespace dem_system_kernels {
 
 double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
-      .count();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
 /// dst(i, ...) = src(perm(i), ...) for i < n, for LayoutRight Views of any rank: the inner
@@ -74,9 +73,11 @@ using kernels::particles::Rows3;
 template <class ExecSpace>
 DemSystem<ExecSpace>::DemSystem(const DemConfig& config, const Communicator& comm,
                                 const ExecSpace& exec)
-    : config_(config), comm_(comm), exec_(exec),
-      decomposition_(config.domain_lo, config.domain_hi,
-                     2 * config.max_radius + config.skin, comm) {
+    : config_(config),
+      comm_(comm),
+      exec_(exec),
+      decomposition_(config.domain_lo, config.domain_hi, 2 * config.max_radius + config.skin,
+                     comm) {
   if (config_.materials.empty()) throw std::invalid_argument("DEM: no materials");
   if (!(config_.max_radius > 0)) throw std::invalid_argument("DEM: max_radius must be > 0");
   if (!(config_.skin > 0)) throw std::invalid_argument("DEM: skin must be > 0");
@@ -86,7 +87,8 @@ DemSystem<ExecSpace>::DemSystem(const DemConfig& config, const Communicator& com
   pairs_ = Kokkos::View<PairCoefficients**, Mem>("amphora::dem::pairs", nm, nm);
   auto ph = Kokkos::create_mirror_view(pairs_);
   for (int a = 0; a < nm; ++a)
-    for (int b = 0; b < nm; ++b) ph(a, b) = pair_coefficients(config_.materials[a], config_.materials[b]);
+    for (int b = 0; b < nm; ++b)
+      ph(a, b) = pair_coefficients(config_.materials[a], config_.materials[b]);
   Kokkos::deep_copy(pairs_, ph);
   n_walls_ = static_cast<int>(config_.walls.size());
   if (n_walls_ > 32) throw std::invalid_argument("DEM: at most 32 walls (one bit each)");
@@ -147,10 +149,10 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
   HostArrays h = to_host();
   auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
   auto &r = h.radius, &m = h.mass, &in = h.inertia;
-  auto &mat = h.material;
-  auto &gid = h.gid;
-  auto &ws = h.wall_shear;
-  auto &rg = h.rec_gid;
+  auto& mat = h.material;
+  auto& gid = h.gid;
+  auto& ws = h.wall_shear;
+  auto& rg = h.rec_gid;
   for (int k = 0; k < int(mine.size()); ++k) {
     const ParticleSpec& s = *mine[k];
     const int i = n0 + k;
@@ -161,7 +163,8 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
       f(i, d) = tq(i, d) = 0.0;
     }
     r(i) = s.radius;
-    m(i) = config_.materials[s.material].density * 4.0 / 3.0 * M_PI * s.radius * s.radius * s.radius;
+    m(i) =
+        config_.materials[s.material].density * 4.0 / 3.0 * M_PI * s.radius * s.radius * s.radius;
     in(i) = 0.4 * m(i) * s.radius * s.radius;
     mat(i) = s.material;
     gid(i) = s.gid;
@@ -423,7 +426,8 @@ void DemSystem<ExecSpace>::rebuild() {
     const int nw = n_walls_;
     const double t_now = time_, skin = config_.skin;
     Kokkos::parallel_for(
-        "amphora::dem::history_masks", RangePolicy<ExecSpace>(exec_, 0, total), KOKKOS_LAMBDA(int i) {
+        "amphora::dem::history_masks", RangePolicy<ExecSpace>(exec_, 0, total),
+        KOKKOS_LAMBDA(int i) {
           // Bit b: the spring of the row's b-th own entry (from half(i) on) may be set.
           unsigned r = 0;
           for (int k = half(i); k < off(i + 1) && k - half(i) < 32; ++k)
@@ -437,10 +441,11 @@ void DemSystem<ExecSpace>::rebuild() {
             // Until the next rebuild a centre moves less than skin / 2, so a wall that stays
             // put and lies farther than r + skin cannot be touched; moving walls always can.
             const Wall& wall = walls(w);
-            const bool moves = wall.velocity[0] != 0.0 || wall.velocity[1] != 0.0 ||
-                               wall.velocity[2] != 0.0;
+            const bool moves =
+                wall.velocity[0] != 0.0 || wall.velocity[1] != 0.0 || wall.velocity[2] != 0.0;
             double nn[3], delta, vw[3];
-            if (moves || wall_contact(wall, t_now, xi, rad(i) + skin, nn, delta, vw)) w_near |= 1u << w;
+            if (moves || wall_contact(wall, t_now, xi, rad(i) + skin, nn, delta, vw))
+              w_near |= 1u << w;
           }
           mask(i) = m;
           near(i) = w_near | m;
@@ -536,11 +541,29 @@ void DemSystem<ExecSpace>::compute_forces() {
   const Rows3<const double> x(p_.x), v(p_.v), om(p_.omega);
   const Rows3<double> springs_out(by_particle_ ? shear_next_ : shear_);
   const HertzMindlinPairLaw<Mem> law{
-      x, v, om, Rows3<double>(p_.force), Rows3<double>(p_.torque), Rows3<const double>(shear_),
-      springs_out, p_.radius, p_.mass, p_.material, wall_near_,
-      BodyForces<Mem>{p_.radius, p_.mass, p_.material, pairs_, walls_, wall_shear_, wall_mask_,
-                      n_walls_, config_.dt, {g0, g1, g2}},
-      PairContact<Mem>{v, om, p_.mass, p_.material, pairs_, config_.dt}, time_};
+      x,
+      v,
+      om,
+      Rows3<double>(p_.force),
+      Rows3<double>(p_.torque),
+      Rows3<const double>(shear_),
+      springs_out,
+      p_.radius,
+      p_.mass,
+      p_.material,
+      wall_near_,
+      BodyForces<Mem>{p_.radius,
+                      p_.mass,
+                      p_.material,
+                      pairs_,
+                      walls_,
+                      wall_shear_,
+                      wall_mask_,
+                      n_walls_,
+                      config_.dt,
+                      {g0, g1, g2}},
+      PairContact<Mem>{v, om, p_.mass, p_.material, pairs_, config_.dt},
+      time_};
   const particles::HalfPairList<Mem> pairs{list_.offsets, list_.neighbors, half_start_};
   const particles::Spheres<Mem> spheres{x, p_.radius};
   if (by_particle_) {
@@ -559,7 +582,8 @@ void DemSystem<ExecSpace>::step() {
     // tangential springs; at an unchanged state they must not move, so they are put back.
     if (need_rebuild_) rebuild();
     decltype(shear_) springs("amphora::dem::shear_copy", shear_.extent(0));
-    Hist wall_springs("amphora::dem::wall_shear_copy", wall_shear_.extent(0), wall_shear_.extent(1));
+    Hist wall_springs("amphora::dem::wall_shear_copy", wall_shear_.extent(0),
+                      wall_shear_.extent(1));
     Kokkos::View<unsigned*, Mem> masks("amphora::dem::row_mask_copy", row_mask_.extent(0));
     Kokkos::View<unsigned*, Mem> wall_masks("amphora::dem::wall_mask_copy", wall_mask_.extent(0));
     Kokkos::deep_copy(springs, shear_);

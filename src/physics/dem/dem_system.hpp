@@ -46,9 +46,9 @@ struct DemConfig {
   std::array<double, 3> gravity{0.0, 0.0, -9.81};
   std::array<double, 3> domain_lo{0, 0, 0}, domain_hi{1, 1, 1};  ///< particles leaving are removed
   double dt = 1e-5;
-  double skin = 0;          ///< Verlet skin [m]
-  double max_radius = 0;    ///< largest radius the run will hold (bins, ghost width)
-  int max_contacts = 24;    ///< history records a particle carries across a rebuild
+  double skin = 0;        ///< Verlet skin [m]
+  double max_radius = 0;  ///< largest radius the run will hold (bins, ghost width)
+  int max_contacts = 24;  ///< history records a particle carries across a rebuild
 };
 
 /// One particle to add (host side).
@@ -202,8 +202,8 @@ class DemSystem {
   // are those of these positions.
   Vec x_build_;
   bool keep_build_positions_ = false;  // the next rebuild keeps x_build_ (a restart's first)
-  bool forces_zeroed_ = false;  // force and torque are zero, ready for a force evaluation
-  Hist wall_shear_;   // (particle, wall, 3)
+  bool forces_zeroed_ = false;         // force and torque are zero, ready for a force evaluation
+  Hist wall_shear_;                    // (particle, wall, 3)
   // Bit w set: wall w's history of this particle may be non-zero. Derived from wall_shear_
   // at each rebuild, so the force loop reads a particle's wall histories only when it must.
   Kokkos::View<unsigned*, Mem> wall_mask_;
@@ -213,8 +213,8 @@ class DemSystem {
   // spring (rows with more than 32 own pairs keep their tail entries always "set"). Spares
   // the force loop the history reads of the many listed neighbours that do not touch.
   Kokkos::View<unsigned*, Mem> row_mask_;
-  Hist rec_shear_;    // (particle, record, 3), valid across a rebuild
-  RecIds rec_gid_;    // (particle, record): partner gid or -1
+  Hist rec_shear_;          // (particle, record, 3), valid across a rebuild
+  RecIds rec_gid_;          // (particle, record): partner gid or -1
   NeighborList<Mem> list_;  // rows for owned particles and ghosts
   // Aligned with list_.neighbors: the springs of the pairs each row evaluates (zero elsewhere).
   Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> shear_;

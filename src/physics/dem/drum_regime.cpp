@@ -29,8 +29,8 @@ DrumClassification classify_drum(const DrumState& drum, const std::vector<double
     const double r = std::sqrt(px * px + py * py);
     // Angular velocity about the axis: (x v_y - y v_x) / r^2.
     const double w = r > 0 ? (px * v[3 * i + 1] - py * v[3 * i]) / (r * r) : 0.0;
-    const bool with_wall = drum.angular_velocity != 0 &&
-                           std::abs(w - drum.angular_velocity) < 0.3 * std::abs(drum.angular_velocity);
+    const bool with_wall = drum.angular_velocity != 0 && std::abs(w - drum.angular_velocity) <
+                                                             0.3 * std::abs(drum.angular_velocity);
     if (py > 0 && with_wall) ++upper;
   }
   c.upper_fraction = double(upper) / n;
@@ -73,7 +73,8 @@ DrumClassification classify_drum(const DrumState& drum, const std::vector<double
     size_t airborne = 0;
     for (size_t i = 0; i < n; ++i) {
       const double px = x[3 * i] / drum.radius;
-      if (contacts[i] == 0 && x[3 * i + 1] - (line(0) + line(1) * px) > 2 * drum.diameter) ++airborne;
+      if (contacts[i] == 0 && x[3 * i + 1] - (line(0) + line(1) * px) > 2 * drum.diameter)
+        ++airborne;
     }
     c.airborne_fraction = double(airborne) / n;
   }

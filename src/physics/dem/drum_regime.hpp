@@ -14,9 +14,9 @@ enum class DrumRegime { kRolling = 0, kCascading = 1, kCataracting = 2, kCentrif
 const char* to_string(DrumRegime r);
 
 struct DrumState {
-  double radius = 0;          ///< drum radius [m], axis along z through (0, 0)
+  double radius = 0;            ///< drum radius [m], axis along z through (0, 0)
   double angular_velocity = 0;  ///< [rad/s] about +z; gravity along -y
-  double diameter = 0;        ///< particle diameter [m]
+  double diameter = 0;          ///< particle diameter [m]
 };
 
 struct DrumClassification {

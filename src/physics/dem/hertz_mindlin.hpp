@@ -24,11 +24,9 @@ struct ContactForce {
 ///   shear: tangential displacement history of this contact, updated in place.
 ///   vn: v_rel . n, the approach speed (> 0: approaching), which callers may know sooner than
 ///   v_rel and n (the rotational part of v_rel is normal to n).
-KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& c, double r_eff,
-                                                        double m_eff, const double n[3],
-                                                        double delta, double vn, const double v_rel[3],
-                                                        const double w_rel[3], double dt,
-                                                        double shear[3]) {
+KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(
+    const PairCoefficients& c, double r_eff, double m_eff, const double n[3], double delta,
+    double vn, const double v_rel[3], const double w_rel[3], double dt, double shear[3]) {
   ContactForce out;
   // Contact radius a = sqrt(R* delta); stiffnesses grow with a, damping with sqrt(m* a).
   const double a = math::sqrt(r_eff * delta);
@@ -82,11 +80,9 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficie
 }
 
 /// The same with vn = v_rel . n formed here.
-KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(const PairCoefficients& c, double r_eff,
-                                                        double m_eff, const double n[3],
-                                                        double delta, const double v_rel[3],
-                                                        const double w_rel[3], double dt,
-                                                        double shear[3]) {
+KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(
+    const PairCoefficients& c, double r_eff, double m_eff, const double n[3], double delta,
+    const double v_rel[3], const double w_rel[3], double dt, double shear[3]) {
   const double vn = v_rel[0] * n[0] + v_rel[1] * n[1] + v_rel[2] * n[2];
   return hertz_mindlin_force(c, r_eff, m_eff, n, delta, vn, v_rel, w_rel, dt, shear);
 }

@@ -65,7 +65,8 @@ std::vector<ParticleSpec> lattice_insertion(const InsertionRegion& region,
   std::vector<ParticleSpec> out;
   const double r0 = radii.max();
   int n[3];
-  for (int d = 0; d < 3; ++d) n[d] = std::max(0, int((region.hi[d] - region.lo[d] - 2 * r0) / spacing) + 1);
+  for (int d = 0; d < 3; ++d)
+    n[d] = std::max(0, int((region.hi[d] - region.lo[d] - 2 * r0) / spacing) + 1);
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {
@@ -74,8 +75,10 @@ std::vector<ParticleSpec> lattice_insertion(const InsertionRegion& region,
         ParticleSpec p;
         const int idx[3] = {i, j, k};
         for (int d = 0; d < 3; ++d)
-          p.x[d] = region.lo[d] + r0 + idx[d] * spacing +
-                   jitter * (uniform01(seed, 1000 + d, id + 7919ULL * (i + 31ULL * (j + 31ULL * k))) - 0.5);
+          p.x[d] =
+              region.lo[d] + r0 + idx[d] * spacing +
+              jitter *
+                  (uniform01(seed, 1000 + d, id + 7919ULL * (i + 31ULL * (j + 31ULL * k))) - 0.5);
         p.radius = radii.mean * (1 + radii.spread * (2 * uniform01(seed, 2000, id) - 1));
         if (!region.contains(p.x, r0 + jitter)) continue;
         p.material = pick_material(uniform01(seed, 3000, id), material_fractions);
@@ -151,10 +154,10 @@ std::vector<ParticleSpec> random_insertion(const DemSystem<ExecSpace>& system,
 }
 
 // on every enabled execution space, as DemSystem is (the module calls it on the default one)
-#define AMPHORA_RANDOM_INSERTION_ON(SPACE)                                                                      \
-  template std::vector<ParticleSpec> random_insertion(const DemSystem<SPACE>&, const InsertionRegion&,          \
-                                                      const RadiusDistribution&, long long, int, std::uint64_t, \
-                                                      std::uint64_t, std::int64_t, const std::vector<double>&);
+#define AMPHORA_RANDOM_INSERTION_ON(SPACE)                                                        \
+  template std::vector<ParticleSpec> random_insertion(                                            \
+      const DemSystem<SPACE>&, const InsertionRegion&, const RadiusDistribution&, long long, int, \
+      std::uint64_t, std::uint64_t, std::int64_t, const std::vector<double>&);
 AMPHORA_IF_SERIAL(AMPHORA_RANDOM_INSERTION_ON(Kokkos::Serial))
 AMPHORA_IF_OPENMP(AMPHORA_RANDOM_INSERTION_ON(Kokkos::OpenMP))
 AMPHORA_IF_CUDA(AMPHORA_RANDOM_INSERTION_ON(Kokkos::Cuda))

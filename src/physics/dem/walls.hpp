@@ -10,11 +10,11 @@ enum WallType : int { kPlane = 0, kCylinder = 1 };
 
 struct Wall {
   int type = kPlane;
-  double point[3] = {0, 0, 0};  ///< plane: a point on it at t = 0; cylinder: axis start at t = 0
-  double axis[3] = {0, 0, 1};   ///< plane: unit normal into the domain; cylinder: unit axis
-  double radius = 0;            ///< cylinder radius (particles inside)
-  double length = 0;            ///< cylinder length along the axis from `point` (0: infinite)
-  double velocity[3] = {0, 0, 0};          ///< translation
+  double point[3] = {0, 0, 0};     ///< plane: a point on it at t = 0; cylinder: axis start at t = 0
+  double axis[3] = {0, 0, 1};      ///< plane: unit normal into the domain; cylinder: unit axis
+  double radius = 0;               ///< cylinder radius (particles inside)
+  double length = 0;               ///< cylinder length along the axis from `point` (0: infinite)
+  double velocity[3] = {0, 0, 0};  ///< translation
   double angular_velocity[3] = {0, 0, 0};  ///< rotation about `point` (+ velocity t)
   int material = 0;
 };
@@ -40,8 +40,8 @@ KOKKOS_INLINE_FUNCTION bool wall_contact(const Wall& w, double t, const double x
     if (w.length > 0 && (along < 0 || along > w.length)) return false;
     double radial[3];
     for (int d = 0; d < 3; ++d) radial[d] = rel[d] - along * w.axis[d];
-    const double rho = math::sqrt(radial[0] * radial[0] + radial[1] * radial[1] +
-                                  radial[2] * radial[2]);
+    const double rho =
+        math::sqrt(radial[0] * radial[0] + radial[1] * radial[1] + radial[2] * radial[2]);
     delta = rho + r - w.radius;
     if (delta <= 0 || rho == 0) return false;
     for (int d = 0; d < 3; ++d) {

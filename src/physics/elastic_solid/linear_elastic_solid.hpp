@@ -26,11 +26,14 @@ class LinearElasticSolid {
   LinearElasticSolid(const ElasticGrid& g, const ElasticMaterial& m, double dt,
                      const ExecSpace& exec = ExecSpace())
       : g_(g), m_(m), dt_(dt), exec_(exec) {
-    auto fail = [](const std::string& what) { throw std::invalid_argument("elastic solid: " + what); };
+    auto fail = [](const std::string& what) {
+      throw std::invalid_argument("elastic solid: " + what);
+    };
     if (!(m.rho > 0)) fail("density must be > 0");
     if (!(m.mu > 0)) fail("mu must be > 0");
     if (!(m.lambda + m.mu > 0)) fail("lambda + mu must be > 0");
-    if (g.nx < 3 || g.ny < 2 || !(g.hx > 0) || !(g.hy > 0)) fail("grid needs nx >= 3, ny >= 2, h > 0");
+    if (g.nx < 3 || g.ny < 2 || !(g.hx > 0) || !(g.hy > 0))
+      fail("grid needs nx >= 3, ny >= 2, h > 0");
     const double limit = elastic_wave_dt_limit(g, m);
     if (!(dt > 0) || dt > limit) {
       std::ostringstream s;
@@ -108,7 +111,8 @@ class LinearElasticSolid {
           const double vx = (u(1, e, 1) - u(1, w, 1)) / (2 * g.hx);
           const double x = i * g.hx;
           u(0, i, 0) = u(2, i, 0) - 2 * g.hy * (traction_at(x, t, 0) / m.mu - vx);
-          u(0, i, 1) = u(2, i, 1) - 2 * g.hy * (traction_at(x, t, 1) - m.lambda * ux) / (m.lambda + 2 * m.mu);
+          u(0, i, 1) = u(2, i, 1) -
+                       2 * g.hy * (traction_at(x, t, 1) - m.lambda * ux) / (m.lambda + 2 * m.mu);
         });
     elastic_wave_step(exec_, g_, m_, dt_, u_old_, u_, f_, u_new_, 0);
     set_rows(boundary, false);

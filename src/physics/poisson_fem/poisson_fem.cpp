@@ -35,12 +35,14 @@ class PoissonFem final : public Module {
     if (amplitude > 0.0) m.deformation = mesh::sinusoidal_deformation(dim, amplitude);
     const std::string geometry = p.string("geometry");
     if (geometry == "cartesian" && amplitude > 0.0)
-      throw std::invalid_argument("poisson_fem.geometry = \"cartesian\" needs deformation = 0 (allowed for curved "
-                                  "cells: stored, on_the_fly)");
+      throw std::invalid_argument(
+          "poisson_fem.geometry = \"cartesian\" needs deformation = 0 (allowed for curved "
+          "cells: stored, on_the_fly)");
     const int cells = static_cast<int>(p.integer("cells"));
     if (cells < comm.size())
       throw DecompositionError("more ranks (" + std::to_string(comm.size()) + ") than cells (" +
-                               std::to_string(cells) + ") along the last direction: each rank "
+                               std::to_string(cells) +
+                               ") along the last direction: each rank "
                                "needs a slab of at least one cell");
     space_ = std::make_unique<Space>(m, static_cast<int>(p.integer("degree")), comm);
     n_global_ = space_->n_global();
@@ -66,7 +68,8 @@ class PoissonFem final : public Module {
     const SineSolution<dim> exact;
     const Vector f = to_view<typename Exec::memory_space>(
         local.interpolate([&](const mesh::Point3& x, int) { return exact.source(x); }));
-    const Vector b = solvers::load_vector(exec, local, f, A_->local().options().geometry, local.degree() + 2);
+    const Vector b =
+        solvers::load_vector(exec, local, f, A_->local().options().geometry, local.degree() + 2);
     space_->compress_add(exec, b);
     blas1::fill(exec, u_, 0.0);
     const auto dot = space_->inner_product();
@@ -77,8 +80,8 @@ class PoissonFem final : public Module {
       Vector d("d", n);
       A_->compute_diagonal(exec, d);
       blas1::reciprocal(exec, d);
-      result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_, solvers::JacobiPreconditioner<Vector>{d},
-                                            dot);
+      result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_,
+                                            solvers::JacobiPreconditioner<Vector>{d}, dot);
     }
     if (!result_.converged)
       throw std::runtime_error("poisson_fem: CG did not reach the tolerance " +
@@ -98,7 +101,8 @@ class PoissonFem final : public Module {
     // One block per rank: its slab's nodes, the shared layer included so the pieces join.
     const auto& lat = space_->local().lattice();
     const long n_nodes = lat.n_nodes();
-    auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space_->local().coordinates());
+    auto xh =
+        Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space_->local().coordinates());
     auto uh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), u_);
     OutputBlock b;
     b.name = comm_.size() > 1 ? "solution_" + std::to_string(comm_.rank()) : "solution";
@@ -112,7 +116,8 @@ class PoissonFem final : public Module {
     for (long node = 0; node < n_nodes; ++node) {
       int ijk[3] = {0, 0, 0};
       long rest = node;
-      for (int d = 0; d < dim; ++d) ijk[d] = static_cast<int>(rest % lat.nodes[d]), rest /= lat.nodes[d];
+      for (int d = 0; d < dim; ++d)
+        ijk[d] = static_cast<int>(rest % lat.nodes[d]), rest /= lat.nodes[d];
       double x[3] = {0.0, 0.0, 0.0};
       for (int d = 0; d < dim; ++d) x[d] = xh(d * n_nodes + node);
       b.x[node] = x[0];
@@ -129,7 +134,8 @@ class PoissonFem final : public Module {
   Diagnostics diagnostics(double) const override {
     return {{"dofs", static_cast<double>(n_global_)},
             {"iterations", static_cast<double>(result_.iterations)},
-            {"relative_residual", result_.rhs_norm > 0 ? result_.final_residual / result_.rhs_norm : 0.0},
+            {"relative_residual",
+             result_.rhs_norm > 0 ? result_.final_residual / result_.rhs_norm : 0.0},
             {"l2_error", errors_.l2},
             {"h1_error", errors_.h1semi}};
   }
@@ -143,12 +149,15 @@ class PoissonFem final : public Module {
   // order are exactly that), written by rank 0: it restarts on any rank count.
   std::vector<StateBlock> state() const override {
     auto uh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), u_);
-    const std::vector<double> u = comm_.gatherv(std::vector<double>(uh.data(), uh.data() + space_->n_owned()));
+    const std::vector<double> u =
+        comm_.gatherv(std::vector<double>(uh.data(), uh.data() + space_->n_owned()));
     if (!comm_.is_root()) return {};
     return {{"solution",
              {{"u", u},
               {"solved", {solved_ ? 1.0 : 0.0}},
-              {"errors", {errors_.l2, errors_.h1semi, double(result_.iterations), result_.final_residual, result_.rhs_norm}}}}};
+              {"errors",
+               {errors_.l2, errors_.h1semi, double(result_.iterations), result_.final_residual,
+                result_.rhs_norm}}}}};
   }
   void restore(const std::vector<StateBlock>& blocks) override {
     for (const auto& b : blocks) {
@@ -195,12 +204,18 @@ ParamTable parameter_table() {
           "-lap u = f on curved Q_k hexahedra of the unit square/cube, manufactured sine solution",
           {
               int_param("dim", 3, at_least(2) & at_most(3), "space dimension"),
-              int_param("degree", 4, at_least(1) & at_most(mesh::max_qk_degree), "polynomial degree k of Q_k"),
+              int_param("degree", 4, at_least(1) & at_most(mesh::max_qk_degree),
+                        "polynomial degree k of Q_k"),
               int_param("cells", 8, at_least(1) & at_most(1024), "cells per direction"),
-              real_param("deformation", 0.05, "1", at_least(0.0) & at_most(0.1), "amplitude of the sinusoidal deformation (0: Cartesian)"),
-              string_param("geometry", std::string("stored"), "how geometry reaches the quadrature points", {"cartesian", "stored", "on_the_fly"}),
-              string_param("solver", std::string("multigrid"), "preconditioner of CG", {"multigrid", "jacobi"}),
-              real_param("tolerance", 1e-10, "1", above(0.0) & below(1.0), "relative residual of the CG solve"),
+              real_param("deformation", 0.05, "1", at_least(0.0) & at_most(0.1),
+                         "amplitude of the sinusoidal deformation (0: Cartesian)"),
+              string_param("geometry", std::string("stored"),
+                           "how geometry reaches the quadrature points",
+                           {"cartesian", "stored", "on_the_fly"}),
+              string_param("solver", std::string("multigrid"), "preconditioner of CG",
+                           {"multigrid", "jacobi"}),
+              real_param("tolerance", 1e-10, "1", above(0.0) & below(1.0),
+                         "relative residual of the CG solve"),
               int_param("max_iterations", 2000, at_least(1), "CG iteration limit"),
           }};
 }

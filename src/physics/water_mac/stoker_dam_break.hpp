@@ -21,8 +21,9 @@ struct StokerDamBreak {
 
 inline StokerDamBreak stoker_dam_break(double g, double h0, double h1) {
   if (!(g > 0.0 && h1 > 0.0 && h1 < h0))
-    throw std::invalid_argument("stoker_dam_break: needs g > 0 and 0 < h1 < h0 (g = " + std::to_string(g) +
-                                ", h0 = " + std::to_string(h0) + ", h1 = " + std::to_string(h1) + ")");
+    throw std::invalid_argument(
+        "stoker_dam_break: needs g > 0 and 0 < h1 < h0 (g = " + std::to_string(g) +
+        ", h0 = " + std::to_string(h0) + ", h1 = " + std::to_string(h1) + ")");
   const auto bore = [&](double hm) { return std::sqrt(g * hm * (hm + h1) / (2.0 * h1)); };
   // rarefaction velocity minus bore velocity: positive at hm = h1, negative at hm = h0
   const auto residual = [&](double hm) {

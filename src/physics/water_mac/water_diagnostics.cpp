@@ -7,9 +7,10 @@ namespace amphora::water_mac {
 double martin_moyce_front(double T) {
   // Martin & Moyce (1952), fig. 3, n^2 = 2, a = 2.25 in (digitised; as tabulated in PySPH's
   // examples/dam_break data module): T = t sqrt(2 g / a), Z = x / a.
-  static const double data[][2] = {{0.832, 1.217}, {1.219, 1.474}, {1.997, 2.292}, {2.547, 2.995}, {3.345, 4.134},
-                                   {4.034, 4.944}, {4.418, 5.881}, {5.091, 6.980}, {5.685, 7.945}, {6.306, 8.966},
-                                   {6.822, 9.986}, {7.439, 10.963}, {8.031, 11.977}, {8.633, 13.005}, {9.237, 13.970}};
+  static const double data[][2] = {
+      {0.832, 1.217}, {1.219, 1.474},  {1.997, 2.292},  {2.547, 2.995},  {3.345, 4.134},
+      {4.034, 4.944}, {4.418, 5.881},  {5.091, 6.980},  {5.685, 7.945},  {6.306, 8.966},
+      {6.822, 9.986}, {7.439, 10.963}, {8.031, 11.977}, {8.633, 13.005}, {9.237, 13.970}};
   constexpr int n = sizeof(data) / sizeof(data[0]);
   if (T <= data[0][0]) return data[0][1];
   for (int m = 1; m < n; ++m)
@@ -65,7 +66,8 @@ double bore_position(const LevelSetBlock& b, double half_depth) {
   const double half = half_depth * b.global.nz;
   for (int i = b.global.nx - 2; i >= 0; --i)
     if (depth[i] >= half) {
-      const double s = depth[i + 1] < depth[i] ? (depth[i] - half) / (depth[i] - depth[i + 1]) : 0.0;
+      const double s =
+          depth[i + 1] < depth[i] ? (depth[i] - half) / (depth[i] - depth[i + 1]) : 0.0;
       return b.global.origin[0] + (i + 0.5 + s) * g.h;
     }
   return 0.0;

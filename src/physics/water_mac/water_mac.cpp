@@ -39,7 +39,8 @@ class WaterMac final : public Module {
  public:
   WaterMac(const Parameters& p, const Communicator& comm) : comm_(comm) {
     scene_ = p.string("scene");
-    const int nx = static_cast<int>(p.integer("cells_x")), ny = static_cast<int>(p.integer("cells_y")),
+    const int nx = static_cast<int>(p.integer("cells_x")),
+              ny = static_cast<int>(p.integer("cells_y")),
               nz = static_cast<int>(p.integer("cells_z"));
     global_ = kernels::mac::MacGrid{nx, ny, nz, p.real("length_x") / nx, {0.0, 0.0, 0.0}};
     cfl_ = p.real("cfl");
@@ -47,13 +48,14 @@ class WaterMac final : public Module {
     // its neighbours: sqrt(3) cfl cells (the speed against its largest component) plus the
     // interpolation's cell and one to spare.
     trace_reach_ = static_cast<int>(std::ceil(std::sqrt(3.0) * cfl_)) + 2;
-    decomposition_ = std::make_unique<BoxDecomposition>(Index3{nx, ny, nz}, std::array<bool, 3>{false, false, false},
-                                                        comm.size(), comm.size() > 1 ? trace_reach_ : 1,
-                                                        std::array<bool, 3>{true, false, true});
+    decomposition_ = std::make_unique<BoxDecomposition>(
+        Index3{nx, ny, nz}, std::array<bool, 3>{false, false, false}, comm.size(),
+        comm.size() > 1 ? trace_reach_ : 1, std::array<bool, 3>{true, false, true});
     block_ = mesh::MacBlock::of(*decomposition_, comm.get(), comm.rank());
     const Box box = decomposition_->box(comm.rank());
     const double h = global_.h;
-    grid_ = kernels::mac::MacGrid{box.extent(0), ny, box.extent(2), h, {box.lo[0] * h, 0.0, box.lo[2] * h}};
+    grid_ = kernels::mac::MacGrid{
+        box.extent(0), ny, box.extent(2), h, {box.lo[0] * h, 0.0, box.lo[2] * h}};
     halo_ = mesh::LatticeGhostExchange(block_);
     edges_ = block_.edges();
     gravity_ = p.real("gravity");
@@ -68,26 +70,31 @@ class WaterMac final : public Module {
       reservoir_depth_ = p.real("reservoir_depth");
       tailwater_depth_ = p.real("tailwater_depth");
       if (tailwater_depth_ >= reservoir_depth_)
-        throw std::invalid_argument("water_mac.tailwater_depth = " + std::to_string(tailwater_depth_) +
-                                    " m must be below water_mac.reservoir_depth = " +
-                                    std::to_string(reservoir_depth_) + " m (the water behind the dam)");
+        throw std::invalid_argument(
+            "water_mac.tailwater_depth = " + std::to_string(tailwater_depth_) +
+            " m must be below water_mac.reservoir_depth = " + std::to_string(reservoir_depth_) +
+            " m (the water behind the dam)");
       stoker_ = stoker_dam_break(gravity_, reservoir_depth_, tailwater_depth_);
     }
     // the band of uniform cells must hold a whole semi-Lagrangian trace and the extrapolation
     const int band = static_cast<int>(std::ceil(cfl_)) + 2;
     if (optical_depth_ > 0 && optical_depth_ < band) {
       std::ostringstream m;
-      m << "water_mac.optical_depth = " << optical_depth_ << " is below the band the advection needs: with cfl = " << cfl_
-        << " a sub-step traces up to " << std::ceil(cfl_) << " cells and the velocity is extrapolated 2 more, so "
+      m << "water_mac.optical_depth = " << optical_depth_
+        << " is below the band the advection needs: with cfl = " << cfl_
+        << " a sub-step traces up to " << std::ceil(cfl_)
+        << " cells and the velocity is extrapolated 2 more, so "
         << "optical_depth must be at least " << band << " (or 0 for no tall cells)";
       throw std::invalid_argument(m.str());
     }
     if (backend_ == solvers::mac::PressureBackend::multigrid) {
-      const std::string e = solvers::mac::multigrid_size_error(global_, solvers::mac::MacMultigridOptions{}.max_coarse_cells);
+      const std::string e = solvers::mac::multigrid_size_error(
+          global_, solvers::mac::MacMultigridOptions{}.max_coarse_cells);
       if (!e.empty()) throw std::invalid_argument("water_mac (solver = \"multigrid\"): " + e);
     }
     if (block_.split() && backend_ == solvers::mac::PressureBackend::mic0)
-      throw std::invalid_argument("water_mac.solver = \"mic0\" runs on one rank (on " + std::to_string(comm.size()) +
+      throw std::invalid_argument("water_mac.solver = \"mic0\" runs on one rank (on " +
+                                  std::to_string(comm.size()) +
                                   " ranks use \"multigrid\" or \"hypre\")");
     extrapolation_layers_ = band;
     allocate();
@@ -111,7 +118,8 @@ class WaterMac final : public Module {
       double sub = std::min(dt - done, cfl_ * grid_.h / std::max(speed, 1e-12));
       if (optical_depth_ > 0) {
         // the explicit upwind step in the tall cells needs a Courant sum below one there
-        const double tall = comm_.max(kernels::mac::tall_cell_speed(Exec(), tall_, u_, v_, w_)) + gravity_ * sub;
+        const double tall =
+            comm_.max(kernels::mac::tall_cell_speed(Exec(), tall_, u_, v_, w_)) + gravity_ * sub;
         sub = std::min(sub, grid_.h / std::max(tall, 1e-12));
       }
       if (dt - done - sub < 1e-3 * sub) sub = dt - done;
@@ -127,7 +135,8 @@ class WaterMac final : public Module {
   std::vector<OutputBlock> output(double) const override {
     const kernels::mac::MacGrid& g = grid_;
     OutputBlock b;
-    b.name = comm_.size() > 1 ? "water_" + std::to_string(comm_.rank()) : "water";  // one piece per block
+    b.name = comm_.size() > 1 ? "water_" + std::to_string(comm_.rank())
+                              : "water";  // one piece per block
     for (int i = 0; i < g.nx; ++i) b.x.push_back(g.origin[0] + (i + 0.5) * g.h);
     for (int j = 0; j < g.ny; ++j) b.y.push_back(g.origin[1] + (j + 0.5) * g.h);
     for (int k = 0; k < g.nz; ++k) b.z.push_back(g.origin[2] + (k + 0.5) * g.h);
@@ -147,7 +156,8 @@ class WaterMac final : public Module {
           fw.push_back(wc);
           fspeed.push_back(std::sqrt(uc * uc + vc * vc + wc * wc));
         }
-    b.fields = {{"phi", fphi}, {"pressure", fp}, {"u", fu}, {"v", fv}, {"w", fw}, {"speed", fspeed}};
+    b.fields = {{"phi", fphi}, {"pressure", fp}, {"u", fu},
+                {"v", fv},     {"w", fw},        {"speed", fspeed}};
     return {b};
   }
 
@@ -166,7 +176,8 @@ class WaterMac final : public Module {
       d.emplace_back("front_Z", Z);
       d.emplace_back("front_T", T);
       const bool measured = T >= 0.832 && T <= 9.237;
-      d.emplace_back("front_error", measured ? (Z - martin_moyce_front(T)) / martin_moyce_front(T) : 0.0);
+      d.emplace_back("front_error",
+                     measured ? (Z - martin_moyce_front(T)) / martin_moyce_front(T) : 0.0);
     } else if (scene_ == "wet_dam_break") {
       // the bore's distance from the dam against Stoker's S t (T = t sqrt(g / h0))
       const double travelled = bore() - column_width_, exact = stoker_.bore_speed * t;
@@ -179,7 +190,9 @@ class WaterMac final : public Module {
     return d;
   }
   std::string error_diagnostic() const override {
-    return scene_ == "dam_break" ? "front_error" : scene_ == "wet_dam_break" ? "bore_error" : "max_speed";
+    return scene_ == "dam_break"       ? "front_error"
+           : scene_ == "wet_dam_break" ? "bore_error"
+                                       : "max_speed";
   }
 
   std::optional<NonFiniteReport> find_nonfinite() const override {
@@ -196,11 +209,15 @@ class WaterMac final : public Module {
         found[0] = f, found[1] = bad, found[2] = grid_.origin[0] + (i + 0.5) * grid_.h;
       }
     }
-    const int first = static_cast<int>(comm_.min(found[0] >= 0 ? double(comm_.rank()) : double(comm_.size())));
+    const int first =
+        static_cast<int>(comm_.min(found[0] >= 0 ? double(comm_.rank()) : double(comm_.size())));
     if (first >= comm_.size()) return std::nullopt;
     MPI_Bcast(found, 3, MPI_DOUBLE, first, comm_.get());
-    return NonFiniteReport{names[static_cast<int>(found[0])], comm_.size() > 1 ? "water_" + std::to_string(first) : "water",
-                           static_cast<long long>(found[1]), found[2], {}};
+    return NonFiniteReport{names[static_cast<int>(found[0])],
+                           comm_.size() > 1 ? "water_" + std::to_string(first) : "water",
+                           static_cast<long long>(found[1]),
+                           found[2],
+                           {}};
   }
 
   // The checkpoint holds the fields on the whole grid's padded lattice (each block's share,
@@ -209,7 +226,8 @@ class WaterMac final : public Module {
   std::vector<StateBlock> state() const override {
     StateBlock b;
     b.name = "water";
-    const std::pair<const char*, Vector> fields[5] = {{"phi", phi_}, {"u", u_}, {"v", v_}, {"w", w_}, {"pressure", p_}};
+    const std::pair<const char*, Vector> fields[5] = {
+        {"phi", phi_}, {"u", u_}, {"v", v_}, {"w", w_}, {"pressure", p_}};
     for (const auto& [name, f] : fields) {
       const std::vector<double> whole = to_global(to_std_vector(f));
       if (comm_.is_root()) b.arrays.push_back({name, whole});
@@ -225,7 +243,12 @@ class WaterMac final : public Module {
     for (const auto& b : blocks)
       for (const auto& [name, a] : b.arrays) {
         if (name == "substeps") substeps_ = static_cast<long>(a.at(0));
-        Vector target = name == "phi" ? phi_ : name == "u" ? u_ : name == "v" ? v_ : name == "w" ? w_ : name == "pressure" ? p_ : Vector();
+        Vector target = name == "phi"        ? phi_
+                        : name == "u"        ? u_
+                        : name == "v"        ? v_
+                        : name == "w"        ? w_
+                        : name == "pressure" ? p_
+                                             : Vector();
         if (target.extent(0) > 0 && static_cast<long>(a.size()) == global_.padded_size())
           Kokkos::deep_copy(target, to_view<Mem>(from_global(a)));
       }
@@ -254,7 +277,8 @@ class WaterMac final : public Module {
     std::vector<double> mine;
     for (int k = lo[2]; k <= hi[2]; ++k)
       for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i) mine.push_back(local[grid_.index(i - o[0], j, k - o[2])]);
+        for (int i = lo[0]; i <= hi[0]; ++i)
+          mine.push_back(local[grid_.index(i - o[0], j, k - o[2])]);
     const std::vector<double> all = comm_.gatherv(mine);
     if (!comm_.is_root()) return {};
     std::vector<double> whole(global_.padded_size(), 0.0);
@@ -274,7 +298,8 @@ class WaterMac final : public Module {
     const int* o = block_.global_lower.data();
     for (int k = -1; k <= grid_.nz; ++k)
       for (int j = -1; j <= grid_.ny; ++j)
-        for (int i = -1; i <= grid_.nx; ++i) local[grid_.index(i, j, k)] = whole[global_.index(i + o[0], j, k + o[2])];
+        for (int i = -1; i <= grid_.nx; ++i)
+          local[grid_.index(i, j, k)] = whole[global_.index(i + o[0], j, k + o[2])];
     return local;
   }
 
@@ -283,7 +308,8 @@ class WaterMac final : public Module {
     phi_ = Vector("amphora::water::phi", n);
     phi_tmp_ = Vector("amphora::water::phi_tmp", n);
     phi0_ = Vector("amphora::water::phi0", n);
-    u_ = Vector("amphora::water::u", n), v_ = Vector("amphora::water::v", n), w_ = Vector("amphora::water::w", n);
+    u_ = Vector("amphora::water::u", n), v_ = Vector("amphora::water::v", n),
+    w_ = Vector("amphora::water::w", n);
     u_tmp_ = Vector("amphora::water::u_tmp", n), v_tmp_ = Vector("amphora::water::v_tmp", n);
     w_tmp_ = Vector("amphora::water::w_tmp", n);
     p_ = Vector("amphora::water::p", n);
@@ -300,7 +326,8 @@ class WaterMac final : public Module {
       // tall cells there (from the widened cell types)
       wide_ = halo_.widened(grid_, trace_reach_);
       const long nw = wide_.grid.padded_size();
-      for (Vector* f : {&wide_phi_, &wide_u_, &wide_v_, &wide_w_}) *f = Vector("amphora::water::wide", nw);
+      for (Vector* f : {&wide_phi_, &wide_u_, &wide_v_, &wide_w_})
+        *f = Vector("amphora::water::wide", nw);
       wide_tall_ = kernels::mac::TallCellColumns<Mem>(wide_.grid);
       if (optical_depth_ > 0) wide_type_ = Types("amphora::water::wide_type", nw);
     }
@@ -317,7 +344,8 @@ class WaterMac final : public Module {
     halo_.exchange(Exec(), grid_, solid_);
     classify();
     // the solids do not move: their faces are listed once (classify() gave the ghost cells' types)
-    for (int d = 0; d < 3; ++d) solid_faces_[d] = kernels::mac::solid_faces(Exec(), grid_, d, type_, edges_);
+    for (int d = 0; d < 3; ++d)
+      solid_faces_[d] = kernels::mac::solid_faces(Exec(), grid_, d, type_, edges_);
     fit_velocity_in_tall_cells();
     extrapolate_velocity();
   }
@@ -378,7 +406,8 @@ class WaterMac final : public Module {
     // D = 20: rows 210.. of 256)
     const int first_row = lowest_band_;
     match_phi_buffers_below(first_row);
-    kernels::mac::advect(exec, T, Staggering::centre, P, phi_tmp_, U, V, W, dt, P, reach, g, o, first_row);
+    kernels::mac::advect(exec, T, Staggering::centre, P, phi_tmp_, U, V, W, dt, P, reach, g, o,
+                         first_row);
     kernels::mac::advect(exec, T, Staggering::x, U, u_tmp_, U, V, W, dt, P, reach, g, o);
     kernels::mac::advect(exec, T, Staggering::y, V, v_tmp_, U, V, W, dt, P, reach, g, o);
     kernels::mac::advect(exec, T, Staggering::z, W, w_tmp_, U, V, W, dt, P, reach, g, o);
@@ -429,7 +458,8 @@ class WaterMac final : public Module {
     // lowest band of all blocks: the cells beside a block face read the neighbour's.
     const int from = optical_depth_ > 0 ? row_under_on_every_block(lowest_band_) : 0;
     const int rebuilt_from = std::min(from, stencil_built_from_);
-    kernels::mac::build_poisson_stencil(exec, g, type_, phi_, block_.faces(box), stencil_, rebuilt_from);
+    kernels::mac::build_poisson_stencil(exec, g, type_, phi_, block_.faces(box), stencil_,
+                                        rebuilt_from);
     stencil_built_from_ = from;
     coarse_stencils_.unchanged_below = rebuilt_from;  // the multigrid's coarse levels likewise
     const Stencil& A = stencil_;
@@ -447,10 +477,12 @@ class WaterMac final : public Module {
     if (optical_depth_ > 0) last_unknowns_ = pressure.global_unknowns();  // the last solve's
     last_iterations_ = r.iterations;
     if (!r.converged)
-      throw std::runtime_error("water_mac: the pressure solve did not reach the relative residual " +
-                               std::to_string(control_.relative_tolerance) + " in " + std::to_string(r.iterations) +
-                               " iterations (reached " + std::to_string(r.final_residual / std::max(r.rhs_norm, 1e-300)) +
-                               ") at sub-step " + std::to_string(substeps_));
+      throw std::runtime_error(
+          "water_mac: the pressure solve did not reach the relative residual " +
+          std::to_string(control_.relative_tolerance) + " in " + std::to_string(r.iterations) +
+          " iterations (reached " +
+          std::to_string(r.final_residual / std::max(r.rhs_norm, 1e-300)) + ") at sub-step " +
+          std::to_string(substeps_));
     halo_.exchange(exec, g, p_);
     kernels::mac::subtract_pressure_gradient(exec, g, 0, type_, phi_, p_, rho_, dt, u_, edges_);
     kernels::mac::subtract_pressure_gradient(exec, g, 1, type_, phi_, p_, rho_, dt, v_, edges_);
@@ -477,7 +509,8 @@ class WaterMac final : public Module {
       const int ex = g.nx + (d == 0), ey = g.ny + (d == 1), ez = g.nz + (d == 2);
       Kokkos::parallel_for(
           "amphora::water::clear_unknown_faces",
-          Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>(exec, {0, std::min(marked_from, ey), 0}, {ez, ey, ex}),
+          Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>(exec, {0, std::min(marked_from, ey), 0},
+                                                       {ez, ey, ex}),
           KOKKOS_LAMBDA(int k, int j, int i) {
             const int c = g.index(i, j, k);
             if (!valid(c)) f(c) = 0.0;
@@ -486,7 +519,8 @@ class WaterMac final : public Module {
       halo_.exchange(exec, g, faces[d]);
       halo_.exchange(exec, g, valid_);
       for (int layer = 2; layer < 2 + extrapolation_layers_; ++layer) {
-        kernels::mac::extrapolate_layer(exec, g, d, type_, faces[d], valid_, layer, edges_, first_row);
+        kernels::mac::extrapolate_layer(exec, g, d, type_, faces[d], valid_, layer, edges_,
+                                        first_row);
         halo_.exchange(exec, g, faces[d]);
         halo_.exchange(exec, g, valid_);
       }
@@ -495,7 +529,9 @@ class WaterMac final : public Module {
 
   /// The row under the lowest of every block's `row` (0 at the bottom): kernels starting there
   /// see, across a block face, the neighbour's rows that may differ too.
-  int row_under_on_every_block(int row) const { return std::max(static_cast<int>(comm_.min(double(row))) - 1, 0); }
+  int row_under_on_every_block(int row) const {
+    return std::max(static_cast<int>(comm_.min(double(row))) - 1, 0);
+  }
 
   /// Makes phi_tmp_ equal phi_ in the rows below first_row (copying the rows that differ), so a
   /// level-set kernel writing phi_tmp_ from first_row up and the swap after it leave phi_ whole.
@@ -520,8 +556,12 @@ class WaterMac final : public Module {
     const kernels::mac::MacGrid g = grid_;
     long n = 0;
     Kokkos::parallel_reduce(
-        "amphora::water::count_fluid", Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz, g.ny, g.nx}),
-        KOKKOS_LAMBDA(int k, int j, int i, long& acc) { acc += type(g.index(i, j, k)) == kernels::mac::MacCellType::fluid; }, n);
+        "amphora::water::count_fluid",
+        Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz, g.ny, g.nx}),
+        KOKKOS_LAMBDA(int k, int j, int i, long& acc) {
+          acc += type(g.index(i, j, k)) == kernels::mac::MacCellType::fluid;
+        },
+        n);
     return static_cast<long>(comm_.sum(static_cast<long long>(n)));
   }
 
@@ -540,7 +580,11 @@ class WaterMac final : public Module {
     double m = 0.0;
     if (below > 0)
       for (int d = 0; d < 3; ++d)
-        m = std::max(m, kernels::mac::tall_rows_max_abs(Exec(), tall_, d, d == 0 ? u : d == 1 ? v : w, below));
+        m = std::max(m, kernels::mac::tall_rows_max_abs(Exec(), tall_, d,
+                                                        d == 0   ? u
+                                                        : d == 1 ? v
+                                                                 : w,
+                                                        below));
     double above = 0.0;
     Kokkos::parallel_reduce(
         "amphora::water::max_speed",
@@ -563,7 +607,8 @@ class WaterMac final : public Module {
     const kernels::mac::MacGrid g = grid_;
     double vol = 0.0;
     Kokkos::parallel_reduce(
-        "amphora::water::volume", Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz, g.ny, g.nx}),
+        "amphora::water::volume",
+        Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz, g.ny, g.nx}),
         KOKKOS_LAMBDA(int k, int j, int i, double& acc) {
           const int c = g.index(i, j, k);
           if (!solid(c)) acc += math::clamp(0.5 - phi(c) / g.h, 0.0, 1.0);
@@ -596,17 +641,19 @@ class WaterMac final : public Module {
   Types wide_type_;
   double gravity_ = 9.81, rho_ = 1000.0, cfl_ = 1.0, column_width_ = 0.05;
   double reservoir_depth_ = 0.0, tailwater_depth_ = 0.0;  ///< wet dam break
-  StokerDamBreak stoker_;                                  ///< wet dam break: the shallow-water solution
+  StokerDamBreak stoker_;  ///< wet dam break: the shallow-water solution
   solvers::mac::PressureBackend backend_ = solvers::mac::PressureBackend::multigrid;
   solvers::SolverControl control_;
   int reinit_ = 2, optical_depth_ = 0, extrapolation_layers_ = 3;
-  mutable double speed_ = -1.0;  ///< max_speed() of the current velocity; negative: not measured yet
+  mutable double speed_ =
+      -1.0;  ///< max_speed() of the current velocity; negative: not measured yet
   Vector phi_, phi_tmp_, phi0_, u_, v_, w_, u_tmp_, v_tmp_, w_tmp_, p_, b_;
   /// phi_ and phi_tmp_ hold the same values in the rows below this one (match_phi_buffers_below)
   int phi_buffers_match_below_ = 0;
   Types type_;
   kernels::mac::TallCellColumns<Mem> tall_;
-  /// kernels::mac::lowest_band of tall_ and type_ (0 without tall cells), found with them in classify()
+  /// kernels::mac::lowest_band of tall_ and type_ (0 without tall cells), found with them in
+  /// classify()
   int lowest_band_ = 0;
   /// the pressure stencil, kept between sub-steps; its rows from stencil_built_from_ up were
   /// rebuilt last (project())
@@ -618,17 +665,26 @@ class WaterMac final : public Module {
   /// tall_ before the last classify(): the velocity's tall cells until it is fitted to tall_
   kernels::mac::TallCellColumns<Mem> fitted_tall_;
   Kokkos::View<std::uint8_t*, Mem> solid_, valid_;
-  Kokkos::View<int*, Mem> solid_faces_[3];  ///< per component, the faces touching a solid or the box
+  Kokkos::View<int*, Mem>
+      solid_faces_[3];  ///< per component, the faces touching a solid or the box
   long substeps_ = 0;
   int last_iterations_ = 0;
   long last_unknowns_ = 0;
   /// Wall time per phase of a sub-step (the pressure's setup, on tall cells the tall-cell grid,
   /// matrix and multigrid hierarchy; its solve with the prolongation; the gradient in
   /// `projection`).
-  enum Phase { step_control, advection, reinitialisation, cell_types, pressure_setup, pressure_solve, projection,
-               extrapolation };
-  PhaseTimes phases_{{"step_control", "advection", "reinitialisation", "cell_types", "pressure_setup",
-                      "pressure_solve", "projection", "extrapolation"}};
+  enum Phase {
+    step_control,
+    advection,
+    reinitialisation,
+    cell_types,
+    pressure_setup,
+    pressure_solve,
+    projection,
+    extrapolation
+  };
+  PhaseTimes phases_{{"step_control", "advection", "reinitialisation", "cell_types",
+                      "pressure_setup", "pressure_solve", "projection", "extrapolation"}};
 };
 
 std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {

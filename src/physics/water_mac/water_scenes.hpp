@@ -19,8 +19,8 @@ struct WaterScene {
 };
 
 struct InitialWater {
-  std::vector<double> phi, v;        ///< level set; vertical velocity on the y faces
-  std::vector<std::uint8_t> solid;   ///< 1: terrain
+  std::vector<double> phi, v;       ///< level set; vertical velocity on the y faces
+  std::vector<std::uint8_t> solid;  ///< 1: terrain
 };
 
 /// The initial state on block `g` of the whole grid `global`; throws std::invalid_argument

@@ -41,7 +41,8 @@ struct BlockCsrMatrix {
       : grid(T.grid()), halo(T.block()) {
     n = static_cast<int>(M.n);
     columns = static_cast<int>(T.unknowns());
-    if (!halo.block().split()) {  // one block: global columns are local ones, apply() the plain product
+    if (!halo.block()
+             .split()) {  // one block: global columns are local ones, apply() the plain product
       local = DeviceCsrMatrix<MemSpace>(std::move(M), with_inverse_diagonal);
       inverse_diagonal = local.inverse_diagonal;
       return;
@@ -61,7 +62,8 @@ struct BlockCsrMatrix {
       auto it = column.find(g);
       if (it == column.end()) {
         const auto r = ring.find(g);
-        if (r == ring.end()) throw std::logic_error("BlockCsrMatrix: a column is neither this block's nor its ring's");
+        if (r == ring.end())
+          throw std::logic_error("BlockCsrMatrix: a column is neither this block's nor its ring's");
         it = column.emplace(g, columns + static_cast<int>(ghost.size())).first;
         ghost.push_back(r->second);
       }
@@ -88,7 +90,8 @@ struct BlockCsrMatrix {
     const auto own = own_cells, ring = ghost_cells;
     const int first_ghost = columns;
     Kokkos::parallel_for(
-        "amphora::block_csr::to_lattice", RangePolicy<ExecSpace>(exec, 0, columns), KOKKOS_LAMBDA(int u) {
+        "amphora::block_csr::to_lattice", RangePolicy<ExecSpace>(exec, 0, columns),
+        KOKKOS_LAMBDA(int u) {
           L(own(u)) = x(u);
           E(u) = x(u);
         });

@@ -17,7 +17,8 @@ CoarseCholesky::CoarseCholesky(const CsrMatrix& A) : impl_(std::make_unique<Impl
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(A.values.size());
   for (long i = 0; i < A.n; ++i)
-    for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e) entries.emplace_back(i, A.cols[e], A.values[e]);
+    for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e)
+      entries.emplace_back(i, A.cols[e], A.values[e]);
   Eigen::SparseMatrix<double> M(A.n, A.n);
   M.setFromTriplets(entries.begin(), entries.end());
   impl_->ldlt.compute(M);
@@ -26,7 +27,8 @@ CoarseCholesky::CoarseCholesky(const CsrMatrix& A) : impl_(std::make_unique<Impl
   if (!positive)
     throw std::runtime_error(
         "pressure matrix is singular on the coarsest multigrid level: some fluid region touches "
-        "neither a free surface nor an open boundary, so its pressure is defined only up to a constant");
+        "neither a free surface nor an open boundary, so its pressure is defined only up to a "
+        "constant");
 }
 
 CoarseCholesky::~CoarseCholesky() = default;

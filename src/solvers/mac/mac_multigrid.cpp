@@ -48,14 +48,16 @@ std::string multigrid_size_error(const kernels::mac::MacGrid& g, long max_coarse
 }
 
 template <class ExecSpace>
-MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A, const MacMultigridOptions& options,
+MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A,
+                                      const MacMultigridOptions& options,
                                       const mesh::MacBlock& block)
     : options_(options), halo_(block) {
   const MPI_Comm comm = block.comm;
   // every rank decides together, so none is left waiting in an exchange
   const std::string error = multigrid_size_error(A.grid, options.max_coarse_cells);
   if (!all_ranks(comm, error.empty()))
-    throw std::invalid_argument(error.empty() ? "multigrid: another rank's block cannot be coarsened" : error);
+    throw std::invalid_argument(
+        error.empty() ? "multigrid: another rank's block cannot be coarsened" : error);
   fine_ = A;
   // Down to blocks of at most 64 cells, or as far as the dimensions stay even (coarsened in
   // double, then stored in single precision); a block's first cell stays on the coarse grid.
@@ -134,7 +136,8 @@ void MacMultigrid<ExecSpace>::setup_coarse_solve(const Stencil& coarsest) {
   const kernels::mac::MacGrid g = coarsest.grid;
   const int shift = levels() - 1;
   // the blocks of the coarsest grid: lower corner and extents
-  const int mine[6] = {block.global_lower[0] >> shift, 0, block.global_lower[2] >> shift, g.nx, g.ny, g.nz};
+  const int mine[6] = {
+      block.global_lower[0] >> shift, 0, block.global_lower[2] >> shift, g.nx, g.ny, g.nz};
   std::vector<int> boxes(6 * ranks);
   MPI_Allgather(mine, 6, MPI_INT, boxes.data(), 6, MPI_INT, comm);
   kernels::mac::MacGrid whole{0, 0, 0, g.h, g.origin};
@@ -156,7 +159,8 @@ void MacMultigrid<ExecSpace>::setup_coarse_solve(const Stencil& coarsest) {
     int m = displacements_[r];
     for (int k = 0; k < b[5]; ++k)
       for (int j = 0; j < b[4]; ++j)
-        for (int i = 0; i < b[3]; ++i) gathered_index_[m++] = whole.index(b[0] + i, b[1] + j, b[2] + k);
+        for (int i = 0; i < b[3]; ++i)
+          gathered_index_[m++] = whole.index(b[0] + i, b[1] + j, b[2] + k);
   }
   // this block's cells, and its rows of the matrix, gathered into the whole coarsest grid
   std::vector<int> cells;
@@ -171,21 +175,24 @@ void MacMultigrid<ExecSpace>::setup_coarse_solve(const Stencil& coarsest) {
   const auto cz = Kokkos::create_mirror_view_and_copy(HostMemSpace(), coarsest.cz);
   std::vector<double> rows;
   rows.reserve(4 * cells.size());
-  for (const int c : cells) rows.insert(rows.end(), {d(c), double(cx(c)), double(cy(c)), double(cz(c))});
+  for (const int c : cells)
+    rows.insert(rows.end(), {d(c), double(cx(c)), double(cy(c)), double(cz(c))});
   std::vector<int> counts4(ranks), displacements4(ranks);
-  for (int r = 0; r < ranks; ++r) counts4[r] = 4 * counts_[r], displacements4[r] = 4 * displacements_[r];
+  for (int r = 0; r < ranks; ++r)
+    counts4[r] = 4 * counts_[r], displacements4[r] = 4 * displacements_[r];
   std::vector<double> all_rows(4 * static_cast<std::size_t>(total));
-  MPI_Allgatherv(rows.data(), counts4[rank], MPI_DOUBLE, all_rows.data(), counts4.data(), displacements4.data(),
-                 MPI_DOUBLE, comm);
+  MPI_Allgatherv(rows.data(), counts4[rank], MPI_DOUBLE, all_rows.data(), counts4.data(),
+                 displacements4.data(), MPI_DOUBLE, comm);
   std::vector<double> wd(whole.padded_size(), 0.0);
-  std::vector<float> wx(whole.padded_size(), 0.0f), wy(whole.padded_size(), 0.0f), wz(whole.padded_size(), 0.0f);
+  std::vector<float> wx(whole.padded_size(), 0.0f), wy(whole.padded_size(), 0.0f),
+      wz(whole.padded_size(), 0.0f);
   for (int m = 0; m < total; ++m) {
     const int c = gathered_index_[m];
     wd[c] = all_rows[4 * m], wx[c] = float(all_rows[4 * m + 1]), wy[c] = float(all_rows[4 * m + 2]),
     wz[c] = float(all_rows[4 * m + 3]);
   }
-  coarse_ = std::make_unique<CoarseCholesky>(stencil_to_csr(whole, wd.data(), wx.data(), wy.data(), wz.data(),
-                                                            coarse_numbering_));
+  coarse_ = std::make_unique<CoarseCholesky>(
+      stencil_to_csr(whole, wd.data(), wx.data(), wy.data(), wz.data(), coarse_numbering_));
   coarse_local_ = Kokkos::View<float*, MemSpace>("amphora::mac_mg::coarse_local", cells.size());
   coarse_send_.resize(cells.size());
   coarse_gathered_.resize(total);
@@ -214,23 +221,28 @@ void MacMultigrid<ExecSpace>::coarse_solve(const ExecSpace& exec) const {
   const auto local = coarse_local_;
   const int n = static_cast<int>(cells.extent(0));
   Kokkos::parallel_for(
-      "amphora::mac_mg::coarse_pack", RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int m) { local(m) = b(cells(m)); });
-  Kokkos::View<float*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> host(coarse_send_.data(), n);
+      "amphora::mac_mg::coarse_pack", RangePolicy<ExecSpace>(exec, 0, n),
+      KOKKOS_LAMBDA(int m) { local(m) = b(cells(m)); });
+  Kokkos::View<float*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> host(
+      coarse_send_.data(), n);
   Kokkos::deep_copy(exec, host, local);
   exec.fence();
-  MPI_Allgatherv(coarse_send_.data(), n, MPI_FLOAT, coarse_gathered_.data(), counts_.data(), displacements_.data(),
-                 MPI_FLOAT, halo_.block().comm);
-  for (std::size_t m = 0; m < gathered_index_.size(); ++m) coarse_lattice_[gathered_index_[m]] = coarse_gathered_[m];
+  MPI_Allgatherv(coarse_send_.data(), n, MPI_FLOAT, coarse_gathered_.data(), counts_.data(),
+                 displacements_.data(), MPI_FLOAT, halo_.block().comm);
+  for (std::size_t m = 0; m < gathered_index_.size(); ++m)
+    coarse_lattice_[gathered_index_[m]] = coarse_gathered_[m];
   const auto& fluid = coarse_numbering_.cell;
   for (std::size_t u = 0; u < fluid.size(); ++u) coarse_rhs_[u] = coarse_lattice_[fluid[u]];
   coarse_->solve(coarse_rhs_.data(), coarse_rhs_.data());
   std::fill(coarse_lattice_.begin(), coarse_lattice_.end(), 0.0);
   for (std::size_t u = 0; u < fluid.size(); ++u) coarse_lattice_[fluid[u]] = coarse_rhs_[u];
-  for (int m = 0; m < n; ++m) coarse_send_[m] = static_cast<float>(coarse_lattice_[gathered_index_[my_offset_ + m]]);
+  for (int m = 0; m < n; ++m)
+    coarse_send_[m] = static_cast<float>(coarse_lattice_[gathered_index_[my_offset_ + m]]);
   Kokkos::deep_copy(exec, local, host);
   blas1::fill(exec, x, 0.0f);
   Kokkos::parallel_for(
-      "amphora::mac_mg::coarse_unpack", RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int m) { x(cells(m)) = local(m); });
+      "amphora::mac_mg::coarse_unpack", RangePolicy<ExecSpace>(exec, 0, n),
+      KOKKOS_LAMBDA(int m) { x(cells(m)) = local(m); });
 }
 
 template <class ExecSpace>
@@ -250,7 +262,7 @@ double MacMultigrid<ExecSpace>::bytes_per_application() const {
     const double n = static_cast<double>(levels_[l].grid.padded_size());
     const double nc = static_cast<double>(levels_[l + 1].grid.padded_size());
     const int nu = options_.smoothing_steps << l;
-    bytes += 4.0 * n + 4.0 * nu * 28.0 * n + 28.0 * n  // fill, smoothing, residual
+    bytes += 4.0 * n + 4.0 * nu * 28.0 * n + 28.0 * n    // fill, smoothing, residual
              + 4.0 * n + 4.0 * nc + 4.0 * nc + 8.0 * n;  // restriction, prolongation
   }
   return bytes;
@@ -288,14 +300,16 @@ void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
 }
 
 template class MacMultigrid<DefaultExecSpace>;
-template void complete_block_stencil(const DefaultExecSpace&, const mesh::LatticeGhostExchange&,
-                                     const kernels::mac::PoissonStencil<DefaultExecSpace::memory_space>*,
-                                     kernels::mac::PoissonStencil<DefaultExecSpace::memory_space>&);
+template void complete_block_stencil(
+    const DefaultExecSpace&, const mesh::LatticeGhostExchange&,
+    const kernels::mac::PoissonStencil<DefaultExecSpace::memory_space>*,
+    kernels::mac::PoissonStencil<DefaultExecSpace::memory_space>&);
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template class MacMultigrid<Kokkos::Serial>;
-template void complete_block_stencil(const Kokkos::Serial&, const mesh::LatticeGhostExchange&,
-                                     const kernels::mac::PoissonStencil<Kokkos::Serial::memory_space>*,
-                                     kernels::mac::PoissonStencil<Kokkos::Serial::memory_space>&);
+template void complete_block_stencil(
+    const Kokkos::Serial&, const mesh::LatticeGhostExchange&,
+    const kernels::mac::PoissonStencil<Kokkos::Serial::memory_space>*,
+    kernels::mac::PoissonStencil<Kokkos::Serial::memory_space>&);
 #endif
 
 }  // namespace amphora::solvers::mac

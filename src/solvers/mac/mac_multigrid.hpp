@@ -26,8 +26,8 @@
 namespace amphora::solvers::mac {
 
 struct MacMultigridOptions {
-  int smoothing_steps = 2;         ///< red-black sweeps before and after the coarse correction
-  long max_coarse_cells = 4096;    ///< largest coarsest grid factorised directly
+  int smoothing_steps = 2;       ///< red-black sweeps before and after the coarse correction
+  long max_coarse_cells = 4096;  ///< largest coarsest grid factorised directly
 };
 
 /// Empty if the multigrid can coarsen g down to at most max_coarse_cells; otherwise a message
@@ -53,8 +53,8 @@ struct BlockInnerProduct {
     return sum(blas1::dot(exec, x, y));
   }
   template <class ExecSpace, class View>
-  double fused_update(const ExecSpace& exec, double alpha, const View& p, const View& q, const View& x,
-                      const View& r) const {
+  double fused_update(const ExecSpace& exec, double alpha, const View& p, const View& q,
+                      const View& x, const View& r) const {
     return sum(blas1::cg_update(exec, alpha, p, q, x, r));
   }
   double sum(double local) const {
@@ -93,8 +93,10 @@ class MacMultigrid {
   };
   FineOperator fine_operator() const { return FineOperator{fine_, halo_}; }
   /// Multigrid-preconditioned CG from the guess in x; b must vanish on non-fluid and ghost cells.
-  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& control) const {
-    return conjugate_gradient(exec, fine_operator(), b, x, control, *this, BlockInnerProduct{halo_.block().comm});
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x,
+                     const SolverControl& control) const {
+    return conjugate_gradient(exec, fine_operator(), b, x, control, *this,
+                              BlockInnerProduct{halo_.block().comm});
   }
 
   int levels() const { return static_cast<int>(levels_.size()); }

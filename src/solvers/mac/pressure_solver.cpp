@@ -21,7 +21,8 @@ PressureBackend parse_pressure_backend(const std::string& name) {
   if (name == "multigrid") return PressureBackend::multigrid;
   if (name == "hypre") return PressureBackend::hypre;
   if (name == "mic0") return PressureBackend::mic0;
-  throw std::invalid_argument("unknown pressure solver back end '" + name + "' (allowed: multigrid, hypre, mic0)");
+  throw std::invalid_argument("unknown pressure solver back end '" + name +
+                              "' (allowed: multigrid, hypre, mic0)");
 }
 
 const char* to_string(PressureBackend backend) {
@@ -38,7 +39,8 @@ namespace {
 /// A hypre result in the terms of CG: hypre reports the relative residual (b: this rank's part
 /// of the right-hand side of a system distributed over comm).
 template <class B>
-SolverResult from_hypre(const HypreSolveResult& h, const B& b, double relative_tolerance, MPI_Comm comm) {
+SolverResult from_hypre(const HypreSolveResult& h, const B& b, double relative_tolerance,
+                        MPI_Comm comm) {
   SolverResult r;
   r.iterations = h.iterations;
   r.converged = h.final_relative_residual <= relative_tolerance;
@@ -52,12 +54,15 @@ SolverResult from_hypre(const HypreSolveResult& h, const B& b, double relative_t
 
 /// Copies b and x to the host and back around a host solve.
 template <class ExecSpace, class HostSolve>
-SolverResult solve_on_host(const ExecSpace& exec, const Kokkos::View<double*, typename ExecSpace::memory_space>& b,
-                           const Kokkos::View<double*, typename ExecSpace::memory_space>& x, HostSolve&& host_solve) {
+SolverResult solve_on_host(const ExecSpace& exec,
+                           const Kokkos::View<double*, typename ExecSpace::memory_space>& b,
+                           const Kokkos::View<double*, typename ExecSpace::memory_space>& x,
+                           HostSolve&& host_solve) {
   exec.fence();
   const auto bh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), b);
   const auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
-  const SolverResult r = host_solve(Kokkos::View<double*, HostMemSpace>(bh), Kokkos::View<double*, HostMemSpace>(xh));
+  const SolverResult r =
+      host_solve(Kokkos::View<double*, HostMemSpace>(bh), Kokkos::View<double*, HostMemSpace>(xh));
   Kokkos::deep_copy(x, xh);
   return r;
 }
@@ -68,8 +73,10 @@ class MultigridPressureSolver final : public PressureSolver<ExecSpace> {
  public:
   using typename PressureSolver<ExecSpace>::Vector;
   template <class... Args>
-  explicit MultigridPressureSolver(const ExecSpace& exec, Args&&... args) : mg_(exec, std::forward<Args>(args)...) {}
-  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+  explicit MultigridPressureSolver(const ExecSpace& exec, Args&&... args)
+      : mg_(exec, std::forward<Args>(args)...) {}
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x,
+                     const SolverControl& c) override {
     return mg_.solve(exec, b, x, c);
   }
   PressureBackend backend() const override { return PressureBackend::multigrid; }
@@ -88,19 +95,21 @@ template <class ExecSpace>
 class PfmgPressureSolver final : public PressureSolver<ExecSpace> {
  public:
   using typename PressureSolver<ExecSpace>::Vector;
-  PfmgPressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A, const MacBlock& block) {
+  PfmgPressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
+                     const MacBlock& block) {
     const auto d = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.diag);
     const auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cx);
     const auto y = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cy);
     const auto z = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cz);
     comm_ = block.comm;
-    pfmg_ = std::make_unique<StructPfmgCG>(block.comm, A.grid, block.global_lower, d.data(), x.data(), y.data(),
-                                           z.data());
+    pfmg_ = std::make_unique<StructPfmgCG>(block.comm, A.grid, block.global_lower, d.data(),
+                                           x.data(), y.data(), z.data());
   }
-  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x,
+                     const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
-      return from_hypre(pfmg_->solve(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations), bh,
-                        c.relative_tolerance, comm_);
+      return from_hypre(pfmg_->solve(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations),
+                        bh, c.relative_tolerance, comm_);
     });
   }
   PressureBackend backend() const override { return PressureBackend::hypre; }
@@ -123,9 +132,11 @@ class Mic0PressureSolver final : public PressureSolver<ExecSpace> {
 #endif
   using HostStencil = kernels::mac::PoissonStencil<HostMemSpace>;
 
-  explicit Mic0PressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
+  explicit Mic0PressureSolver(
+      const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
       : A_(kernels::mac::copy_stencil<HostMemSpace>(A)), mic_(A_) {}
-  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x,
+                     const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
       return conjugate_gradient(SequentialSpace(), Operator{A_}, bh, xh, c, mic_);
     });
@@ -150,11 +161,12 @@ class BoomerAMGPressureSolver final : public PressureSolver<ExecSpace> {
   /// Rows first_row.. of A_t, distributed over comm (one rank: MPI_COMM_SELF, 0).
   BoomerAMGPressureSolver(CsrMatrix A_t, MPI_Comm comm, long first_row)
       : A_(std::move(A_t)), comm_(comm), first_row_(first_row) {}
-  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x,
+                     const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
       const BoomerAMG amg(comm_, first_row_, A_);
-      return from_hypre(amg.pcg(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations), bh, c.relative_tolerance,
-                        comm_);
+      return from_hypre(amg.pcg(bh.data(), xh.data(), c.relative_tolerance, c.max_iterations), bh,
+                        c.relative_tolerance, comm_);
     });
   }
   PressureBackend backend() const override { return PressureBackend::hypre; }
@@ -178,7 +190,8 @@ class CsrMic0PressureSolver final : public PressureSolver<ExecSpace> {
   // cell's samples to its neighbours' with positive entries), and the row-sum compensation of
   // MIC then hurts (an order of magnitude more CG iterations on tall cells).
   explicit CsrMic0PressureSolver(CsrMatrix A_t) : A_(std::move(A_t)), mic_(A_, 0.0) {}
-  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& c) override {
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x,
+                     const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
       return conjugate_gradient(SequentialSpace(), CsrOperator{&A_}, bh, xh, c, mic_);
     });
@@ -198,31 +211,37 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
     KeptCoarseStencils<typename ExecSpace::memory_space>* kept) {
   if (T.block().split() && backend == PressureBackend::mic0)
-    throw std::invalid_argument(std::string("pressure back end '") + to_string(backend) +
-                                "' solves tall cells on one rank; for tall cells split over ranks use 'multigrid' "
-                                "or 'hypre'");
+    throw std::invalid_argument(
+        std::string("pressure back end '") + to_string(backend) +
+        "' solves tall cells on one rank; for tall cells split over ranks use 'multigrid' "
+        "or 'hypre'");
   switch (backend) {
     case PressureBackend::multigrid:
       return std::make_unique<MultigridPressureSolver<ExecSpace, TallCellMultigrid<ExecSpace>>>(
           exec, T, std::move(A_t), A, TallCellMultigridOptions{}, kept);
     case PressureBackend::hypre:
-      return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(std::move(A_t), T.block().comm, T.first_unknown());
-    case PressureBackend::mic0: return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(std::move(A_t));
+      return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(std::move(A_t), T.block().comm,
+                                                                  T.first_unknown());
+    case PressureBackend::mic0:
+      return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(std::move(A_t));
   }
   throw std::invalid_argument("make_tall_cell_pressure_solver: unknown back end");
 }
 
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
-    PressureBackend backend, const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
+    PressureBackend backend, const ExecSpace& exec,
+    const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
     const MacBlock& block) {
   bool split = false;
   for (const auto f : A.box) split = split || f == kernels::mac::MacBoundary::neighbour;
   if (split && backend == PressureBackend::mic0)
-    throw std::invalid_argument(std::string("pressure back end '") + to_string(backend) +
-                                "' solves a grid on one rank; for a grid split over ranks use 'multigrid' or 'hypre'");
+    throw std::invalid_argument(
+        std::string("pressure back end '") + to_string(backend) +
+        "' solves a grid on one rank; for a grid split over ranks use 'multigrid' or 'hypre'");
   if (split != block.split())
-    throw std::invalid_argument("make_pressure_solver: the stencil's neighbour faces and the block's neighbours differ");
+    throw std::invalid_argument(
+        "make_pressure_solver: the stencil's neighbour faces and the block's neighbours differ");
   switch (backend) {
     case PressureBackend::multigrid:
       return std::make_unique<MultigridPressureSolver<ExecSpace, MacMultigrid<ExecSpace>>>(
@@ -234,13 +253,15 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
 }
 
 template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_pressure_solver(
-    PressureBackend, const DefaultExecSpace&, const kernels::mac::PoissonStencil<DefaultMemSpace>&, const MacBlock&);
+    PressureBackend, const DefaultExecSpace&, const kernels::mac::PoissonStencil<DefaultMemSpace>&,
+    const MacBlock&);
 template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_tall_cell_pressure_solver(
     PressureBackend, const DefaultExecSpace&, const mesh::TallCellGrid&, CsrMatrix,
     const kernels::mac::PoissonStencil<DefaultMemSpace>&, KeptCoarseStencils<DefaultMemSpace>*);
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_pressure_solver(
-    PressureBackend, const Kokkos::Serial&, const kernels::mac::PoissonStencil<Kokkos::HostSpace>&, const MacBlock&);
+    PressureBackend, const Kokkos::Serial&, const kernels::mac::PoissonStencil<Kokkos::HostSpace>&,
+    const MacBlock&);
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_tall_cell_pressure_solver(
     PressureBackend, const Kokkos::Serial&, const mesh::TallCellGrid&, CsrMatrix,
     const kernels::mac::PoissonStencil<Kokkos::HostSpace>&, KeptCoarseStencils<Kokkos::HostSpace>*);

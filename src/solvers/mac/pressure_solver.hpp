@@ -38,7 +38,8 @@ class PressureSolver {
   /// padded lattice whose ghost ring must hold zeros: every back end counts it in the norms
   /// (multigrid and MIC(0) in their residuals too; with a non-zero ring neither converges).
   /// kernels::mac::pressure_rhs writes it so.
-  virtual SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x, const SolverControl& control) = 0;
+  virtual SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x,
+                             const SolverControl& control) = 0;
   virtual PressureBackend backend() const = 0;
   /// Bytes one iteration moves through memory by a streaming model of its kernels (the bound a
   /// benchmark divides the measured bandwidth by), or 0 where the back end has no such model.
@@ -52,7 +53,8 @@ using mesh::MacBlock;
 
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
-    PressureBackend backend, const ExecSpace& exec, const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
+    PressureBackend backend, const ExecSpace& exec,
+    const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
     const MacBlock& block = {});
 
 template <class MemSpace>

@@ -18,7 +18,8 @@ template <int K>
 class RowAccumulator {
  public:
   /// Rows first .. first + n - 1 of the global matrix (the others are dropped).
-  RowAccumulator(long n, long first) : first_(first), count_(n, 0), cols_(n * K), values_(n * K), overflow_(n) {}
+  RowAccumulator(long n, long first)
+      : first_(first), count_(n, 0), cols_(n * K), values_(n * K), overflow_(n) {}
   void add(long global_row, int c, double v) {
     const long r = global_row - first_;
     if (r < 0 || r >= static_cast<long>(count_.size())) return;  // another block's row
@@ -49,25 +50,28 @@ class RowAccumulator {
     M.n = n;
     M.row_ptr.resize(n + 1);
     M.row_ptr[0] = 0;
-    for (long r = 0; r < n; ++r) M.row_ptr[r + 1] = M.row_ptr[r] + count_[r] + static_cast<long>(overflow_[r].size());
+    for (long r = 0; r < n; ++r)
+      M.row_ptr[r + 1] = M.row_ptr[r] + count_[r] + static_cast<long>(overflow_[r].size());
     M.cols.resize(M.row_ptr[n]);
     M.values.resize(M.row_ptr[n]);
     // each row alone (sorted in place): in parallel, the same for any number of threads
-    Kokkos::parallel_for("amphora::mac::rows_to_csr", Kokkos::RangePolicy<HostExecSpace>(0, n), [&](long r) {
-      std::pair<int, double> inline_row[K];
-      const int m = count_[r];
-      for (int e = 0; e < m; ++e) inline_row[e] = {cols_[r * K + e], values_[r * K + e]};
-      std::vector<std::pair<int, double>> long_row;  // only a row with overflow allocates
-      std::pair<int, double>* row = inline_row;
-      long length = m;
-      if (!overflow_[r].empty()) {
-        long_row.assign(inline_row, inline_row + m);
-        long_row.insert(long_row.end(), overflow_[r].begin(), overflow_[r].end());
-        row = long_row.data(), length = static_cast<long>(long_row.size());
-      }
-      std::sort(row, row + length);
-      for (long e = 0; e < length; ++e) M.cols[M.row_ptr[r] + e] = row[e].first, M.values[M.row_ptr[r] + e] = row[e].second;
-    });
+    Kokkos::parallel_for(
+        "amphora::mac::rows_to_csr", Kokkos::RangePolicy<HostExecSpace>(0, n), [&](long r) {
+          std::pair<int, double> inline_row[K];
+          const int m = count_[r];
+          for (int e = 0; e < m; ++e) inline_row[e] = {cols_[r * K + e], values_[r * K + e]};
+          std::vector<std::pair<int, double>> long_row;  // only a row with overflow allocates
+          std::pair<int, double>* row = inline_row;
+          long length = m;
+          if (!overflow_[r].empty()) {
+            long_row.assign(inline_row, inline_row + m);
+            long_row.insert(long_row.end(), overflow_[r].begin(), overflow_[r].end());
+            row = long_row.data(), length = static_cast<long>(long_row.size());
+          }
+          std::sort(row, row + length);
+          for (long e = 0; e < length; ++e)
+            M.cols[M.row_ptr[r] + e] = row[e].first, M.values[M.row_ptr[r] + e] = row[e].second;
+        });
     return M;
   }
 

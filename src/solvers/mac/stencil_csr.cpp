@@ -2,8 +2,8 @@
 
 namespace amphora::solvers::mac {
 
-CsrMatrix stencil_to_csr(const kernels::mac::MacGrid& g, const double* diag, const float* cx, const float* cy,
-                         const float* cz, CompactNumbering& numbering) {
+CsrMatrix stencil_to_csr(const kernels::mac::MacGrid& g, const double* diag, const float* cx,
+                         const float* cy, const float* cz, CompactNumbering& numbering) {
   numbering.cell.clear();
   numbering.unknown.assign(static_cast<std::size_t>(g.padded_size()), -1);
   for (int k = 0; k < g.nz; ++k)

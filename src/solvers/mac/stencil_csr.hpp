@@ -18,11 +18,12 @@ struct CompactNumbering {
 };
 
 /// Assembles from host arrays on the padded lattice of g.
-CsrMatrix stencil_to_csr(const kernels::mac::MacGrid& g, const double* diag, const float* cx, const float* cy,
-                         const float* cz, CompactNumbering& numbering);
+CsrMatrix stencil_to_csr(const kernels::mac::MacGrid& g, const double* diag, const float* cx,
+                         const float* cy, const float* cz, CompactNumbering& numbering);
 
 template <class MemSpace>
-CsrMatrix stencil_to_csr(const kernels::mac::PoissonStencil<MemSpace>& A, CompactNumbering& numbering) {
+CsrMatrix stencil_to_csr(const kernels::mac::PoissonStencil<MemSpace>& A,
+                         CompactNumbering& numbering) {
   const auto d = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.diag);
   const auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cx);
   const auto y = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cy);

@@ -53,7 +53,8 @@ class StencilMic0 {
                        double(cz[c - sz]) * z[c - sz]);
     // (E + L^T) z = E y
     for (int c = end - 1; c >= first; --c)
-      z[c] += inv[c] * (double(cx[c]) * z[c + 1] + double(cy[c]) * z[c + sy] + double(cz[c]) * z[c + sz]);
+      z[c] += inv[c] *
+              (double(cx[c]) * z[c + 1] + double(cy[c]) * z[c + sy] + double(cz[c]) * z[c + sz]);
   }
   template <class ExecSpace, class R, class Z>
   void apply(const ExecSpace&, const R& r, const Z& z) const {

@@ -15,14 +15,15 @@ namespace {
 /// f along one direction: 3/4 from the parent, 1/4 from the parent's neighbour on f's side;
 /// beyond an edge of the grid the neighbour is the parent reflected, +1/4 at a wall, -1/4 at an
 /// open face (grid_transfer.hpp).
-int axis_weights(int f, int n_coarse, bool edge_lo, bool edge_hi, bool wall_lo, bool wall_hi, int index[2],
-                 double weight[2]) {
+int axis_weights(int f, int n_coarse, bool edge_lo, bool edge_hi, bool wall_lo, bool wall_hi,
+                 int index[2], double weight[2]) {
   const int parent = f >= 0 ? f / 2 : -((1 - f) / 2);  // floor(f / 2): ring cells lie at -1
   const int side = f - 2 * parent;
   index[0] = parent;
   const bool outside = side == 0 ? parent == 0 && edge_lo : parent == n_coarse - 1 && edge_hi;
   if (outside) {
-    weight[0] = 0.75 + kernels::mac::detail::reflected_weight<double>(side == 0 ? wall_lo : wall_hi);
+    weight[0] =
+        0.75 + kernels::mac::detail::reflected_weight<double>(side == 0 ? wall_lo : wall_hi);
     return 1;
   }
   weight[0] = 0.75;
@@ -32,8 +33,9 @@ int axis_weights(int f, int n_coarse, bool edge_lo, bool edge_hi, bool wall_lo, 
 }
 }  // namespace
 
-TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, const mesh::TallCellGrid& coarse,
-                                               const kernels::mac::PoissonStencil<HostMemSpace>& coarse_A) {
+TallCellLevelTransfer tall_cell_level_transfer(
+    const mesh::TallCellGrid& fine, const mesh::TallCellGrid& coarse,
+    const kernels::mac::PoissonStencil<HostMemSpace>& coarse_A) {
   const kernels::mac::MacGrid &gf = fine.grid(), &gc = coarse.grid();
   const auto edge = coarse_A.edges();
   const auto wall = coarse_A.walls();
@@ -46,12 +48,14 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   const auto ring = fine.ring_unknown_cells();
   csr_vector<Carrier> carriers(static_cast<std::size_t>(fine.unknowns()));  // each written below
   carriers.reserve(carriers.size() + ring.size());
-  Kokkos::parallel_for("amphora::tall_mg::transfer_carriers", Kokkos::RangePolicy<HostExecSpace>(0, gf.nz), [&](int k) {
-    for (int i = 0; i < gf.nx; ++i)
-      fine.for_each_unknown_in_column(i, k, [&](int u, int ci, int cj, int ck) {
-        carriers[u] = {fine.first_unknown() + u, ci, cj, ck};
-      });
-  });
+  Kokkos::parallel_for("amphora::tall_mg::transfer_carriers",
+                       Kokkos::RangePolicy<HostExecSpace>(0, gf.nz), [&](int k) {
+                         for (int i = 0; i < gf.nx; ++i)
+                           fine.for_each_unknown_in_column(
+                               i, k, [&](int u, int ci, int cj, int ck) {
+                                 carriers[u] = {fine.first_unknown() + u, ci, cj, ck};
+                               });
+                       });
   for (const auto& [u, cell] : ring) {
     Carrier c{u, 0, 0, 0};
     gf.ijk(cell, c.i, c.j, c.k);
@@ -79,9 +83,10 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
     int id[2];
     double w[2];
   };
-  csr_vector<CoarseCell> coarse_cells(static_cast<std::size_t>(gc.padded_size()));  // each written below
-  Kokkos::parallel_for("amphora::tall_mg::transfer_coarse_cells", Kokkos::RangePolicy<HostExecSpace>(0, gc.nz + 2),
-                       [&](int kk) {
+  csr_vector<CoarseCell> coarse_cells(
+      static_cast<std::size_t>(gc.padded_size()));  // each written below
+  Kokkos::parallel_for("amphora::tall_mg::transfer_coarse_cells",
+                       Kokkos::RangePolicy<HostExecSpace>(0, gc.nz + 2), [&](int kk) {
                          const int k = kk - 1;
                          for (int j = -1; j <= gc.ny; ++j)
                            for (int i = -1; i <= gc.nx; ++i) {
@@ -116,8 +121,8 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       Trilinear t;
       const int f[3] = {i, j, k}, nc[3] = {gc.nx, gc.ny, gc.nz};
       for (int d = 0; d < 3; ++d)
-        t.n[d] = axis_weights(f[d], nc[d], edge[2 * d], edge[2 * d + 1], wall[2 * d], wall[2 * d + 1], t.index[d],
-                              t.weight[d]);
+        t.n[d] = axis_weights(f[d], nc[d], edge[2 * d], edge[2 * d + 1], wall[2 * d],
+                              wall[2 * d + 1], t.index[d], t.weight[d]);
       return t;
     };
     // += scale * (the coarse pressure interpolated with tri), for sample `side`
@@ -132,7 +137,8 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
           for (int a = 0; a < tri.n[0]; ++a) {
             const double w = tri.weight[0][a] * tri.weight[1][b] * tri.weight[2][c];
             total += w;
-            const CoarseCell& cell = coarse_cells[gc.index(tri.index[0][a], tri.index[1][b], tri.index[2][c])];
+            const CoarseCell& cell =
+                coarse_cells[gc.index(tri.index[0][a], tri.index[1][b], tri.index[2][c])];
             if (cell.n < 0) {
               solid += w;
               continue;
@@ -159,11 +165,13 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       const int samples = G ? 2 : 1;
       // insertion sort: a row has about 8 terms
       for (std::size_t a = 1; a < n_terms; ++a)
-        for (std::size_t b = a; b > 0 && terms[b - 1].id > terms[b].id; --b) std::swap(terms[b - 1], terms[b]);
+        for (std::size_t b = a; b > 0 && terms[b - 1].id > terms[b].id; --b)
+          std::swap(terms[b - 1], terms[b]);
       for (int sample = 0; sample < samples; ++sample) {
         for (std::size_t e = 0; e < n_terms; ++e) {
           out.cols.push_back(terms[e].id);
-          out.values.push_back(!G ? terms[e].w[0] : G->solve(terms[e].w[sample], terms[e].w[1 - sample]));
+          out.values.push_back(!G ? terms[e].w[0]
+                                  : G->solve(terms[e].w[sample], terms[e].w[1 - sample]));
         }
         out.ends.push_back(static_cast<long>(out.cols.size()));
       }
@@ -176,12 +184,14 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
       if (tri.n[0] < 2 || tri.n[1] < 2 || tri.n[2] < 2) return false;
       const CoarseCell* cell[8];
       for (int m = 0; m < 8; ++m) {
-        cell[m] = &coarse_cells[gc.index(tri.index[0][m & 1], tri.index[1][(m >> 1) & 1], tri.index[2][m >> 2])];
+        cell[m] = &coarse_cells[gc.index(tri.index[0][m & 1], tri.index[1][(m >> 1) & 1],
+                                         tri.index[2][m >> 2])];
         if (cell[m]->n != 1 || cell[m]->w[0] != 1.0) return false;
       }
       for (int m = 0; m < 8; ++m) {
         out.cols.push_back(cell[m]->id[0]);
-        out.values.push_back(tri.weight[0][m & 1] * tri.weight[1][(m >> 1) & 1] * tri.weight[2][m >> 2]);
+        out.values.push_back(tri.weight[0][m & 1] * tri.weight[1][(m >> 1) & 1] *
+                             tri.weight[2][m >> 2]);
       }
       out.ends.push_back(static_cast<long>(out.cols.size()));
       return true;
@@ -231,8 +241,9 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
         const double c = hi > lo ? 1.0 / double(hi - lo) : 0.0;
         const double sx = 0.5 * n * (n - 1.0), sxx = sx * (2.0 * n - 1.0) / 3.0;
         const double s_sum = a * n + b * sx, l_sum = c * sx, sl_sum = a * c * sx + b * c * sxx;
-        const double ends[2][2] = {{n - s_sum - l_sum + sl_sum, l_sum - sl_sum},  // [sample][lo or hi end]
-                                   {s_sum - sl_sum, sl_sum}};
+        const double ends[2][2] = {
+            {n - s_sum - l_sum + sl_sum, l_sum - sl_sum},  // [sample][lo or hi end]
+            {s_sum - sl_sum, sl_sum}};
         for (int side = 0; side < 2; ++side) {
           interpolate(i, lo, k, side, ends[side][0]);
           if (hi > lo) interpolate(i, hi, k, side, ends[side][1]);
@@ -245,7 +256,8 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
     }
   };
   // chunk bounds never split a tall cell's two samples (the bottom's carrier, then the top's)
-  const std::size_t n_carriers = carriers.size(), chunks = std::min<std::size_t>(64, n_carriers + 1);
+  const std::size_t n_carriers = carriers.size(),
+                    chunks = std::min<std::size_t>(64, n_carriers + 1);
   std::vector<std::size_t> bound(chunks + 1, n_carriers);
   for (std::size_t c = 0; c < chunks; ++c) {
     std::size_t r = c * n_carriers / chunks;
@@ -253,7 +265,8 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
     bound[c] = r;
   }
   std::vector<Rows> parts(chunks);
-  Kokkos::parallel_for("amphora::tall_mg::transfer_rows", Kokkos::RangePolicy<HostExecSpace>(0, chunks),
+  Kokkos::parallel_for("amphora::tall_mg::transfer_rows",
+                       Kokkos::RangePolicy<HostExecSpace>(0, chunks),
                        [&](std::size_t c) { build(bound[c], bound[c + 1], parts[c]); });
   // The parts one after the other (each copied in parallel to its place): Q's rows for all
   // carriers.
@@ -266,14 +279,15 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   csr_vector<int> cols(part_entry[chunks]);
   csr_vector<double> values(part_entry[chunks]);
   row_ptr[0] = 0;
-  Kokkos::parallel_for("amphora::tall_mg::transfer_merge", Kokkos::RangePolicy<HostExecSpace>(0, chunks),
-                       [&](std::size_t c) {
-                         const Rows& part = parts[c];
-                         for (std::size_t r = 0; r < part.ends.size(); ++r)
-                           row_ptr[part_row[c] + 1 + r] = part_entry[c] + part.ends[r];
-                         std::copy(part.cols.begin(), part.cols.end(), cols.begin() + part_entry[c]);
-                         std::copy(part.values.begin(), part.values.end(), values.begin() + part_entry[c]);
-                       });
+  Kokkos::parallel_for(
+      "amphora::tall_mg::transfer_merge", Kokkos::RangePolicy<HostExecSpace>(0, chunks),
+      [&](std::size_t c) {
+        const Rows& part = parts[c];
+        for (std::size_t r = 0; r < part.ends.size(); ++r)
+          row_ptr[part_row[c] + 1 + r] = part_entry[c] + part.ends[r];
+        std::copy(part.cols.begin(), part.cols.end(), cols.begin() + part_entry[c]);
+        std::copy(part.values.begin(), part.values.end(), values.begin() + part_entry[c]);
+      });
   parts.clear();
   TallCellLevelTransfer t;
   // Q^T by counting, in groups of carriers: each group counts its entries per coarse row, a
@@ -283,15 +297,17 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   CsrMatrix& R = t.restriction;
   const long first = coarse.first_unknown();
   R.n = coarse.unknowns();
-  const std::size_t groups = std::min<std::size_t>(chunks, 2 * static_cast<std::size_t>(HostExecSpace().concurrency()));
+  const std::size_t groups =
+      std::min<std::size_t>(chunks, 2 * static_cast<std::size_t>(HostExecSpace().concurrency()));
   std::vector<std::size_t> group_bound(groups + 1);
   for (std::size_t q = 0; q <= groups; ++q) group_bound[q] = bound[q * chunks / groups];
   std::vector<long> count(groups * R.n, 0);  // per group, per coarse row
   const auto own_row = [&](int U) { return U >= first && U < first + R.n ? U - first : -1L; };
-  Kokkos::parallel_for("amphora::tall_mg::transpose_count", Kokkos::RangePolicy<HostExecSpace>(0, groups),
-                       [&](std::size_t q) {
+  Kokkos::parallel_for("amphora::tall_mg::transpose_count",
+                       Kokkos::RangePolicy<HostExecSpace>(0, groups), [&](std::size_t q) {
                          long* n = count.data() + q * R.n;
-                         for (long e = row_ptr[group_bound[q]]; e < row_ptr[group_bound[q + 1]]; ++e) {
+                         for (long e = row_ptr[group_bound[q]]; e < row_ptr[group_bound[q + 1]];
+                              ++e) {
                            const long U = own_row(cols[e]);
                            if (U >= 0) ++n[U];
                          }
@@ -310,8 +326,8 @@ TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, c
   R.row_ptr[R.n] = at;
   R.cols.resize(at);
   R.values.resize(at);
-  Kokkos::parallel_for("amphora::tall_mg::transpose_fill", Kokkos::RangePolicy<HostExecSpace>(0, groups),
-                       [&](std::size_t q) {
+  Kokkos::parallel_for("amphora::tall_mg::transpose_fill",
+                       Kokkos::RangePolicy<HostExecSpace>(0, groups), [&](std::size_t q) {
                          long* next = count.data() + q * R.n;
                          for (std::size_t r = group_bound[q]; r < group_bound[q + 1]; ++r)
                            for (long e = row_ptr[r]; e < row_ptr[r + 1]; ++e) {

@@ -26,7 +26,8 @@ struct TallCellLevelTransfer {
 /// The transfers between `fine` and `coarse` (on the lattice with cells twice as wide); coarse_A
 /// is the coarse lattice matrix on the host (its solid and fluid cells, its box faces; on a split
 /// grid with its ghost ring exchanged).
-TallCellLevelTransfer tall_cell_level_transfer(const mesh::TallCellGrid& fine, const mesh::TallCellGrid& coarse,
-                                               const kernels::mac::PoissonStencil<HostMemSpace>& coarse_A);
+TallCellLevelTransfer tall_cell_level_transfer(
+    const mesh::TallCellGrid& fine, const mesh::TallCellGrid& coarse,
+    const kernels::mac::PoissonStencil<HostMemSpace>& coarse_A);
 
 }  // namespace amphora::solvers::mac

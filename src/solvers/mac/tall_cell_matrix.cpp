@@ -18,12 +18,13 @@ namespace {
 /// as uniform_row_length counts them). The neighbours are visited in the order of the
 /// numbering (columns x fastest, each column upwards: -z, -x, -y, the cell, +y, +x, +z), so on
 /// one block the entries come sorted and the sort only checks them.
-int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A, int i, int j, int k,
-                int u, std::pair<int, double>* row) {
+int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A,
+                int i, int j, int k, int u, std::pair<int, double>* row) {
   const kernels::mac::MacGrid& g = T.grid();
   const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
   int n = 0;
-  const int di[7] = {0, -1, 0, 0, 0, 1, 0}, dj[7] = {0, 0, -1, 0, 1, 0, 0}, dk[7] = {-1, 0, 0, 0, 0, 0, 1};
+  const int di[7] = {0, -1, 0, 0, 0, 1, 0}, dj[7] = {0, 0, -1, 0, 1, 0, 0},
+            dk[7] = {-1, 0, 0, 0, 0, 0, 1};
   const double cond[7] = {A.cz(c - sz), A.cx(c - 1), A.cy(c - sy), 0.0, A.cy(c), A.cx(c), A.cz(c)};
   for (int f = 0; f < 7; ++f) {
     if (f == 3) {  // the cell itself
@@ -44,8 +45,8 @@ int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<
 /// The number of entries uniform_row gives, from the columns alone: the cell, and per neighbour
 /// across a face with c != 0 (a fluid cell, so an unknown or a tall cell's row) one entry, or two
 /// for a tall cell's inner row (at its bottom and top rows one sample's weight is zero).
-int uniform_row_length(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A, int i,
-                       int j, int k) {
+int uniform_row_length(const mesh::TallCellGrid& T,
+                       const kernels::mac::PoissonStencil<HostMemSpace>& A, int i, int j, int k) {
   const kernels::mac::MacGrid& g = T.grid();
   const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
   const int di[6] = {0, -1, 0, 0, 1, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {-1, 0, 0, 0, 0, 1};
@@ -67,11 +68,20 @@ int uniform_row_length(const mesh::TallCellGrid& T, const kernels::mac::PoissonS
 /// uniform unknown).
 class TallRows {
  public:
-  TallRows(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A)
-      : T(T), A(A), g(T.grid()), sy(g.stride_y()), sz(g.stride_z()), n(T.unknowns()),
-        first(T.first_unknown()), slot(n, -1), tall_rows(number_samples(T, slot)),
-        rows(tall_rows, 0), unit(A.unit_fluid_faces),
-        marked(A.surface_free_rows.extent(0) == static_cast<std::size_t>(g.ny) * g.nz) {}
+  TallRows(const mesh::TallCellGrid& grid,
+           const kernels::mac::PoissonStencil<HostMemSpace>& stencil)
+      : T(grid),
+        A(stencil),
+        g(grid.grid()),
+        sy(g.stride_y()),
+        sz(g.stride_z()),
+        n(grid.unknowns()),
+        first(grid.first_unknown()),
+        slot(n, -1),
+        tall_rows(number_samples(grid, slot)),
+        rows(tall_rows, 0),
+        unit(stencil.unit_fluid_faces),
+        marked(stencil.surface_free_rows.extent(0) == static_cast<std::size_t>(g.ny) * g.nz) {}
 
   /// Every tall row's terms. Rows of a column take terms from its own cells and vertical
   /// faces, from the x faces to the columns of its x line and from the z faces to the
@@ -82,11 +92,11 @@ class TallRows {
   const std::vector<int>& slots() const { return slot; }
 
  private:
-  static long number_samples(const mesh::TallCellGrid& T, std::vector<int>& slot) {
+  static long number_samples(const mesh::TallCellGrid& grid, std::vector<int>& slots) {
     long count = 0;
-    for (const mesh::TallCellColumn& col : T.columns())
+    for (const mesh::TallCellColumn& col : grid.columns())
       if (col.has_tall_cell())
-        for (int s = 0; s < 2; ++s) slot[col.first_unknown + s] = static_cast<int>(count++);
+        for (int s = 0; s < 2; ++s) slots[col.first_unknown + s] = static_cast<int>(count++);
     return count;
   }
   int tall_slot(int global) const {
@@ -136,8 +146,8 @@ class TallRows {
       if (surface_free(j, k)) continue;
       const int c = g.index(i, j, k);
       if (d(c) == 0.0) continue;
-      const double D = d(c) - (double(cx(c - 1)) + double(cx(c)) + double(cy(c - sy)) + double(cy(c)) +
-                               double(cz(c - sz)) + double(cz(c)));
+      const double D = d(c) - (double(cx(c - 1)) + double(cx(c)) + double(cy(c - sy)) +
+                               double(cy(c)) + double(cz(c - sz)) + double(cz(c)));
       if (D == 0.0) continue;
       int ids[2];
       double w[2];
@@ -173,8 +183,9 @@ class TallRows {
     double m0 = 0.0, m1 = 0.0, m2 = 0.0;
     int j_from = j0;
     if (unit && j_tall > j0) {  // c = 1 on [j0, j_tall), fluid on both sides
-      const long long n = j_tall - j0;
-      m0 = double(n), m1 = double(n * (n - 1) / 2), m2 = double((n - 1) * n * (2 * n - 1) / 6);
+      const long long len = j_tall - j0;
+      m0 = double(len), m1 = double(len * (len - 1) / 2);
+      m2 = double((len - 1) * len * (2 * len - 1) / 6);
       j_from = j_tall;
     }
     for (int j = j_from; j < j_end; ++j) {
@@ -199,7 +210,8 @@ class TallRows {
         if (s < 0) continue;
         for (int b = 0; b < 4; ++b) {  // (a, b) and (b, a) the same expression: exactly symmetric
           const int lo = std::min(a, b), hi = std::max(a, b);
-          rows.add(s, ids[b], p[lo] * p[hi] * m0 + (p[lo] * q[hi] + q[lo] * p[hi]) * m1 + q[lo] * q[hi] * m2);
+          rows.add(s, ids[b],
+                   p[lo] * p[hi] * m0 + (p[lo] * q[hi] + q[lo] * p[hi]) * m1 + q[lo] * q[hi] * m2);
         }
       }
     }
@@ -220,15 +232,18 @@ CsrMatrix TallRows::assemble() {
   // x faces between a column and its +x neighbour, where either is this block's (on a split
   // grid the faces to the ghost ring too: their terms in this block's rows); likewise z faces.
   const auto& nb = T.block().neighbours;
-  const int i_lo = nb[0] >= 0 ? -1 : 0, i_hi = nb[1] >= 0 ? g.nx : g.nx - 1;  // lower column's range
+  const int i_lo = nb[0] >= 0 ? -1 : 0,
+            i_hi = nb[1] >= 0 ? g.nx : g.nx - 1;  // lower column's range
   const int k_lo = nb[4] >= 0 ? -1 : 0, k_hi = nb[5] >= 0 ? g.nz : g.nz - 1;
   if (tall_rows > 0) {
-    Kokkos::parallel_for("amphora::tall::assemble_lines", Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
-      for (int i = 0; i < g.nx; ++i) column_terms(i, k);
-      for (int i = i_lo; i < i_hi; ++i) face_terms(0, i, k);
-    });
+    Kokkos::parallel_for("amphora::tall::assemble_lines",
+                         Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
+                           for (int i = 0; i < g.nx; ++i) column_terms(i, k);
+                           for (int i = i_lo; i < i_hi; ++i) face_terms(0, i, k);
+                         });
     for (int parity = 0; parity < 2; ++parity) {
-      const int first_line = k_lo + ((parity - k_lo) % 2 + 2) % 2, lines = (k_hi - first_line + 1) / 2;
+      const int first_line = k_lo + ((parity - k_lo) % 2 + 2) % 2,
+                lines = (k_hi - first_line + 1) / 2;
       Kokkos::parallel_for("amphora::tall::assemble_z_faces",
                            Kokkos::RangePolicy<HostExecSpace>(0, std::max(lines, 0)), [&](int m) {
                              for (int i = 0; i < g.nx; ++i) face_terms(1, i, first_line + 2 * m);
@@ -242,7 +257,8 @@ CsrMatrix TallRows::assemble() {
 /// length first (a uniform row's counted, a tall row's from `tall`), then the rows in place
 /// (cheaper than a scratch of 13 entries per unknown filled in the first pass, whose fresh
 /// pages cost more than the second walk).
-CsrMatrix merge_rows(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A,
+CsrMatrix merge_rows(const mesh::TallCellGrid& T,
+                     const kernels::mac::PoissonStencil<HostMemSpace>& A,
                      const std::vector<int>& slot, const CsrMatrix& tall) {
   const kernels::mac::MacGrid& g = T.grid();
   const long n = T.unknowns(), first = T.first_unknown();
@@ -254,7 +270,9 @@ CsrMatrix merge_rows(const mesh::TallCellGrid& T, const kernels::mac::PoissonSte
       std::pair<int, double> row[13];
       T.for_each_unknown_in_column(col % g.nx, col / g.nx, [&](int u, int i, int j, int k) {
         if (slot[u] < 0) {
-          f(u, entries ? uniform_row(T, A, i, j, k, static_cast<int>(first + u), row) : uniform_row_length(T, A, i, j, k),
+          f(u,
+            entries ? uniform_row(T, A, i, j, k, static_cast<int>(first + u), row)
+                    : uniform_row_length(T, A, i, j, k),
             nullptr, nullptr, row);
           return;
         }
@@ -271,25 +289,30 @@ CsrMatrix merge_rows(const mesh::TallCellGrid& T, const kernels::mac::PoissonSte
   M.cols.resize(M.row_ptr[n]);
   M.values.resize(M.row_ptr[n]);
   std::atomic<bool> lengths_agree{true};
-  for_each_row("amphora::tall::rows", true, [&](int u, long length, const int* cols, const double* values,
-                                          const std::pair<int, double>* row) {
-    const long at = M.row_ptr[u];
-    if (at + length != M.row_ptr[u + 1]) {  // never: the lengths pass counts what this writes
-      lengths_agree = false;
-      return;
-    }
-    for (long e = 0; e < length; ++e) {
-      M.cols[at + e] = row ? row[e].first : cols[e];
-      M.values[at + e] = row ? row[e].second : values[e];
-    }
-  });
-  if (!lengths_agree) throw std::logic_error("assemble_tall_cell_matrix: a row's entries differ from its counted length");
+  for_each_row(
+      "amphora::tall::rows", true,
+      [&](int u, long length, const int* cols, const double* values,
+          const std::pair<int, double>* row) {
+        const long at = M.row_ptr[u];
+        if (at + length != M.row_ptr[u + 1]) {  // never: the lengths pass counts what this writes
+          lengths_agree = false;
+          return;
+        }
+        for (long e = 0; e < length; ++e) {
+          M.cols[at + e] = row ? row[e].first : cols[e];
+          M.values[at + e] = row ? row[e].second : values[e];
+        }
+      });
+  if (!lengths_agree)
+    throw std::logic_error(
+        "assemble_tall_cell_matrix: a row's entries differ from its counted length");
   return M;
 }
 
 }  // namespace
 
-CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A) {
+CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T,
+                                    const kernels::mac::PoissonStencil<HostMemSpace>& A) {
   TallRows tall(T, A);
   const CsrMatrix rows = tall.assemble();
   return merge_rows(T, A, tall.slots(), rows);

@@ -20,7 +20,8 @@ bool on_every_rank(MPI_Comm comm, bool local) {
 
 /// Every block's rows (global columns) in one matrix, on every rank: rank order is the global
 /// numbering of the unknowns.
-CsrMatrix gather_rows(MPI_Comm comm, const CsrMatrix& M, std::vector<int>& counts, std::vector<int>& displacements) {
+CsrMatrix gather_rows(MPI_Comm comm, const CsrMatrix& M, std::vector<int>& counts,
+                      std::vector<int>& displacements) {
   int ranks = 1;
   MPI_Comm_size(comm, &ranks);
   const int n = static_cast<int>(M.n), nnz = static_cast<int>(M.nnz());
@@ -38,12 +39,14 @@ CsrMatrix gather_rows(MPI_Comm comm, const CsrMatrix& M, std::vector<int>& count
   const long total_nnz = nnz_displacements[ranks - 1] + nnz_counts[ranks - 1];
   std::vector<int> lengths(W.n), mine(n);
   for (int i = 0; i < n; ++i) mine[i] = static_cast<int>(M.row_ptr[i + 1] - M.row_ptr[i]);
-  MPI_Allgatherv(mine.data(), n, MPI_INT, lengths.data(), counts.data(), displacements.data(), MPI_INT, comm);
+  MPI_Allgatherv(mine.data(), n, MPI_INT, lengths.data(), counts.data(), displacements.data(),
+                 MPI_INT, comm);
   W.cols.resize(total_nnz);
   W.values.resize(total_nnz);
-  MPI_Allgatherv(M.cols.data(), nnz, MPI_INT, W.cols.data(), nnz_counts.data(), nnz_displacements.data(), MPI_INT, comm);
-  MPI_Allgatherv(M.values.data(), nnz, MPI_DOUBLE, W.values.data(), nnz_counts.data(), nnz_displacements.data(),
-                 MPI_DOUBLE, comm);
+  MPI_Allgatherv(M.cols.data(), nnz, MPI_INT, W.cols.data(), nnz_counts.data(),
+                 nnz_displacements.data(), MPI_INT, comm);
+  MPI_Allgatherv(M.values.data(), nnz, MPI_DOUBLE, W.values.data(), nnz_counts.data(),
+                 nnz_displacements.data(), MPI_DOUBLE, comm);
   W.row_ptr.assign(W.n + 1, 0);
   for (long i = 0; i < W.n; ++i) W.row_ptr[i + 1] = W.row_ptr[i] + lengths[i];
   return W;
@@ -83,12 +86,14 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     const kernels::mac::MacGrid g = level_A.grid;
     long cells = g.cells();
     MPI_Allreduce(MPI_IN_PLACE, &cells, 1, MPI_LONG, MPI_SUM, comm);
-    const bool halvable = g.nx % 2 == 0 && g.ny % 2 == 0 && g.nz % 2 == 0 && level_block.global_lower[0] % 2 == 0 &&
+    const bool halvable = g.nx % 2 == 0 && g.ny % 2 == 0 && g.nz % 2 == 0 &&
+                          level_block.global_lower[0] % 2 == 0 &&
                           level_block.global_lower[2] % 2 == 0;
     if (!on_every_rank(comm, halvable) || cells <= options.max_coarse_cells) {
       // every block's rows on a split grid; on one block the level's matrix itself (not a copy)
       CsrMatrix gathered;
-      if (block.split()) gathered = gather_rows(comm, level_matrix, coarse_counts_, coarse_displacements_);
+      if (block.split())
+        gathered = gather_rows(comm, level_matrix, coarse_counts_, coarse_displacements_);
       const CsrMatrix& whole = block.split() ? gathered : level_matrix;
       Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_cholesky");
       coarse_ = std::make_unique<CoarseCholesky>(whole);
@@ -119,7 +124,8 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     const bool keeps = kept && static_cast<std::size_t>(l) < kept->levels.size();
     Stencil coarse = keeps ? kept->levels[l] : Stencil(level_A.grid.coarsened());
     unchanged_below =
-        keeps ? kernels::mac::first_coarse_row_changed(unchanged_below, level_A.phi.extent(0) > 0) : 0;
+        keeps ? kernels::mac::first_coarse_row_changed(unchanged_below, level_A.phi.extent(0) > 0)
+              : 0;
     kernels::mac::coarsen_stencil(exec, level_A, coarse, unchanged_below);
     complete_block_stencil(exec, halo_, &level_A, coarse);
     if (keeps)
@@ -148,16 +154,19 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
 }
 
 template <class ExecSpace>
-void TallCellMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l, const Vector& b, const Vector& x) const {
+void TallCellMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l, const Vector& b,
+                                          const Vector& x) const {
   const Level& L = *levels_[l];
   if (l + 1 == levels()) {
     const int n = static_cast<int>(coarse_local_.size());
-    Kokkos::View<double*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> local(coarse_local_.data(), n);
+    Kokkos::View<double*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> local(
+        coarse_local_.data(), n);
     Kokkos::deep_copy(exec, local, b);
     exec.fence();
     if (halo_.block().split())
-      MPI_Allgatherv(coarse_local_.data(), n, MPI_DOUBLE, coarse_host_.data(), coarse_counts_.data(),
-                     coarse_displacements_.data(), MPI_DOUBLE, halo_.block().comm);
+      MPI_Allgatherv(coarse_local_.data(), n, MPI_DOUBLE, coarse_host_.data(),
+                     coarse_counts_.data(), coarse_displacements_.data(), MPI_DOUBLE,
+                     halo_.block().comm);
     else
       coarse_host_ = coarse_local_;
     coarse_->solve(coarse_host_.data(), coarse_host_.data());

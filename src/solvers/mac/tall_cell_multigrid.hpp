@@ -33,7 +33,8 @@ struct TallCellMultigridOptions {
   int fine_chebyshev_degree = 2;
   int chebyshev_degree = 3;
   double smoothing_range = 8.0;
-  long max_coarse_cells = 4096;  ///< coarsest lattice size (the tall-cell system on it is factorised)
+  long max_coarse_cells =
+      4096;  ///< coarsest lattice size (the tall-cell system on it is factorised)
 };
 
 /// The coarse levels' lattice stencils, kept by a caller between multigrids built over a finest
@@ -60,8 +61,9 @@ class TallCellMultigrid {
   /// ghost conductances exchanged). Collective over T.block()'s ranks. A_t by value: a moved
   /// one's arrays are kept as the finest level's matrix where the host can read them.
   /// With `kept`, the coarse lattice stencils are taken from and left in it.
-  TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t, const Stencil& A,
-                    const TallCellMultigridOptions& options = {}, KeptCoarseStencils<MemSpace>* kept = nullptr);
+  TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t,
+                    const Stencil& A, const TallCellMultigridOptions& options = {},
+                    KeptCoarseStencils<MemSpace>* kept = nullptr);
   TallCellMultigrid(const TallCellMultigrid&) = delete;  // the smoothers point at the matrices
   TallCellMultigrid& operator=(const TallCellMultigrid&) = delete;
 
@@ -69,11 +71,15 @@ class TallCellMultigrid {
   int levels() const { return static_cast<int>(levels_.size()); }
 
   /// z = one V-cycle applied to r.
-  void apply(const ExecSpace& exec, const Vector& r, const Vector& z) const { vcycle(exec, 0, r, z); }
+  void apply(const ExecSpace& exec, const Vector& r, const Vector& z) const {
+    vcycle(exec, 0, r, z);
+  }
 
   /// Multigrid-preconditioned CG on A_t y = b from the guess in y.
-  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& y, const SolverControl& control) const {
-    return conjugate_gradient(exec, matrix(), b, y, control, *this, BlockInnerProduct{halo_.block().comm});
+  SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& y,
+                     const SolverControl& control) const {
+    return conjugate_gradient(exec, matrix(), b, y, control, *this,
+                              BlockInnerProduct{halo_.block().comm});
   }
 
  private:

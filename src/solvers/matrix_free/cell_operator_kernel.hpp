@@ -34,7 +34,9 @@ enum class GeometryMode { cartesian, affine, stored, on_the_fly };
 
 template <int dim>
 KOKKOS_INLINE_FUNCTION constexpr int n_point_coefficients(OperatorKind kind) {
-  return kind == OperatorKind::mass ? 1 : kind == OperatorKind::laplace ? sumfac::n_symmetric<dim> : dim;
+  return kind == OperatorKind::mass      ? 1
+         : kind == OperatorKind::laplace ? sumfac::n_symmetric<dim>
+                                         : dim;
 }
 
 template <int dim, int n_p, int n_q, class ExecSpace>
@@ -42,12 +44,12 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
   static constexpr int W = sumfac::simd_width_v<ExecSpace>;
   using Access = sumfac::BatchDofAccess<dim, n_p, W>;
   using T = sumfac::Simd<W>;
-  using typename Access::BatchIndex;
-  using Access::lattice;
   using Access::batch_index;
   using Access::gather;
   using Access::gather_nodes;
   using Access::gather_unconstrained;
+  using Access::lattice;
+  using typename Access::BatchIndex;
   using Eval = sumfac::TensorProductEvaluator<dim, n_p, n_q>;
   using memory_space = typename ExecSpace::memory_space;
   static constexpr int n_dofs = Eval::n_dofs;
@@ -62,7 +64,7 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
   /// Entries between batches in batch_coef: n_coef, or 0 where every cell has the same
   /// coefficients and batch_coef holds them once.
   long batch_coef_stride = 0;
-  Kokkos::View<const T*, memory_space> point_coef;  ///< [batch][coef][point] (stored)
+  Kokkos::View<const T*, memory_space> point_coef;        ///< [batch][coef][point] (stored)
   Kokkos::View<const double*, memory_space> coordinates;  ///< node lattice, blocked
   /// Coefficient a(x) (Laplace) or velocity b(x) (convection, dim blocked components) as a Q_k
   /// field; empty: a = 1.
@@ -122,7 +124,8 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
   // --- the operator on one batch ----------------------------------------------------------
   /// Point coefficients for batch b: a pointer to stored data, or computed into s.jac.
   KOKKOS_INLINE_FUNCTION const T* coefficients(int b, Scratch& s) const {
-    if (mode == GeometryMode::stored) return point_coef.data() + static_cast<long>(b) * n_coef * n_points;
+    if (mode == GeometryMode::stored)
+      return point_coef.data() + static_cast<long>(b) * n_coef * n_points;
     if (mode == GeometryMode::on_the_fly) {
       point_coefficients(b, s);
       return s.jac;
@@ -140,7 +143,8 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
         if (shape.collocated) return Eval::collocated_cartesian_laplace(shape, c, u, s.grad);
       return Eval::cartesian_laplace(shape, c, u, s.grad);
     }
-    if (kind == OperatorKind::mass && per_cell && !shape.collocated) return Eval::per_cell_mass(shape, c[0], u);
+    if (kind == OperatorKind::mass && per_cell && !shape.collocated)
+      return Eval::per_cell_mass(shape, c[0], u);
     // The values at the points: in place of u where the sweeps may run in place (u is not read
     // again).
     T* const v = Eval::in_place ? u : s.v;
@@ -189,7 +193,8 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
   /// Entry e of the point coefficients at point q (per-cell modes: times the weight; the
   /// cartesian Laplace metric is diagonal).
   KOKKOS_INLINE_FUNCTION T coefficient(const T* c, int e, int q) const {
-    if (mode == GeometryMode::stored || mode == GeometryMode::on_the_fly) return c[e * n_points + q];
+    if (mode == GeometryMode::stored || mode == GeometryMode::on_the_fly)
+      return c[e * n_points + q];
     const T w(Eval::weight(shape, q));
     if (mode == GeometryMode::cartesian && kind == OperatorKind::laplace) {
       for (int a = 0; a < dim; ++a)
@@ -218,7 +223,9 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
         for (int q = 0; q < n_points; ++q) s.v[q] = f * coefficient(c, e, q);
         const M* m[3];
         for (int dd = 0; dd < dim; ++dd)
-          m[dd] = (dd == a && dd == b) ? &shape.dd_t : (dd == a || dd == b) ? &shape.sd_t : &shape.ss_t;
+          m[dd] = (dd == a && dd == b)   ? &shape.dd_t
+                  : (dd == a || dd == b) ? &shape.sd_t
+                                         : &shape.ss_t;
         Eval::template integrate_tensor<true>(m, s.v, d, s.tmp);
       }
   }
@@ -226,7 +233,8 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
   /// dst += A src on batches b0 .. b1 - 1 of one row of cells, every component. The row's part
   /// of the batch index is formed once (row_index); each batch adds its lanes' (lane_index).
   template <bool atomic>
-  KOKKOS_INLINE_FUNCTION void apply_row(const double* src, double* dst, int n_components, int b0, int b1) const {
+  KOKKOS_INLINE_FUNCTION void apply_row(const double* src, double* dst, int n_components, int b0,
+                                        int b1) const {
     Scratch s;
     T u[n_dofs];
     BatchIndex ix;
@@ -241,8 +249,10 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
       // The next batch's source lines: W k entries further along the same rows, or at the end
       // of the row the first batch of the next row of the slab (its rows k node lines further
       // along direction 1; at the slab's last row, none).
-      const bool next_in_row = b + 1 < b1, next_row = !next_in_row && cell[1] + 1 < lattice.cells[1];
-      const long shift = next_in_row ? static_cast<long>(W) * k : static_cast<long>(k) * lattice.dofs[0] - ix.start;
+      const bool next_in_row = b + 1 < b1,
+                 next_row = !next_in_row && cell[1] + 1 < lattice.cells[1];
+      const long shift = next_in_row ? static_cast<long>(W) * k
+                                     : static_cast<long>(k) * lattice.dofs[0] - ix.start;
       for (int comp = 0; comp < n_components; ++comp) {
         gather(src + comp * n, ix, u);
         if constexpr (Access::prefetch_rows) {
@@ -266,7 +276,8 @@ struct CellOperatorKernel : sumfac::BatchDofAccess<dim, n_p, sumfac::simd_width_
     const long n = lattice.n_dofs();
     BatchIndex ix;
     batch_index(b, ix);
-    for (int comp = 0; comp < n_components; ++comp) this->template scatter_add<atomic>(diag + comp * n, ix, d);
+    for (int comp = 0; comp < n_components; ++comp)
+      this->template scatter_add<atomic>(diag + comp * n, ix, d);
   }
 
   /// Columns of A_cell (cell-local, lexicographic) of batch b: out[(j * n_dofs + i)] = A_ij.
@@ -289,7 +300,9 @@ struct SlabBlockColouring {
   int slabs = 0, run = 1, blocks = 0;
   bool odd_periodic = false;
   explicit SlabBlockColouring(const sumfac::QkLattice<dim>& lattice)
-      : slabs(lattice.n_slabs()), run(lattice.slabs_per_block()), blocks(lattice.n_slab_blocks()),
+      : slabs(lattice.n_slabs()),
+        run(lattice.slabs_per_block()),
+        blocks(lattice.n_slab_blocks()),
         odd_periodic(lattice.block_colour(lattice.n_slab_blocks() - 1) == 2) {}
   int items(int colour) const {
     const int regular = odd_periodic ? blocks - 1 : blocks;
@@ -314,14 +327,16 @@ struct SlabBlockColouring {
 /// Device spaces run all batches at once: body must add atomically, first_touch and last_touch
 /// are not called. Returns whether they were called.
 template <class ExecSpace, int dim, class FirstTouch, class Body, class LastTouch = sumfac::NoTouch>
-bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice, const char* label,
-                             const FirstTouch& first_touch, const Body& body, const LastTouch& last_touch = {}) {
+bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice,
+                             const char* label, const FirstTouch& first_touch, const Body& body,
+                             const LastTouch& last_touch = {}) {
   constexpr bool host = runs_on_host_v<ExecSpace>;
   constexpr bool by_row = std::is_invocable_v<const Body&, int, int>;
   if constexpr (!host) {
     if constexpr (by_row)
-      Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, lattice.n_batches()),
-                           KOKKOS_LAMBDA(int b) { body(b, b + 1); });
+      Kokkos::parallel_for(
+          label, RangePolicy<ExecSpace>(exec, 0, lattice.n_batches()),
+          KOKKOS_LAMBDA(int b) { body(b, b + 1); });
     else
       Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, lattice.n_batches()), body);
     return false;
@@ -335,7 +350,8 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
       // a host lambda: this branch runs on host spaces only (and nvcc's extended lambdas may not
       // first-capture body inside the if constexpr below)
       Kokkos::parallel_for(label, RangePolicy<ExecSpace>(exec, 0, items), [=](int i) {
-        for (int slab = colouring.first_slab(colour, i); slab < colouring.end_slab(colour, i); ++slab)
+        for (int slab = colouring.first_slab(colour, i); slab < colouring.end_slab(colour, i);
+             ++slab)
           for (int row = 0; row < rows; ++row) {
             first_touch(slab, row);
             const int b0 = slab * per_slab + row * per_row;
@@ -356,14 +372,16 @@ bool for_each_batch_coloured(const ExecSpace& exec, const sumfac::QkLattice<dim>
 /// atomically. The schedule of device spaces in for_each_batch_team; on a host space with
 /// team_size > 1 it shows that a body shares its work correctly.
 template <class ExecSpace, int dim, class TeamSize, class Body>
-void for_each_batch_team_at_once(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice, const char* label,
-                                 std::size_t scratch_bytes, TeamSize team_size, const Body& body) {
+void for_each_batch_team_at_once(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice,
+                                 const char* label, std::size_t scratch_bytes, TeamSize team_size,
+                                 const Body& body) {
   using Policy = Kokkos::TeamPolicy<ExecSpace>;
   Policy policy(exec, lattice.n_batches(), team_size);
   policy.set_scratch_size(1, Kokkos::PerTeam(scratch_bytes));
-  Kokkos::parallel_for(label, policy, KOKKOS_LAMBDA(const typename Policy::member_type& team) {
-    body(team, team.league_rank(), team.league_rank() + 1);
-  });
+  Kokkos::parallel_for(
+      label, policy, KOKKOS_LAMBDA(const typename Policy::member_type& team) {
+        body(team, team.league_rank(), team.league_rank() + 1);
+      });
 }
 
 /// Runs body(team, b0, b1) on the batches b0 .. b1 - 1 with one team per call and scratch_bytes
@@ -372,8 +390,8 @@ void for_each_batch_team_at_once(const ExecSpace& exec, const sumfac::QkLattice<
 /// thread takes one block of slabs, blocks coloured as above; device spaces run one team per
 /// batch, all at once (for_each_batch_team_at_once), and body must add atomically.
 template <class ExecSpace, int dim, class Body>
-void for_each_batch_team(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice, const char* label,
-                         std::size_t scratch_bytes, const Body& body) {
+void for_each_batch_team(const ExecSpace& exec, const sumfac::QkLattice<dim>& lattice,
+                         const char* label, std::size_t scratch_bytes, const Body& body) {
   using Policy = Kokkos::TeamPolicy<ExecSpace>;
   constexpr bool host = runs_on_host_v<ExecSpace>;
   if constexpr (!host) {
@@ -386,10 +404,12 @@ void for_each_batch_team(const ExecSpace& exec, const sumfac::QkLattice<dim>& la
       if (items <= 0) continue;
       Policy policy(exec, items, 1);
       policy.set_scratch_size(1, Kokkos::PerTeam(scratch_bytes));
-      Kokkos::parallel_for(label, policy, KOKKOS_LAMBDA(const typename Policy::member_type& team) {
-        const int i = team.league_rank();
-        body(team, colouring.first_slab(colour, i) * per_slab, colouring.end_slab(colour, i) * per_slab);
-      });
+      Kokkos::parallel_for(
+          label, policy, KOKKOS_LAMBDA(const typename Policy::member_type& team) {
+            const int i = team.league_rank();
+            body(team, colouring.first_slab(colour, i) * per_slab,
+                 colouring.end_slab(colour, i) * per_slab);
+          });
     }
   }
 }

@@ -23,17 +23,21 @@ inline bool compiled_kernel(int degree, int n_q) {
 template <int k = 1, class F>
 void dispatch_degree(int degree, int n_q, F&& f) {
   if (degree == k) {
-    if (n_q == k + 1) return f(std::integral_constant<int, k + 1>{}, std::integral_constant<int, k + 1>{});
-    if (n_q == k + 2) return f(std::integral_constant<int, k + 1>{}, std::integral_constant<int, k + 2>{});
-    throw std::invalid_argument("matrix-free: no kernel for degree " + std::to_string(degree) +
-                                " with " + std::to_string(n_q) +
-                                " quadrature points per direction; compiled: degree + 1 and degree + 2");
+    if (n_q == k + 1)
+      return f(std::integral_constant<int, k + 1>{}, std::integral_constant<int, k + 1>{});
+    if (n_q == k + 2)
+      return f(std::integral_constant<int, k + 1>{}, std::integral_constant<int, k + 2>{});
+    throw std::invalid_argument(
+        "matrix-free: no kernel for degree " + std::to_string(degree) + " with " +
+        std::to_string(n_q) +
+        " quadrature points per direction; compiled: degree + 1 and degree + 2");
   }
   if constexpr (k < max_compiled_degree) {
     dispatch_degree<k + 1>(degree, n_q, f);
   } else {
     throw std::invalid_argument("matrix-free: degree " + std::to_string(degree) +
-                                " outside the compiled range 1.." + std::to_string(max_compiled_degree));
+                                " outside the compiled range 1.." +
+                                std::to_string(max_compiled_degree));
   }
 }
 

@@ -27,8 +27,8 @@ class DistributedOperator {
   /// CG's direction step (MatrixFreeOperator::apply_direction): p = z + beta p, q = A p, returns
   /// p.q summed over the ranks. In one sweep over the cells on a single rank; on several, in
   /// passes around the ghost exchanges.
-  double apply_direction(const ExecSpace& exec, const Vector& z, double beta, const Vector& p, const Vector& q,
-                         const typename Space::InnerProduct& dot) const {
+  double apply_direction(const ExecSpace& exec, const Vector& z, double beta, const Vector& p,
+                         const Vector& q, const typename Space::InnerProduct& dot) const {
     if (space_->communicator().size() == 1 && space_->n_owned() == space_->n_local())
       return local_.apply_direction(exec, z, beta, p, q);
     return direction_in_passes(exec, *this, z, beta, p, q, dot);

@@ -18,11 +18,12 @@ struct ErrorNorms {
 // A named function per degree: CUDA's extended lambdas may not be defined inside a generic
 // lambda (the degree dispatch's).
 namespace error_norms_detail {
-/// The squared L2 and H1-seminorm errors (l2, h1) with n_p nodes and n_q Gauss points per direction.
+/// The squared L2 and H1-seminorm errors (l2, h1) with n_p nodes and n_q Gauss points per
+/// direction.
 template <int dim, int n_p, int n_q, class ExecSpace, class Exact>
 void squared_errors(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& space,
-                    const Kokkos::View<double*, typename ExecSpace::memory_space>& u, const Exact& exact, double& l2,
-                    double& h1) {
+                    const Kokkos::View<double*, typename ExecSpace::memory_space>& u,
+                    const Exact& exact, double& l2, double& h1) {
   using K = CellOperatorKernel<dim, n_p, n_q, ExecSpace>;
   using T = typename K::T;
   K kern;
@@ -58,7 +59,8 @@ void squared_errors(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& 
             double d1 = 0.0;
             for (int a = 0; a < dim; ++a) {  // grad u_h = J^-T grad_ref u_h
               double gh = 0.0;
-              for (int c = 0; c < dim; ++c) gh += inv[c * dim + a][l] * s.grad[c * K::n_points + q][l];
+              for (int c = 0; c < dim; ++c)
+                gh += inv[c * dim + a][l] * s.grad[c * K::n_points + q][l];
               d1 += (gh - g[a]) * (gh - g[a]);
             }
             e0 += w * det[l] * d0 * d0;
@@ -72,13 +74,14 @@ void squared_errors(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& 
 
 template <int dim, class ExecSpace, class Exact>
 ErrorNorms error_norms(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& space,
-                       const Kokkos::View<double*, typename ExecSpace::memory_space>& u, const Exact& exact) {
+                       const Kokkos::View<double*, typename ExecSpace::memory_space>& u,
+                       const Exact& exact) {
   ErrorNorms result;
   const int k = space.degree();
   dispatch_degree(k, k + 2, [&](auto np_c, auto nq_c) {
     double l2 = 0.0, h1 = 0.0;
-    error_norms_detail::squared_errors<dim, decltype(np_c)::value, decltype(nq_c)::value>(exec, space, u, exact, l2,
-                                                                                          h1);
+    error_norms_detail::squared_errors<dim, decltype(np_c)::value, decltype(nq_c)::value>(
+        exec, space, u, exact, l2, h1);
     result.l2 = std::sqrt(l2);
     result.h1semi = std::sqrt(h1);
   });

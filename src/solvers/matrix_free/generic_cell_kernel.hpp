@@ -22,8 +22,10 @@ struct GenericCellKernel {
   static constexpr int max_nodes_1d = 9, max_points_1d = 12;
   using Mem = typename ExecSpace::memory_space;
   using Team = typename Kokkos::TeamPolicy<ExecSpace>::member_type;
-  using DoubleScratch = Kokkos::View<double*, typename ExecSpace::scratch_memory_space, Kokkos::MemoryUnmanaged>;
-  using LongScratch = Kokkos::View<long*, typename ExecSpace::scratch_memory_space, Kokkos::MemoryUnmanaged>;
+  using DoubleScratch =
+      Kokkos::View<double*, typename ExecSpace::scratch_memory_space, Kokkos::MemoryUnmanaged>;
+  using LongScratch =
+      Kokkos::View<long*, typename ExecSpace::scratch_memory_space, Kokkos::MemoryUnmanaged>;
 
   sumfac::QkLattice<dim> lattice;
   OperatorKind kind = OperatorKind::laplace;
@@ -56,14 +58,15 @@ struct GenericCellKernel {
     DoubleScratch d(team.team_scratch(1), work_doubles());
     LongScratch l(team.team_scratch(1), nd);
     double* p = d.data();
-    return Work{p, p + dim * nd, p + (dim + 1) * nd, p + (dim + 2) * nd, p + (dim + 3) * nd, l.data()};
+    return Work{p,       p + dim * nd, p + (dim + 1) * nd, p + (dim + 2) * nd, p + (dim + 3) * nd,
+                l.data()};
   }
 
   /// out = M (or M^T) applied along direction d of the tensor `in` with extents ext (x
   /// fastest); M is n_q x n_p (row q); ext[d] goes from n_p to n_q (or back with transpose).
   /// The team shares the output lines.
-  KOKKOS_INLINE_FUNCTION void sweep(const Team& team, const double* M, bool transpose, int d, int* ext,
-                                    const double* in, double* out) const {
+  KOKKOS_INLINE_FUNCTION void sweep(const Team& team, const double* M, bool transpose, int d,
+                                    int* ext, const double* in, double* out) const {
     const int from = ext[d], to = transpose ? n_p : n_q;
     int before = 1, after = 1;
     for (int e = 0; e < d; ++e) before *= ext[e];
@@ -74,7 +77,8 @@ struct GenericCellKernel {
       const double* i = in + a * from * before;
       for (int b = 0; b < before; ++b) {
         double s = 0.0;
-        for (int c = 0; c < from; ++c) s += (transpose ? M[c * np + r] : M[r * np + c]) * i[c * before + b];
+        for (int c = 0; c < from; ++c)
+          s += (transpose ? M[c * np + r] : M[r * np + c]) * i[c * before + b];
         out[m * before + b] = s;
       }
     });
@@ -84,7 +88,8 @@ struct GenericCellKernel {
 
   /// The tensor of nodal values u mapped to the points, with the derivative matrix in
   /// direction `deriv` (-1: none), into out; tmp is scratch of tensor_size().
-  KOKKOS_INLINE_FUNCTION void evaluate(const Team& team, const double* u, int deriv, double* out, double* tmp) const {
+  KOKKOS_INLINE_FUNCTION void evaluate(const Team& team, const double* u, int deriv, double* out,
+                                       double* tmp) const {
     int ext[3] = {n_p, n_p, n_p};
     const double* in = u;
     double* bufs[2] = {dim % 2 == 1 ? out : tmp, dim % 2 == 1 ? tmp : out};
@@ -94,7 +99,8 @@ struct GenericCellKernel {
     }
   }
   /// u += the transpose of evaluate() applied to v (v and tmp are overwritten).
-  KOKKOS_INLINE_FUNCTION void integrate_add(const Team& team, double* v, int deriv, double* u, double* tmp) const {
+  KOKKOS_INLINE_FUNCTION void integrate_add(const Team& team, double* v, int deriv, double* u,
+                                            double* tmp) const {
     int ext[3] = {n_q, n_q, n_q};
     double* in = v;
     double* out = tmp;
@@ -105,22 +111,24 @@ struct GenericCellKernel {
       out = t;
     }
     const double* sum = in;
-    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n_cell_dofs()), [&](int i) { u[i] += sum[i]; });
+    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n_cell_dofs()),
+                         [&](int i) { u[i] += sum[i]; });
     team.team_barrier();
   }
 
   /// y = A_cell u for the cell with node coordinates X [d * n_cell_dofs + i]; s: the sweep
   /// scratch of Work.
-  KOKKOS_INLINE_FUNCTION void apply_cell(const Team& team, const double* X, const double* u, double* y,
-                                         double* s) const {
+  KOKKOS_INLINE_FUNCTION void apply_cell(const Team& team, const double* X, const double* u,
+                                         double* y, double* s) const {
     const int stride = tensor_size();
     double* tmp = s;
-    double* grad = s + stride;             // dim blocks
-    double* geo = grad + dim * stride;     // dim * dim blocks: J[a][b] = d x_a / d xi_b
+    double* grad = s + stride;          // dim blocks
+    double* geo = grad + dim * stride;  // dim * dim blocks: J[a][b] = d x_a / d xi_b
     const int nq = power(n_q), nd = n_cell_dofs();
     Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd), [&](int i) { y[i] = 0.0; });
     for (int a = 0; a < dim; ++a)
-      for (int b = 0; b < dim; ++b) evaluate(team, X + a * nd, b, geo + (a * dim + b) * stride, tmp);
+      for (int b = 0; b < dim; ++b)
+        evaluate(team, X + a * nd, b, geo + (a * dim + b) * stride, tmp);
     auto jacobian = [&](int q, double* J) {
       for (int e = 0; e < dim * dim; ++e) J[e] = geo[e * stride + q];
     };
@@ -154,7 +162,8 @@ struct GenericCellKernel {
 
   /// The column j of A_cell into w.column (w.u is overwritten).
   KOKKOS_INLINE_FUNCTION void element_column(const Team& team, const Work& w, int j) const {
-    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n_cell_dofs()), [&](int i) { w.u[i] = i == j ? 1.0 : 0.0; });
+    Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n_cell_dofs()),
+                         [&](int i) { w.u[i] = i == j ? 1.0 : 0.0; });
     team.team_barrier();
     apply_cell(team, w.X, w.u, w.column, w.s);
   }
@@ -162,8 +171,8 @@ struct GenericCellKernel {
   /// Adds A x (mode 0) or diag(A) (mode 1) of the cells of batches b0 .. b1 - 1, each of comps
   /// components of n DoFs, into out; atomically where batches running at once may share nodes.
   template <bool atomic, class XView>
-  KOKKOS_INLINE_FUNCTION void add_batches(const Team& team, int b0, int b1, const XView& x, double* out, long n,
-                                          int comps, int mode) const {
+  KOKKOS_INLINE_FUNCTION void add_batches(const Team& team, int b0, int b1, const XView& x,
+                                          double* out, long n, int comps, int mode) const {
     const Work w = work(team);
     for (int b = b0; b < b1; ++b)
       for (int lane = 0, lanes = lattice.active_lanes(b); lane < lanes; ++lane) {
@@ -176,16 +185,16 @@ struct GenericCellKernel {
 
   /// add_batches() for the cell at lattice cell coordinates c.
   template <bool atomic, class XView>
-  KOKKOS_INLINE_FUNCTION void add_cell(const Team& team, const Work& w, const int* c, const XView& x, double* out,
-                                       long n, int comps, int mode) const {
+  KOKKOS_INLINE_FUNCTION void add_cell(const Team& team, const Work& w, const int* c,
+                                       const XView& x, double* out, long n, int comps,
+                                       int mode) const {
     const int nd = n_cell_dofs();
     cell_setup(team, c, w.X, w.dof);
     for (int comp = 0; comp < comps; ++comp) {
       double* dst = out + comp * n;
       if (mode == 0) {
-        Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd), [&](int i) {
-          w.u[i] = w.dof[i] < 0 ? 0.0 : x(comp * n + w.dof[i]);
-        });
+        Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd),
+                             [&](int i) { w.u[i] = w.dof[i] < 0 ? 0.0 : x(comp * n + w.dof[i]); });
         team.team_barrier();
         apply_cell(team, w.X, w.u, w.y, w.s);
       } else {
@@ -197,8 +206,10 @@ struct GenericCellKernel {
       }
       Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd), [&](int i) {
         if (w.dof[i] < 0) return;
-        if constexpr (atomic) Kokkos::atomic_add(dst + w.dof[i], w.y[i]);
-        else dst[w.dof[i]] += w.y[i];
+        if constexpr (atomic)
+          Kokkos::atomic_add(dst + w.dof[i], w.y[i]);
+        else
+          dst[w.dof[i]] += w.y[i];
       });
       team.team_barrier();
     }
@@ -212,7 +223,8 @@ struct GenericCellKernel {
 
   /// The cell's node coordinates into X [d * n_cell_dofs + i], its DoF numbers into dof (-1
   /// where constrained).
-  KOKKOS_INLINE_FUNCTION void cell_setup(const Team& team, const int* c, double* X, long* dof) const {
+  KOKKOS_INLINE_FUNCTION void cell_setup(const Team& team, const int* c, double* X,
+                                         long* dof) const {
     const int nd = n_cell_dofs();
     const long n_nodes = lattice.n_nodes();
     Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd), [&](int i) {
@@ -232,23 +244,25 @@ struct GenericCellKernel {
 };
 
 /// The kernel for degree `degree` on `lattice` with node coordinates `coordinates`
-/// (QkSpace::coordinates()) and n_q points of `rule` per direction; sizes are checked by the caller.
+/// (QkSpace::coordinates()) and n_q points of `rule` per direction; sizes are checked by the
+/// caller.
 template <int dim, class ExecSpace>
 GenericCellKernel<dim, ExecSpace> make_generic_cell_kernel(
     const sumfac::QkLattice<dim>& lattice,
-    const Kokkos::View<const double*, typename ExecSpace::memory_space>& coordinates, OperatorKind kind, int degree,
-    int n_q, sumfac::QuadratureKind rule_kind) {
+    const Kokkos::View<const double*, typename ExecSpace::memory_space>& coordinates,
+    OperatorKind kind, int degree, int n_q, sumfac::QuadratureKind rule_kind) {
   using Mem = typename ExecSpace::memory_space;
   const auto nodes = sumfac::gauss_lobatto(degree + 1).points;
-  const auto rule =
-      rule_kind == sumfac::QuadratureKind::gauss_lobatto ? sumfac::gauss_lobatto(n_q) : sumfac::gauss(n_q);
+  const auto rule = rule_kind == sumfac::QuadratureKind::gauss_lobatto ? sumfac::gauss_lobatto(n_q)
+                                                                       : sumfac::gauss(n_q);
   GenericCellKernel<dim, ExecSpace> g;
   g.lattice = lattice;
   g.kind = kind;
   g.n_p = degree + 1;
   g.n_q = n_q;
   g.values = to_view<Mem>(sumfac::lagrange_values(nodes, rule.points), "amphora::generic::values");
-  g.derivatives = to_view<Mem>(sumfac::lagrange_derivatives(nodes, rule.points), "amphora::generic::derivatives");
+  g.derivatives = to_view<Mem>(sumfac::lagrange_derivatives(nodes, rule.points),
+                               "amphora::generic::derivatives");
   g.weights = to_view<Mem>(rule.weights, "amphora::generic::weights");
   g.coordinates = coordinates;
   return g;

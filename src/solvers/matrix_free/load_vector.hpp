@@ -8,7 +8,8 @@ namespace amphora::solvers {
 template <int dim, class ExecSpace>
 typename MatrixFreeOperator<dim, ExecSpace>::Vector load_vector(
     const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& space,
-    const typename MatrixFreeOperator<dim, ExecSpace>::Vector& f_nodal, GeometryMode geometry, int n_q) {
+    const typename MatrixFreeOperator<dim, ExecSpace>::Vector& f_nodal, GeometryMode geometry,
+    int n_q) {
   typename MatrixFreeOperator<dim, ExecSpace>::Options o;
   o.kind = OperatorKind::mass;
   o.geometry = geometry;
@@ -16,9 +17,10 @@ typename MatrixFreeOperator<dim, ExecSpace>::Vector load_vector(
   typename MatrixFreeOperator<dim, ExecSpace>::Vector b("amphora::load_vector", space.n_dofs());
   MatrixFreeOperator<dim, ExecSpace>(space, o).apply(exec, f_nodal, b);
   const auto cons = space.constrained_dofs();
-  Kokkos::parallel_for("amphora::load_vector::dirichlet",
-                       RangePolicy<ExecSpace>(exec, 0, static_cast<int>(cons.extent(0))),
-                       KOKKOS_LAMBDA(int i) { b(cons(i)) = 0.0; });
+  Kokkos::parallel_for(
+      "amphora::load_vector::dirichlet",
+      RangePolicy<ExecSpace>(exec, 0, static_cast<int>(cons.extent(0))),
+      KOKKOS_LAMBDA(int i) { b(cons(i)) = 0.0; });
   return b;
 }
 

@@ -45,10 +45,11 @@ class MatrixFreeOperator {
   /// (sumfac/row_touch.hpp): the three passes' 56 bytes per DoF become one sweep's 32 (z and p
   /// read, p and q written). In three passes on device spaces and across periodic wraps of the
   /// rows or slabs.
-  double apply_direction(const ExecSpace& exec, const Vector& z, double beta, const Vector& p, const Vector& q) const;
+  double apply_direction(const ExecSpace& exec, const Vector& z, double beta, const Vector& p,
+                         const Vector& q) const;
   /// The same as conjugate_gradient asks for it (with this rank's plain inner product).
-  double apply_direction(const ExecSpace& exec, const Vector& z, double beta, const Vector& p, const Vector& q,
-                         const LocalInnerProduct&) const {
+  double apply_direction(const ExecSpace& exec, const Vector& z, double beta, const Vector& p,
+                         const Vector& q, const LocalInnerProduct&) const {
     return apply_direction(exec, z, beta, p, q);
   }
   /// The diagonal of A, computed cell by cell (constrained rows: 1).

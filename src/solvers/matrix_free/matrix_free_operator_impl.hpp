@@ -18,11 +18,12 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   using T = sumfac::Simd<sumfac::simd_width_v<ExecSpace>>;
   Kokkos::View<T*, memory_space> batch_coef, point_coef;
   long batch_coef_stride = 0;
-  std::shared_ptr<void> shape;  // ShapeData<n_p, n_q>
+  std::shared_ptr<void> shape;                // ShapeData<n_p, n_q>
   GenericCellKernel<dim, ExecSpace> generic;  // used when no compiled kernel fits
-  void (*apply)(const MatrixFreeOperator&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
-  double (*direction)(const MatrixFreeOperator&, const ExecSpace&, const Vector&, double, const Vector&,
-                      const Vector&) = &direction_in_passes;
+  void (*apply)(const MatrixFreeOperator&, const ExecSpace&, const Vector&,
+                const Vector&) = nullptr;
+  double (*direction)(const MatrixFreeOperator&, const ExecSpace&, const Vector&, double,
+                      const Vector&, const Vector&) = &direction_in_passes;
   void (*diagonal)(const MatrixFreeOperator&, const ExecSpace&, const Vector&) = nullptr;
   std::vector<double> (*elements)(const MatrixFreeOperator&, const ExecSpace&) = nullptr;
 
@@ -42,7 +43,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     return k;
   }
 
-  static sumfac::FirstTouchZero<dim> first_touch_zero(const MatrixFreeOperator& op, const Vector& y) {
+  static sumfac::FirstTouchZero<dim> first_touch_zero(const MatrixFreeOperator& op,
+                                                      const Vector& y) {
     return sumfac::FirstTouchZero<dim>{op.space_->lattice(), y.data(), op.options_.components};
   }
 
@@ -61,22 +63,24 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) blas1::fill(exec, y, 0.0);
     const auto zero = first_touch_zero(op, y);
-    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
-                            KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<atomic>(src, dst, comps, b0, b1); });
+    for_each_batch_coloured(
+        exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
+        KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<atomic>(src, dst, comps, b0, b1); });
     copy_constrained(op, exec, x, y);
   }
 
   /// apply_direction as three passes: the update, the application, the product.
-  static double direction_in_passes(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& z, double beta,
-                                    const Vector& p, const Vector& q) {
+  static double direction_in_passes(const MatrixFreeOperator& op, const ExecSpace& exec,
+                                    const Vector& z, double beta, const Vector& p,
+                                    const Vector& q) {
     return solvers::direction_in_passes(exec, op, z, beta, p, q, LocalInnerProduct());
   }
 
   /// apply_direction in one sweep (host spaces, no periodic wrap along the rows or slabs): the
   /// update where a row first reads p, the row's share of p.q where it last writes q.
   template <int n_p, int n_q>
-  static double direction_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& z, double beta,
-                               const Vector& p, const Vector& q) {
+  static double direction_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& z,
+                               double beta, const Vector& p, const Vector& q) {
     constexpr bool host = runs_on_host_v<ExecSpace>;
     if constexpr (!host) {
       return direction_in_passes(op, exec, z, beta, p, q);
@@ -86,15 +90,18 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       const int comps = op.options_.components;
       const int rows = k.lattice.n_slabs() * k.lattice.rows_per_slab();
       Kokkos::View<double*, memory_space> partial(
-          Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::MatrixFreeOperator::partial_dots"), rows);
+          Kokkos::view_alloc(Kokkos::WithoutInitializing,
+                             "amphora::MatrixFreeOperator::partial_dots"),
+          rows);
       double* pp = p.data();
       double* qq = q.data();
       // row by row: batch by batch (the work interleaved with the cells') was 2x slower at p = 1,
       // where a batch's part of its lines is a few cache lines, and no faster at p = 3 and 6
-      for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::apply_direction",
-                              sumfac::FirstTouchDirection<dim>{k.lattice, z.data(), pp, qq, beta, comps},
-                              KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<false>(pp, qq, comps, b0, b1); },
-                              sumfac::LastTouchDot<dim>{k.lattice, pp, qq, partial.data(), comps});
+      for_each_batch_coloured(
+          exec, k.lattice, "amphora::MatrixFreeOperator::apply_direction",
+          sumfac::FirstTouchDirection<dim>{k.lattice, z.data(), pp, qq, beta, comps},
+          KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<false>(pp, qq, comps, b0, b1); },
+          sumfac::LastTouchDot<dim>{k.lattice, pp, qq, partial.data(), comps});
       // Constrained rows become q = p. The rows' sums took the loop's q there (zero, or what a
       // fast batch added into a Dirichlet lane, as apply leaves to copy_constrained): corrected.
       const auto cons = op.space_->constrained_dofs();
@@ -102,7 +109,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       const int nc = static_cast<int>(cons.extent(0));
       double constrained = 0.0;
       Kokkos::parallel_reduce(
-          "amphora::MatrixFreeOperator::constrained_rows", RangePolicy<ExecSpace>(exec, 0, nc * comps),
+          "amphora::MatrixFreeOperator::constrained_rows",
+          RangePolicy<ExecSpace>(exec, 0, nc * comps),
           KOKKOS_LAMBDA(int m, double& acc) {
             const long i = (m / nc) * n + cons(m % nc);
             acc += p(i) * (p(i) - q(i));
@@ -127,17 +135,22 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     blas1::fill(exec, y, 0.0);
     double* out = y.data();
-    for_each_batch_team(exec, k.lattice, "amphora::MatrixFreeOperator::generic", k.scratch_bytes(),
-                        KOKKOS_LAMBDA(const typename K::Team& team, int b0, int b1) {
-                          k.template add_batches<atomic>(team, b0, b1, x, out, n, comps, mode);
-                        });
-    if (mode == 0) copy_constrained(op, exec, x, y);
-    else copy_constrained(op, exec, Vector(), y, 1.0);
+    for_each_batch_team(
+        exec, k.lattice, "amphora::MatrixFreeOperator::generic", k.scratch_bytes(),
+        KOKKOS_LAMBDA(const typename K::Team& team, int b0, int b1) {
+          k.template add_batches<atomic>(team, b0, b1, x, out, n, comps, mode);
+        });
+    if (mode == 0)
+      copy_constrained(op, exec, x, y);
+    else
+      copy_constrained(op, exec, Vector(), y, 1.0);
   }
-  static void generic_apply(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x, const Vector& y) {
+  static void generic_apply(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
+                            const Vector& y) {
     generic_impl(op, exec, x, y, 0);
   }
-  static void generic_diagonal(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& d) {
+  static void generic_diagonal(const MatrixFreeOperator& op, const ExecSpace& exec,
+                               const Vector& d) {
     generic_impl(op, exec, Vector(), d, 1);
   }
   static std::vector<double> generic_elements(const MatrixFreeOperator& op, const ExecSpace& exec) {
@@ -152,21 +165,23 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const bool host = runs_on_host_v<ExecSpace>;
     Policy policy = host ? Policy(exec, nc, 1) : Policy(exec, nc, Kokkos::AUTO);
     policy.set_scratch_size(1, Kokkos::PerTeam(k.scratch_bytes()));
-    Kokkos::parallel_for("amphora::MatrixFreeOperator::generic_elements", policy,
-                         KOKKOS_LAMBDA(const typename K::Team& team) {
-                           const int cell = team.league_rank();
-                           int c[3] = {0, 0, 0};
-                           for (int d = 0, r = cell; d < dim; ++d) c[d] = r % k.lattice.cells[d], r /= k.lattice.cells[d];
-                           const typename K::Work w = k.work(team);
-                           k.cell_setup(team, c, w.X, w.dof);
-                           for (int j = 0; j < nd; ++j) {
-                             k.element_column(team, w, j);
-                             const std::size_t at = (static_cast<std::size_t>(cell) * nd + j) * nd;
-                             Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd),
-                                                  [&](int i) { out(at + i) = w.column[i]; });
-                             team.team_barrier();
-                           }
-                         });
+    Kokkos::parallel_for(
+        "amphora::MatrixFreeOperator::generic_elements", policy,
+        KOKKOS_LAMBDA(const typename K::Team& team) {
+          const int cell = team.league_rank();
+          int c[3] = {0, 0, 0};
+          for (int d = 0, r = cell; d < dim; ++d)
+            c[d] = r % k.lattice.cells[d], r /= k.lattice.cells[d];
+          const typename K::Work w = k.work(team);
+          k.cell_setup(team, c, w.X, w.dof);
+          for (int j = 0; j < nd; ++j) {
+            k.element_column(team, w, j);
+            const std::size_t at = (static_cast<std::size_t>(cell) * nd + j) * nd;
+            Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd),
+                                 [&](int i) { out(at + i) = w.column[i]; });
+            team.team_barrier();
+          }
+        });
     auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
     return std::vector<double>(h.data(), h.data() + h.extent(0));
   }
@@ -178,8 +193,9 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const int comps = op.options_.components;
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) blas1::fill(exec, d, 0.0);
-    for_each_batch_coloured(exec, k.lattice, "amphora::MatrixFreeOperator::diagonal", first_touch_zero(op, d),
-                            KOKKOS_LAMBDA(int b) { k.template diagonal_batch<atomic>(dst, comps, b); });
+    for_each_batch_coloured(
+        exec, k.lattice, "amphora::MatrixFreeOperator::diagonal", first_touch_zero(op, d),
+        KOKKOS_LAMBDA(int b) { k.template diagonal_batch<atomic>(dst, comps, b); });
     copy_constrained(op, exec, Vector(), d, 1.0);
   }
 
@@ -191,9 +207,9 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const int nb = k.lattice.n_batches();
     Kokkos::View<T*, memory_space> out("amphora::MatrixFreeOperator::elements",
                                        static_cast<std::size_t>(nb) * nd * nd);
-    Kokkos::parallel_for("amphora::MatrixFreeOperator::element_matrices",
-                         RangePolicy<ExecSpace>(exec, 0, nb),
-                         KOKKOS_LAMBDA(int b) { k.element_matrix(b, out.data() + static_cast<long>(b) * nd * nd); });
+    Kokkos::parallel_for(
+        "amphora::MatrixFreeOperator::element_matrices", RangePolicy<ExecSpace>(exec, 0, nb),
+        KOKKOS_LAMBDA(int b) { k.element_matrix(b, out.data() + static_cast<long>(b) * nd * nd); });
     auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
     const auto& lat = k.lattice;
     std::vector<double> m(static_cast<std::size_t>(op.space_->mesh().n_cells()) * nd * nd);
@@ -204,7 +220,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
         long c = cell[dim - 1];
         for (int d = dim - 2; d >= 1; --d) c = c * lat.cells[d] + cell[d];
         c = c * lat.cells[0] + cell[0] + l;
-        for (int e = 0; e < nd * nd; ++e) m[c * nd * nd + e] = h(static_cast<long>(b) * nd * nd + e)[l];
+        for (int e = 0; e < nd * nd; ++e)
+          m[c * nd * nd + e] = h(static_cast<long>(b) * nd * nd + e)[l];
       }
     }
     (void)W;
@@ -226,28 +243,30 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     if (!per_cell) {
       Kokkos::View<T*, memory_space> pc("amphora::MatrixFreeOperator::point_coef",
                                         static_cast<std::size_t>(nb) * n_all * K::n_points);
-      Kokkos::parallel_for("amphora::MatrixFreeOperator::setup_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
-                           KOKKOS_LAMBDA(int b) {
-                             typename K::Scratch s;
-                             kern.point_coefficients(b, s);
-                             T* dst = pc.data() + static_cast<long>(b) * n_all * K::n_points;
-                             for (int i = 0; i < n_all * K::n_points; ++i) dst[i] = s.jac[i];
-                           });
+      Kokkos::parallel_for(
+          "amphora::MatrixFreeOperator::setup_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
+          KOKKOS_LAMBDA(int b) {
+            typename K::Scratch s;
+            kern.point_coefficients(b, s);
+            T* dst = pc.data() + static_cast<long>(b) * n_all * K::n_points;
+            for (int i = 0; i < n_all * K::n_points; ++i) dst[i] = s.jac[i];
+          });
       impl.point_coef = pc;
     } else {
       Kokkos::View<T*, memory_space> bc("amphora::MatrixFreeOperator::batch_coef",
                                         static_cast<std::size_t>(nb) * n_keep);
       const bool diagonal_only = n_keep != n_all;
-      Kokkos::parallel_for("amphora::MatrixFreeOperator::setup_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
-                           KOKKOS_LAMBDA(int b) {
-                             typename K::Scratch s;
-                             kern.point_coefficients(b, s);
-                             const T w0(K::Eval::weight(kern.shape, 0));
-                             for (int e = 0; e < n_keep; ++e) {
-                               const int src = diagonal_only ? sumfac::sym_index<dim>(e, e) : e;
-                               bc(static_cast<long>(b) * n_keep + e) = s.jac[src * K::n_points] / w0;
-                             }
-                           });
+      Kokkos::parallel_for(
+          "amphora::MatrixFreeOperator::setup_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
+          KOKKOS_LAMBDA(int b) {
+            typename K::Scratch s;
+            kern.point_coefficients(b, s);
+            const T w0(K::Eval::weight(kern.shape, 0));
+            for (int e = 0; e < n_keep; ++e) {
+              const int src = diagonal_only ? sumfac::sym_index<dim>(e, e) : e;
+              bc(static_cast<long>(b) * n_keep + e) = s.jac[src * K::n_points] / w0;
+            }
+          });
       impl.batch_coef = bc;
       impl.batch_coef_stride = n_keep;
       // Cells of one shape (a uniform box, a uniformly sheared one) share their coefficients:
@@ -265,13 +284,16 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
             for (int e = 0; e < n_keep; ++e) scale = math::max(scale, math::abs(bc(e)[0]));
             for (int e = 0; e < n_keep; ++e)
               for (int l = 0; l < lanes; ++l)
-                acc += math::abs(bc(static_cast<long>(b) * n_keep + e)[l] - bc(e)[0]) > 1e-12 * scale;
+                acc +=
+                    math::abs(bc(static_cast<long>(b) * n_keep + e)[l] - bc(e)[0]) > 1e-12 * scale;
           },
           differing);
       if (differing == 0) {
         Kokkos::View<T*, memory_space> once("amphora::MatrixFreeOperator::batch_coef", n_keep);
-        Kokkos::parallel_for("amphora::MatrixFreeOperator::uniform_geometry", RangePolicy<ExecSpace>(exec, 0, n_keep),
-                             KOKKOS_LAMBDA(int e) { once(e) = T(bc(e)[0]); });
+        Kokkos::parallel_for(
+            "amphora::MatrixFreeOperator::uniform_geometry",
+            RangePolicy<ExecSpace>(exec, 0, n_keep),
+            KOKKOS_LAMBDA(int e) { once(e) = T(bc(e)[0]); });
         impl.batch_coef = once;
         impl.batch_coef_stride = 0;
       }
@@ -288,8 +310,9 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const bool from_x = x.extent(0) > 0;
     for (int comp = 0; comp < op.options_.components; ++comp) {
       const long off = comp * n;
-      Kokkos::parallel_for("amphora::MatrixFreeOperator::constraints", RangePolicy<ExecSpace>(exec, 0, nc),
-                           KOKKOS_LAMBDA(int i) { y(off + cons(i)) = from_x ? x(off + cons(i)) : value; });
+      Kokkos::parallel_for(
+          "amphora::MatrixFreeOperator::constraints", RangePolicy<ExecSpace>(exec, 0, nc),
+          KOKKOS_LAMBDA(int i) { y(off + cons(i)) = from_x ? x(off + cons(i)) : value; });
     }
   }
 };
@@ -300,20 +323,26 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
   const int k = space.degree();
   n_q_ = options.n_q > 0 ? options.n_q : k + 1;
   const auto& mesh = space.mesh();
-  auto fail = [](const std::string& what) { throw std::invalid_argument("MatrixFreeOperator: " + what); };
+  auto fail = [](const std::string& what) {
+    throw std::invalid_argument("MatrixFreeOperator: " + what);
+  };
   if (options.components < 1) fail("components must be at least 1");
   if (options.geometry == GeometryMode::cartesian && !mesh.cartesian())
     fail("geometry 'cartesian' needs an undeformed box; use 'affine', 'stored' or 'on_the_fly'");
   if (options.geometry == GeometryMode::affine && !mesh.affine())
     fail("geometry 'affine' needs an affine deformation; use 'stored' or 'on_the_fly'");
-  const bool per_cell = options.geometry == GeometryMode::cartesian || options.geometry == GeometryMode::affine;
-  if (options.kind == OperatorKind::convection && options.field.extent(0) != static_cast<std::size_t>(dim * space.n_dofs()))
+  const bool per_cell =
+      options.geometry == GeometryMode::cartesian || options.geometry == GeometryMode::affine;
+  if (options.kind == OperatorKind::convection &&
+      options.field.extent(0) != static_cast<std::size_t>(dim * space.n_dofs()))
     fail("convection needs a velocity field of dim x n_dofs entries");
   if (options.kind == OperatorKind::laplace && options.field.extent(0) > 0 &&
       options.field.extent(0) != static_cast<std::size_t>(space.n_dofs()))
     fail("the Laplace coefficient field must have n_dofs entries");
   if (per_cell && options.field.extent(0) > 0)
-    fail("a coefficient or velocity field varies within cells: use geometry 'stored' or 'on_the_fly'");
+    fail(
+        "a coefficient or velocity field varies within cells: use geometry 'stored' or "
+        "'on_the_fly'");
   if (options.quadrature == sumfac::QuadratureKind::gauss_lobatto && n_q_ != k + 1)
     fail("Gauss-Lobatto quadrature is supported with n_q = degree + 1 (collocation) only");
 
@@ -321,15 +350,18 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
   if (options.generic_kernel || !compiled_kernel(k, n_q_)) {
     // The run-time-size fallback: mass and constant-coefficient Laplace, geometry from the nodes.
     using K = GenericCellKernel<dim, ExecSpace>;
-    if ((options.kind != OperatorKind::laplace && options.kind != OperatorKind::mass) || options.field.extent(0) > 0)
+    if ((options.kind != OperatorKind::laplace && options.kind != OperatorKind::mass) ||
+        options.field.extent(0) > 0)
       fail("no compiled kernel for degree " + std::to_string(k) + " with " + std::to_string(n_q_) +
-           " points per direction, and the generic one does mass and constant-coefficient Laplace only");
+           " points per direction, and the generic one does mass and constant-coefficient Laplace "
+           "only");
     if (k + 1 > K::max_nodes_1d || n_q_ > K::max_points_1d)
       fail("degree " + std::to_string(k) + " with " + std::to_string(n_q_) +
            " points per direction exceeds the generic kernel's limits (degree <= " +
-           std::to_string(K::max_nodes_1d - 1) + ", points <= " + std::to_string(K::max_points_1d) + ")");
-    const K g = make_generic_cell_kernel<dim, ExecSpace>(space.lattice(), space.coordinates(), options.kind, k, n_q_,
-                                                          options.quadrature);
+           std::to_string(K::max_nodes_1d - 1) + ", points <= " + std::to_string(K::max_points_1d) +
+           ")");
+    const K g = make_generic_cell_kernel<dim, ExecSpace>(space.lattice(), space.coordinates(),
+                                                         options.kind, k, n_q_, options.quadrature);
     impl->generic = g;
     impl->apply = &Impl::generic_apply;
     impl->diagonal = &Impl::generic_diagonal;
@@ -355,32 +387,39 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
 }
 
 template <int dim, class ExecSpace>
-void MatrixFreeOperator<dim, ExecSpace>::apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {
+void MatrixFreeOperator<dim, ExecSpace>::apply(const ExecSpace& exec, const Vector& x,
+                                               const Vector& y) const {
   impl_->apply(*this, exec, x, y);
 }
 
 template <int dim, class ExecSpace>
-double MatrixFreeOperator<dim, ExecSpace>::apply_direction(const ExecSpace& exec, const Vector& z, double beta,
-                                                           const Vector& p, const Vector& q) const {
+double MatrixFreeOperator<dim, ExecSpace>::apply_direction(const ExecSpace& exec, const Vector& z,
+                                                           double beta, const Vector& p,
+                                                           const Vector& q) const {
   return impl_->direction(*this, exec, z, beta, p, q);
 }
 
 template <int dim, class ExecSpace>
-void MatrixFreeOperator<dim, ExecSpace>::compute_diagonal(const ExecSpace& exec, const Vector& d) const {
+void MatrixFreeOperator<dim, ExecSpace>::compute_diagonal(const ExecSpace& exec,
+                                                          const Vector& d) const {
   if (options_.kind == OperatorKind::convection)
-    throw std::invalid_argument("MatrixFreeOperator::compute_diagonal: not provided for convection");
+    throw std::invalid_argument(
+        "MatrixFreeOperator::compute_diagonal: not provided for convection");
   impl_->diagonal(*this, exec, d);
 }
 
 template <int dim, class ExecSpace>
-std::vector<double> MatrixFreeOperator<dim, ExecSpace>::element_matrices(const ExecSpace& exec) const {
+std::vector<double> MatrixFreeOperator<dim, ExecSpace>::element_matrices(
+    const ExecSpace& exec) const {
   return impl_->elements(*this, exec);
 }
 
 template <int dim, class ExecSpace>
 std::size_t MatrixFreeOperator<dim, ExecSpace>::geometry_bytes() const {
-  std::size_t bytes = (impl_->batch_coef.extent(0) + impl_->point_coef.extent(0)) * sizeof(typename Impl::T);
-  if (options_.geometry == GeometryMode::on_the_fly) bytes += space_->coordinates().extent(0) * sizeof(double);
+  std::size_t bytes =
+      (impl_->batch_coef.extent(0) + impl_->point_coef.extent(0)) * sizeof(typename Impl::T);
+  if (options_.geometry == GeometryMode::on_the_fly)
+    bytes += space_->coordinates().extent(0) * sizeof(double);
   return bytes;
 }
 

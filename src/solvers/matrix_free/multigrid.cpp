@@ -14,25 +14,28 @@ namespace multigrid_detail {
 /// start(i) from DoF i's global number alone (deterministic, rich in every eigencomponent).
 template <class ExecSpace, class Global, class Vector>
 void start_from_global_numbers(const ExecSpace& exec, const Global& global, const Vector& start) {
-  Kokkos::parallel_for("amphora::mg::start_vector", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(start.extent(0))),
-                       KOKKOS_LAMBDA(int i) {
-                         const unsigned g = static_cast<unsigned>(global(i));
-                         start(i) = static_cast<double>((g * 2654435761u) % 1000003u) / 1000003.0 - 0.5;
-                       });
+  Kokkos::parallel_for(
+      "amphora::mg::start_vector",
+      RangePolicy<ExecSpace>(exec, 0, static_cast<int>(start.extent(0))), KOKKOS_LAMBDA(int i) {
+        const unsigned g = static_cast<unsigned>(global(i));
+        start(i) = static_cast<double>((g * 2654435761u) % 1000003u) / 1000003.0 - 0.5;
+      });
 }
 }  // namespace multigrid_detail
 
 template <int dim, class ExecSpace>
 struct MatrixFreeMultigrid<dim, ExecSpace>::Level {
-  std::unique_ptr<Space> space;       // owned (coarse levels), null on the finest
+  std::unique_ptr<Space> space;  // owned (coarse levels), null on the finest
   std::unique_ptr<Operator> owned;
   const Operator* op = nullptr;
   Vector inverse_diagonal, b, x, r;
-  std::unique_ptr<ChebyshevSmoother<ExecSpace, Operator, Vector, typename Space::InnerProduct>> smoother;
+  std::unique_ptr<ChebyshevSmoother<ExecSpace, Operator, Vector, typename Space::InnerProduct>>
+      smoother;
 };
 
 template <int dim, class ExecSpace>
-MatrixFreeMultigrid<dim, ExecSpace>::MatrixFreeMultigrid(const ExecSpace& exec, const Operator& fine,
+MatrixFreeMultigrid<dim, ExecSpace>::MatrixFreeMultigrid(const ExecSpace& exec,
+                                                         const Operator& fine,
                                                          const MultigridOptions& options) {
   const auto& fo = fine.local().options();
   if (fo.kind != OperatorKind::laplace || fo.components != 1 || fo.field.extent(0) > 0)
@@ -43,7 +46,8 @@ MatrixFreeMultigrid<dim, ExecSpace>::MatrixFreeMultigrid(const ExecSpace& exec, 
     if (!op) {
       typename Operator::Local::Options o;
       o.kind = OperatorKind::laplace;
-      o.geometry = L->space->global_mesh().cartesian() ? GeometryMode::cartesian : GeometryMode::stored;
+      o.geometry =
+          L->space->global_mesh().cartesian() ? GeometryMode::cartesian : GeometryMode::stored;
       L->owned = std::make_unique<Operator>(*L->space, o);
       op = L->owned.get();
     }
@@ -62,7 +66,8 @@ MatrixFreeMultigrid<dim, ExecSpace>::MatrixFreeMultigrid(const ExecSpace& exec, 
     const Vector start("amphora::mg::start", n);
     blas1::reciprocal(exec, d);
     multigrid_detail::start_from_global_numbers(exec, global, start);
-    L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Operator, Vector, typename Space::InnerProduct>>(
+    L->smoother = std::make_unique<
+        ChebyshevSmoother<ExecSpace, Operator, Vector, typename Space::InnerProduct>>(
         exec, *op, d, options.smoother, sp.inner_product(), start);
     levels_.push_back(std::move(L));
   };
@@ -102,13 +107,14 @@ template <int dim, class ExecSpace>
 MatrixFreeMultigrid<dim, ExecSpace>::~MatrixFreeMultigrid() = default;
 
 template <int dim, class ExecSpace>
-void MatrixFreeMultigrid<dim, ExecSpace>::apply(const ExecSpace& exec, const Vector& r, const Vector& z) const {
+void MatrixFreeMultigrid<dim, ExecSpace>::apply(const ExecSpace& exec, const Vector& r,
+                                                const Vector& z) const {
   vcycle(exec, 0, r, z);
 }
 
 template <int dim, class ExecSpace>
-void MatrixFreeMultigrid<dim, ExecSpace>::vcycle(const ExecSpace& exec, std::size_t l, const Vector& b,
-                                                 const Vector& x) const {
+void MatrixFreeMultigrid<dim, ExecSpace>::vcycle(const ExecSpace& exec, std::size_t l,
+                                                 const Vector& b, const Vector& x) const {
   const Level& L = *levels_[l];
   const Space& fine = L.op->space();
   if (l + 1 == levels_.size()) {
@@ -118,7 +124,8 @@ void MatrixFreeMultigrid<dim, ExecSpace>::vcycle(const ExecSpace& exec, std::siz
     for (std::size_t k = 0; k < all.size(); ++k) coarse_b_[coarse_owned_global_[k]] = all[k];
     coarse_->vcycle(coarse_b_.data(), coarse_x_.data());
     auto xh = Kokkos::create_mirror_view(x);
-    for (std::size_t i = 0; i < coarse_local_global_.size(); ++i) xh(i) = coarse_x_[coarse_local_global_[i]];
+    for (std::size_t i = 0; i < coarse_local_global_.size(); ++i)
+      xh(i) = coarse_x_[coarse_local_global_[i]];
     Kokkos::deep_copy(x, xh);
     return;
   }

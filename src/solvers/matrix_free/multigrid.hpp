@@ -33,7 +33,8 @@ class MatrixFreeMultigrid {
   using Space = mesh::DistributedQkSpace<dim, ExecSpace>;
 
   /// Levels below the (scalar, coefficient-free Laplace) operator `fine`, which must outlive this.
-  MatrixFreeMultigrid(const ExecSpace& exec, const Operator& fine, const MultigridOptions& options = {});
+  MatrixFreeMultigrid(const ExecSpace& exec, const Operator& fine,
+                      const MultigridOptions& options = {});
   ~MatrixFreeMultigrid();
 
   /// z = one V-cycle applied to r.
@@ -46,10 +47,11 @@ class MatrixFreeMultigrid {
  private:
   struct Level;
   void vcycle(const ExecSpace& exec, std::size_t l, const Vector& b, const Vector& x) const;
-  std::vector<std::unique_ptr<Level>> levels_;  // 0: finest
+  std::vector<std::unique_ptr<Level>> levels_;                 // 0: finest
   std::vector<MatrixFreeTransfer<dim, ExecSpace>> transfers_;  // l: between l+1 (coarse) and l
   std::unique_ptr<BoomerAMG> coarse_;  // on the whole coarsest box, on every rank
-  std::vector<long> coarse_owned_global_;  // global numbers of every rank's owned coarse DoFs, rank order
+  std::vector<long>
+      coarse_owned_global_;  // global numbers of every rank's owned coarse DoFs, rank order
   std::vector<long> coarse_local_global_;  // global number of each local coarse DoF
   mutable std::vector<double> coarse_b_, coarse_x_;
 };

@@ -21,7 +21,8 @@ class MatrixFreeTransfer {
   using Space = mesh::QkSpace<dim, ExecSpace>;
 
   /// `fine` has the cells of `coarse` and a higher degree (p), or twice the cells per
-  /// direction and both have degree 1 (h). Throws otherwise. Degree pairs compiled: k_f <= 2 k_c + 1.
+  /// direction and both have degree 1 (h). Throws otherwise. Degree pairs compiled: k_f <= 2 k_c
+  /// + 1.
   MatrixFreeTransfer(const Space& coarse, const Space& fine, int components = 1);
 
   /// fine = P coarse (constrained fine DoFs: 0).

@@ -21,11 +21,13 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
   Kokkos::View<long*, typename ExecSpace::memory_space> coarse_constrained, fine_constrained;
   int components = 1;
 
-  static void zero_constrained(const ExecSpace& exec, const Kokkos::View<long*, typename ExecSpace::memory_space>& c,
+  static void zero_constrained(const ExecSpace& exec,
+                               const Kokkos::View<long*, typename ExecSpace::memory_space>& c,
                                double* y) {
-    Kokkos::parallel_for("amphora::MatrixFreeTransfer::constraints",
-                         RangePolicy<ExecSpace>(exec, 0, static_cast<int>(c.extent(0))),
-                         KOKKOS_LAMBDA(int i) { y[c(i)] = 0.0; });
+    Kokkos::parallel_for(
+        "amphora::MatrixFreeTransfer::constraints",
+        RangePolicy<ExecSpace>(exec, 0, static_cast<int>(c.extent(0))),
+        KOKKOS_LAMBDA(int i) { y[c(i)] = 0.0; });
   }
   std::shared_ptr<void> shape;
   void (*prolongate)(const Impl&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
@@ -76,7 +78,8 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
   }
 
   template <int n_pc, int n_pf>
-  static void prolongate_impl(const Impl& impl, const ExecSpace& exec, const Vector& xc, const Vector& xf) {
+  static void prolongate_impl(const Impl& impl, const ExecSpace& exec, const Vector& xc,
+                              const Vector& xf) {
     const auto k = kernel<n_pc, n_pf>(impl);
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) Kokkos::deep_copy(exec, xf, 0.0);
@@ -84,15 +87,17 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     for (int comp = 0; comp < impl.components; ++comp) {
       const double* src = xc.data() + comp * nc;
       double* dst = xf.data() + comp * nf;
-      for_each_batch_coloured(exec, impl.fine, "amphora::MatrixFreeTransfer::prolongate",
-                              sumfac::FirstTouchZero<dim>{impl.fine, dst, 1},
-                              KOKKOS_LAMBDA(int b) { k.template prolongate<atomic>(src, dst, b); });
+      for_each_batch_coloured(
+          exec, impl.fine, "amphora::MatrixFreeTransfer::prolongate",
+          sumfac::FirstTouchZero<dim>{impl.fine, dst, 1},
+          KOKKOS_LAMBDA(int b) { k.template prolongate<atomic>(src, dst, b); });
       zero_constrained(exec, impl.fine_constrained, dst);
     }
   }
 
   template <int n_pc, int n_pf>
-  static void restrict_impl(const Impl& impl, const ExecSpace& exec, const Vector& xf, const Vector& xc) {
+  static void restrict_impl(const Impl& impl, const ExecSpace& exec, const Vector& xf,
+                            const Vector& xc) {
     const auto k = kernel<n_pc, n_pf>(impl);
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) Kokkos::deep_copy(exec, xc, 0.0);
@@ -100,9 +105,10 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     for (int comp = 0; comp < impl.components; ++comp) {
       const double* src = xf.data() + comp * nf;
       double* dst = xc.data() + comp * nc;
-      for_each_batch_coloured(exec, impl.coarse, "amphora::MatrixFreeTransfer::restrict",
-                              sumfac::FirstTouchZero<dim>{impl.coarse, dst, 1},
-                              KOKKOS_LAMBDA(int b) { k.template restrict_to_coarse<atomic>(src, dst, b); });
+      for_each_batch_coloured(
+          exec, impl.coarse, "amphora::MatrixFreeTransfer::restrict",
+          sumfac::FirstTouchZero<dim>{impl.coarse, dst, 1},
+          KOKKOS_LAMBDA(int b) { k.template restrict_to_coarse<atomic>(src, dst, b); });
       zero_constrained(exec, impl.coarse_constrained, dst);
     }
   }
@@ -113,22 +119,29 @@ namespace detail {
 template <int kc = 1, class F>
 void dispatch_transfer(int coarse_degree, int fine_degree, F&& f) {
   if (coarse_degree == kc) {
-    if constexpr (kc + 1 <= max_compiled_degree) if (fine_degree == kc + 1) return f(std::integral_constant<int, kc + 1>{}, std::integral_constant<int, kc + 2>{});
-    if constexpr (2 * kc <= max_compiled_degree) if (fine_degree == 2 * kc) return f(std::integral_constant<int, kc + 1>{}, std::integral_constant<int, 2 * kc + 1>{});
-    if constexpr (2 * kc + 1 <= max_compiled_degree) if (fine_degree == 2 * kc + 1) return f(std::integral_constant<int, kc + 1>{}, std::integral_constant<int, 2 * kc + 2>{});
+    if constexpr (kc + 1 <= max_compiled_degree)
+      if (fine_degree == kc + 1)
+        return f(std::integral_constant<int, kc + 1>{}, std::integral_constant<int, kc + 2>{});
+    if constexpr (2 * kc <= max_compiled_degree)
+      if (fine_degree == 2 * kc)
+        return f(std::integral_constant<int, kc + 1>{}, std::integral_constant<int, 2 * kc + 1>{});
+    if constexpr (2 * kc + 1 <= max_compiled_degree)
+      if (fine_degree == 2 * kc + 1)
+        return f(std::integral_constant<int, kc + 1>{}, std::integral_constant<int, 2 * kc + 2>{});
   }
   if constexpr (kc < 4) {
     return dispatch_transfer<kc + 1>(coarse_degree, fine_degree, f);
   } else {
-    throw std::invalid_argument("MatrixFreeTransfer: no kernel from degree " + std::to_string(coarse_degree) +
-                                " to " + std::to_string(fine_degree) +
-                                "; compiled: k_c = 1..4 to k_c + 1, 2 k_c, 2 k_c + 1");
+    throw std::invalid_argument(
+        "MatrixFreeTransfer: no kernel from degree " + std::to_string(coarse_degree) + " to " +
+        std::to_string(fine_degree) + "; compiled: k_c = 1..4 to k_c + 1, 2 k_c, 2 k_c + 1");
   }
 }
 }  // namespace detail
 
 template <int dim, class ExecSpace>
-MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, const Space& fine, int components) {
+MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, const Space& fine,
+                                                       int components) {
   auto impl = std::make_shared<Impl>();
   impl->components = components;
   impl->coarse = coarse.lattice();
@@ -153,12 +166,14 @@ MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, cons
     fine_degree = 2;
   } else {
     throw std::invalid_argument(
-        "MatrixFreeTransfer: the fine space must have the coarse cells and a higher degree, or twice "
+        "MatrixFreeTransfer: the fine space must have the coarse cells and a higher degree, or "
+        "twice "
         "the cells per direction with both of degree 1");
   }
   detail::dispatch_transfer(coarse.degree(), fine_degree, [&](auto pc, auto pf) {
     constexpr int n_pc = decltype(pc)::value, n_pf = decltype(pf)::value;
-    impl->shape = std::make_shared<sumfac::ShapeData<n_pc, n_pf>>(sumfac::ShapeData<n_pc, n_pf>::interpolation());
+    impl->shape = std::make_shared<sumfac::ShapeData<n_pc, n_pf>>(
+        sumfac::ShapeData<n_pc, n_pf>::interpolation());
     impl->prolongate = &Impl::template prolongate_impl<n_pc, n_pf>;
     impl->restrict_to_coarse = &Impl::template restrict_impl<n_pc, n_pf>;
   });
@@ -172,7 +187,8 @@ void MatrixFreeTransfer<dim, ExecSpace>::prolongate(const ExecSpace& exec, const
 }
 
 template <int dim, class ExecSpace>
-void MatrixFreeTransfer<dim, ExecSpace>::restrict_to_coarse(const ExecSpace& exec, const Vector& fine,
+void MatrixFreeTransfer<dim, ExecSpace>::restrict_to_coarse(const ExecSpace& exec,
+                                                            const Vector& fine,
                                                             const Vector& coarse) const {
   impl_->restrict_to_coarse(*impl_, exec, fine, coarse);
 }
