@@ -1,11 +1,14 @@
 #pragma once
 // Random spheres in a unit box for the particle-library tests: positions, radii in [r0, 2 r0),
-// global ids a shuffle of 0 .. n (so storage order and id order differ), all on the host.
+// global ids a shuffle of 0 .. n (so storage order and id order differ), on the host, and their
+// copies in a memory space.
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
 #include <random>
 #include <vector>
+
+#include <Kokkos_Core.hpp>
 
 namespace amphora::test {
 
@@ -36,6 +39,27 @@ struct RandomSpheres {
       p.gid[i] = gid[perm[i]];
     }
     return p;
+  }
+};
+
+/// The spheres' centres, radii and ids in a memory space.
+template <class Mem>
+struct DeviceSpheres {
+  Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> x;
+  Kokkos::View<double*, Mem> r;
+  Kokkos::View<std::int64_t*, Mem> gid;
+  explicit DeviceSpheres(const RandomSpheres& s) : x("x", s.n), r("r", s.n), gid("gid", s.n) {
+    auto hx = Kokkos::create_mirror_view(x);
+    auto hr = Kokkos::create_mirror_view(r);
+    auto hg = Kokkos::create_mirror_view(gid);
+    for (int i = 0; i < s.n; ++i) {
+      for (int d = 0; d < 3; ++d) hx(i, d) = s.x[3 * size_t(i) + d];
+      hr(i) = s.r[i];
+      hg(i) = s.gid[i];
+    }
+    Kokkos::deep_copy(x, hx);
+    Kokkos::deep_copy(r, hr);
+    Kokkos::deep_copy(gid, hg);
   }
 };
 

@@ -72,29 +72,16 @@ struct SpringLaw {
 };
 
 /// The spheres on the device with their lists, schedule and a state per list entry.
-struct Pairs {
+struct Pairs : test::DeviceSpheres<Mem> {
   int n;
-  Vec x, f;
-  Kokkos::View<double*, Mem> r, state, state_next;
-  Kokkos::View<std::int64_t*, Mem> gid;
+  Vec f;
+  Kokkos::View<double*, Mem> state, state_next;
   NeighborList<Mem> list;
   Kokkos::View<int*, Mem> half;
   SlabSchedule<Mem> schedule;
   Kokkos::View<unsigned*, Mem> live;
 
-  explicit Pairs(const test::RandomSpheres& s)
-      : n(s.n), x("x", s.n), f("f", s.n), r("r", s.n), gid("gid", s.n) {
-    auto hx = Kokkos::create_mirror_view(x);
-    auto hr = Kokkos::create_mirror_view(r);
-    auto hg = Kokkos::create_mirror_view(gid);
-    for (int i = 0; i < n; ++i) {
-      for (int d = 0; d < 3; ++d) hx(i, d) = s.x[3 * size_t(i) + d];
-      hr(i) = s.r[i];
-      hg(i) = s.gid[i];
-    }
-    Kokkos::deep_copy(x, hx);
-    Kokkos::deep_copy(r, hr);
-    Kokkos::deep_copy(gid, hg);
+  explicit Pairs(const test::RandomSpheres& s) : test::DeviceSpheres<Mem>(s), n(s.n), f("f", s.n) {
     const double skin = 0.2 * s.r_max, lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     const CellGrid cells = CellGrid::covering(lo, hi, 2 * s.r_max + skin);
     const auto bins = bin_points(Exec(), cells, x, n);

@@ -13,26 +13,8 @@ namespace {
 
 using Exec = test::TestExecSpace;
 using Mem = test::TestMemSpace;
-using Vec = Kokkos::View<double* [3], Kokkos::LayoutRight, Mem>;
 
-struct Device {
-  Vec x;
-  Kokkos::View<double*, Mem> r;
-  Kokkos::View<std::int64_t*, Mem> gid;
-  explicit Device(const test::RandomSpheres& s) : x("x", s.n), r("r", s.n), gid("gid", s.n) {
-    auto hx = Kokkos::create_mirror_view(x);
-    auto hr = Kokkos::create_mirror_view(r);
-    auto hg = Kokkos::create_mirror_view(gid);
-    for (int i = 0; i < s.n; ++i) {
-      for (int d = 0; d < 3; ++d) hx(i, d) = s.x[3 * size_t(i) + d];
-      hr(i) = s.r[i];
-      hg(i) = s.gid[i];
-    }
-    Kokkos::deep_copy(x, hx);
-    Kokkos::deep_copy(r, hr);
-    Kokkos::deep_copy(gid, hg);
-  }
-};
+using Device = test::DeviceSpheres<Mem>;
 
 TEST(ParticleBinning, EveryPointInItsCellCellsInKeyOrder) {
   const test::RandomSpheres s(3000, 0.01, 7);
@@ -50,7 +32,9 @@ TEST(ParticleBinning, EveryPointInItsCellCellsInKeyOrder) {
       ++seen[p];
       const double* xp = &s.x[3 * size_t(p)];
       EXPECT_EQ(grid.cell_of(xp[0], xp[1], xp[2]), c);
-      if (a > off(c)) EXPECT_LT(s.gid[perm(a - 1)], s.gid[p]) << "cell " << c;
+      if (a > off(c)) {
+        EXPECT_LT(s.gid[perm(a - 1)], s.gid[p]) << "cell " << c;
+      }
     }
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), s.n);
 }
