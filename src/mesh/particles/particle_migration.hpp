@@ -20,16 +20,20 @@ class ParticleMigration {
     const int me = dec.comm().rank(), p = dec.comm().size();
     auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(),
                                                  Kokkos::subview(dest, Kokkos::make_pair(0, n)));
-    std::vector<int> order;  // staying ones first, then to rank 0, 1, ... (index order within)
+    // staying ones first, then to rank 0, 1, ... (index order within): a counting sort
     counts_.assign(p, 0);
     for (int i = 0; i < n; ++i)
-      if (h(i) == me) order.push_back(i);
-    staying_ = static_cast<int>(order.size());
-    for (int r = 0; r < p; ++r) {
-      if (r == me) continue;
-      for (int i = 0; i < n; ++i)
-        if (h(i) == r) order.push_back(i), ++counts_[r];
-    }
+      if (h(i) >= 0) ++counts_[h(i)];
+    staying_ = counts_[me];
+    counts_[me] = 0;
+    std::vector<int> at(p, 0);
+    for (int r = 0, sum = staying_; r < p; ++r) at[r] = sum, sum += counts_[r];
+    std::vector<int> order(size_t(at[p - 1] + counts_[p - 1]));
+    for (int i = 0, kept = 0; i < n; ++i)
+      if (h(i) == me)
+        order[kept++] = i;
+      else if (h(i) >= 0)
+        order[at[h(i)]++] = i;
     order_ = Kokkos::View<int*, Mem>("amphora::particles::migration_order", order.size());
     auto ho = Kokkos::create_mirror_view(order_);
     for (size_t k = 0; k < order.size(); ++k) ho(k) = order[k];
