@@ -10,14 +10,17 @@
 
 #include "kernels/sumfac/quadrature_1d.hpp"
 #include "mesh/hex/qk_space.hpp"
-#include "solvers/matrix_free/cell_operator_kernel.hpp"
+#include "solvers/matrix_free/matrix_free_operator.hpp"
 
 namespace amphora::test {
 
-template <int dim, class Space>
-Eigen::SparseMatrix<double> assemble_reference(const Space& space, solvers::OperatorKind kind,
-                                               int n_q, bool gauss_lobatto,
-                                               const std::vector<double>& field) {
+/// The matrix of the bilinear form entry(ci, i, cj, j, phi, gphys, f) (components ci, cj of
+/// basis functions i, j; values phi, physical gradients gphys[i * dim + a], field values f at
+/// the point), times w det J, summed over points; comps blocked components.
+template <int dim, class Space, class Entry>
+Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gauss_lobatto,
+                                          const std::vector<double>& field, int field_comps,
+                                          int comps, const Entry& entry) {
   const auto& lat = space.lattice();
   const int k = lat.degree, np = k + 1;
   const std::vector<double> nodes = sumfac::gauss_lobatto(np).points;
@@ -32,7 +35,8 @@ Eigen::SparseMatrix<double> assemble_reference(const Space& space, solvers::Oper
   int cell[3] = {0, 0, 0};
   const int n_cells = static_cast<int>(space.mesh().n_cells());
   std::vector<long> dof(nd), node(nd);
-  std::vector<double> phi(nd), dphi(nd * dim), elem(nd * nd);
+  const int m = comps * nd;
+  std::vector<double> phi(nd), dphi(nd * dim), elem(m * m);
   for (int c = 0; c < n_cells; ++c) {
     int rest = c;
     for (int d = 0; d < dim; ++d) cell[d] = rest % lat.cells[d], rest /= lat.cells[d];
@@ -67,8 +71,7 @@ Eigen::SparseMatrix<double> assemble_reference(const Space& space, solvers::Oper
       // field at the point (coefficient or velocity), from the DoF values
       double f[3] = {1.0, 0.0, 0.0};
       if (!field.empty()) {
-        const int comps = kind == solvers::OperatorKind::convection ? dim : 1;
-        for (int a = 0; a < comps; ++a) {
+        for (int a = 0; a < field_comps; ++a) {
           f[a] = 0.0;
           for (int j = 0; j < nd; ++j) {
             int ijk[3] = {0, 0, 0}, r2 = j;
@@ -84,29 +87,67 @@ Eigen::SparseMatrix<double> assemble_reference(const Space& space, solvers::Oper
           for (int b = 0; b < dim; ++b) s += inv[b * dim + a] * dphi[j * dim + b];
           gphys[j * dim + a] = s;
         }
-      for (int i = 0; i < nd; ++i)
-        for (int j = 0; j < nd; ++j) {
-          double v = 0.0;
-          if (kind == solvers::OperatorKind::mass) {
-            v = phi[i] * phi[j];
-          } else if (kind == solvers::OperatorKind::laplace) {
-            for (int a = 0; a < dim; ++a) v += gphys[i * dim + a] * gphys[j * dim + a];
-            v *= f[0];
-          } else {
-            for (int a = 0; a < dim; ++a) v += phi[i] * f[a] * gphys[j * dim + a];
-          }
-          elem[i * nd + j] += w * det * v;
-        }
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < m; ++j)
+          elem[i * m + j] +=
+              w * det * entry(i / nd, i % nd, j / nd, j % nd, phi.data(), gphys.data(), f);
     }
-    for (int i = 0; i < nd; ++i)
-      for (int j = 0; j < nd; ++j)
-        if (dof[i] >= 0 && dof[j] >= 0) triplets.emplace_back(dof[i], dof[j], elem[i * nd + j]);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j)
+        if (dof[i % nd] >= 0 && dof[j % nd] >= 0)
+          triplets.emplace_back((i / nd) * n + dof[i % nd], (j / nd) * n + dof[j % nd],
+                                elem[i * m + j]);
   }
   auto cons = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space.constrained_dofs());
-  for (std::size_t i = 0; i < cons.extent(0); ++i) triplets.emplace_back(cons(i), cons(i), 1.0);
-  Eigen::SparseMatrix<double> A(n, n);
+  for (int c = 0; c < comps; ++c)
+    for (std::size_t i = 0; i < cons.extent(0); ++i)
+      triplets.emplace_back(c * n + cons(i), c * n + cons(i), 1.0);
+  Eigen::SparseMatrix<double> A(comps * n, comps * n);
   A.setFromTriplets(triplets.begin(), triplets.end());
   return A;
+}
+
+/// Mass, Laplace (times the field a(x) if given) or convection (by the field b(x)).
+template <int dim, class Space>
+Eigen::SparseMatrix<double> assemble_reference(const Space& space, solvers::OperatorKind kind,
+                                               int n_q, bool gauss_lobatto,
+                                               const std::vector<double>& field) {
+  const int field_comps = kind == solvers::OperatorKind::convection ? dim : 1;
+  return assemble_form<dim>(
+      space, n_q, gauss_lobatto, field, field_comps, 1,
+      [&](int, int i, int, int j, const double* phi, const double* g, const double* f) {
+        double v = 0.0;
+        if (kind == solvers::OperatorKind::mass) {
+          v = phi[i] * phi[j];
+        } else if (kind == solvers::OperatorKind::laplace) {
+          for (int a = 0; a < dim; ++a) v += g[i * dim + a] * g[j * dim + a];
+          v *= f[0];
+        } else {
+          for (int a = 0; a < dim; ++a) v += phi[i] * f[a] * g[j * dim + a];
+        }
+        return v;
+      });
+}
+
+/// Isotropic linear elasticity: a(u, v) = int lambda div u div v + 2 mu eps(u) : eps(v), the
+/// row of test function i of component ci against trial function j of component cj.
+template <int dim, class Space>
+Eigen::SparseMatrix<double> assemble_elasticity_reference(const Space& space, int n_q,
+                                                          double lambda, double mu) {
+  return assemble_form<dim>(
+      space, n_q, false, {}, 0, dim,
+      [&](int ci, int i, int cj, int j, const double*, const double* g, const double*) {
+        // eps(phi_j e_cj) : eps(phi_i e_ci) = (d_ci dphi_j...) from the symmetric gradients
+        double eps_u[dim][dim] = {}, eps_v[dim][dim] = {};
+        for (int a = 0; a < dim; ++a) {
+          eps_u[cj][a] += 0.5 * g[j * dim + a], eps_u[a][cj] += 0.5 * g[j * dim + a];
+          eps_v[ci][a] += 0.5 * g[i * dim + a], eps_v[a][ci] += 0.5 * g[i * dim + a];
+        }
+        double v = lambda * g[j * dim + cj] * g[i * dim + ci];
+        for (int a = 0; a < dim; ++a)
+          for (int b = 0; b < dim; ++b) v += 2.0 * mu * eps_u[a][b] * eps_v[a][b];
+        return v;
+      });
 }
 
 }  // namespace amphora::test

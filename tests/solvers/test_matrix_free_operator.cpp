@@ -12,9 +12,9 @@
 #include "kernels/blas1.hpp"
 #include "kernels/host_vector.hpp"
 #include "reference_assembly.hpp"
+#include "kernels/sumfac/cell_operator_kernel.hpp"
+#include "kernels/sumfac/generic_cell_kernel.hpp"
 #include "solvers/conjugate_gradient.hpp"
-#include "solvers/matrix_free/cell_operator_kernel.hpp"
-#include "solvers/matrix_free/generic_cell_kernel.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "test_backend.hpp"
 
@@ -204,14 +204,15 @@ TEST(MatrixFreeOperator, GenericKernelElementMatricesEqualTheCompiledKernels) {
 }
 
 // y += A x by the generic kernel's batches (a functor: no device lambda in a test body).
-template <int dim>
+template <int dim, class Point>
 struct GenericBatches {
-  GenericCellKernel<dim, TestExecSpace> k;
+  sumfac::GenericCellKernel<dim, TestExecSpace, Point> k;
   Vector x;
   double* y;
   long n;
   KOKKOS_INLINE_FUNCTION void operator()(
-      const typename GenericCellKernel<dim, TestExecSpace>::Team& team, int b0, int b1) const {
+      const typename sumfac::GenericCellKernel<dim, TestExecSpace, Point>::Team& team, int b0,
+      int b1) const {
     k.template add_batches<true>(team, b0, b1, x, y, n, 1, 0);
   }
 };
@@ -219,10 +220,11 @@ struct GenericBatches {
 // The devices' schedule of the generic kernel (one team per batch, all at once, atomic adds)
 // with teams of two threads where the backend has them, so the team shares every sweep, point
 // loop and scatter: the product equals the operator's on every unconstrained row.
-TEST(MatrixFreeOperator, GenericKernelInTeamsOfTwoMatchesTheOperator) {
+template <class Point>
+void check_generic_in_teams(OperatorKind kind) {
   const TestExecSpace exec;
   const int team_size = TestExecSpace().concurrency() >= 2 ? 2 : 1;
-  for (const auto kind : {OperatorKind::laplace, OperatorKind::mass}) {
+  {
     const auto m = mixed_mesh<3>(5, 3, 2, "curved");
     const mesh::QkSpace<3, TestExecSpace> space(m, 3);
     const long n = space.n_dofs();
@@ -236,10 +238,11 @@ TEST(MatrixFreeOperator, GenericKernelInTeamsOfTwoMatchesTheOperator) {
     for (double& e : xh) e = u(rng);
     const Vector x = to_device(xh), y_op("y_op", n), y_teams("y_teams", n);
     op.apply(exec, x, y_op);
-    const auto k = make_generic_cell_kernel<3, TestExecSpace>(
-        space.lattice(), space.coordinates(), kind, 3, 6, sumfac::QuadratureKind::gauss);
-    for_each_batch_team_at_once(exec, k.lattice, "test::generic_in_teams", k.scratch_bytes(),
-                                team_size, GenericBatches<3>{k, x, y_teams.data(), n});
+    const auto k = sumfac::make_generic_cell_kernel<3, TestExecSpace>(
+        space.lattice(), space.coordinates(), Point{}, 3, 6, sumfac::QuadratureKind::gauss);
+    sumfac::for_each_batch_team_at_once(exec, k.lattice, "test::generic_in_teams",
+                                        k.scratch_bytes(), team_size,
+                                        GenericBatches<3, Point>{k, x, y_teams.data(), n});
     exec.fence();
     const std::vector<double> a = to_host(y_op), b = to_host(y_teams);
     std::vector<char> constrained(n, 0);
@@ -260,6 +263,11 @@ TEST(MatrixFreeOperator, GenericKernelInTeamsOfTwoMatchesTheOperator) {
   }
 }
 
+TEST(MatrixFreeOperator, GenericKernelInTeamsOfTwoMatchesTheOperator) {
+  check_generic_in_teams<sumfac::LaplacePoint<3>>(OperatorKind::laplace);
+  check_generic_in_teams<sumfac::MassPoint<3>>(OperatorKind::mass);
+}
+
 TEST(MatrixFreeOperator, CollocatedVectorVariableCoefficientAndConvectionOperatorsMatch) {
   for (int k : {2, 3}) {
     check<2>({K::laplace, G::stored, "curved", k, 0, true}, 9, 3, 1);  // collocation (BP5)
@@ -273,6 +281,62 @@ TEST(MatrixFreeOperator, CollocatedVectorVariableCoefficientAndConvectionOperato
   // 3D collocation through the points: from n_q = 6 the point sweeps run in place and the
   // integration goes straight into the nodal values
   for (int k : {2, 5, 7}) check<3>({K::laplace, G::stored, "curved", k, 0, true}, 3, 2, 2);
+}
+
+// Linear elasticity, dim coupled components through one point functor, equals the textbook
+// assembled block matrix (operator and diagonal) on curved cells.
+template <int dim>
+void check_elasticity(GeometryMode geometry, int degree, int nx, int ny, int nz) {
+  SCOPED_TRACE("elasticity dim " + std::to_string(dim) + " k " + std::to_string(degree));
+  const TestExecSpace exec;
+  const auto m = mixed_mesh<dim>(nx, ny, nz, "curved");
+  const mesh::QkSpace<dim, TestExecSpace> space(m, degree);
+  const long n = dim * space.n_dofs();
+  typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
+  o.kind = OperatorKind::elasticity;
+  o.geometry = geometry;
+  o.components = dim;
+  o.lambda = 2.5;
+  o.mu = 0.7;
+  const MatrixFreeOperator<dim, TestExecSpace> op(space, o);
+  const auto A = test::assemble_elasticity_reference<dim>(space, degree + 1, o.lambda, o.mu);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> x(n);
+  for (double& e : x) e = u(rng);
+  Vector yd("y", n), dd("d", n);
+  op.apply(exec, to_device(x), yd);
+  op.compute_diagonal(exec, dd);
+  const std::vector<double> y = to_host(yd), d = to_host(dd);
+  const Eigen::VectorXd ref = A * Eigen::Map<const Eigen::VectorXd>(x.data(), n);
+  double scale = 0.0, err = 0.0, dscale = 0.0, derr = 0.0;
+  for (long i = 0; i < n; ++i) {
+    scale = std::max(scale, std::abs(ref[i]));
+    err = std::max(err, std::abs(ref[i] - y[i]));
+    dscale = std::max(dscale, std::abs(A.coeff(i, i)));
+    derr = std::max(derr, std::abs(A.coeff(i, i) - d[i]));
+  }
+  EXPECT_LT(err, 1e-12 * scale) << "max |A x - A_ref x| = " << err << " of " << scale;
+  EXPECT_LT(derr, 1e-12 * dscale) << "diagonal";
+}
+
+TEST(MatrixFreeOperator, ElasticityMatchesAssembledBlockMatrix) {
+  for (int k = 1; k <= 4; ++k) {
+    check_elasticity<2>(GeometryMode::stored, k, 9, 3, 1);
+    check_elasticity<3>(GeometryMode::on_the_fly, k, 5, 3, 2);
+  }
+  check_elasticity<3>(GeometryMode::stored, 2, 9, 3, 2);
+}
+
+TEST(MatrixFreeOperator, ElasticityRefusesPerCellGeometryAndScalarVectors) {
+  const mesh::QkSpace<3, TestExecSpace> space(mixed_mesh<3>(3, 2, 2, "cartesian"), 2);
+  typename MatrixFreeOperator<3, TestExecSpace>::Options o;
+  o.kind = OperatorKind::elasticity;
+  o.components = 1;
+  EXPECT_THROW((MatrixFreeOperator<3, TestExecSpace>(space, o)), std::invalid_argument);
+  o.components = 3;
+  o.geometry = GeometryMode::cartesian;
+  EXPECT_THROW((MatrixFreeOperator<3, TestExecSpace>(space, o)), std::invalid_argument);
 }
 
 TEST(MatrixFreeOperator, MassOfUnitCubeIsOneAndLaplacianOfConstantVanishes) {

@@ -15,12 +15,18 @@ namespace amphora::solvers {
 
 inline constexpr int max_compiled_degree = AMPHORA_SUMFAC_MAX_DEGREE;
 
-/// True if the table holds a kernel for (degree, n_q).
-inline bool compiled_kernel(int degree, int n_q) {
-  return degree >= 1 && degree <= max_compiled_degree && (n_q == degree + 1 || n_q == degree + 2);
+/// The point functors beyond mass and Laplace (convection, elasticity) are compiled to this
+/// degree: each functor's table costs as much compile time as the mass's, most of it in the
+/// highest degrees.
+inline constexpr int max_compiled_degree_general =
+    max_compiled_degree < 4 ? max_compiled_degree : 4;
+
+/// True if the table up to degree `max` holds a kernel for (degree, n_q).
+inline bool compiled_kernel(int degree, int n_q, int max = max_compiled_degree) {
+  return degree >= 1 && degree <= max && (n_q == degree + 1 || n_q == degree + 2);
 }
 
-template <int k = 1, class F>
+template <int k = 1, int max = max_compiled_degree, class F>
 void dispatch_degree(int degree, int n_q, F&& f) {
   if (degree == k) {
     if (n_q == k + 1)
@@ -32,12 +38,11 @@ void dispatch_degree(int degree, int n_q, F&& f) {
         std::to_string(n_q) +
         " quadrature points per direction; compiled: degree + 1 and degree + 2");
   }
-  if constexpr (k < max_compiled_degree) {
-    dispatch_degree<k + 1>(degree, n_q, f);
+  if constexpr (k < max) {
+    dispatch_degree<k + 1, max>(degree, n_q, f);
   } else {
     throw std::invalid_argument("matrix-free: degree " + std::to_string(degree) +
-                                " outside the compiled range 1.." +
-                                std::to_string(max_compiled_degree));
+                                " outside the compiled range 1.." + std::to_string(max));
   }
 }
 

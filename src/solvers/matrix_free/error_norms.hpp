@@ -4,7 +4,7 @@
 // with value(const double* x) and gradient(const double* x, double* g).
 #include <cmath>
 
-#include "solvers/matrix_free/cell_operator_kernel.hpp"
+#include "kernels/sumfac/cell_operator_kernel.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"
 #include "mesh/hex/qk_space.hpp"
 
@@ -24,7 +24,7 @@ template <int dim, int n_p, int n_q, class ExecSpace, class Exact>
 void squared_errors(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& space,
                     const Kokkos::View<double*, typename ExecSpace::memory_space>& u,
                     const Exact& exact, double& l2, double& h1) {
-  using K = CellOperatorKernel<dim, n_p, n_q, ExecSpace>;
+  using K = sumfac::CellOperatorKernel<dim, n_p, n_q, ExecSpace, sumfac::LaplacePoint<dim>>;
   using T = typename K::T;
   K kern;
   kern.lattice = space.lattice();

@@ -1,8 +1,9 @@
 #pragma once
 // A matrix-free finite-element operator on a Q_k space: mass, Laplace (scalar or vector,
-// optionally with a variable coefficient) or convection, with Dirichlet DoFs treated as
-// identity rows (the constrained system of deal.II's MatrixFree operators). apply(exec, x, y)
-// makes it usable by the Krylov solvers of src/solvers.
+// optionally with a variable coefficient), convection or linear elasticity, each a point functor
+// (kernels/sumfac/point_functors.hpp) in the sum-factorised cell loop, with Dirichlet DoFs
+// treated as identity rows (the constrained system of deal.II's MatrixFree operators).
+// apply(exec, x, y) makes it usable by the Krylov solvers of src/solvers.
 #include <cstddef>
 #include <memory>
 
@@ -11,9 +12,15 @@
 #include "kernels/sumfac/shape_data.hpp"
 #include "mesh/hex/qk_space.hpp"
 #include "solvers/conjugate_gradient.hpp"
-#include "solvers/matrix_free/cell_operator_kernel.hpp"
+#include "kernels/sumfac/cell_operator_kernel.hpp"
 
 namespace amphora::solvers {
+
+/// The operators built in, one point functor each: mass (MassPoint), Laplace with an optional
+/// coefficient field (LaplacePoint), convection by a velocity field (ConvectionPoint), isotropic
+/// linear elasticity on dim components (ElasticityPoint).
+enum class OperatorKind { mass, laplace, convection, elasticity };
+using sumfac::GeometryMode;
 
 template <int dim, class ExecSpace>
 class MatrixFreeOperator {
@@ -26,8 +33,11 @@ class MatrixFreeOperator {
     OperatorKind kind = OperatorKind::laplace;
     GeometryMode geometry = GeometryMode::stored;
     sumfac::QuadratureKind quadrature = sumfac::QuadratureKind::gauss;
-    int n_q = 0;         ///< points per direction; 0: degree + 1
-    int components = 1;  ///< 3 for the vector Laplace/mass of CEED BP2/4/6
+    int n_q = 0;  ///< points per direction; 0: degree + 1
+    /// Blocked components: copies of a scalar operator (3 for the vector Laplace/mass of CEED
+    /// BP2/4/6), or dim for elasticity.
+    int components = 1;
+    double lambda = 1.0, mu = 1.0;  ///< Lame constants (elasticity)
     /// Use the run-time-size kernel even where a compiled one exists (it serves the pairs the
     /// table lacks on its own; mass and constant-coefficient Laplace).
     bool generic_kernel = false;

@@ -7,8 +7,8 @@
 #include "kernels/blas1.hpp"
 #include "kernels/host_vector.hpp"
 #include "kernels/sumfac/quadrature_1d.hpp"
+#include "kernels/sumfac/generic_cell_kernel.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"
-#include "solvers/matrix_free/generic_cell_kernel.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
 namespace amphora::solvers {
@@ -18,8 +18,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   using T = sumfac::Simd<sumfac::simd_width_v<ExecSpace>>;
   Kokkos::View<T*, memory_space> batch_coef, point_coef;
   long batch_coef_stride = 0;
-  std::shared_ptr<void> shape;                // ShapeData<n_p, n_q>
-  GenericCellKernel<dim, ExecSpace> generic;  // used when no compiled kernel fits
+  std::shared_ptr<void> shape;    // ShapeData<n_p, n_q>
+  std::shared_ptr<void> generic;  // GenericCellKernel<dim, ExecSpace, P>, where no compiled fits
   void (*apply)(const MatrixFreeOperator&, const ExecSpace&, const Vector&,
                 const Vector&) = nullptr;
   double (*direction)(const MatrixFreeOperator&, const ExecSpace&, const Vector&, double,
@@ -27,14 +27,36 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   void (*diagonal)(const MatrixFreeOperator&, const ExecSpace&, const Vector&) = nullptr;
   std::vector<double> (*elements)(const MatrixFreeOperator&, const ExecSpace&) = nullptr;
 
-  template <int n_p, int n_q>
-  static CellOperatorKernel<dim, n_p, n_q, ExecSpace> kernel(const MatrixFreeOperator& op) {
-    CellOperatorKernel<dim, n_p, n_q, ExecSpace> k;
+  template <class P, int n_p, int n_q>
+  using Kernel = sumfac::CellOperatorKernel<dim, n_p, n_q, ExecSpace, P>;
+
+  /// The point functor of the options' kind, with its parameters.
+  template <class P>
+  static P make_point(const Options& o) {
+    P p;
+    if constexpr (std::is_same_v<P, sumfac::ElasticityPoint<dim>>) p.lambda = o.lambda, p.mu = o.mu;
+    return p;
+  }
+
+  /// f(P{}) with the point functor of `kind`.
+  template <class F>
+  static void with_point(OperatorKind kind, F&& f) {
+    switch (kind) {
+      case OperatorKind::mass: return f(sumfac::MassPoint<dim>{});
+      case OperatorKind::laplace: return f(sumfac::LaplacePoint<dim>{});
+      case OperatorKind::convection: return f(sumfac::ConvectionPoint<dim>{});
+      case OperatorKind::elasticity: return f(sumfac::ElasticityPoint<dim>{});
+    }
+  }
+
+  template <class P, int n_p, int n_q>
+  static Kernel<P, n_p, n_q> kernel(const MatrixFreeOperator& op) {
+    Kernel<P, n_p, n_q> k;
     k.lattice = op.space_->lattice();
     k.shape = *static_cast<const sumfac::ShapeData<n_p, n_q>*>(op.impl_->shape.get());
-    k.kind = op.options_.kind;
+    k.point = make_point<P>(op.options_);
     k.mode = op.options_.geometry;
-    k.n_coef = coefficient_count(op.options_);
+    k.n_coef = coefficient_count<P>(op.options_);
     k.batch_coef = op.impl_->batch_coef;
     k.batch_coef_stride = op.impl_->batch_coef_stride;
     k.point_coef = op.impl_->point_coef;
@@ -48,22 +70,25 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     return sumfac::FirstTouchZero<dim>{op.space_->lattice(), y.data(), op.options_.components};
   }
 
+  /// Coefficients kept per cell or point: the functor's (the Cartesian Laplace: the diagonal).
+  template <class P>
   static int coefficient_count(const Options& o) {
-    if (o.geometry == GeometryMode::cartesian && o.kind == OperatorKind::laplace) return dim;
-    return n_point_coefficients<dim>(o.kind);
+    if (o.geometry == GeometryMode::cartesian && P::structure == sumfac::PointStructure::laplace)
+      return dim;
+    return P::n_coefficients;
   }
 
-  template <int n_p, int n_q>
+  template <class P, int n_p, int n_q>
   static void apply_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
                          const Vector& y) {
-    const auto k = kernel<n_p, n_q>(op);
+    const auto k = kernel<P, n_p, n_q>(op);
     const double* src = x.data();
     double* dst = y.data();
     const int comps = op.options_.components;
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) blas1::fill(exec, y, 0.0);
     const auto zero = first_touch_zero(op, y);
-    for_each_batch_coloured(
+    sumfac::for_each_batch_coloured(
         exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
         KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<atomic>(src, dst, comps, b0, b1); });
     copy_constrained(op, exec, x, y);
@@ -78,14 +103,14 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
 
   /// apply_direction in one sweep (host spaces, no periodic wrap along the rows or slabs): the
   /// update where a row first reads p, the row's share of p.q where it last writes q.
-  template <int n_p, int n_q>
+  template <class P, int n_p, int n_q>
   static double direction_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& z,
                                double beta, const Vector& p, const Vector& q) {
     constexpr bool host = runs_on_host_v<ExecSpace>;
     if constexpr (!host) {
       return direction_in_passes(op, exec, z, beta, p, q);
     } else {  // (discarded on devices: the partial sums are read on the host)
-      const auto k = kernel<n_p, n_q>(op);
+      const auto k = kernel<P, n_p, n_q>(op);
       if (!k.lattice.last_touch_ranges()) return direction_in_passes(op, exec, z, beta, p, q);
       const int comps = op.options_.components;
       const int rows = k.lattice.n_slabs() * k.lattice.rows_per_slab();
@@ -97,7 +122,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       double* qq = q.data();
       // row by row: batch by batch (the work interleaved with the cells') was 2x slower at p = 1,
       // where a batch's part of its lines is a few cache lines, and no faster at p = 3 and 6
-      for_each_batch_coloured(
+      sumfac::for_each_batch_coloured(
           exec, k.lattice, "amphora::MatrixFreeOperator::apply_direction",
           sumfac::FirstTouchDirection<dim>{k.lattice, z.data(), pp, qq, beta, comps},
           KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<false>(pp, qq, comps, b0, b1); },
@@ -126,16 +151,17 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
 
   // The generic fallback (generic_cell_kernel.hpp): one team per cell batch, its cells one at
   // a time. mode 0: y = A x; 1: y = diag(A); on host spaces batches run coloured.
+  template <class P>
   static void generic_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
                            const Vector& y, int mode) {
-    using K = GenericCellKernel<dim, ExecSpace>;
-    const K k = op.impl_->generic;
+    using K = sumfac::GenericCellKernel<dim, ExecSpace, P>;
+    const K k = *static_cast<const K*>(op.impl_->generic.get());
     const int comps = op.options_.components;
     const long n = op.space_->n_dofs();
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     blas1::fill(exec, y, 0.0);
     double* out = y.data();
-    for_each_batch_team(
+    sumfac::for_each_batch_team(
         exec, k.lattice, "amphora::MatrixFreeOperator::generic", k.scratch_bytes(),
         KOKKOS_LAMBDA(const typename K::Team& team, int b0, int b1) {
           k.template add_batches<atomic>(team, b0, b1, x, out, n, comps, mode);
@@ -145,18 +171,21 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     else
       copy_constrained(op, exec, Vector(), y, 1.0);
   }
+  template <class P>
   static void generic_apply(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
                             const Vector& y) {
-    generic_impl(op, exec, x, y, 0);
+    generic_impl<P>(op, exec, x, y, 0);
   }
+  template <class P>
   static void generic_diagonal(const MatrixFreeOperator& op, const ExecSpace& exec,
                                const Vector& d) {
-    generic_impl(op, exec, Vector(), d, 1);
+    generic_impl<P>(op, exec, Vector(), d, 1);
   }
+  template <class P>
   static std::vector<double> generic_elements(const MatrixFreeOperator& op, const ExecSpace& exec) {
-    using K = GenericCellKernel<dim, ExecSpace>;
+    using K = sumfac::GenericCellKernel<dim, ExecSpace, P>;
     using Policy = Kokkos::TeamPolicy<ExecSpace>;
-    const K k = op.impl_->generic;
+    const K k = *static_cast<const K*>(op.impl_->generic.get());
     const int nd = k.n_cell_dofs();
     int nc = 1;
     for (int d = 0; d < dim; ++d) nc *= k.lattice.cells[d];
@@ -186,24 +215,24 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     return std::vector<double>(h.data(), h.data() + h.extent(0));
   }
 
-  template <int n_p, int n_q>
+  template <class P, int n_p, int n_q>
   static void diagonal_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& d) {
-    const auto k = kernel<n_p, n_q>(op);
+    const auto k = kernel<P, n_p, n_q>(op);
     double* dst = d.data();
     const int comps = op.options_.components;
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) blas1::fill(exec, d, 0.0);
-    for_each_batch_coloured(
+    sumfac::for_each_batch_coloured(
         exec, k.lattice, "amphora::MatrixFreeOperator::diagonal", first_touch_zero(op, d),
         KOKKOS_LAMBDA(int b) { k.template diagonal_batch<atomic>(dst, comps, b); });
     copy_constrained(op, exec, Vector(), d, 1.0);
   }
 
-  template <int n_p, int n_q>
+  template <class P, int n_p, int n_q>
   static std::vector<double> elements_impl(const MatrixFreeOperator& op, const ExecSpace& exec) {
-    const auto k = kernel<n_p, n_q>(op);
-    using K = CellOperatorKernel<dim, n_p, n_q, ExecSpace>;
-    constexpr int nd = K::n_dofs, W = K::W;
+    const auto k = kernel<P, n_p, n_q>(op);
+    using K = Kernel<P, n_p, n_q>;
+    constexpr int nd = K::n_comp * K::n_dofs;
     const int nb = k.lattice.n_batches();
     Kokkos::View<T*, memory_space> out("amphora::MatrixFreeOperator::elements",
                                        static_cast<std::size_t>(nb) * nd * nd);
@@ -224,19 +253,18 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
           m[c * nd * nd + e] = h(static_cast<long>(b) * nd * nd + e)[l];
       }
     }
-    (void)W;
     return m;
   }
 
   /// Point coefficients of every batch through the on-the-fly path, kept whole (stored) or
   /// reduced to one value per cell (cartesian, affine: the metric without the weight).
-  template <int n_p, int n_q>
+  template <class P, int n_p, int n_q>
   static void setup_geometry(const MatrixFreeOperator& op, Impl& impl) {
-    using K = CellOperatorKernel<dim, n_p, n_q, ExecSpace>;
-    const K kern = kernel<n_p, n_q>(op);
+    using K = Kernel<P, n_p, n_q>;
+    const K kern = kernel<P, n_p, n_q>(op);
     const int nb = op.space_->lattice().n_batches();
-    const int n_all = n_point_coefficients<dim>(op.options_.kind);
-    const int n_keep = coefficient_count(op.options_);
+    const int n_all = P::n_coefficients;
+    const int n_keep = coefficient_count<P>(op.options_);
     const bool per_cell = op.options_.geometry == GeometryMode::cartesian ||
                           op.options_.geometry == GeometryMode::affine;
     const ExecSpace exec;
@@ -301,6 +329,15 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     exec.fence();
   }
 
+  /// The kernels of functor P for the space's degree and op.n_q(): compiled, or the generic
+  /// fallback (scalar functors without a field) where the table has none or it is asked for.
+  /// Defined in matrix_free_operator_install.hpp, compiled in one file per functor.
+  template <class P>
+  static void install(const MatrixFreeOperator& op, const P& point, Impl& impl);
+  /// The functor's coefficients (stored, or per cell) for op's geometry mode.
+  template <class P>
+  static void setup(const MatrixFreeOperator& op, Impl& impl);
+
   /// Constrained rows: y_i = x_i (identity rows), or y_i = value if x is empty.
   static void copy_constrained(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
                                const Vector& y, double value = 0.0) {
@@ -346,44 +383,19 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
   if (options.quadrature == sumfac::QuadratureKind::gauss_lobatto && n_q_ != k + 1)
     fail("Gauss-Lobatto quadrature is supported with n_q = degree + 1 (collocation) only");
 
-  auto impl = std::make_shared<Impl>();
-  if (options.generic_kernel || !compiled_kernel(k, n_q_)) {
-    // The run-time-size fallback: mass and constant-coefficient Laplace, geometry from the nodes.
-    using K = GenericCellKernel<dim, ExecSpace>;
-    if ((options.kind != OperatorKind::laplace && options.kind != OperatorKind::mass) ||
-        options.field.extent(0) > 0)
-      fail("no compiled kernel for degree " + std::to_string(k) + " with " + std::to_string(n_q_) +
-           " points per direction, and the generic one does mass and constant-coefficient Laplace "
-           "only");
-    if (k + 1 > K::max_nodes_1d || n_q_ > K::max_points_1d)
-      fail("degree " + std::to_string(k) + " with " + std::to_string(n_q_) +
-           " points per direction exceeds the generic kernel's limits (degree <= " +
-           std::to_string(K::max_nodes_1d - 1) + ", points <= " + std::to_string(K::max_points_1d) +
-           ")");
-    const K g = make_generic_cell_kernel<dim, ExecSpace>(space.lattice(), space.coordinates(),
-                                                         options.kind, k, n_q_, options.quadrature);
-    impl->generic = g;
-    impl->apply = &Impl::generic_apply;
-    impl->diagonal = &Impl::generic_diagonal;
-    impl->elements = &Impl::generic_elements;
-    impl_ = impl;
-    return;
-  }
-  dispatch_degree(k, n_q_, [&](auto np_c, auto nq_c) {
-    constexpr int n_p = decltype(np_c)::value, n_q = decltype(nq_c)::value;
-    impl->shape = std::make_shared<sumfac::ShapeData<n_p, n_q>>(
-        sumfac::ShapeData<n_p, n_q>::create(options.quadrature));
-    impl->apply = &Impl::template apply_impl<n_p, n_q>;
-    impl->direction = &Impl::template direction_impl<n_p, n_q>;
-    impl->diagonal = &Impl::template diagonal_impl<n_p, n_q>;
-    impl->elements = &Impl::template elements_impl<n_p, n_q>;
-  });
-  impl_ = impl;
+  if (options.kind == OperatorKind::elasticity && options.components != dim)
+    fail("elasticity acts on dim components: set components = " + std::to_string(dim));
+  if (options.kind == OperatorKind::elasticity && per_cell)
+    fail("elasticity keeps J^-1 at the points: use geometry 'stored' or 'on_the_fly'");
+  if (options.kind == OperatorKind::elasticity && options.field.extent(0) > 0)
+    fail("elasticity takes no field (constant Lame constants)");
 
-  if (options.geometry == GeometryMode::on_the_fly) return;
-  dispatch_degree(k, n_q_, [&](auto np_c, auto nq_c) {
-    Impl::template setup_geometry<decltype(np_c)::value, decltype(nq_c)::value>(*this, *impl);
-  });
+  auto impl = std::make_shared<Impl>();
+  Impl::with_point(options.kind, [&](auto point) { Impl::install(*this, point, *impl); });
+  impl_ = impl;
+  if (options.geometry == GeometryMode::on_the_fly || impl->generic) return;
+  Impl::with_point(options.kind,
+                   [&](auto point) { Impl::template setup<decltype(point)>(*this, *impl); });
 }
 
 template <int dim, class ExecSpace>
@@ -404,13 +416,16 @@ void MatrixFreeOperator<dim, ExecSpace>::compute_diagonal(const ExecSpace& exec,
                                                           const Vector& d) const {
   if (options_.kind == OperatorKind::convection)
     throw std::invalid_argument(
-        "MatrixFreeOperator::compute_diagonal: not provided for convection");
+        "MatrixFreeOperator::compute_diagonal: not provided for convection (not symmetric)");
   impl_->diagonal(*this, exec, d);
 }
 
 template <int dim, class ExecSpace>
 std::vector<double> MatrixFreeOperator<dim, ExecSpace>::element_matrices(
     const ExecSpace& exec) const {
+  if (!impl_->elements)
+    throw std::invalid_argument(
+        "MatrixFreeOperator::element_matrices: scalar operators only (not elasticity)");
   return impl_->elements(*this, exec);
 }
 

@@ -7,7 +7,7 @@
 #include "kernels/sumfac/row_touch.hpp"
 #include "kernels/sumfac/shape_data.hpp"
 #include "kernels/sumfac/tensor_product_evaluator.hpp"
-#include "solvers/matrix_free/cell_operator_kernel.hpp"
+#include "kernels/sumfac/cell_operator_kernel.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"
 #include "solvers/matrix_free/transfer.hpp"
 
@@ -87,7 +87,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     for (int comp = 0; comp < impl.components; ++comp) {
       const double* src = xc.data() + comp * nc;
       double* dst = xf.data() + comp * nf;
-      for_each_batch_coloured(
+      sumfac::for_each_batch_coloured(
           exec, impl.fine, "amphora::MatrixFreeTransfer::prolongate",
           sumfac::FirstTouchZero<dim>{impl.fine, dst, 1},
           KOKKOS_LAMBDA(int b) { k.template prolongate<atomic>(src, dst, b); });
@@ -105,7 +105,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     for (int comp = 0; comp < impl.components; ++comp) {
       const double* src = xf.data() + comp * nf;
       double* dst = xc.data() + comp * nc;
-      for_each_batch_coloured(
+      sumfac::for_each_batch_coloured(
           exec, impl.coarse, "amphora::MatrixFreeTransfer::restrict",
           sumfac::FirstTouchZero<dim>{impl.coarse, dst, 1},
           KOKKOS_LAMBDA(int b) { k.template restrict_to_coarse<atomic>(src, dst, b); });

@@ -1,24 +1,27 @@
 #pragma once
-// The generic fallback of the matrix-free operators: mass and Laplace (scalar or blocked
-// components) for any degree and number of quadrature points the compiled table lacks, by the
-// same sum factorisation with run-time sizes, one cell at a time, geometry from the node
-// coordinates (isoparametric, as GeometryMode::on_the_fly). Slower than the compiled kernels
-// (no unrolling, no SIMD across cells) and meant for what they do not cover, e.g. a rule with
-// degree + 3 points. Sizes up to n_p <= max_nodes_1d, n_q <= max_points_1d. One team per cell
-// batch shares each sweep; its arrays are team scratch (Work), so a GPU launch needs no
-// per-thread arrays sized for the largest degree.
+// The generic fallback of the matrix-free operators: scalar point functors without a field
+// (point_functors.hpp: mass, constant-coefficient Laplace) for any degree and number of
+// quadrature points the compiled table lacks, by the same sum factorisation with run-time
+// sizes, one cell at a time, geometry from the node coordinates (isoparametric, as
+// GeometryMode::on_the_fly). Slower than the compiled kernels (no unrolling, no SIMD across
+// cells) and meant for what they do not cover, e.g. a rule with degree + 3 points. Sizes up to
+// n_p <= max_nodes_1d, n_q <= max_points_1d. One team per cell batch shares each sweep; its
+// arrays are team scratch (Work), so a GPU launch needs no per-thread arrays sized for the
+// largest degree.
 #include <Kokkos_Core.hpp>
 
 #include "kernels/host_vector.hpp"
+#include "kernels/sumfac/point_functors.hpp"
 #include "kernels/sumfac/point_geometry.hpp"
 #include "kernels/sumfac/quadrature_1d.hpp"
 #include "kernels/sumfac/qk_lattice.hpp"
-#include "solvers/matrix_free/cell_operator_kernel.hpp"
+#include "kernels/sumfac/shape_data.hpp"
 
-namespace amphora::solvers {
+namespace amphora::sumfac {
 
-template <int dim, class ExecSpace>
+template <int dim, class ExecSpace, class Point>
 struct GenericCellKernel {
+  static_assert(Point::n_components == 1, "the generic kernel takes scalar point functors");
   static constexpr int max_nodes_1d = 9, max_points_1d = 12;
   using Mem = typename ExecSpace::memory_space;
   using Team = typename Kokkos::TeamPolicy<ExecSpace>::member_type;
@@ -27,8 +30,8 @@ struct GenericCellKernel {
   using LongScratch =
       Kokkos::View<long*, typename ExecSpace::scratch_memory_space, Kokkos::MemoryUnmanaged>;
 
-  sumfac::QkLattice<dim> lattice;
-  OperatorKind kind = OperatorKind::laplace;
+  QkLattice<dim> lattice;
+  Point point;
   int n_p = 2, n_q = 2;
   Kokkos::View<const double*, Mem> values, derivatives;  // [q * n_p + i] at the points
   Kokkos::View<const double*, Mem> weights;              // n_q, sum 1 on [0, 1]
@@ -40,7 +43,8 @@ struct GenericCellKernel {
   KOKKOS_INLINE_FUNCTION static int power(int n) { return dim == 3 ? n * n * n : n * n; }
 
   /// A team's working arrays: the cell's node coordinates X [d * n_cell_dofs + i], its DoF
-  /// numbers (-1 where constrained), nodal in/out vectors u, y, column and the sweep scratch s.
+  /// numbers (-1 where constrained), nodal in/out vectors u, y, column and the sweep scratch s
+  /// (apply_cell's tmp, values, dim gradients and dim x dim Jacobian entries).
   /// They live in level-1 team scratch, sized for this n_p and n_q: in 3D with n_p = 9, n_q = 12
   /// about 200 KB, far more than a GPU thread's registers or local memory should hold.
   struct Work {
@@ -48,7 +52,7 @@ struct GenericCellKernel {
     long* dof;
   };
   KOKKOS_INLINE_FUNCTION int work_doubles() const {
-    return (dim + 3) * n_cell_dofs() + (1 + dim + dim * dim) * tensor_size();
+    return (dim + 3) * n_cell_dofs() + (2 + dim + dim * dim) * tensor_size();
   }
   std::size_t scratch_bytes() const {
     return DoubleScratch::shmem_size(work_doubles()) + LongScratch::shmem_size(n_cell_dofs());
@@ -122,42 +126,32 @@ struct GenericCellKernel {
                                          double* y, double* s) const {
     const int stride = tensor_size();
     double* tmp = s;
-    double* grad = s + stride;          // dim blocks
+    double* val = s + stride;
+    double* grad = val + stride;        // dim blocks
     double* geo = grad + dim * stride;  // dim * dim blocks: J[a][b] = d x_a / d xi_b
     const int nq = power(n_q), nd = n_cell_dofs();
     Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nd), [&](int i) { y[i] = 0.0; });
     for (int a = 0; a < dim; ++a)
       for (int b = 0; b < dim; ++b)
         evaluate(team, X + a * nd, b, geo + (a * dim + b) * stride, tmp);
-    auto jacobian = [&](int q, double* J) {
-      for (int e = 0; e < dim * dim; ++e) J[e] = geo[e * stride + q];
-    };
-    if (kind == OperatorKind::mass) {
-      evaluate(team, u, -1, grad, tmp);
-      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nq), [&](int q) {
-        double J[dim * dim];
-        jacobian(q, J);
-        grad[q] *= point_weight(q) * sumfac::determinant<dim>(J);
-      });
-      team.team_barrier();
-      integrate_add(team, grad, -1, y, tmp);
-      return;
-    }
-    for (int b = 0; b < dim; ++b) evaluate(team, u, b, grad + b * stride, tmp);
+    if (Point::reads_values) evaluate(team, u, -1, val, tmp);
+    if (Point::reads_gradients)
+      for (int b = 0; b < dim; ++b) evaluate(team, u, b, grad + b * stride, tmp);
     Kokkos::parallel_for(Kokkos::TeamThreadRange(team, nq), [&](int q) {
-      // reference flux G grad_xi u, G = w det J J^-1 J^-T (point_geometry.hpp)
-      double J[dim * dim], G[dim * (dim + 1) / 2], g[dim];
-      jacobian(q, J);
-      sumfac::laplace_metric<dim>(J, point_weight(q), G);
-      for (int b = 0; b < dim; ++b) g[b] = grad[b * stride + q];
-      for (int a2 = 0; a2 < dim; ++a2) {
-        double f = 0.0;
-        for (int b = 0; b < dim; ++b) f += G[sumfac::sym_index<dim>(a2, b)] * g[b];
-        grad[a2 * stride + q] = f;
-      }
+      double J[dim * dim], c[Point::n_coefficients], v[1] = {0.0}, g[dim], v_out[1], g_out[dim];
+      for (int e = 0; e < dim * dim; ++e) J[e] = geo[e * stride + q];
+      point.coefficients(J, point_weight(q), static_cast<const double*>(nullptr), c);
+      if (Point::reads_values) v[0] = val[q];
+      for (int b = 0; b < dim; ++b) g[b] = Point::reads_gradients ? grad[b * stride + q] : 0.0;
+      point.at_point(PointCoefficients<double>{c, 1}, v, g, v_out, g_out);
+      if (Point::writes_values) val[q] = v_out[0];
+      if (Point::writes_gradients)
+        for (int b = 0; b < dim; ++b) grad[b * stride + q] = g_out[b];
     });
     team.team_barrier();
-    for (int b = 0; b < dim; ++b) integrate_add(team, grad + b * stride, b, y, tmp);
+    if (Point::writes_values) integrate_add(team, val, -1, y, tmp);
+    if (Point::writes_gradients)
+      for (int b = 0; b < dim; ++b) integrate_add(team, grad + b * stride, b, y, tmp);
   }
 
   /// The column j of A_cell into w.column (w.u is overwritten).
@@ -246,26 +240,25 @@ struct GenericCellKernel {
 /// The kernel for degree `degree` on `lattice` with node coordinates `coordinates`
 /// (QkSpace::coordinates()) and n_q points of `rule` per direction; sizes are checked by the
 /// caller.
-template <int dim, class ExecSpace>
-GenericCellKernel<dim, ExecSpace> make_generic_cell_kernel(
-    const sumfac::QkLattice<dim>& lattice,
+template <int dim, class ExecSpace, class Point>
+GenericCellKernel<dim, ExecSpace, Point> make_generic_cell_kernel(
+    const QkLattice<dim>& lattice,
     const Kokkos::View<const double*, typename ExecSpace::memory_space>& coordinates,
-    OperatorKind kind, int degree, int n_q, sumfac::QuadratureKind rule_kind) {
+    const Point& point, int degree, int n_q, QuadratureKind rule_kind) {
   using Mem = typename ExecSpace::memory_space;
-  const auto nodes = sumfac::gauss_lobatto(degree + 1).points;
-  const auto rule = rule_kind == sumfac::QuadratureKind::gauss_lobatto ? sumfac::gauss_lobatto(n_q)
-                                                                       : sumfac::gauss(n_q);
-  GenericCellKernel<dim, ExecSpace> g;
+  const auto nodes = gauss_lobatto(degree + 1).points;
+  const auto rule = rule_kind == QuadratureKind::gauss_lobatto ? gauss_lobatto(n_q) : gauss(n_q);
+  GenericCellKernel<dim, ExecSpace, Point> g;
   g.lattice = lattice;
-  g.kind = kind;
+  g.point = point;
   g.n_p = degree + 1;
   g.n_q = n_q;
-  g.values = to_view<Mem>(sumfac::lagrange_values(nodes, rule.points), "amphora::generic::values");
-  g.derivatives = to_view<Mem>(sumfac::lagrange_derivatives(nodes, rule.points),
-                               "amphora::generic::derivatives");
+  g.values = to_view<Mem>(lagrange_values(nodes, rule.points), "amphora::generic::values");
+  g.derivatives =
+      to_view<Mem>(lagrange_derivatives(nodes, rule.points), "amphora::generic::derivatives");
   g.weights = to_view<Mem>(rule.weights, "amphora::generic::weights");
   g.coordinates = coordinates;
   return g;
 }
 
-}  // namespace amphora::solvers
+}  // namespace amphora::sumfac

@@ -1,0 +1,148 @@
+#pragma once
+// The physics of the matrix-free operators at one quadrature point, apart from the cell loop
+// (CellOperatorKernel, GenericCellKernel), as deal.II's FEEvaluation user code or MFEM's
+// partial-assembly point loops. A point functor P provides:
+//
+//   n_components                 components of the solution it acts on (blocked by component)
+//   n_coefficients               numbers per point it needs: geometry, weight and fields folded in
+//   n_fields                     components of a Q_k field read at the points (0: none)
+//   reads_values, reads_gradients, writes_values, writes_gradients
+//   structure                    a fast path the cell loop may take instead (PointStructure)
+//   per_cell_geometry            coefficients(J, w, f) linear in w: one set per cell serves
+//                                Cartesian and affine cells (times the weight at each point)
+//   coefficients(J, w, f, c)     c[0 .. n_coefficients) from the Jacobian J_ab = dx_a/dxi_b,
+//                                the weight w and the field values f (nullptr: no field)
+//   at_point(c, u, g, u_out, g_out)
+//                                u[comp], g[comp * dim + b] (reference gradient d/dxi_b) in,
+//                                the integrands out: the operator is
+//                                  (A u)_i = sum_q u_out . phi_i + g_out . grad_xi phi_i
+//
+// All functions are templates on the number type (a SIMD batch of cells or double).
+#include <Kokkos_Core.hpp>
+
+#include "kernels/sumfac/point_geometry.hpp"
+
+namespace amphora::sumfac {
+
+/// Fast paths of the cell loop through the 1D matrices (Kronecker sums and products) or the
+/// diagonal's 1D tensors: only for operators of this exact form.
+enum class PointStructure { general, mass, laplace };
+
+/// The coefficients of one point: c[e] at p[e * stride] (stride 1 per cell, n_points stored).
+template <class T>
+struct PointCoefficients {
+  const T* p;
+  long stride;
+  KOKKOS_FORCEINLINE_FUNCTION const T& operator[](int e) const { return p[e * stride]; }
+};
+
+/// Mass: u_out = w det J u.
+template <int dim>
+struct MassPoint {
+  static constexpr int n_components = 1, n_coefficients = 1, n_fields = 0;
+  static constexpr bool reads_values = true, reads_gradients = false;
+  static constexpr bool writes_values = true, writes_gradients = false;
+  static constexpr PointStructure structure = PointStructure::mass;
+  static constexpr bool per_cell_geometry = true;
+  template <class T>
+  KOKKOS_INLINE_FUNCTION void coefficients(const T* J, const T& w, const T*, T* c) const {
+    c[0] = w * determinant<dim>(J);
+  }
+  template <class T, class C>
+  KOKKOS_FORCEINLINE_FUNCTION void at_point(const C& c, const T* u, const T*, T* u_out,
+                                            T*) const {
+    u_out[0] = u[0] * c[0];
+  }
+};
+
+/// Laplace with an optional coefficient a(x) (a field of one component):
+/// g_out = G g, G = a w det J J^-1 J^-T (packed symmetric).
+template <int dim>
+struct LaplacePoint {
+  static constexpr int n_components = 1, n_coefficients = n_symmetric<dim>, n_fields = 1;
+  static constexpr bool reads_values = false, reads_gradients = true;
+  static constexpr bool writes_values = false, writes_gradients = true;
+  static constexpr PointStructure structure = PointStructure::laplace;
+  static constexpr bool per_cell_geometry = true;
+  template <class T>
+  KOKKOS_INLINE_FUNCTION void coefficients(const T* J, const T& w, const T* f, T* c) const {
+    const T scale = f ? w * f[0] : w;
+    laplace_metric<dim>(J, scale, c);
+  }
+  template <class T, class C>
+  KOKKOS_FORCEINLINE_FUNCTION void at_point(const C& c, const T*, const T* g, T*,
+                                            T* g_out) const {
+    for (int a = 0; a < dim; ++a) {
+      T s = T(0.0);
+      for (int e = 0; e < dim; ++e) s += c[sym_index<dim>(a, e)] * g[e];
+      g_out[a] = s;
+    }
+  }
+};
+
+/// Convection by a velocity field b(x) (dim components): u_out = c . g, c = w det J J^-1 b.
+template <int dim>
+struct ConvectionPoint {
+  static constexpr int n_components = 1, n_coefficients = dim, n_fields = dim;
+  static constexpr bool reads_values = false, reads_gradients = true;
+  static constexpr bool writes_values = true, writes_gradients = false;
+  static constexpr PointStructure structure = PointStructure::general;
+  static constexpr bool per_cell_geometry = true;
+  template <class T>
+  KOKKOS_INLINE_FUNCTION void coefficients(const T* J, const T& w, const T* f, T* c) const {
+    T zero[dim];
+    for (int a = 0; a < dim; ++a) zero[a] = T(0.0);
+    convection_metric<dim>(J, w, f ? f : zero, c);
+  }
+  template <class T, class C>
+  KOKKOS_FORCEINLINE_FUNCTION void at_point(const C& c, const T*, const T* g, T* u_out,
+                                            T*) const {
+    T s = T(0.0);
+    for (int a = 0; a < dim; ++a) s += c[a] * g[a];
+    u_out[0] = s;
+  }
+};
+
+/// Isotropic linear elasticity, the bilinear form of sigma(u) : eps(v) with
+/// sigma = lambda tr(eps) I + 2 mu eps, eps = (grad u + grad u^T) / 2: dim coupled components.
+/// Coefficients: w det J, then J^-1 (row-major). J^-1 does not scale with the weight, so one
+/// set per cell does not serve (per_cell_geometry false).
+template <int dim>
+struct ElasticityPoint {
+  static constexpr int n_components = dim, n_coefficients = 1 + dim * dim, n_fields = 0;
+  static constexpr bool reads_values = false, reads_gradients = true;
+  static constexpr bool writes_values = false, writes_gradients = true;
+  static constexpr PointStructure structure = PointStructure::general;
+  static constexpr bool per_cell_geometry = false;
+  double lambda = 1.0, mu = 1.0;
+
+  template <class T>
+  KOKKOS_INLINE_FUNCTION void coefficients(const T* J, const T& w, const T*, T* c) const {
+    c[0] = w * inverse<dim>(J, c + 1);
+  }
+  template <class T, class C>
+  KOKKOS_INLINE_FUNCTION void at_point(const C& c, const T*, const T* g, T*, T* g_out) const {
+    T grad[dim * dim];  // du_i/dx_a = sum_b du_i/dxi_b dxi_b/dx_a
+    for (int i = 0; i < dim; ++i)
+      for (int a = 0; a < dim; ++a) {
+        T s = T(0.0);
+        for (int b = 0; b < dim; ++b) s += g[i * dim + b] * c[1 + b * dim + a];
+        grad[i * dim + a] = s;
+      }
+    T trace = T(0.0);
+    for (int a = 0; a < dim; ++a) trace += grad[a * dim + a];
+    T sigma[dim * dim];
+    for (int i = 0; i < dim; ++i)
+      for (int a = 0; a < dim; ++a)
+        sigma[i * dim + a] = T(mu) * (grad[i * dim + a] + grad[a * dim + i]) +
+                             (i == a ? T(lambda) * trace : T(0.0));
+    for (int i = 0; i < dim; ++i)  // times w det J, back to reference: sigma J^-T
+      for (int b = 0; b < dim; ++b) {
+        T s = T(0.0);
+        for (int a = 0; a < dim; ++a) s += sigma[i * dim + a] * c[1 + b * dim + a];
+        g_out[i * dim + b] = c[0] * s;
+      }
+  }
+};
+
+}  // namespace amphora::sumfac
