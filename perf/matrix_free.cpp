@@ -171,8 +171,8 @@ Op::Options bp_options(int bp, int p) {
   o.geometry = amphora::solvers::GeometryMode::cartesian;
   o.components = bp % 2 == 0 ? 3 : 1;
   o.n_q = bp >= 5 ? p + 1 : p + 2;
-  o.quadrature = bp >= 5 ? amphora::sumfac::QuadratureKind::gauss_lobatto
-                         : amphora::sumfac::QuadratureKind::gauss;
+  o.quadrature = bp >= 5 ? amphora::kernels::sumfac::QuadratureKind::gauss_lobatto
+                         : amphora::kernels::sumfac::QuadratureKind::gauss;
   return o;
 }
 /// The unit cube of BP bp: no Dirichlet faces for the mass BPs, Dirichlet all round otherwise.

@@ -14,7 +14,7 @@
 #include "kernels/sumfac/tensor_product_evaluator.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 namespace {
 
 double integrate_monomial(const Quadrature1D& q, int p) {
@@ -154,7 +154,7 @@ TEST(TensorProductEvaluator, ValuesAndGradientsOfPolynomialsAreExact) {
   check_evaluator<3, 8, 10>();
 }
 
-// The cell loop (sumfac::for_each_batch_coloured) runs slabs by block colour, a
+// The cell loop (kernels::sumfac::for_each_batch_coloured) runs slabs by block colour, a
 // block's slabs in order and a slab's rows in order; blocks of one colour share no node. Every
 // DoF must lie in the first-touch range of the first row (in that order) whose cells hold it,
 // in the last-touch range of the last one, and in no other row's.
@@ -221,4 +221,4 @@ TEST(RowTouch, EveryDofIsTouchedFirstAndLastByTheRowsThatRunFirstAndLast) {
 }
 
 }  // namespace
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

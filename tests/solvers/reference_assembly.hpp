@@ -23,10 +23,11 @@ Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gaus
                                           int comps, const Entry& entry) {
   const auto& lat = space.lattice();
   const int k = lat.degree, np = k + 1;
-  const std::vector<double> nodes = sumfac::gauss_lobatto(np).points;
-  const sumfac::Quadrature1D q = gauss_lobatto ? sumfac::gauss_lobatto(n_q) : sumfac::gauss(n_q);
-  const std::vector<double> val = sumfac::lagrange_values(nodes, q.points);
-  const std::vector<double> der = sumfac::lagrange_derivatives(nodes, q.points);
+  const std::vector<double> nodes = kernels::sumfac::gauss_lobatto(np).points;
+  const kernels::sumfac::Quadrature1D q =
+      gauss_lobatto ? kernels::sumfac::gauss_lobatto(n_q) : kernels::sumfac::gauss(n_q);
+  const std::vector<double> val = kernels::sumfac::lagrange_values(nodes, q.points);
+  const std::vector<double> der = kernels::sumfac::lagrange_derivatives(nodes, q.points);
   auto coords = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space.coordinates());
   const long n_nodes = lat.n_nodes(), n = lat.n_dofs();
   int nd = 1, nqt = 1;
@@ -67,7 +68,7 @@ Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gaus
         for (int a = 0; a < dim; ++a)
           for (int b = 0; b < dim; ++b)
             J[a * dim + b] += coords(a * n_nodes + node[j]) * dphi[j * dim + b];
-      const double det = sumfac::inverse<dim>(J, inv);
+      const double det = kernels::sumfac::inverse<dim>(J, inv);
       // field at the point (coefficient or velocity), from the DoF values
       double f[3] = {1.0, 0.0, 0.0};
       if (!field.empty()) {

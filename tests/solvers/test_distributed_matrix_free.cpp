@@ -62,7 +62,7 @@ void check(const Case& c, int n) {
   o.geometry = c.geometry;
   o.components = c.components;
   if (c.gauss_lobatto) {
-    o.quadrature = sumfac::QuadratureKind::gauss_lobatto;
+    o.quadrature = kernels::sumfac::QuadratureKind::gauss_lobatto;
     o.n_q = c.degree + 1;
   }
 

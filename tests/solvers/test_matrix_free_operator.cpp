@@ -77,8 +77,8 @@ void check(const Case& c, int nx, int ny, int nz) {
   o.kind = c.kind;
   o.geometry = c.geometry;
   o.n_q = c.degree + 1 + c.n_q_extra;
-  o.quadrature =
-      c.gauss_lobatto ? sumfac::QuadratureKind::gauss_lobatto : sumfac::QuadratureKind::gauss;
+  o.quadrature = c.gauss_lobatto ? kernels::sumfac::QuadratureKind::gauss_lobatto
+                                 : kernels::sumfac::QuadratureKind::gauss;
   o.components = c.components;
   o.generic_kernel = c.generic;
   if (!field.empty()) o.field = to_device(field);
@@ -206,13 +206,13 @@ TEST(MatrixFreeOperator, GenericKernelElementMatricesEqualTheCompiledKernels) {
 // y += A x by the generic kernel's batches (a functor: no device lambda in a test body).
 template <int dim, class Point>
 struct GenericBatches {
-  sumfac::GenericCellKernel<dim, TestExecSpace, Point> k;
+  kernels::sumfac::GenericCellKernel<dim, TestExecSpace, Point> k;
   Vector x;
   double* y;
   long n;
   KOKKOS_INLINE_FUNCTION void operator()(
-      const typename sumfac::GenericCellKernel<dim, TestExecSpace, Point>::Team& team, int b0,
-      int b1) const {
+      const typename kernels::sumfac::GenericCellKernel<dim, TestExecSpace, Point>::Team& team,
+      int b0, int b1) const {
     k.template add_batches<true>(team, b0, b1, x, y, n, 1, 0);
   }
 };
@@ -238,11 +238,12 @@ void check_generic_in_teams(OperatorKind kind) {
     for (double& e : xh) e = u(rng);
     const Vector x = to_device(xh), y_op("y_op", n), y_teams("y_teams", n);
     op.apply(exec, x, y_op);
-    const auto k = sumfac::make_generic_cell_kernel<3, TestExecSpace>(
-        space.lattice(), space.coordinates(), Point{}, 3, 6, sumfac::QuadratureKind::gauss);
-    sumfac::for_each_batch_team_at_once(exec, k.lattice, "test::generic_in_teams",
-                                        k.scratch_bytes(), team_size,
-                                        GenericBatches<3, Point>{k, x, y_teams.data(), n});
+    const auto k = kernels::sumfac::make_generic_cell_kernel<3, TestExecSpace>(
+        space.lattice(), space.coordinates(), Point{}, 3, 6,
+        kernels::sumfac::QuadratureKind::gauss);
+    kernels::sumfac::for_each_batch_team_at_once(exec, k.lattice, "test::generic_in_teams",
+                                                 k.scratch_bytes(), team_size,
+                                                 GenericBatches<3, Point>{k, x, y_teams.data(), n});
     exec.fence();
     const std::vector<double> a = to_host(y_op), b = to_host(y_teams);
     std::vector<char> constrained(n, 0);
@@ -264,8 +265,8 @@ void check_generic_in_teams(OperatorKind kind) {
 }
 
 TEST(MatrixFreeOperator, GenericKernelInTeamsOfTwoMatchesTheOperator) {
-  check_generic_in_teams<sumfac::LaplacePoint<3>>(OperatorKind::laplace);
-  check_generic_in_teams<sumfac::MassPoint<3>>(OperatorKind::mass);
+  check_generic_in_teams<kernels::sumfac::LaplacePoint<3>>(OperatorKind::laplace);
+  check_generic_in_teams<kernels::sumfac::MassPoint<3>>(OperatorKind::mass);
 }
 
 TEST(MatrixFreeOperator, CollocatedVectorVariableCoefficientAndConvectionOperatorsMatch) {
@@ -378,7 +379,8 @@ TEST(MatrixFreeOperator, MassOfUnitCubeIsOneAndLaplacianOfConstantVanishes) {
 // checked against assembled matrices above.)
 TEST(MatrixFreeOperator, EqualCellsShareOneSetOfCoefficients) {
   using Op = MatrixFreeOperator<3, TestExecSpace>;
-  const std::size_t simd = sizeof(sumfac::Simd<sumfac::simd_width_v<TestExecSpace>>);
+  const std::size_t simd =
+      sizeof(kernels::sumfac::Simd<kernels::sumfac::simd_width_v<TestExecSpace>>);
   for (const int n : {3, 8}) {
     typename Op::Options o;
     o.geometry = GeometryMode::cartesian;
@@ -434,8 +436,8 @@ void check_direction(const mesh::StructuredHexMesh<dim>& m, int k, int component
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
   o.geometry = G::cartesian;
   o.components = components;
-  o.quadrature =
-      gauss_lobatto ? sumfac::QuadratureKind::gauss_lobatto : sumfac::QuadratureKind::gauss;
+  o.quadrature = gauss_lobatto ? kernels::sumfac::QuadratureKind::gauss_lobatto
+                               : kernels::sumfac::QuadratureKind::gauss;
   const MatrixFreeOperator<dim, TestExecSpace> op(space, o);
   const long n = op.size();
   std::vector<double> z(n), p0(n);

@@ -9,7 +9,7 @@
 // like the interior from a ghost row the caller filled from a traction condition (first_row = 0).
 #include "kernels/spaces.hpp"
 
-namespace amphora::elastic {
+namespace amphora::kernels::elastic {
 
 /// Node fields (storage row j + 1 for grid row j, column i, component c): grid rows -1..ny
 /// (row -1 the ghost line below the bottom boundary), columns 0..nx-1 (periodic in x).
@@ -45,7 +45,7 @@ void elastic_wave_step(const ExecSpace& exec, const ElasticGrid& g, const Elasti
   const double cxy = (m.lambda + m.mu) / (4 * g.hx * g.hy);
   const double a = dt * dt / m.rho;
   Kokkos::parallel_for(
-      "amphora::elastic::wave_step",
+      "amphora::kernels::elastic::wave_step",
       Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>(exec, {first_row + 1, 0}, {g.ny + 1, nx}),
       KOKKOS_LAMBDA(int j, int i) {  // j: storage row
         const int e = i + 1 < nx ? i + 1 : 0, w = i > 0 ? i - 1 : nx - 1;
@@ -63,4 +63,4 @@ void elastic_wave_step(const ExecSpace& exec, const ElasticGrid& g, const Elasti
       });
 }
 
-}  // namespace amphora::elastic
+}  // namespace amphora::kernels::elastic

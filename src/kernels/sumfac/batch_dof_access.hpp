@@ -6,7 +6,7 @@
 #include "kernels/sumfac/simd.hpp"
 #include "kernels/sumfac/strided_lanes.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 template <int dim, int n_p, int W>
 struct BatchDofAccess {
@@ -212,4 +212,4 @@ struct BatchDofAccess {
   }
 };
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

@@ -13,7 +13,7 @@
 #include "kernels/sumfac/qk_lattice.hpp"
 #include "kernels/sumfac/row_touch.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 /// The block colouring of a lattice's slabs (see the top of this file): colours 0 and 1 take
 /// alternate blocks of slabs_per_block() consecutive slabs (the last block may be short), colour
@@ -113,8 +113,8 @@ void for_each_batch_team_at_once(const ExecSpace& exec, const QkLattice<dim>& la
 /// thread takes one block of slabs, blocks coloured as above; device spaces run one team per
 /// batch, all at once (for_each_batch_team_at_once), and body must add atomically.
 template <class ExecSpace, int dim, class Body>
-void for_each_batch_team(const ExecSpace& exec, const QkLattice<dim>& lattice,
-                         const char* label, std::size_t scratch_bytes, const Body& body) {
+void for_each_batch_team(const ExecSpace& exec, const QkLattice<dim>& lattice, const char* label,
+                         std::size_t scratch_bytes, const Body& body) {
   using Policy = Kokkos::TeamPolicy<ExecSpace>;
   constexpr bool host = runs_on_host_v<ExecSpace>;
   if constexpr (!host) {
@@ -137,4 +137,4 @@ void for_each_batch_team(const ExecSpace& exec, const QkLattice<dim>& lattice,
   }
 }
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

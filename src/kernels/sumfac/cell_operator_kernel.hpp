@@ -18,7 +18,7 @@
 #include "kernels/sumfac/simd.hpp"
 #include "kernels/sumfac/tensor_product_evaluator.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 /// How the geometry reaches the quadrature points:
 ///  cartesian   axis-aligned box cells: dim numbers per cell
@@ -219,7 +219,7 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
     }
     for (int i = 0; i < n_dofs; ++i) d[i] = T(0.0);
     using M = EvenOddMatrix<n_p, n_q>;
-    if (is_mass) {
+    if constexpr (is_mass) {
       for (int q = 0; q < n_points; ++q) s.v[q] = coefficient(c, 0, q);
       const M* m[3] = {&shape.ss_t, &shape.ss_t, &shape.ss_t};
       Eval::template integrate_tensor<true>(m, s.v, d, s.tmp);
@@ -308,4 +308,4 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
   }
 };
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

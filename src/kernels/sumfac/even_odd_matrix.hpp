@@ -11,7 +11,7 @@
 
 #include <Kokkos_Core.hpp>
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 template <int n_rows, int n_cols>
 struct EvenOddMatrix {
@@ -170,4 +170,4 @@ KOKKOS_FORCEINLINE_FUNCTION void apply_even_odd(const EvenOddMatrix<n_rows, n_co
                                                                      y + p * n_rows * stride + s);
 }
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

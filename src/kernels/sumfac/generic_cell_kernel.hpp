@@ -17,7 +17,7 @@
 #include "kernels/sumfac/qk_lattice.hpp"
 #include "kernels/sumfac/shape_data.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 template <int dim, class ExecSpace, class Point>
 struct GenericCellKernel {
@@ -261,4 +261,4 @@ GenericCellKernel<dim, ExecSpace, Point> make_generic_cell_kernel(
   return g;
 }
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

@@ -22,7 +22,7 @@
 
 #include "kernels/sumfac/point_geometry.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 /// Fast paths of the cell loop through the 1D matrices (Kronecker sums and products) or the
 /// diagonal's 1D tensors: only for operators of this exact form.
@@ -49,8 +49,7 @@ struct MassPoint {
     c[0] = w * determinant<dim>(J);
   }
   template <class T, class C>
-  KOKKOS_FORCEINLINE_FUNCTION void at_point(const C& c, const T* u, const T*, T* u_out,
-                                            T*) const {
+  KOKKOS_FORCEINLINE_FUNCTION void at_point(const C& c, const T* u, const T*, T* u_out, T*) const {
     u_out[0] = u[0] * c[0];
   }
 };
@@ -70,8 +69,7 @@ struct LaplacePoint {
     laplace_metric<dim>(J, scale, c);
   }
   template <class T, class C>
-  KOKKOS_FORCEINLINE_FUNCTION void at_point(const C& c, const T*, const T* g, T*,
-                                            T* g_out) const {
+  KOKKOS_FORCEINLINE_FUNCTION void at_point(const C& c, const T*, const T* g, T*, T* g_out) const {
     for (int a = 0; a < dim; ++a) {
       T s = T(0.0);
       for (int e = 0; e < dim; ++e) s += c[sym_index<dim>(a, e)] * g[e];
@@ -95,8 +93,7 @@ struct ConvectionPoint {
     convection_metric<dim>(J, w, f ? f : zero, c);
   }
   template <class T, class C>
-  KOKKOS_FORCEINLINE_FUNCTION void at_point(const C& c, const T*, const T* g, T* u_out,
-                                            T*) const {
+  KOKKOS_FORCEINLINE_FUNCTION void at_point(const C& c, const T*, const T* g, T* u_out, T*) const {
     T s = T(0.0);
     for (int a = 0; a < dim; ++a) s += c[a] * g[a];
     u_out[0] = s;
@@ -134,8 +131,8 @@ struct ElasticityPoint {
     T sigma[dim * dim];
     for (int i = 0; i < dim; ++i)
       for (int a = 0; a < dim; ++a)
-        sigma[i * dim + a] = T(mu) * (grad[i * dim + a] + grad[a * dim + i]) +
-                             (i == a ? T(lambda) * trace : T(0.0));
+        sigma[i * dim + a] =
+            T(mu) * (grad[i * dim + a] + grad[a * dim + i]) + (i == a ? T(lambda) * trace : T(0.0));
     for (int i = 0; i < dim; ++i)  // times w det J, back to reference: sigma J^-T
       for (int b = 0; b < dim; ++b) {
         T s = T(0.0);
@@ -145,4 +142,4 @@ struct ElasticityPoint {
   }
 };
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

@@ -8,7 +8,7 @@
 // A coefficient a(x) of a variable-coefficient Laplace multiplies G.
 #include <Kokkos_Core.hpp>
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 template <int dim>
 inline constexpr int n_symmetric = dim*(dim + 1) / 2;
@@ -88,4 +88,4 @@ KOKKOS_INLINE_FUNCTION T determinant(const T* J) {
   }
 }
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

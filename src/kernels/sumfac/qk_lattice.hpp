@@ -7,7 +7,7 @@
 // gone. Plain data, copied into kernels by value.
 #include "kernels/kokkos_compat.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 template <int dim>
 struct QkLattice {
@@ -203,4 +203,4 @@ struct QkLattice {
   }
 };
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 namespace {
 
 constexpr double pi = 3.14159265358979323846;
@@ -130,4 +130,4 @@ std::vector<double> lagrange_derivatives(const std::vector<double>& nodes,
   return d;
 }
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

@@ -3,7 +3,7 @@
 // tensor-product (sum-factorised) operators. Host code: computed once at setup.
 #include <vector>
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 struct Quadrature1D {
   std::vector<double> points;   ///< ascending, in [0, 1], symmetric about 1/2
@@ -25,4 +25,4 @@ std::vector<double> lagrange_values(const std::vector<double>& nodes, const std:
 std::vector<double> lagrange_derivatives(const std::vector<double>& nodes,
                                          const std::vector<double>& x);
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

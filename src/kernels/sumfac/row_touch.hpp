@@ -7,7 +7,7 @@
 // sec. 3).
 #include "kernels/sumfac/qk_lattice.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 /// DoFs a row touches first (or last) in the cell loop's order: in each node layer of
 /// [layer_first, layer_end) (along the last direction), its lines [line_first, line_end) along
@@ -116,4 +116,4 @@ struct LastTouchDot {
   }
 };
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

@@ -9,7 +9,7 @@
 #include "kernels/sumfac/even_odd_matrix.hpp"
 #include "kernels/sumfac/quadrature_1d.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 enum class QuadratureKind { gauss, gauss_lobatto };
 
@@ -90,4 +90,4 @@ struct ShapeData {
   }
 };
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

@@ -9,7 +9,7 @@
 
 #include "kernels/spaces.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 #if defined(__AVX512F__)
 inline constexpr int host_simd_width = 8;
@@ -100,4 +100,4 @@ struct alignas(W * sizeof(double)) Simd {
 #endif
 };
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

@@ -10,7 +10,7 @@
 
 #include "kernels/sumfac/simd.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 // (not under nvcc, whose host pass hands GCC a pack expansion inside the builtin it rejects)
 #if defined(__has_builtin) && !defined(__CUDACC__)
@@ -83,4 +83,4 @@ KOKKOS_FORCEINLINE_FUNCTION void add_strided_row(double* p, const Simd<W>* u) {
   p[W * k] += u[k][W - 1];
 }
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

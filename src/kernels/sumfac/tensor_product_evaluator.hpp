@@ -5,7 +5,7 @@
 // "evaluate, apply the point-wise physics, integrate". Arrays are lexicographic with x fastest.
 #include "kernels/sumfac/shape_data.hpp"
 
-namespace amphora::sumfac {
+namespace amphora::kernels::sumfac {
 
 KOKKOS_INLINE_FUNCTION constexpr int ipow(int b, int e) { return e == 0 ? 1 : b * ipow(b, e - 1); }
 
@@ -236,4 +236,4 @@ struct TensorProductEvaluator {
   }
 };
 
-}  // namespace amphora::sumfac
+}  // namespace amphora::kernels::sumfac

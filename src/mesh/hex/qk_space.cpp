@@ -16,12 +16,13 @@ QkSpace<dim, ExecSpace>::QkSpace(const StructuredHexMesh<dim>& mesh, int degree)
                                 " outside the supported range 1.." + std::to_string(max_qk_degree));
   bool periodic[3] = {false, false, false};
   for (int d = 0; d < dim; ++d) periodic[d] = mesh.periodic(d);
-  lattice_ = sumfac::QkLattice<dim>::create(
-      degree, mesh.cells.data(), periodic, mesh.dirichlet_faces(), sumfac::simd_width_v<ExecSpace>);
+  lattice_ = kernels::sumfac::QkLattice<dim>::create(degree, mesh.cells.data(), periodic,
+                                                     mesh.dirichlet_faces(),
+                                                     kernels::sumfac::simd_width_v<ExecSpace>);
   lattice_.shared_faces = mesh.interface_faces();
 
   // Node coordinates: Gauss–Lobatto points in each cell of the box, then the deformation.
-  const std::vector<double> gl = sumfac::gauss_lobatto(degree + 1).points;
+  const std::vector<double> gl = kernels::sumfac::gauss_lobatto(degree + 1).points;
   std::vector<std::vector<double>> x1d(dim);
   for (int d = 0; d < dim; ++d) {
     const double h = (mesh.upper[d] - mesh.lower[d]) / mesh.cells[d];

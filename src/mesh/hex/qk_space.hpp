@@ -25,7 +25,7 @@ class QkSpace {
 
   const StructuredHexMesh<dim>& mesh() const { return mesh_; }
   int degree() const { return lattice_.degree; }
-  const sumfac::QkLattice<dim>& lattice() const { return lattice_; }
+  const kernels::sumfac::QkLattice<dim>& lattice() const { return lattice_; }
   long n_dofs() const { return lattice_.n_dofs(); }
   /// Coordinates of the unwrapped node lattice, blocked: coords(d * n_nodes + node).
   const Vector& coordinates() const { return coordinates_; }
@@ -40,7 +40,7 @@ class QkSpace {
 
  private:
   StructuredHexMesh<dim> mesh_;
-  sumfac::QkLattice<dim> lattice_;
+  kernels::sumfac::QkLattice<dim> lattice_;
   Vector coordinates_;
   Kokkos::View<long*, memory_space> constrained_;
 };

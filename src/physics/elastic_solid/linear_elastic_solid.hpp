@@ -15,6 +15,13 @@
 
 namespace amphora::elastic {
 
+// The grid, material and update of the kernel layer, as this module's vocabulary.
+using kernels::elastic::elastic_wave_dt_limit;
+using kernels::elastic::elastic_wave_step;
+using kernels::elastic::ElasticGrid;
+using kernels::elastic::ElasticMaterial;
+using kernels::elastic::NodeField;
+
 template <class ExecSpace>
 class LinearElasticSolid {
  public:

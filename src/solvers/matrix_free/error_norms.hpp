@@ -24,11 +24,12 @@ template <int dim, int n_p, int n_q, class ExecSpace, class Exact>
 void squared_errors(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& space,
                     const Kokkos::View<double*, typename ExecSpace::memory_space>& u,
                     const Exact& exact, double& l2, double& h1) {
-  using K = sumfac::CellOperatorKernel<dim, n_p, n_q, ExecSpace, sumfac::LaplacePoint<dim>>;
+  using K = kernels::sumfac::CellOperatorKernel<dim, n_p, n_q, ExecSpace,
+                                                kernels::sumfac::LaplacePoint<dim>>;
   using T = typename K::T;
   K kern;
   kern.lattice = space.lattice();
-  kern.shape = sumfac::ShapeData<n_p, n_q>::create(sumfac::QuadratureKind::gauss);
+  kern.shape = kernels::sumfac::ShapeData<n_p, n_q>::create(kernels::sumfac::QuadratureKind::gauss);
   kern.coordinates = space.coordinates();
   const double* src = u.data();
   Kokkos::parallel_reduce(
@@ -49,7 +50,7 @@ void squared_errors(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& 
         for (int q = 0; q < K::n_points; ++q) {
           T J[dim * dim], inv[dim * dim];
           for (int e = 0; e < dim * dim; ++e) J[e] = s.jac[e * K::n_points + q];
-          const T det = sumfac::inverse<dim>(J, inv);
+          const T det = kernels::sumfac::inverse<dim>(J, inv);
           const double w = K::Eval::weight(kern.shape, q);
           for (int l = 0; l < active; ++l) {
             double xp[3] = {0.0, 0.0, 0.0}, g[3] = {0.0, 0.0, 0.0};

@@ -1,5 +1,5 @@
 // The matrix-free operators' kernels of the mass point functor, 2D and 3D.
 #include "solvers/matrix_free/matrix_free_operator_install.hpp"
 
-using amphora::sumfac::MassPoint;
+using amphora::kernels::sumfac::MassPoint;
 AMPHORA_MF_FUNCTOR(MassPoint)

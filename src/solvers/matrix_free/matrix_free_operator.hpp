@@ -20,7 +20,7 @@ namespace amphora::solvers {
 /// coefficient field (LaplacePoint), convection by a velocity field (ConvectionPoint), isotropic
 /// linear elasticity on dim components (ElasticityPoint).
 enum class OperatorKind { mass, laplace, convection, elasticity };
-using sumfac::GeometryMode;
+using kernels::sumfac::GeometryMode;
 
 template <int dim, class ExecSpace>
 class MatrixFreeOperator {
@@ -32,7 +32,7 @@ class MatrixFreeOperator {
   struct Options {
     OperatorKind kind = OperatorKind::laplace;
     GeometryMode geometry = GeometryMode::stored;
-    sumfac::QuadratureKind quadrature = sumfac::QuadratureKind::gauss;
+    kernels::sumfac::QuadratureKind quadrature = kernels::sumfac::QuadratureKind::gauss;
     int n_q = 0;  ///< points per direction; 0: degree + 1
     /// Blocked components: copies of a scalar operator (3 for the vector Laplace/mass of CEED
     /// BP2/4/6), or dim for elasticity.

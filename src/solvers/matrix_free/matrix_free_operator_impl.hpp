@@ -15,7 +15,7 @@ namespace amphora::solvers {
 
 template <int dim, class ExecSpace>
 struct MatrixFreeOperator<dim, ExecSpace>::Impl {
-  using T = sumfac::Simd<sumfac::simd_width_v<ExecSpace>>;
+  using T = kernels::sumfac::Simd<kernels::sumfac::simd_width_v<ExecSpace>>;
   Kokkos::View<T*, memory_space> batch_coef, point_coef;
   long batch_coef_stride = 0;
   std::shared_ptr<void> shape;    // ShapeData<n_p, n_q>
@@ -28,13 +28,14 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   std::vector<double> (*elements)(const MatrixFreeOperator&, const ExecSpace&) = nullptr;
 
   template <class P, int n_p, int n_q>
-  using Kernel = sumfac::CellOperatorKernel<dim, n_p, n_q, ExecSpace, P>;
+  using Kernel = kernels::sumfac::CellOperatorKernel<dim, n_p, n_q, ExecSpace, P>;
 
   /// The point functor of the options' kind, with its parameters.
   template <class P>
   static P make_point(const Options& o) {
     P p;
-    if constexpr (std::is_same_v<P, sumfac::ElasticityPoint<dim>>) p.lambda = o.lambda, p.mu = o.mu;
+    if constexpr (std::is_same_v<P, kernels::sumfac::ElasticityPoint<dim>>)
+      p.lambda = o.lambda, p.mu = o.mu;
     return p;
   }
 
@@ -42,10 +43,10 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   template <class F>
   static void with_point(OperatorKind kind, F&& f) {
     switch (kind) {
-      case OperatorKind::mass: return f(sumfac::MassPoint<dim>{});
-      case OperatorKind::laplace: return f(sumfac::LaplacePoint<dim>{});
-      case OperatorKind::convection: return f(sumfac::ConvectionPoint<dim>{});
-      case OperatorKind::elasticity: return f(sumfac::ElasticityPoint<dim>{});
+      case OperatorKind::mass: return f(kernels::sumfac::MassPoint<dim>{});
+      case OperatorKind::laplace: return f(kernels::sumfac::LaplacePoint<dim>{});
+      case OperatorKind::convection: return f(kernels::sumfac::ConvectionPoint<dim>{});
+      case OperatorKind::elasticity: return f(kernels::sumfac::ElasticityPoint<dim>{});
     }
   }
 
@@ -53,7 +54,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   static Kernel<P, n_p, n_q> kernel(const MatrixFreeOperator& op) {
     Kernel<P, n_p, n_q> k;
     k.lattice = op.space_->lattice();
-    k.shape = *static_cast<const sumfac::ShapeData<n_p, n_q>*>(op.impl_->shape.get());
+    k.shape = *static_cast<const kernels::sumfac::ShapeData<n_p, n_q>*>(op.impl_->shape.get());
     k.point = make_point<P>(op.options_);
     k.mode = op.options_.geometry;
     k.n_coef = coefficient_count<P>(op.options_);
@@ -65,15 +66,17 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     return k;
   }
 
-  static sumfac::FirstTouchZero<dim> first_touch_zero(const MatrixFreeOperator& op,
-                                                      const Vector& y) {
-    return sumfac::FirstTouchZero<dim>{op.space_->lattice(), y.data(), op.options_.components};
+  static kernels::sumfac::FirstTouchZero<dim> first_touch_zero(const MatrixFreeOperator& op,
+                                                               const Vector& y) {
+    return kernels::sumfac::FirstTouchZero<dim>{op.space_->lattice(), y.data(),
+                                                op.options_.components};
   }
 
   /// Coefficients kept per cell or point: the functor's (the Cartesian Laplace: the diagonal).
   template <class P>
   static int coefficient_count(const Options& o) {
-    if (o.geometry == GeometryMode::cartesian && P::structure == sumfac::PointStructure::laplace)
+    if (o.geometry == GeometryMode::cartesian &&
+        P::structure == kernels::sumfac::PointStructure::laplace)
       return dim;
     return P::n_coefficients;
   }
@@ -88,7 +91,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) blas1::fill(exec, y, 0.0);
     const auto zero = first_touch_zero(op, y);
-    sumfac::for_each_batch_coloured(
+    kernels::sumfac::for_each_batch_coloured(
         exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
         KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<atomic>(src, dst, comps, b0, b1); });
     copy_constrained(op, exec, x, y);
@@ -122,11 +125,11 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       double* qq = q.data();
       // row by row: batch by batch (the work interleaved with the cells') was 2x slower at p = 1,
       // where a batch's part of its lines is a few cache lines, and no faster at p = 3 and 6
-      sumfac::for_each_batch_coloured(
+      kernels::sumfac::for_each_batch_coloured(
           exec, k.lattice, "amphora::MatrixFreeOperator::apply_direction",
-          sumfac::FirstTouchDirection<dim>{k.lattice, z.data(), pp, qq, beta, comps},
+          kernels::sumfac::FirstTouchDirection<dim>{k.lattice, z.data(), pp, qq, beta, comps},
           KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<false>(pp, qq, comps, b0, b1); },
-          sumfac::LastTouchDot<dim>{k.lattice, pp, qq, partial.data(), comps});
+          kernels::sumfac::LastTouchDot<dim>{k.lattice, pp, qq, partial.data(), comps});
       // Constrained rows become q = p. The rows' sums took the loop's q there (zero, or what a
       // fast batch added into a Dirichlet lane, as apply leaves to copy_constrained): corrected.
       const auto cons = op.space_->constrained_dofs();
@@ -154,14 +157,14 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   template <class P>
   static void generic_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
                            const Vector& y, int mode) {
-    using K = sumfac::GenericCellKernel<dim, ExecSpace, P>;
+    using K = kernels::sumfac::GenericCellKernel<dim, ExecSpace, P>;
     const K k = *static_cast<const K*>(op.impl_->generic.get());
     const int comps = op.options_.components;
     const long n = op.space_->n_dofs();
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     blas1::fill(exec, y, 0.0);
     double* out = y.data();
-    sumfac::for_each_batch_team(
+    kernels::sumfac::for_each_batch_team(
         exec, k.lattice, "amphora::MatrixFreeOperator::generic", k.scratch_bytes(),
         KOKKOS_LAMBDA(const typename K::Team& team, int b0, int b1) {
           k.template add_batches<atomic>(team, b0, b1, x, out, n, comps, mode);
@@ -183,7 +186,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   }
   template <class P>
   static std::vector<double> generic_elements(const MatrixFreeOperator& op, const ExecSpace& exec) {
-    using K = sumfac::GenericCellKernel<dim, ExecSpace, P>;
+    using K = kernels::sumfac::GenericCellKernel<dim, ExecSpace, P>;
     using Policy = Kokkos::TeamPolicy<ExecSpace>;
     const K k = *static_cast<const K*>(op.impl_->generic.get());
     const int nd = k.n_cell_dofs();
@@ -222,7 +225,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const int comps = op.options_.components;
     constexpr bool atomic = !runs_on_host_v<ExecSpace>;
     if (atomic) blas1::fill(exec, d, 0.0);
-    sumfac::for_each_batch_coloured(
+    kernels::sumfac::for_each_batch_coloured(
         exec, k.lattice, "amphora::MatrixFreeOperator::diagonal", first_touch_zero(op, d),
         KOKKOS_LAMBDA(int b) { k.template diagonal_batch<atomic>(dst, comps, b); });
     copy_constrained(op, exec, Vector(), d, 1.0);
@@ -291,7 +294,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
             kern.point_coefficients(b, s);
             const T w0(K::Eval::weight(kern.shape, 0));
             for (int e = 0; e < n_keep; ++e) {
-              const int src = diagonal_only ? sumfac::sym_index<dim>(e, e) : e;
+              const int src = diagonal_only ? kernels::sumfac::sym_index<dim>(e, e) : e;
               bc(static_cast<long>(b) * n_keep + e) = s.jac[src * K::n_points] / w0;
             }
           });
@@ -380,7 +383,7 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
     fail(
         "a coefficient or velocity field varies within cells: use geometry 'stored' or "
         "'on_the_fly'");
-  if (options.quadrature == sumfac::QuadratureKind::gauss_lobatto && n_q_ != k + 1)
+  if (options.quadrature == kernels::sumfac::QuadratureKind::gauss_lobatto && n_q_ != k + 1)
     fail("Gauss-Lobatto quadrature is supported with n_q = degree + 1 (collocation) only");
 
   if (options.kind == OperatorKind::elasticity && options.components != dim)

@@ -12,14 +12,14 @@ namespace amphora::solvers {
 /// Highest compiled degree of functor P: all of the table for mass and Laplace (the
 /// benchmarks' and solvers' operators), max_compiled_degree_general for the others.
 template <class P>
-inline constexpr int compiled_degree_v = P::structure == sumfac::PointStructure::general
-                                             ? max_compiled_degree_general
-                                             : max_compiled_degree;
+inline constexpr int compiled_degree_v =
+    P::structure == kernels::sumfac::PointStructure::general ? max_compiled_degree_general
+                                                             : max_compiled_degree;
 
 template <int dim, class ExecSpace>
 template <class P>
 void MatrixFreeOperator<dim, ExecSpace>::Impl::install(const MatrixFreeOperator& op, const P&,
-                                                     Impl& impl) {
+                                                       Impl& impl) {
   const int k = op.space_->degree(), n_q = op.n_q_;
   const Options& options = op.options_;
   auto fail = [](const std::string& what) {
@@ -27,11 +27,11 @@ void MatrixFreeOperator<dim, ExecSpace>::Impl::install(const MatrixFreeOperator&
   };
   constexpr int max = compiled_degree_v<P>;
   if (options.generic_kernel || !compiled_kernel(k, n_q, max)) {
-    if constexpr (P::n_components == 1 && P::structure != sumfac::PointStructure::general) {
-      using K = sumfac::GenericCellKernel<dim, ExecSpace, P>;
+    if constexpr (P::n_components == 1 &&
+                  P::structure != kernels::sumfac::PointStructure::general) {
+      using K = kernels::sumfac::GenericCellKernel<dim, ExecSpace, P>;
       if (options.field.extent(0) > 0)
-        fail("no compiled kernel for degree " + std::to_string(k) + " with " +
-             std::to_string(n_q) +
+        fail("no compiled kernel for degree " + std::to_string(k) + " with " + std::to_string(n_q) +
              " points per direction, and the generic one does mass and constant-coefficient "
              "Laplace only");
       if (k + 1 > K::max_nodes_1d || n_q > K::max_points_1d)
@@ -39,7 +39,7 @@ void MatrixFreeOperator<dim, ExecSpace>::Impl::install(const MatrixFreeOperator&
              " points per direction exceeds the generic kernel's limits (degree <= " +
              std::to_string(K::max_nodes_1d - 1) +
              ", points <= " + std::to_string(K::max_points_1d) + ")");
-      impl.generic = std::make_shared<K>(sumfac::make_generic_cell_kernel<dim, ExecSpace>(
+      impl.generic = std::make_shared<K>(kernels::sumfac::make_generic_cell_kernel<dim, ExecSpace>(
           op.space_->lattice(), op.space_->coordinates(), make_point<P>(options), k, n_q,
           options.quadrature));
       impl.apply = &Impl::template generic_apply<P>;
@@ -47,24 +47,22 @@ void MatrixFreeOperator<dim, ExecSpace>::Impl::install(const MatrixFreeOperator&
       impl.elements = &Impl::template generic_elements<P>;
       return;
     } else {
-      fail("no compiled kernel for degree " + std::to_string(k) + " with " +
-           std::to_string(n_q) +
+      fail("no compiled kernel for degree " + std::to_string(k) + " with " + std::to_string(n_q) +
            " points per direction, and the generic one does mass and constant-coefficient "
            "Laplace only");
     }
   }
   dispatch_degree<1, max>(k, n_q, [&](auto np_c, auto nq_c) {
     constexpr int n_p = decltype(np_c)::value, nq = decltype(nq_c)::value;
-    impl.shape = std::make_shared<sumfac::ShapeData<n_p, nq>>(
-        sumfac::ShapeData<n_p, nq>::create(options.quadrature));
+    impl.shape = std::make_shared<kernels::sumfac::ShapeData<n_p, nq>>(
+        kernels::sumfac::ShapeData<n_p, nq>::create(options.quadrature));
     impl.apply = &Impl::template apply_impl<P, n_p, nq>;
-    if constexpr (P::structure != sumfac::PointStructure::general)
+    if constexpr (P::structure != kernels::sumfac::PointStructure::general)
       impl.direction = &Impl::template direction_impl<P, n_p, nq>;
     impl.diagonal = &Impl::template diagonal_impl<P, n_p, nq>;
     if constexpr (P::n_components == 1) impl.elements = &Impl::template elements_impl<P, n_p, nq>;
   });
 }
-
 
 template <int dim, class ExecSpace>
 template <class P>
@@ -78,7 +76,7 @@ void MatrixFreeOperator<dim, ExecSpace>::Impl::setup(const MatrixFreeOperator& o
 }  // namespace amphora::solvers
 
 /// Instances of functor template F (F<2>, F<3>) for every enabled backend.
-#define AMPHORA_MF_FUNCTOR_DIM(F, dim, E)                                                    \
+#define AMPHORA_MF_FUNCTOR_DIM(F, dim, E)                                                   \
   template void amphora::solvers::MatrixFreeOperator<dim, E>::Impl::install<F<dim>>(        \
       const MatrixFreeOperator<dim, E>&, const F<dim>&, MatrixFreeOperator<dim, E>::Impl&); \
   template void amphora::solvers::MatrixFreeOperator<dim, E>::Impl::setup<F<dim>>(          \

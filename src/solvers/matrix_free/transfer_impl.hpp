@@ -15,9 +15,9 @@ namespace amphora::solvers {
 
 template <int dim, class ExecSpace>
 struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
-  static constexpr int W = sumfac::simd_width_v<ExecSpace>;
-  using T = sumfac::Simd<W>;
-  sumfac::QkLattice<dim> coarse, fine;  // both on the coarse cells
+  static constexpr int W = kernels::sumfac::simd_width_v<ExecSpace>;
+  using T = kernels::sumfac::Simd<W>;
+  kernels::sumfac::QkLattice<dim> coarse, fine;  // both on the coarse cells
   Kokkos::View<long*, typename ExecSpace::memory_space> coarse_constrained, fine_constrained;
   int components = 1;
 
@@ -35,16 +35,16 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
 
   template <int n_pc, int n_pf>
   struct Kernel {
-    sumfac::BatchDofAccess<dim, n_pc, W> c;
-    sumfac::BatchDofAccess<dim, n_pf, W> f;
-    sumfac::ShapeData<n_pc, n_pf> shape;
-    using Eval = sumfac::TensorProductEvaluator<dim, n_pc, n_pf>;
+    kernels::sumfac::BatchDofAccess<dim, n_pc, W> c;
+    kernels::sumfac::BatchDofAccess<dim, n_pf, W> f;
+    kernels::sumfac::ShapeData<n_pc, n_pf> shape;
+    using Eval = kernels::sumfac::TensorProductEvaluator<dim, n_pc, n_pf>;
 
     template <bool atomic>
     KOKKOS_INLINE_FUNCTION void prolongate(const double* xc, double* xf, int b) const {
       T uc[Eval::n_dofs], uf[Eval::n_points], w[Eval::n_points], tmp[Eval::n_scratch];
-      typename sumfac::BatchDofAccess<dim, n_pc, W>::BatchIndex ic;
-      typename sumfac::BatchDofAccess<dim, n_pf, W>::BatchIndex jf;
+      typename kernels::sumfac::BatchDofAccess<dim, n_pc, W>::BatchIndex ic;
+      typename kernels::sumfac::BatchDofAccess<dim, n_pf, W>::BatchIndex jf;
       c.batch_index(b, ic);
       f.batch_index(b, jf);
       c.gather(xc, ic, uc);
@@ -56,8 +56,8 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     template <bool atomic>
     KOKKOS_INLINE_FUNCTION void restrict_to_coarse(const double* xf, double* xc, int b) const {
       T uc[Eval::n_dofs], uf[Eval::n_points], w[Eval::n_points], tmp[Eval::n_scratch];
-      typename sumfac::BatchDofAccess<dim, n_pc, W>::BatchIndex ic;
-      typename sumfac::BatchDofAccess<dim, n_pf, W>::BatchIndex jf;
+      typename kernels::sumfac::BatchDofAccess<dim, n_pc, W>::BatchIndex ic;
+      typename kernels::sumfac::BatchDofAccess<dim, n_pf, W>::BatchIndex jf;
       c.batch_index(b, ic);
       f.batch_index(b, jf);
       f.gather(xf, jf, uf);
@@ -73,7 +73,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     Kernel<n_pc, n_pf> k;
     k.c.lattice = impl.coarse;
     k.f.lattice = impl.fine;
-    k.shape = *static_cast<const sumfac::ShapeData<n_pc, n_pf>*>(impl.shape.get());
+    k.shape = *static_cast<const kernels::sumfac::ShapeData<n_pc, n_pf>*>(impl.shape.get());
     return k;
   }
 
@@ -87,9 +87,9 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     for (int comp = 0; comp < impl.components; ++comp) {
       const double* src = xc.data() + comp * nc;
       double* dst = xf.data() + comp * nf;
-      sumfac::for_each_batch_coloured(
+      kernels::sumfac::for_each_batch_coloured(
           exec, impl.fine, "amphora::MatrixFreeTransfer::prolongate",
-          sumfac::FirstTouchZero<dim>{impl.fine, dst, 1},
+          kernels::sumfac::FirstTouchZero<dim>{impl.fine, dst, 1},
           KOKKOS_LAMBDA(int b) { k.template prolongate<atomic>(src, dst, b); });
       zero_constrained(exec, impl.fine_constrained, dst);
     }
@@ -105,9 +105,9 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     for (int comp = 0; comp < impl.components; ++comp) {
       const double* src = xf.data() + comp * nf;
       double* dst = xc.data() + comp * nc;
-      sumfac::for_each_batch_coloured(
+      kernels::sumfac::for_each_batch_coloured(
           exec, impl.coarse, "amphora::MatrixFreeTransfer::restrict",
-          sumfac::FirstTouchZero<dim>{impl.coarse, dst, 1},
+          kernels::sumfac::FirstTouchZero<dim>{impl.coarse, dst, 1},
           KOKKOS_LAMBDA(int b) { k.template restrict_to_coarse<atomic>(src, dst, b); });
       zero_constrained(exec, impl.coarse_constrained, dst);
     }
@@ -160,8 +160,8 @@ MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, cons
   } else if (refined && fine.degree() == 1 && coarse.degree() == 1) {
     bool periodic[3] = {false, false, false};
     for (int d = 0; d < dim; ++d) periodic[d] = mc.periodic(d);
-    impl->fine = sumfac::QkLattice<dim>::create(2, mc.cells.data(), periodic, mc.dirichlet_faces(),
-                                                impl->coarse.width);
+    impl->fine = kernels::sumfac::QkLattice<dim>::create(2, mc.cells.data(), periodic,
+                                                         mc.dirichlet_faces(), impl->coarse.width);
     impl->fine.shared_faces = impl->coarse.shared_faces;
     fine_degree = 2;
   } else {
@@ -172,8 +172,8 @@ MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, cons
   }
   detail::dispatch_transfer(coarse.degree(), fine_degree, [&](auto pc, auto pf) {
     constexpr int n_pc = decltype(pc)::value, n_pf = decltype(pf)::value;
-    impl->shape = std::make_shared<sumfac::ShapeData<n_pc, n_pf>>(
-        sumfac::ShapeData<n_pc, n_pf>::interpolation());
+    impl->shape = std::make_shared<kernels::sumfac::ShapeData<n_pc, n_pf>>(
+        kernels::sumfac::ShapeData<n_pc, n_pf>::interpolation());
     impl->prolongate = &Impl::template prolongate_impl<n_pc, n_pf>;
     impl->restrict_to_coarse = &Impl::template restrict_impl<n_pc, n_pf>;
   });
