@@ -215,29 +215,28 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
         apply_local(c, u, s);
         d[j] = u[j];
       }
-      return;
+    } else {
+      for (int i = 0; i < n_dofs; ++i) d[i] = T(0.0);
+      if constexpr (is_mass)
+        diagonal_term(c, -1, -1, d, s);
+      else
+        for (int a = 0; a < dim; ++a)
+          for (int b = a; b < dim; ++b)
+            if (mode != GeometryMode::cartesian || a == b) diagonal_term(c, a, b, d, s);
     }
-    for (int i = 0; i < n_dofs; ++i) d[i] = T(0.0);
+  }
+
+  /// d += the diagonal of the term of reference derivatives a, b (-1, -1: values) of the mass
+  /// or Laplace structure.
+  KOKKOS_INLINE_FUNCTION void diagonal_term(const T* c, int a, int b, T* d, Scratch& s) const {
     using M = EvenOddMatrix<n_p, n_q>;
-    if constexpr (is_mass) {
-      for (int q = 0; q < n_points; ++q) s.v[q] = coefficient(c, 0, q);
-      const M* m[3] = {&shape.ss_t, &shape.ss_t, &shape.ss_t};
-      Eval::template integrate_tensor<true>(m, s.v, d, s.tmp);
-      return;
-    }
-    for (int a = 0; a < dim; ++a)
-      for (int b = a; b < dim; ++b) {
-        if (mode == GeometryMode::cartesian && a != b) continue;
-        const int e = sym_index<dim>(a, b);
-        const T f(a == b ? 1.0 : 2.0);
-        for (int q = 0; q < n_points; ++q) s.v[q] = f * coefficient(c, e, q);
-        const M* m[3];
-        for (int dd = 0; dd < dim; ++dd)
-          m[dd] = (dd == a && dd == b)   ? &shape.dd_t
-                  : (dd == a || dd == b) ? &shape.sd_t
-                                         : &shape.ss_t;
-        Eval::template integrate_tensor<true>(m, s.v, d, s.tmp);
-      }
+    const int e = a < 0 ? 0 : sym_index<dim>(a, b);
+    const T f(a == b ? 1.0 : 2.0);
+    for (int q = 0; q < n_points; ++q) s.v[q] = f * coefficient(c, e, q);
+    const M* m[3];
+    for (int dd = 0; dd < dim; ++dd)
+      m[dd] = (dd == a && dd == b) ? &shape.dd_t : (dd == a || dd == b) ? &shape.sd_t : &shape.ss_t;
+    Eval::template integrate_tensor<true>(m, s.v, d, s.tmp);
   }
 
   /// dst += A src on batches b0 .. b1 - 1 of one row of cells; n_components blocked copies
