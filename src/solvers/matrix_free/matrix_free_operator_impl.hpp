@@ -286,7 +286,10 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     } else {
       Kokkos::View<T*, memory_space> bc("amphora::MatrixFreeOperator::batch_coef",
                                         static_cast<std::size_t>(nb) * n_keep);
-      const bool diagonal_only = n_keep != n_all;
+      // only the Cartesian Laplace keeps the diagonal of its metric (so the compiler sees the
+      // index below in range for every other functor)
+      const bool diagonal_only =
+          P::structure == kernels::sumfac::PointStructure::laplace && n_keep != n_all;
       Kokkos::parallel_for(
           "amphora::MatrixFreeOperator::setup_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
           KOKKOS_LAMBDA(int b) {
