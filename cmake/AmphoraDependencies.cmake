@@ -36,6 +36,10 @@ if(Kokkos_DEVICES MATCHES "CUDA")
   foreach(diag 20011 20012 20013 20014 20015)
     add_compile_options("SHELL:-Xcudafe --diag_error=${diag}")
   endforeach()
+  # Each object keeps its own KOKKOS_LAMBDA wrappers (nvcc's per-file function pointers behind
+  # weak, merged members make the host jump to address 0): see cmake/nvcc_lambda_wrappers.sh.
+  find_program(AMPHORA_OBJCOPY objcopy REQUIRED)
+  set(CMAKE_CXX_COMPILER_LAUNCHER ${CMAKE_CURRENT_LIST_DIR}/nvcc_lambda_wrappers.sh ${CCACHE_PROGRAM})
 endif()
 
 find_package(MPI REQUIRED COMPONENTS C CXX)

@@ -28,3 +28,5 @@ fi
 cmake --preset "$preset" -DKokkos_ROOT="${Kokkos_ROOT:-$kokkos}" "${extra[@]}" > "build/configure-$preset.log" \
   || { cat "build/configure-$preset.log"; exit 1; }
 cmake --build --preset "$preset" -j "$(nproc)" "$@"
+# The CUDA build's objects must each keep their own lambda wrappers (cmake/nvcc_lambda_wrappers.sh).
+if [ "$target" = cuda ]; then bash "$here/scripts/check_lambda_wrappers.sh" "build/$preset"; fi

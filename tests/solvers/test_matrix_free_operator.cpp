@@ -532,8 +532,10 @@ TEST(MatrixFreeOperator, ConjugateGradientTakesTheSweepAndMatchesThePasses) {
   }
 }
 
-// The coloured cell loop forms every sum in the same order whatever the thread count: the
-// result on this backend equals Kokkos::Serial's bit for bit (curved 3D Laplace, Q3 and Q5).
+// The coloured cell loop forms every sum in the same order whatever the thread count: on a host
+// backend the result equals Kokkos::Serial's bit for bit (curved 3D Laplace, Q3 and Q5). A GPU
+// adds the cells' contributions atomically, in no fixed order, and contracts other products into
+// FMAs: there the result may differ by round-off, a few ulps of the entries it sums.
 TEST(MatrixFreeOperator, ResultDoesNotDependOnTheBackendOrThreadCount) {
 #if defined(KOKKOS_ENABLE_SERIAL)
   for (int k : {3, 5}) {
@@ -553,8 +555,16 @@ TEST(MatrixFreeOperator, ResultDoesNotDependOnTheBackendOrThreadCount) {
     ops.apply(Kokkos::Serial(), xs, ys);
     const auto y = to_host(yd);
     long differ = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) differ += y[i] != ys(i);
-    EXPECT_EQ(differ, 0) << "k " << k << ": entries differing from Serial";
+    double worst = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      differ += y[i] != ys(i);
+      worst = std::max(worst, std::abs(y[i] - ys(i)));
+      scale = std::max(scale, std::abs(ys(i)));
+    }
+    if (runs_on_host_v<TestExecSpace>)
+      EXPECT_EQ(differ, 0) << "k " << k << ": entries differing from Serial";
+    else  // 1e-12: ~4500 ulps of the largest entry; a wrong term is off by O(1) of it
+      EXPECT_LT(worst, 1e-12 * scale) << "k " << k << ": " << differ << " entries differ";
   }
 #endif
 }

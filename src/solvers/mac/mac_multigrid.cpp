@@ -127,6 +127,26 @@ void complete_block_stencil(const ExecSpace& exec, const mesh::LatticeGhostExcha
 }
 
 template <class ExecSpace>
+auto MacMultigrid<ExecSpace>::coarsest_rows(const Stencil& coarsest) const
+    -> host_mirror_t<Kokkos::View<double*, MemSpace>> {
+  // this block's rows (diagonal, x, y, z couplings) packed on the device: one copy to the host
+  const auto cells = coarse_cells_;
+  const auto d = coarsest.diag;
+  const auto cx = coarsest.cx, cy = coarsest.cy, cz = coarsest.cz;
+  Kokkos::View<double*, MemSpace> packed("amphora::mac_mg::coarse_rows", 4 * cells.extent(0));
+  Kokkos::parallel_for(
+      "amphora::mac_mg::coarse_rows", RangePolicy<ExecSpace>(0, int(cells.extent(0))),
+      KOKKOS_LAMBDA(int m) {
+        const int c = cells(m);
+        packed(4 * m) = d(c), packed(4 * m + 1) = cx(c), packed(4 * m + 2) = cy(c);
+        packed(4 * m + 3) = cz(c);
+      });
+  const auto rows = Kokkos::create_mirror_view(packed);
+  Kokkos::deep_copy(rows, packed);  // a host build copies the View onto itself: counted there too
+  return rows;
+}
+
+template <class ExecSpace>
 void MacMultigrid<ExecSpace>::setup_coarse_solve(const Stencil& coarsest) {
   const mesh::MacBlock& block = halo_.block();
   const MPI_Comm comm = block.comm;
@@ -169,14 +189,7 @@ void MacMultigrid<ExecSpace>::setup_coarse_solve(const Stencil& coarsest) {
     for (int j = 0; j < g.ny; ++j)
       for (int i = 0; i < g.nx; ++i) cells.push_back(g.index(i, j, k));
   coarse_cells_ = to_view<MemSpace>(cells, "amphora::mac_mg::coarse_cells");
-  const auto d = Kokkos::create_mirror_view_and_copy(HostMemSpace(), coarsest.diag);
-  const auto cx = Kokkos::create_mirror_view_and_copy(HostMemSpace(), coarsest.cx);
-  const auto cy = Kokkos::create_mirror_view_and_copy(HostMemSpace(), coarsest.cy);
-  const auto cz = Kokkos::create_mirror_view_and_copy(HostMemSpace(), coarsest.cz);
-  std::vector<double> rows;
-  rows.reserve(4 * cells.size());
-  for (const int c : cells)
-    rows.insert(rows.end(), {d(c), double(cx(c)), double(cy(c)), double(cz(c))});
+  const auto rows = coarsest_rows(coarsest);
   std::vector<int> counts4(ranks), displacements4(ranks);
   for (int r = 0; r < ranks; ++r)
     counts4[r] = 4 * counts_[r], displacements4[r] = 4 * displacements_[r];
@@ -194,7 +207,7 @@ void MacMultigrid<ExecSpace>::setup_coarse_solve(const Stencil& coarsest) {
   coarse_ = std::make_unique<CoarseCholesky>(
       stencil_to_csr(whole, wd.data(), wx.data(), wy.data(), wz.data(), coarse_numbering_));
   coarse_local_ = Kokkos::View<float*, MemSpace>("amphora::mac_mg::coarse_local", cells.size());
-  coarse_send_.resize(cells.size());
+  coarse_send_ = Kokkos::create_mirror_view(coarse_local_);  // local itself on a host build
   coarse_gathered_.resize(total);
   coarse_lattice_.assign(whole.padded_size(), 0.0);
   coarse_rhs_.resize(coarse_numbering_.size());
@@ -223,8 +236,7 @@ void MacMultigrid<ExecSpace>::coarse_solve(const ExecSpace& exec) const {
   Kokkos::parallel_for(
       "amphora::mac_mg::coarse_pack", RangePolicy<ExecSpace>(exec, 0, n),
       KOKKOS_LAMBDA(int m) { local(m) = b(cells(m)); });
-  Kokkos::View<float*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> host(
-      coarse_send_.data(), n);
+  const auto host = coarse_send_;
   Kokkos::deep_copy(exec, host, local);
   exec.fence();
   MPI_Allgatherv(coarse_send_.data(), n, MPI_FLOAT, coarse_gathered_.data(), counts_.data(),
@@ -237,7 +249,7 @@ void MacMultigrid<ExecSpace>::coarse_solve(const ExecSpace& exec) const {
   std::fill(coarse_lattice_.begin(), coarse_lattice_.end(), 0.0);
   for (std::size_t u = 0; u < fluid.size(); ++u) coarse_lattice_[fluid[u]] = coarse_rhs_[u];
   for (int m = 0; m < n; ++m)
-    coarse_send_[m] = static_cast<float>(coarse_lattice_[gathered_index_[my_offset_ + m]]);
+    host(m) = static_cast<float>(coarse_lattice_[gathered_index_[my_offset_ + m]]);
   Kokkos::deep_copy(exec, local, host);
   blas1::fill(exec, x, 0.0f);
   Kokkos::parallel_for(

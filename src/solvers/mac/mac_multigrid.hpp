@@ -125,6 +125,7 @@ class MacMultigrid {
     halo_.exchange(exec, levels_[l].grid, v);
   }
   void setup_coarse_solve(const Stencil& coarsest);
+  host_mirror_t<Kokkos::View<double*, MemSpace>> coarsest_rows(const Stencil& coarsest) const;
 
  private:
   MacMultigridOptions options_;
@@ -141,7 +142,8 @@ class MacMultigrid {
   CompactNumbering coarse_numbering_;
   std::unique_ptr<CoarseCholesky> coarse_;
   mutable Kokkos::View<float*, MemSpace> coarse_local_;
-  mutable std::vector<float> coarse_send_, coarse_gathered_;
+  host_mirror_t<Kokkos::View<float*, MemSpace>> coarse_send_;  // coarse_local_'s host side
+  mutable std::vector<float> coarse_gathered_;
   mutable std::vector<double> coarse_lattice_, coarse_rhs_;
 };
 
