@@ -36,23 +36,23 @@ std::vector<std::string> split(const std::string& s, char sep) {
 
 int print_defaults(const std::string& name) {
   if (name == "run") {
-    std::cout << describe_defaults(run_parameter_table());
+    std::cout << io::describe_defaults(io::run_parameter_table());
     return 0;
   }
-  if (const ModuleInfo* m = find_module(name)) {
-    std::cout << describe_defaults(m->parameters());
+  if (const io::ModuleInfo* m = io::find_module(name)) {
+    std::cout << io::describe_defaults(m->parameters());
     return 0;
   }
   std::cerr << "amphora: error: unknown module '" << name << "'; known: run";
-  for (const auto& n : module_names()) std::cerr << ", " << n;
+  for (const auto& n : io::module_names()) std::cerr << ", " << n;
   std::cerr << std::endl;
   return 2;
 }
 
 /// `amphora run` without a scene: the scenes shipped, one line each.
 int print_scenes() {
-  const std::string dir = shipped_scene_dir();
-  const auto scenes = list_scenes(dir);
+  const std::string dir = io::shipped_scene_dir();
+  const auto scenes = io::list_scenes(dir);
   std::cout << "usage: amphora run SCENE [--restart FILE] [--max-steps N] [--no-output]\n"
             << "scenes shipped in " << dir << "/:\n";
   for (const auto& s : scenes)
@@ -105,27 +105,27 @@ int main(int argc, char** argv) {
   try {
     if (*info) {
       if (comm.is_root())
-        for (const auto& [k, v] : build_info())
+        for (const auto& [k, v] : io::build_info())
           std::cout << std::left << std::setw(26) << k << v << "\n";
       return 0;
     }
     if (*defaults) return comm.is_root() ? print_defaults(defaults_module) : 0;
     if (*run && scene_path.empty()) return comm.is_root() ? print_scenes() : 0;
 
-    const Scene scene = load_scene(scene_path);
+    const io::Scene scene = io::load_scene(scene_path);
     if (*check) {
-      check_scene(scene, comm);
+      io::check_scene(scene, comm);
       if (comm.is_root())
         std::cout << scene_path << ": ok (scene '" << scene.name << "', module " << scene.module
                   << ")\n";
       return 0;
     }
     if (*run) {
-      RunOptions opt;
+      io::RunOptions opt;
       opt.restart = restart;
       opt.max_steps = max_steps;
       opt.write_output = !no_output;
-      const RunResult r = run_scene(scene, comm, opt);
+      const io::RunResult r = io::run_scene(scene, comm, opt);
       if (r.diverged) return fail(comm, r.message, 3);
       if (comm.is_root()) {
         std::cout << "[done] " << r.steps << " steps to t=" << r.time << " in " << r.wall_seconds
@@ -135,7 +135,7 @@ int main(int argc, char** argv) {
         // where the stepping time went, per phase (the slowest rank's), one greppable line each
         if (r.steps > 0) {
           const auto per_step = [&](long long n) { return double(n) / double(r.steps); };
-          const DeepCopyCount& c = r.copies;
+          const kernels::DeepCopyCount& c = r.copies;
           std::cout << "[transfers] per step (rank 0): " << per_step(c.copies) << " deep copies, "
                     << per_step(c.bytes) << " B; host-device " << per_step(c.host_device()) << ", "
                     << per_step(c.host_device_bytes()) << " B; fills " << per_step(c.fills)
@@ -152,11 +152,11 @@ int main(int argc, char** argv) {
       csv << std::setprecision(10);
       bool header = false;
       for (const auto& value : split(study_values, ',')) {
-        const Scene s = load_scene(scene_path, {study_key + "=" + value});
-        RunOptions opt;
+        const io::Scene s = io::load_scene(scene_path, {study_key + "=" + value});
+        io::RunOptions opt;
         opt.write_output = false;
         opt.quiet = true;
-        const RunResult r = run_scene(s, comm, opt);
+        const io::RunResult r = io::run_scene(s, comm, opt);
         if (r.diverged) return fail(comm, study_key + "=" + value + ": " + r.message, 3);
         if (!header) {  // the module's final diagnostics follow the fixed columns
           csv << "parameter,value,error,wall_time,steps,work_per_step,rate,unit";
@@ -180,11 +180,11 @@ int main(int argc, char** argv) {
       }
       return 0;
     }
-  } catch (const SceneError& e) {
+  } catch (const io::SceneError& e) {
     return fail(comm, e.what(), 2);
-  } catch (const RunError& e) {
+  } catch (const io::RunError& e) {
     return fail(comm, e.what(), 2);
-  } catch (const DecompositionError& e) {
+  } catch (const mesh::DecompositionError& e) {
     return fail(comm, scene_path + ": " + e.what(), 2);
   } catch (const std::invalid_argument& e) {
     return fail(comm, scene_path + ": " + e.what(), 2);

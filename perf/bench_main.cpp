@@ -12,7 +12,8 @@ int main(int argc, char** argv) {
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   if (rank != 0 && !std::freopen("/dev/null", "w", stdout)) return 1;  // one report per run
-  for (const auto& [key, value] : amphora::build_info()) benchmark::AddCustomContext(key, value);
+  for (const auto& [key, value] : amphora::io::build_info())
+    benchmark::AddCustomContext(key, value);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -13,8 +13,8 @@
 namespace {
 
 using amphora::Communicator;
-using namespace amphora::dem;
-using System = DemSystem<amphora::DefaultExecSpace>;
+using namespace amphora::physics::dem;
+using System = DemSystem<amphora::kernels::DefaultExecSpace>;
 
 constexpr double kD = 0.003;
 
@@ -98,7 +98,7 @@ void run(benchmark::State& state, bool phases) {
   state.counters["particle_steps_per_s"] = benchmark::Counter(
       n * steps / seconds, benchmark::Counter::kDefaults, benchmark::Counter::OneK::kIs1000);
   state.counters["ranks"] = comm.size();
-  state.counters["threads"] = amphora::DefaultExecSpace().concurrency();
+  state.counters["threads"] = amphora::kernels::DefaultExecSpace().concurrency();
   const DemTimers& t = s.timers();
   state.counters["rebuilds"] = double(t.rebuilds - before.rebuilds);
   // The workload: pair contacts (each counted once) and wall contacts per particle.

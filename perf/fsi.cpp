@@ -21,7 +21,7 @@
 
 namespace {
 
-using namespace amphora::fsi;
+using namespace amphora::coupling::fsi;
 
 /// One step per iteration; the mean sub-iterations per step as a counter.
 template <class Coupled>

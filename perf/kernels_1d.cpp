@@ -10,8 +10,8 @@
 
 namespace {
 
-using amphora::DefaultExecSpace;
-using View = Kokkos::View<double*, amphora::DefaultMemSpace>;
+using amphora::kernels::DefaultExecSpace;
+using View = Kokkos::View<double*, amphora::kernels::DefaultMemSpace>;
 
 struct Source {
   KOKKOS_INLINE_FUNCTION double operator()(double x, double t) const { return x * t; }
@@ -46,20 +46,21 @@ void run(benchmark::State& state, double bytes_per_entry, Kernel kernel) {
 }
 
 void Axpy(benchmark::State& state) {
-  run(state, 24.0,
-      [](const DefaultExecSpace& e, int, View x, View y) { amphora::blas1::axpy(e, 1e-3, x, y); });
+  run(state, 24.0, [](const DefaultExecSpace& e, int, View x, View y) {
+    amphora::kernels::blas1::axpy(e, 1e-3, x, y);
+  });
 }
 
 void Dot(benchmark::State& state) {
   run(state, 16.0, [](const DefaultExecSpace& e, int, View x, View y) {
-    benchmark::DoNotOptimize(amphora::blas1::dot(e, x, y));
+    benchmark::DoNotOptimize(amphora::kernels::blas1::dot(e, x, y));
   });
 }
 
 void AdvectionDiffusionStep(benchmark::State& state) {
   run(state, 16.0, [](const DefaultExecSpace& e, int n, View x, View y) {
-    amphora::stencil::advection_diffusion_ftcs(e, x, y, 1, n - 1, 0.0, 1.0 / n, 1.0, 0.05, 0.0,
-                                               1e-6, Source{});
+    amphora::kernels::stencil::advection_diffusion_ftcs(e, x, y, 1, n - 1, 0.0, 1.0 / n, 1.0, 0.05,
+                                                        0.0, 1e-6, Source{});
   });
 }
 

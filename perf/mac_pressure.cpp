@@ -43,11 +43,12 @@
 
 namespace {
 
-using Exec = amphora::DefaultExecSpace;
+using Exec = amphora::kernels::DefaultExecSpace;
 using Mem = Exec::memory_space;
 using Vector = Kokkos::View<double*, Mem>;
 using Stencil = amphora::kernels::mac::PoissonStencil<Mem>;
-using kernels_mac_host_stencil_t = amphora::kernels::mac::PoissonStencil<amphora::HostMemSpace>;
+using kernels_mac_host_stencil_t =
+    amphora::kernels::mac::PoissonStencil<amphora::kernels::HostMemSpace>;
 namespace mesh = amphora::mesh;
 namespace kernels = amphora::kernels;
 namespace mac = amphora::solvers::mac;
@@ -62,15 +63,15 @@ double seconds_since(Clock::time_point t0) {
 struct UniformBox {
   kernels::mac::MacGrid grid;
   int z0 = 0;
-  mesh::MacBlock block;
+  mesh::mac::MacBlock block;
   Stencil A;
   Vector b;
 
   UniformBox(int n, int rank, int ranks) {
     // z slabs (a horizontal split), block faces between ranks coupled through the ghost layer
-    const amphora::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1,
-                                        {false, false, true});
-    const amphora::Box box = dec.box(rank);
+    const amphora::mesh::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1,
+                                              {false, false, true});
+    const amphora::mesh::Box box = dec.box(rank);
     const int nz = box.extent(2);
     z0 = box.lo[2];
     grid = kernels::mac::MacGrid{n, n, nz, 1.0 / n, {0.0, 0.0, z0 / double(n)}};
@@ -78,14 +79,14 @@ struct UniformBox {
     Kokkos::View<kernels::mac::MacCellType*, Mem> type("type", grid.padded_size());
     Kokkos::deep_copy(
         type, kernels::mac::MacCellType::fluid);  // ghosts too: the neighbours are all fluid
-    block = mesh::MacBlock::of(dec, MPI_COMM_WORLD, rank);
+    block = mesh::mac::MacBlock::of(dec, MPI_COMM_WORLD, rank);
     kernels::mac::MacBoxBoundaries open;
     open.fill(kernels::mac::MacBoundary::open);
     A = amphora::kernels::mac::build_poisson_stencil<Exec, Mem>(exec, grid, type, Vector(),
                                                                 block.faces(open));
-    mesh::LatticeGhostExchange(block).exchange(exec, grid, A.cz);  // the ghost cells' + faces
+    mesh::mac::LatticeGhostExchange(block).exchange(exec, grid, A.cz);  // the ghost cells' + faces
     std::vector<double> f(grid.padded_size(), 0.0);
-    const double h = grid.h, pi = amphora::math::pi;
+    const double h = grid.h, pi = amphora::kernels::math::pi;
     for (int k = 0; k < nz; ++k)
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
@@ -93,7 +94,7 @@ struct UniformBox {
           f[grid.index(i, j, k)] =
               h * h * (1.0 + std::sin(pi * x[0]) * std::sin(2 * pi * x[1]) * std::cos(pi * x[2]));
         }
-    b = amphora::to_view<Mem>(f, "b");
+    b = amphora::kernels::to_view<Mem>(f, "b");
   }
 };
 
@@ -139,12 +140,16 @@ void Uniform(benchmark::State& state) {
     const auto t0 = Clock::now();
     if (backend == 1) {
       // hypre directly, so several ranks can share the problem
-      const auto d = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.A.diag);
-      const auto cx = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.A.cx);
-      const auto cy = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.A.cy);
-      const auto cz = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.A.cz);
-      const auto bh = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), box.b);
-      auto xh = Kokkos::create_mirror_view_and_copy(amphora::HostMemSpace(), x);
+      const auto d =
+          Kokkos::create_mirror_view_and_copy(amphora::kernels::HostMemSpace(), box.A.diag);
+      const auto cx =
+          Kokkos::create_mirror_view_and_copy(amphora::kernels::HostMemSpace(), box.A.cx);
+      const auto cy =
+          Kokkos::create_mirror_view_and_copy(amphora::kernels::HostMemSpace(), box.A.cy);
+      const auto cz =
+          Kokkos::create_mirror_view_and_copy(amphora::kernels::HostMemSpace(), box.A.cz);
+      const auto bh = Kokkos::create_mirror_view_and_copy(amphora::kernels::HostMemSpace(), box.b);
+      auto xh = Kokkos::create_mirror_view_and_copy(amphora::kernels::HostMemSpace(), x);
       amphora::solvers::StructPfmgCG pfmg(MPI_COMM_WORLD, box.grid, {0, 0, box.z0}, d.data(),
                                           cx.data(), cy.data(), cz.data());
       setup = seconds_since(t0);
@@ -206,16 +211,16 @@ BENCHMARK(Uniform)
 /// Deep water over an undulating floor, on the host (the tall-cell grid is built there): this
 /// rank's z slab, its ghost cells (the neighbouring slabs' cells) from the same formulas.
 struct DeepWater {
-  mesh::MacBlock block;
+  mesh::mac::MacBlock block;
   kernels_mac_host_stencil_t A;
   long fluid_cells = 0;  ///< over all ranks: the uniform grid's unknowns
 };
 DeepWater deep_water(int n, int rank, int ranks) {
   DeepWater w;
-  const amphora::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1,
-                                      {false, false, true});
-  const amphora::Box box = dec.box(rank);
-  w.block = mesh::MacBlock::of(dec, MPI_COMM_WORLD, rank);
+  const amphora::mesh::BoxDecomposition dec({n, n, n}, {false, false, false}, ranks, 1,
+                                            {false, false, true});
+  const amphora::mesh::Box box = dec.box(rank);
+  w.block = mesh::mac::MacBlock::of(dec, MPI_COMM_WORLD, rank);
   const kernels::mac::MacGrid g{n, n, box.extent(2), 1.0 / n, {0, 0, box.lo[2] / double(n)}};
   std::vector<kernels::mac::MacCellType> type(g.padded_size(), kernels::mac::MacCellType::solid);
   std::vector<double> phi(g.padded_size(), 1.0);
@@ -239,11 +244,13 @@ DeepWater deep_water(int n, int rank, int ranks) {
   kernels::mac::MacBoxBoundaries faces;
   faces.fill(kernels::mac::MacBoundary::wall);
   faces[3] = kernels::mac::MacBoundary::open;
-  w.A = amphora::kernels::mac::build_poisson_stencil<amphora::HostExecSpace, amphora::HostMemSpace>(
-      amphora::HostExecSpace(), g, amphora::to_view<amphora::HostMemSpace>(type),
-      amphora::to_view<amphora::HostMemSpace>(phi), w.block.faces(faces));
-  mesh::LatticeGhostExchange(w.block).exchange(amphora::HostExecSpace(), g,
-                                               w.A.cz);  // the ghost cells' + faces
+  w.A = amphora::kernels::mac::build_poisson_stencil<amphora::kernels::HostExecSpace,
+                                                     amphora::kernels::HostMemSpace>(
+      amphora::kernels::HostExecSpace(), g,
+      amphora::kernels::to_view<amphora::kernels::HostMemSpace>(type),
+      amphora::kernels::to_view<amphora::kernels::HostMemSpace>(phi), w.block.faces(faces));
+  mesh::mac::LatticeGhostExchange(w.block).exchange(amphora::kernels::HostExecSpace(), g,
+                                                    w.A.cz);  // the ghost cells' + faces
   return w;
 }
 
@@ -267,7 +274,7 @@ void TallCells(benchmark::State& state) {
     exec.fence();
     MPI_Barrier(MPI_COMM_WORLD);
     const auto t0 = Clock::now();
-    const mesh::TallCellGrid T(host_A, n / 8, water.block);
+    const mesh::mac::TallCellGrid T(host_A, n / 8, water.block);
     const amphora::solvers::CsrMatrix M = mac::assemble_tall_cell_matrix(T, host_A);
     unknowns = T.global_unknowns();
     // right-hand side: P^T (h^2 f) for a smooth f
@@ -277,10 +284,11 @@ void TallCells(benchmark::State& state) {
         for (int i = 0; i < n; ++i) {
           const auto x = g.cell_centre(i, j, k);
           f[g.index(i, j, k)] =
-              g.h * g.h * (1.0 + std::sin(amphora::math::pi * x[0]) * std::cos(2 * x[2]) * x[1]);
+              g.h * g.h *
+              (1.0 + std::sin(amphora::kernels::math::pi * x[0]) * std::cos(2 * x[2]) * x[1]);
         }
     T.restrict_to_unknowns(f.data(), bt.data());
-    const Vector b = amphora::to_view<Mem>(bt, "b");
+    const Vector b = amphora::kernels::to_view<Mem>(bt, "b");
     Vector x("x", T.unknowns());
     static const mac::PressureBackend backends[] = {
         mac::PressureBackend::multigrid, mac::PressureBackend::hypre, mac::PressureBackend::mic0};

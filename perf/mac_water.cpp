@@ -24,7 +24,7 @@
 
 namespace {
 
-using Exec = amphora::DefaultExecSpace;
+using Exec = amphora::kernels::DefaultExecSpace;
 using Mem = Exec::memory_space;
 using Vector = Kokkos::View<double*, Mem>;
 namespace kernels = amphora::kernels;
@@ -40,7 +40,7 @@ struct Pool {
     std::vector<double> p(size, 0.0), f[3];
     std::vector<kernels::mac::MacCellType> t(size, kernels::mac::MacCellType::air);
     for (auto& c : f) c.assign(size, 0.0);
-    const double pi = amphora::math::pi;
+    const double pi = amphora::kernels::math::pi;
     for (int k = 0; k < n; ++k)
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
@@ -53,11 +53,11 @@ struct Pool {
           f[1][c] = -std::cos(pi * x[0]) * std::sin(pi * x[1]);
           f[2][c] = 0.2 * std::sin(2 * pi * x[0]);
         }
-    phi = amphora::to_view<Mem>(p), u = amphora::to_view<Mem>(f[0]),
-    v = amphora::to_view<Mem>(f[1]);
-    w = amphora::to_view<Mem>(f[2]);
+    phi = amphora::kernels::to_view<Mem>(p), u = amphora::kernels::to_view<Mem>(f[0]),
+    v = amphora::kernels::to_view<Mem>(f[1]);
+    w = amphora::kernels::to_view<Mem>(f[2]);
     out = Vector("out", size);
-    type = amphora::to_view<Mem>(t);
+    type = amphora::kernels::to_view<Mem>(t);
     mark = Kokkos::View<std::uint8_t*, Mem>("mark", size);
   }
 };
@@ -107,7 +107,7 @@ BENCHMARK(WaterKernels)
 
 void WaterStep(benchmark::State& state) {
   const int depth = static_cast<int>(state.range(0)), n = static_cast<int>(state.range(1));
-  namespace wm = amphora::water_mac;
+  namespace wm = amphora::physics::water_mac;
   amphora::Parameters p(wm::parameter_table());
   p.set("scene", std::string("splash"));
   for (const char* key : {"cells_x", "cells_y", "cells_z"}) p.set(key, std::int64_t(n));

@@ -6,8 +6,8 @@
 // (read the source, write the destination once). vs_dealii_* divide by the anchor figures.
 //
 // LaplaceDealii, LaplaceLarge and BP run on any number of MPI ranks (the box split into slabs,
-// mesh::DistributedQkSpace; DoFs and the STREAM bound are totals over the ranks, STREAM measured
-// on all ranks at once); GeometryModes and PoissonSolve on one.
+// mesh::hex::DistributedQkSpace; DoFs and the STREAM bound are totals over the ranks, STREAM
+// measured on all ranks at once); GeometryModes and PoissonSolve on one.
 //
 // LaplaceLarge/p: the same operator on ~40 million DoFs (vectors of 320 MB, beyond the 300 MiB
 // last-level cache): the memory-bound regime.
@@ -59,11 +59,11 @@
 // anonymous namespaces (Kokkos issue #1547).
 namespace bench_matrix_free_cases {
 
-using Exec = amphora::DefaultExecSpace;
-using Op = amphora::solvers::MatrixFreeOperator<3, Exec>;
+using Exec = amphora::kernels::DefaultExecSpace;
+using Op = amphora::solvers::matrix_free::MatrixFreeOperator<3, Exec>;
 using Vector = Op::Vector;
-using DistributedSpace = amphora::mesh::DistributedQkSpace<3, Exec>;
-using DistributedOp = amphora::solvers::DistributedOperator<3, Exec>;
+using DistributedSpace = amphora::mesh::hex::DistributedQkSpace<3, Exec>;
+using DistributedOp = amphora::solvers::matrix_free::DistributedOperator<3, Exec>;
 namespace mesh = amphora::mesh;
 
 /// Cells per direction giving 2–7 million Q_p DoFs (multiples of 8: full SIMD batches).
@@ -114,10 +114,10 @@ void report(benchmark::State& state, double dofs, double bytes_per_dof) {
 void LaplaceDealii(benchmark::State& state) {
   const int p = static_cast<int>(state.range(0));
   const int n = p == 5 ? 32 : dealii_cells(p);
-  const DistributedSpace space(mesh::unit_cube<3>(n), p, amphora::Communicator());
+  const DistributedSpace space(mesh::hex::unit_cube<3>(n), p, amphora::Communicator());
   Op::Options o;
-  o.kind = amphora::solvers::OperatorKind::laplace;
-  o.geometry = amphora::solvers::GeometryMode::cartesian;
+  o.kind = amphora::solvers::matrix_free::OperatorKind::laplace;
+  o.geometry = amphora::solvers::matrix_free::GeometryMode::cartesian;
   const DistributedOp op(space, o);
   Vector x("x", op.size()), y("y", op.size());
   Kokkos::deep_copy(x, 1.0);
@@ -135,7 +135,7 @@ BENCHMARK(LaplaceDealii)->DenseRange(2, 6)->Unit(benchmark::kMillisecond)->UseRe
 Vector random_vector(long n, unsigned seed) {
   Vector v("v", n);
   Kokkos::parallel_for(
-      "amphora::bench::random", amphora::RangePolicy<Exec>(0, static_cast<int>(n)),
+      "amphora::bench::random", amphora::kernels::RangePolicy<Exec>(0, static_cast<int>(n)),
       KOKKOS_LAMBDA(int i) {
         const unsigned h = (static_cast<unsigned>(i) + seed) * 2654435761u;
         v(i) = static_cast<double>(h % 1000003u) / 1000003.0 - 0.5;
@@ -153,9 +153,9 @@ int cells_for(double target, int p) {
 void LaplaceLarge(benchmark::State& state) {
   const int p = static_cast<int>(state.range(0));
   const int n = cells_for(4e7, p);
-  const DistributedSpace space(mesh::unit_cube<3>(n), p, amphora::Communicator());
+  const DistributedSpace space(mesh::hex::unit_cube<3>(n), p, amphora::Communicator());
   Op::Options o;
-  o.geometry = amphora::solvers::GeometryMode::cartesian;
+  o.geometry = amphora::solvers::matrix_free::GeometryMode::cartesian;
   const DistributedOp op(space, o);
   Vector x = random_vector(op.size(), 1), y("y", op.size());
   time_applications(state, op, x, y);
@@ -167,8 +167,9 @@ BENCHMARK(LaplaceLarge)->DenseRange(2, 6)->Unit(benchmark::kMillisecond)->UseRea
 /// The operator of CEED bake-off problem bp (1-6) at degree p (see the top of this file).
 Op::Options bp_options(int bp, int p) {
   Op::Options o;
-  o.kind = bp <= 2 ? amphora::solvers::OperatorKind::mass : amphora::solvers::OperatorKind::laplace;
-  o.geometry = amphora::solvers::GeometryMode::cartesian;
+  o.kind = bp <= 2 ? amphora::solvers::matrix_free::OperatorKind::mass
+                   : amphora::solvers::matrix_free::OperatorKind::laplace;
+  o.geometry = amphora::solvers::matrix_free::GeometryMode::cartesian;
   o.components = bp % 2 == 0 ? 3 : 1;
   o.n_q = bp >= 5 ? p + 1 : p + 2;
   o.quadrature = bp >= 5 ? amphora::kernels::sumfac::QuadratureKind::gauss_lobatto
@@ -177,8 +178,9 @@ Op::Options bp_options(int bp, int p) {
 }
 /// The unit cube of BP bp: no Dirichlet faces for the mass BPs, Dirichlet all round otherwise.
 DistributedSpace bp_space(int bp, int p, int cells) {
-  const auto faces = bp <= 2 ? mesh::FaceCondition::neumann : mesh::FaceCondition::dirichlet;
-  return DistributedSpace(mesh::unit_cube<3>(cells, faces), p, amphora::Communicator());
+  const auto faces =
+      bp <= 2 ? mesh::hex::FaceCondition::neumann : mesh::hex::FaceCondition::dirichlet;
+  return DistributedSpace(mesh::hex::unit_cube<3>(cells, faces), p, amphora::Communicator());
 }
 
 void BP(benchmark::State& state) {
@@ -243,10 +245,10 @@ BENCHMARK(BPOperator)
 void StoredGeometryLarge(benchmark::State& state) {
   const int which = static_cast<int>(state.range(0)), p = static_cast<int>(state.range(1));
   Op::Options o = which == 5 ? bp_options(5, p) : Op::Options{};
-  o.kind = amphora::solvers::OperatorKind::laplace;
-  o.geometry = amphora::solvers::GeometryMode::stored;
-  auto m = mesh::unit_cube<3>(cells_for(4e7, p));
-  m.deformation = mesh::sinusoidal_deformation(3, 0.05);
+  o.kind = amphora::solvers::matrix_free::OperatorKind::laplace;
+  o.geometry = amphora::solvers::matrix_free::GeometryMode::stored;
+  auto m = mesh::hex::unit_cube<3>(cells_for(4e7, p));
+  m.deformation = mesh::hex::sinusoidal_deformation(3, 0.05);
   const DistributedSpace space(m, p, amphora::Communicator());
   const DistributedOp op(space, o);
   Vector x = random_vector(op.size(), 1), y("y", op.size());
@@ -264,13 +266,13 @@ BENCHMARK(StoredGeometryLarge)
     ->UseRealTime();
 
 void GeometryModes(benchmark::State& state) {
-  using amphora::solvers::GeometryMode;
+  using amphora::solvers::matrix_free::GeometryMode;
   const auto mode = static_cast<GeometryMode>(state.range(0));
   const int p = static_cast<int>(state.range(1));
-  auto m = mesh::unit_cube<3>(cells_for(2e6, p));
+  auto m = mesh::hex::unit_cube<3>(cells_for(2e6, p));
   if (mode == GeometryMode::stored || mode == GeometryMode::on_the_fly)
-    m.deformation = mesh::sinusoidal_deformation(3, 0.05);
-  const mesh::QkSpace<3, Exec> space(m, p);
+    m.deformation = mesh::hex::sinusoidal_deformation(3, 0.05);
+  const mesh::hex::QkSpace<3, Exec> space(m, p);
   Op::Options o;
   o.geometry = mode;
   const Op op(space, o);
@@ -290,11 +292,11 @@ BENCHMARK(GeometryModes)
 // costs.
 void GenericKernel(benchmark::State& state) {
   const int p = static_cast<int>(state.range(0));
-  auto m = mesh::unit_cube<3>(cells_for(1e6, p));
-  m.deformation = mesh::sinusoidal_deformation(3, 0.05);
-  const mesh::QkSpace<3, Exec> space(m, p);
+  auto m = mesh::hex::unit_cube<3>(cells_for(1e6, p));
+  m.deformation = mesh::hex::sinusoidal_deformation(3, 0.05);
+  const mesh::hex::QkSpace<3, Exec> space(m, p);
   Op::Options o;
-  o.geometry = amphora::solvers::GeometryMode::on_the_fly;
+  o.geometry = amphora::solvers::matrix_free::GeometryMode::on_the_fly;
   o.generic_kernel = state.range(1) == 1;
   const Op op(space, o);
   Vector x = random_vector(space.n_dofs(), 3), y("y", space.n_dofs());
@@ -308,9 +310,10 @@ BENCHMARK(GenericKernel)
 
 void PoissonSolve(benchmark::State& state) {
   using namespace amphora::solvers;
+  using namespace amphora::solvers::matrix_free;
   const int k = static_cast<int>(state.range(0));
   const bool amg = state.range(1) == 1;
-  const mesh::QkSpace<3, Exec> space(mesh::unit_cube<3>(cells_for(2e6, k)), k);
+  const mesh::hex::QkSpace<3, Exec> space(mesh::hex::unit_cube<3>(cells_for(2e6, k)), k);
   const long N = space.n_dofs();
   Op::Options o;
   o.geometry = GeometryMode::cartesian;
@@ -318,7 +321,7 @@ void PoissonSolve(benchmark::State& state) {
   // right-hand side: M f for a smooth f, zero on the Dirichlet DoFs
   Vector f = random_vector(N, 5), x("x", N);
   Kokkos::parallel_for(
-      "amphora::bench::smooth_f", amphora::RangePolicy<Exec>(0, static_cast<int>(N)),
+      "amphora::bench::smooth_f", amphora::kernels::RangePolicy<Exec>(0, static_cast<int>(N)),
       KOKKOS_LAMBDA(int i) { f(i) = 1.0 + 0.1 * f(i); });
   const Vector b = load_vector(exec, space, f, GeometryMode::cartesian, k + 1);
   const Op A(space, o);

@@ -11,8 +11,8 @@
 // anonymous namespaces (Kokkos issue #1547).
 namespace bench_stream_cases {
 
-using amphora::DefaultExecSpace;
-using amphora::DefaultMemSpace;
+using amphora::kernels::DefaultExecSpace;
+using amphora::kernels::DefaultMemSpace;
 using View = Kokkos::View<double*, DefaultMemSpace>;
 
 template <class Kernel>
@@ -41,7 +41,7 @@ void run(benchmark::State& state, double bytes_per_element, Kernel kernel) {
 void StreamCopy(benchmark::State& state) {
   run(state, 16.0, [](int n, View a, View b, View) {
     Kokkos::parallel_for(
-        "amphora::perf::stream_copy", amphora::RangePolicy<DefaultExecSpace>(0, n),
+        "amphora::perf::stream_copy", amphora::kernels::RangePolicy<DefaultExecSpace>(0, n),
         KOKKOS_LAMBDA(int i) { a(i) = b(i); });
   });
 }
@@ -50,7 +50,7 @@ void StreamTriad(benchmark::State& state) {
   run(state, 24.0, [](int n, View a, View b, View c) {
     const double s = 3.0;
     Kokkos::parallel_for(
-        "amphora::perf::stream_triad", amphora::RangePolicy<DefaultExecSpace>(0, n),
+        "amphora::perf::stream_triad", amphora::kernels::RangePolicy<DefaultExecSpace>(0, n),
         KOKKOS_LAMBDA(int i) { a(i) = b(i) + s * c(i); });
   });
 }

@@ -10,7 +10,7 @@
 #include "amphora/build_info.hpp"
 #include "kernels/spaces.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 std::vector<std::pair<std::string, std::string>> build_info() {
   std::vector<std::pair<std::string, std::string>> rows;
@@ -21,9 +21,9 @@ std::vector<std::pair<std::string, std::string>> build_info() {
   const int kv = KOKKOS_VERSION;
   rows.emplace_back("Kokkos", std::to_string(kv / 10000) + "." + std::to_string(kv / 100 % 100) +
                                   "." + std::to_string(kv % 100));
-  rows.emplace_back("Kokkos backends", enabled_backends());
-  rows.emplace_back("default execution space", DefaultExecSpace::name());
-  rows.emplace_back("threads", std::to_string(DefaultExecSpace().concurrency()));
+  rows.emplace_back("Kokkos backends", kernels::enabled_backends());
+  rows.emplace_back("default execution space", kernels::DefaultExecSpace::name());
+  rows.emplace_back("threads", std::to_string(kernels::DefaultExecSpace().concurrency()));
   int size = 1;
   MPI_Comm_size(MPI_COMM_WORLD, &size);
   rows.emplace_back("MPI ranks", std::to_string(size));
@@ -47,4 +47,4 @@ std::vector<std::pair<std::string, std::string>> build_info() {
   return rows;
 }
 
-}  // namespace amphora
+}  // namespace amphora::io

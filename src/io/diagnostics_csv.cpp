@@ -6,7 +6,7 @@
 
 #include "io/field_series.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 DiagnosticsCsv::DiagnosticsCsv(const std::string& path, bool active, long long resume_after_step)
     : path_(path), active_(active) {
@@ -48,4 +48,4 @@ void DiagnosticsCsv::write(long long step, double time, double dt, const Diagnos
   out_.flush();
 }
 
-}  // namespace amphora
+}  // namespace amphora::io

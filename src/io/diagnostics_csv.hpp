@@ -7,7 +7,7 @@
 
 #include "base/output_block.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 class DiagnosticsCsv {
  public:
@@ -23,4 +23,4 @@ class DiagnosticsCsv {
   std::ofstream out_;
 };
 
-}  // namespace amphora
+}  // namespace amphora::io

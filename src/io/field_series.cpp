@@ -10,7 +10,7 @@
 
 #include "io/hdf5_file.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 void write_file_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = path + ".tmp";
@@ -167,4 +167,4 @@ void FieldSeries::load(const std::string& saved) {
   entries_.assign(parts.begin() + 2, parts.end());
 }
 
-}  // namespace amphora
+}  // namespace amphora::io

@@ -10,7 +10,7 @@
 #include "base/communicator.hpp"
 #include "base/output_block.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 class FieldSeries {
  public:
@@ -43,4 +43,4 @@ class FieldSeries {
 /// partial file. Throws std::runtime_error on failure.
 void write_file_atomically(const std::string& path, const std::string& text);
 
-}  // namespace amphora
+}  // namespace amphora::io

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace amphora {
+namespace amphora::io {
 
 namespace {
 
@@ -230,4 +230,4 @@ std::vector<NamedArray> H5Reader::group(const std::string& name) const {
   return out;
 }
 
-}  // namespace amphora
+}  // namespace amphora::io

@@ -11,7 +11,7 @@
 #include "base/communicator.hpp"
 #include "base/output_block.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 struct H5Group {
   std::string name;
@@ -57,4 +57,4 @@ class H5Reader {
   long long file_ = -1;  // hid_t, kept out of this header
 };
 
-}  // namespace amphora
+}  // namespace amphora::io

@@ -7,23 +7,25 @@
 #include "physics/poisson_fem/poisson_fem.hpp"
 #include "physics/water_mac/water_mac.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 const std::vector<ModuleInfo>& module_registry() {
   static const std::vector<ModuleInfo> modules = {
-      {"advection_diffusion_1d", advection_diffusion_1d::parameter_table,
-       [](const Parameters& p, const Communicator& c) -> std::unique_ptr<Module> {
-         return std::make_unique<advection_diffusion_1d::AdvectionDiffusion1D<DefaultExecSpace>>(p,
-                                                                                                 c);
+      {"advection_diffusion_1d", physics::advection_diffusion_1d::parameter_table,
+       [](const Parameters& p, const Communicator& c) -> std::unique_ptr<physics::Module> {
+         return std::make_unique<
+             physics::advection_diffusion_1d::AdvectionDiffusion1D<kernels::DefaultExecSpace>>(p,
+                                                                                               c);
        }},
-      {"beam_channel", fsi::beam_channel_parameter_table, fsi::create_beam_channel},
-      {"dem", dem::parameter_table,
-       [](const Parameters& p, const Communicator& c) -> std::unique_ptr<Module> {
-         return std::make_unique<dem::DemModule>(p, c);
+      {"beam_channel", coupling::fsi::beam_channel_parameter_table,
+       coupling::fsi::create_beam_channel},
+      {"dem", physics::dem::parameter_table,
+       [](const Parameters& p, const Communicator& c) -> std::unique_ptr<physics::Module> {
+         return std::make_unique<physics::dem::DemModule>(p, c);
        }},
-      {"mpve", fsi::mpve_parameter_table, fsi::create_mpve},
-      {"poisson_fem", poisson_fem::parameter_table, poisson_fem::create},
-      {"water_mac", water_mac::parameter_table, water_mac::create},
+      {"mpve", coupling::fsi::mpve_parameter_table, coupling::fsi::create_mpve},
+      {"poisson_fem", physics::poisson_fem::parameter_table, physics::poisson_fem::create},
+      {"water_mac", physics::water_mac::parameter_table, physics::water_mac::create},
   };
   return modules;
 }
@@ -40,4 +42,4 @@ std::vector<std::string> module_names() {
   return names;
 }
 
-}  // namespace amphora
+}  // namespace amphora::io

@@ -10,12 +10,12 @@
 #include "physics/module.hpp"
 #include "base/parameters.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 struct ModuleInfo {
   std::string name;
   std::function<ParamTable()> parameters;
-  std::function<std::unique_ptr<Module>(const Parameters&, const Communicator&)> create;
+  std::function<std::unique_ptr<physics::Module>(const Parameters&, const Communicator&)> create;
 };
 
 const std::vector<ModuleInfo>& module_registry();
@@ -23,4 +23,4 @@ const std::vector<ModuleInfo>& module_registry();
 const ModuleInfo* find_module(const std::string& name);
 std::vector<std::string> module_names();
 
-}  // namespace amphora
+}  // namespace amphora::io

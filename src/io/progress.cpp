@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <ostream>
 
-namespace amphora {
+namespace amphora::io {
 
 Progress::Progress(std::ostream& out, bool active, long long first_step, long long last_step,
                    std::string unit, double interval_seconds)
@@ -35,4 +35,4 @@ void Progress::update(long long step, double time, double dt, double work, bool 
   out_ << line << std::flush;
 }
 
-}  // namespace amphora
+}  // namespace amphora::io

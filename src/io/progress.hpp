@@ -5,7 +5,7 @@
 #include <iosfwd>
 #include <string>
 
-namespace amphora {
+namespace amphora::io {
 
 class Progress {
  public:
@@ -25,4 +25,4 @@ class Progress {
   std::chrono::steady_clock::time_point start_, last_print_;
 };
 
-}  // namespace amphora
+}  // namespace amphora::io

@@ -13,13 +13,13 @@
 #include "io/progress.hpp"
 #include "io/module_registry.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 namespace {
 
 namespace fs = std::filesystem;
 
-std::unique_ptr<Module> make_module(const Scene& scene, const Communicator& comm) {
+std::unique_ptr<physics::Module> make_module(const Scene& scene, const Communicator& comm) {
   return find_module(scene.module)->create(scene.module_parameters, comm);
 }
 
@@ -58,7 +58,8 @@ struct Checkpoint {
 };
 
 void write_checkpoint(const std::string& dir, const Scene& scene, const Communicator& comm,
-                      const Module& module, const FieldSeries& series, const Checkpoint& c) {
+                      const physics::Module& module, const FieldSeries& series,
+                      const Checkpoint& c) {
   std::vector<H5Group> groups;
   for (auto& b : module.state()) groups.push_back({b.name, std::move(b.arrays)});
   H5Metadata meta;
@@ -159,13 +160,14 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   double work = 0.0;  // work units done by this run (a module's work per step may change)
   Diagnostics last_diagnostics;  // at the final step, computed once
   const long long first_step = step;
-  double stepping = 0.0;   // wall time in advance() only
-  DeepCopyCounter copies;  // host-device traffic of the steps (not of output or checkpoints)
-  DeepCopyCount copied;
+  double stepping = 0.0;  // wall time in advance() only
+  kernels::DeepCopyCounter
+      copies;  // host-device traffic of the steps (not of output or checkpoints)
+  kernels::DeepCopyCount copied;
   while (step < n_steps && (options.max_steps < 0 || step - first_step < options.max_steps)) {
     const double t0 = progress.elapsed();
     work += double(module->work_per_step());
-    const DeepCopyCount before = copies.count();
+    const kernels::DeepCopyCount before = copies.count();
     module->advance(t, dt);
     copied = copied + (copies.count() - before);
     stepping += progress.elapsed() - t0;
@@ -224,4 +226,4 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   return result;
 }
 
-}  // namespace amphora
+}  // namespace amphora::io

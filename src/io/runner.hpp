@@ -9,7 +9,7 @@
 #include "base/communicator.hpp"
 #include "physics/module.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 /// Bad input discovered when setting up a run (output directory, restart file, ranks).
 class RunError : public std::runtime_error {
@@ -35,10 +35,10 @@ struct RunResult {
   double rate = 0.0;          ///< work units per second while stepping
   long long work_per_step = 0;
   std::string work_unit;
-  Diagnostics diagnostics;    ///< at the final step
-  Diagnostics phase_seconds;  ///< Module::phase_seconds of this run, the largest over the ranks
-  double error = 0.0;         ///< the module's error diagnostic at the final step
-  DeepCopyCount copies;       ///< Kokkos deep copies made while stepping (this rank's)
+  Diagnostics diagnostics;        ///< at the final step
+  Diagnostics phase_seconds;      ///< Module::phase_seconds of this run, the largest over the ranks
+  double error = 0.0;             ///< the module's error diagnostic at the final step
+  kernels::DeepCopyCount copies;  ///< Kokkos deep copies made while stepping (this rank's)
 };
 
 /// Collective. Throws RunError (bad set-up input), DecompositionError (more ranks than
@@ -48,4 +48,4 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
 /// Constructs the scene's module without stepping it (what `amphora check` validates).
 void check_scene(const Scene& scene, const Communicator& comm);
 
-}  // namespace amphora
+}  // namespace amphora::io

@@ -8,7 +8,7 @@
 
 #include "io/module_registry.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 ParamTable run_parameter_table() {
   return {
@@ -224,4 +224,4 @@ std::string describe_defaults(const ParamTable& table) {
   return s.str();
 }
 
-}  // namespace amphora
+}  // namespace amphora::io

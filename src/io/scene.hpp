@@ -9,7 +9,7 @@
 
 #include "base/parameters.hpp"
 
-namespace amphora {
+namespace amphora::io {
 
 class SceneError : public std::runtime_error {
  public:
@@ -37,4 +37,4 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 /// `key = default  # unit; allowed; doc` lines for a table, valid TOML.
 std::string describe_defaults(const ParamTable& table);
 
-}  // namespace amphora
+}  // namespace amphora::io

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-namespace amphora {
+namespace amphora::io {
 namespace {
 
 std::string shorten(std::string text) {
@@ -49,4 +49,4 @@ std::vector<SceneEntry> list_scenes(const std::string& dir) {
   return out;
 }
 
-}  // namespace amphora
+}  // namespace amphora::io

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace amphora {
+namespace amphora::io {
 
 struct SceneEntry {
   std::string path;     ///< the file, as found
@@ -18,4 +18,4 @@ std::string shipped_scene_dir();
 /// Every *.toml in `dir`, sorted by name.
 std::vector<SceneEntry> list_scenes(const std::string& dir);
 
-}  // namespace amphora
+}  // namespace amphora::io

@@ -4,7 +4,7 @@
 // results agree across thread counts to round-off, and are bitwise repeatable for a fixed one.
 #include "kernels/spaces.hpp"
 
-namespace amphora::blas1 {
+namespace amphora::kernels::blas1 {
 
 namespace detail {
 template <class ExecSpace, class View>
@@ -164,4 +164,4 @@ typename X::non_const_value_type norm_inf(const ExecSpace& exec, const X& x) {
   return x.extent(0) == 0 ? T{} : result;
 }
 
-}  // namespace amphora::blas1
+}  // namespace amphora::kernels::blas1

@@ -6,7 +6,7 @@
 
 #include <Kokkos_Core.hpp>
 
-namespace amphora {
+namespace amphora::kernels {
 namespace {
 
 using Handle = Kokkos_Profiling_SpaceHandle;  // the C struct: the same name in Kokkos 3.4 and 4.x
@@ -57,4 +57,4 @@ DeepCopyCounter::~DeepCopyCounter() {
 DeepCopyCount DeepCopyCounter::count() const { return tally; }
 void DeepCopyCounter::reset() { tally = {}; }
 
-}  // namespace amphora
+}  // namespace amphora::kernels

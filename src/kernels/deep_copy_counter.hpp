@@ -7,7 +7,7 @@
 // this build, or would on a device, less the mirror-and-copy calls.
 #include <cstdint>
 
-namespace amphora {
+namespace amphora::kernels {
 
 struct DeepCopyCount {
   long long copies = 0;          ///< View to View (any memory spaces)
@@ -57,4 +57,4 @@ class DeepCopyCounter {
   void reset();
 };
 
-}  // namespace amphora
+}  // namespace amphora::kernels

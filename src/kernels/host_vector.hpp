@@ -5,7 +5,7 @@
 
 #include <Kokkos_Core.hpp>
 
-namespace amphora {
+namespace amphora::kernels {
 
 template <class MemSpace, class T, class Allocator>
 Kokkos::View<T*, MemSpace> to_view(const std::vector<T, Allocator>& v,
@@ -24,4 +24,4 @@ std::vector<double> to_std_vector(const View& d) {
   return std::vector<double>(h.data(), h.data() + h.extent(0));
 }
 
-}  // namespace amphora
+}  // namespace amphora::kernels

@@ -17,7 +17,7 @@
 #define AMPHORA_EXEC_CHECK_DISABLE
 #endif
 
-namespace amphora {
+namespace amphora::kernels {
 
 /// A functor a kernel calls that may be host-only (a plain struct or lambda) where the kernel
 /// runs on a host space: nvcc checks each instantiation instead of rejecting the host call in
@@ -85,4 +85,4 @@ constexpr double pi = pi_v<double>;
 template <class View>
 using host_mirror_t = typename View::host_mirror_type;
 
-}  // namespace amphora
+}  // namespace amphora::kernels

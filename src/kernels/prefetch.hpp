@@ -4,7 +4,7 @@
 // it does nothing on devices or with compilers that lack the builtin.
 #include "kernels/kokkos_compat.hpp"
 
-namespace amphora {
+namespace amphora::kernels {
 
 /// Where a prefetched line goes (__builtin_prefetch's locality).
 enum PrefetchTarget : int { into_l2 = 2, into_l1 = 3 };
@@ -22,4 +22,4 @@ KOKKOS_FORCEINLINE_FUNCTION void prefetch_line(const void* p, bool write) {
 #endif
 }
 
-}  // namespace amphora
+}  // namespace amphora::kernels

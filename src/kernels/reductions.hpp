@@ -5,7 +5,7 @@
 
 #include "kernels/blas1.hpp"
 
-namespace amphora::reduce {
+namespace amphora::kernels::reduce {
 
 template <class T>
 struct MinMax {
@@ -43,4 +43,4 @@ int first_nonfinite(const ExecSpace& exec, const X& x) {
   return first >= none ? -1 : first;
 }
 
-}  // namespace amphora::reduce
+}  // namespace amphora::kernels::reduce

@@ -1,6 +1,6 @@
 #include "kernels/spaces.hpp"
 
-namespace amphora {
+namespace amphora::kernels {
 
 std::string enabled_backends() {
   std::string names;
@@ -26,4 +26,4 @@ std::string enabled_backends() {
   return names;
 }
 
-}  // namespace amphora
+}  // namespace amphora::kernels

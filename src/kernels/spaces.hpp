@@ -6,7 +6,7 @@
 
 #include "kernels/kokkos_compat.hpp"
 
-namespace amphora {
+namespace amphora::kernels {
 
 using DefaultExecSpace = Kokkos::DefaultExecutionSpace;
 using DefaultMemSpace = DefaultExecSpace::memory_space;
@@ -36,7 +36,7 @@ using RangePolicy = Kokkos::RangePolicy<ExecSpace, Kokkos::IndexType<int>>;
 /// Names of the execution spaces this Kokkos was built with, e.g. "Serial OpenMP".
 std::string enabled_backends();
 
-}  // namespace amphora
+}  // namespace amphora::kernels
 
 // Explicit instantiation of a class template on every enabled execution space, for classes
 // whose members live in a .cpp: AMPHORA_INSTANTIATE_ON_EXEC_SPACES(MyClass) inside its namespace.

@@ -4,7 +4,7 @@
 // ../shared/seeds/000). The source is a point-wise functor f(x, t), so the loop knows no physics.
 #include "kernels/spaces.hpp"
 
-namespace amphora::stencil {
+namespace amphora::kernels::stencil {
 
 /// Stability limit of the scheme above (von Neumann): dt <= h^2 / (2 nu) and dt <= 2 nu / a^2.
 KOKKOS_INLINE_FUNCTION double advection_diffusion_ftcs_dt_limit(double a, double nu, double h) {
@@ -28,4 +28,4 @@ void advection_diffusion_ftcs(const ExecSpace& exec, const ConstView& u_old, con
       });
 }
 
-}  // namespace amphora::stencil
+}  // namespace amphora::kernels::stencil

@@ -3,7 +3,7 @@
 #include <limits>
 #include <sstream>
 
-namespace amphora {
+namespace amphora::mesh {
 
 BoxDecomposition::BoxDecomposition(Index3 global_cells, std::array<bool, 3> periodic, int nranks,
                                    int min_block_cells, std::array<bool, 3> splittable)
@@ -85,4 +85,4 @@ int BoxDecomposition::neighbor(int rank, int d, int side) const {
   return rank_of(c);
 }
 
-}  // namespace amphora
+}  // namespace amphora::mesh

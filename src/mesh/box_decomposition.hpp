@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace amphora {
+namespace amphora::mesh {
 
 using Index3 = std::array<int, 3>;
 
@@ -51,4 +51,4 @@ class BoxDecomposition {
   Index3 blocks_{1, 1, 1};
 };
 
-}  // namespace amphora
+}  // namespace amphora::mesh

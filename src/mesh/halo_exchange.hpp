@@ -10,11 +10,12 @@
 #include "mesh/box_decomposition.hpp"
 #include "base/communicator.hpp"
 
-namespace amphora {
+namespace amphora::mesh {
 
 template <class MemSpace>
 class HaloExchange {
-  static_assert(is_memory_space_v<MemSpace>, "HaloExchange is templated on a memory space");
+  static_assert(kernels::is_memory_space_v<MemSpace>,
+                "HaloExchange is templated on a memory space");
 
  public:
   using Field = Kokkos::View<double***, Kokkos::LayoutLeft, MemSpace>;
@@ -52,7 +53,7 @@ class HaloExchange {
                         recv.size());
         if (to >= 0) pack(exec, field, send, send_buf);
         exec.fence();
-        auto send_host = Kokkos::create_mirror_view_and_copy(HostMemSpace(), send_buf);
+        auto send_host = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), send_buf);
         auto recv_host = Kokkos::create_mirror_view(recv_buf);
         MPI_Sendrecv(send_host.data(), static_cast<int>(send.size()), MPI_DOUBLE,
                      to >= 0 ? to : MPI_PROC_NULL, 100 + 2 * d + side, recv_host.data(),
@@ -95,7 +96,7 @@ class HaloExchange {
     // Plain ints are captured (not std::array) so the lambda is device-clean.
     const int l0 = r.lo[0], l1 = r.lo[1], l2 = r.lo[2], n0 = r.n[0], n1 = r.n[1];
     Kokkos::parallel_for(
-        "amphora::HaloExchange::pack", RangePolicy<ExecSpace>(exec, 0, int(r.size())),
+        "amphora::HaloExchange::pack", kernels::RangePolicy<ExecSpace>(exec, 0, int(r.size())),
         KOKKOS_LAMBDA(int idx) {
           const int i = idx % n0, j = (idx / n0) % n1, k = idx / (n0 * n1);
           buf(idx) = f(l0 + i, l1 + j, l2 + k);
@@ -106,7 +107,7 @@ class HaloExchange {
   static void unpack(const ExecSpace& exec, const Field& f, const Region& r, const Buffer& buf) {
     const int l0 = r.lo[0], l1 = r.lo[1], l2 = r.lo[2], n0 = r.n[0], n1 = r.n[1];
     Kokkos::parallel_for(
-        "amphora::HaloExchange::unpack", RangePolicy<ExecSpace>(exec, 0, int(r.size())),
+        "amphora::HaloExchange::unpack", kernels::RangePolicy<ExecSpace>(exec, 0, int(r.size())),
         KOKKOS_LAMBDA(int idx) {
           const int i = idx % n0, j = (idx / n0) % n1, k = idx / (n0 * n1);
           f(l0 + i, l1 + j, l2 + k) = buf(idx);
@@ -120,4 +121,4 @@ class HaloExchange {
   Box box_;
 };
 
-}  // namespace amphora
+}  // namespace amphora::mesh

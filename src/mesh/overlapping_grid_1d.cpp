@@ -4,7 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace amphora {
+namespace amphora::mesh {
 
 std::array<double, 3> quadratic_weights(double s) {
   return {(1.0 - s) * (1.0 - 0.5 * s), s * (2.0 - s), 0.5 * s * (s - 1.0)};
@@ -41,4 +41,4 @@ OverlappingGrid1D::OverlappingGrid1D(int cells, double interface, double overlap
   interp_[1] = QuadraticInterpolation{0, n1p1 - 2, quadratic_weights(beta_)};
 }
 
-}  // namespace amphora
+}  // namespace amphora::mesh

@@ -5,7 +5,7 @@
 // three-point quadratic Lagrange interpolant from the other grid.
 #include <array>
 
-namespace amphora {
+namespace amphora::mesh {
 
 /// A uniform 1D grid stored as one array: x(s) = x0 + s dx for storage index s.
 struct ComponentGrid1D {
@@ -50,4 +50,4 @@ class OverlappingGrid1D {
   double alpha_ = 0.0, beta_ = 0.0;
 };
 
-}  // namespace amphora
+}  // namespace amphora::mesh

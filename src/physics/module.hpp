@@ -9,7 +9,7 @@
 
 #include "base/output_block.hpp"
 
-namespace amphora {
+namespace amphora::physics {
 
 /// Where a run first went non-finite (or, with `reason`, where a module saw it fail otherwise,
 /// e.g. unbounded growth).
@@ -54,4 +54,4 @@ class Module {
   virtual Diagnostics phase_seconds() const { return {}; }
 };
 
-}  // namespace amphora
+}  // namespace amphora::physics

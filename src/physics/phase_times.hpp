@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace amphora {
+namespace amphora::physics {
 
 class PhaseTimes {
  public:
@@ -43,4 +43,4 @@ class PhaseTimes {
   Clock::time_point last_ = Clock::now();
 };
 
-}  // namespace amphora
+}  // namespace amphora::physics

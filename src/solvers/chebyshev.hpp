@@ -63,7 +63,7 @@ class ChebyshevSmoother {
       const double c_old = first ? 0.0 : rho * rho_old,
                    c_new = first ? 1.0 / theta : 2.0 * rho / delta;
       Kokkos::parallel_for(
-          "amphora::ChebyshevSmoother::step", RangePolicy<ExecSpace>(exec, 0, n),
+          "amphora::ChebyshevSmoother::step", kernels::RangePolicy<ExecSpace>(exec, 0, n),
           KOKKOS_LAMBDA(int i) {
             const double res = skip_ax ? b(i) : b(i) - r(i);
             const double di = (c_old != 0.0 ? c_old * d(i) : 0.0) + c_new * D(i) * res;
@@ -87,7 +87,7 @@ class ChebyshevSmoother {
     const Vector D = inv_diag_;
     const bool given = start.extent(0) > 0;
     Kokkos::parallel_for(
-        "amphora::ChebyshevSmoother::start", RangePolicy<ExecSpace>(exec, 0, n),
+        "amphora::ChebyshevSmoother::start", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) {
           // deterministic, rich in every eigencomponent
           const double h = static_cast<double>((i * 2654435761u) % 1000003u) / 1000003.0;
@@ -95,9 +95,9 @@ class ChebyshevSmoother {
         });
     std::vector<double> alphas, betas;
     Kokkos::parallel_for(
-        "amphora::ChebyshevSmoother::z", RangePolicy<ExecSpace>(exec, 0, n),
+        "amphora::ChebyshevSmoother::z", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) { z(i) = D(i) * r(i); });
-    blas1::copy(exec, z, p);
+    kernels::blas1::copy(exec, z, p);
     double rz = dot(exec, r, z);
     for (int it = 0; it < options_.eigenvalue_iterations && rz > 0.0; ++it) {
       A_->apply(exec, p, q);
@@ -105,14 +105,14 @@ class ChebyshevSmoother {
       if (!(pq > 0.0)) break;
       const double alpha = rz / pq;
       alphas.push_back(alpha);
-      blas1::axpy(exec, -alpha, q, r);
+      kernels::blas1::axpy(exec, -alpha, q, r);
       Kokkos::parallel_for(
-          "amphora::ChebyshevSmoother::z", RangePolicy<ExecSpace>(exec, 0, n),
+          "amphora::ChebyshevSmoother::z", kernels::RangePolicy<ExecSpace>(exec, 0, n),
           KOKKOS_LAMBDA(int i) { z(i) = D(i) * r(i); });
       const double rz_new = dot(exec, r, z);
       const double beta = rz_new / rz;
       betas.push_back(beta);
-      blas1::axpby(exec, 1.0, z, beta, p);
+      kernels::blas1::axpby(exec, 1.0, z, beta, p);
       rz = rz_new;
     }
     return alphas.empty() ? 1.0 : lanczos_extreme_eigenvalues(alphas, betas).second;

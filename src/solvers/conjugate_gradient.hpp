@@ -39,7 +39,7 @@ struct has_fused_direction<
 template <class ExecSpace, class Operator, class View, class Inner>
 double direction_in_passes(const ExecSpace& exec, const Operator& A, const View& z, double beta,
                            const View& p, const View& q, const Inner& dot) {
-  blas1::xpby(exec, z, beta, p);
+  kernels::blas1::xpby(exec, z, beta, p);
   A.apply(exec, p, q);
   return dot(exec, p, q);
 }
@@ -63,19 +63,19 @@ struct LocalInnerProduct {
   static constexpr bool fuses_cg_update = true;
   template <class ExecSpace, class X, class Y>
   double operator()(const ExecSpace& exec, const X& x, const Y& y) const {
-    return blas1::dot(exec, x, y);
+    return kernels::blas1::dot(exec, x, y);
   }
   template <class ExecSpace, class View>
   double fused_update(const ExecSpace& exec, double alpha, const View& p, const View& q,
                       const View& x, const View& r) const {
-    return blas1::cg_update(exec, alpha, p, q, x, r);
+    return kernels::blas1::cg_update(exec, alpha, p, q, x, r);
   }
 };
 
 struct IdentityPreconditioner {
   template <class ExecSpace, class R, class Z>
   void apply(const ExecSpace& exec, const R& r, const Z& z) const {
-    blas1::copy(exec, r, z);
+    kernels::blas1::copy(exec, r, z);
   }
 };
 
@@ -88,7 +88,7 @@ struct JacobiPreconditioner {
     const View d = inverse_diagonal;
     Kokkos::parallel_for(
         "amphora::solvers::JacobiPreconditioner::apply",
-        RangePolicy<ExecSpace>(exec, 0, static_cast<int>(z.extent(0))),
+        kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(z.extent(0))),
         KOKKOS_LAMBDA(int i) { z(i) = d(i) * r(i); });
   }
 };
@@ -114,8 +114,8 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
   SolverResult result;
   result.rhs_norm = std::sqrt(dot(exec, b, b));
   A.apply(exec, x, q);
-  blas1::copy(exec, b, r);
-  blas1::axpy(exec, -1.0, q, r);  // r = b - A x
+  kernels::blas1::copy(exec, b, r);
+  kernels::blas1::axpy(exec, -1.0, q, r);  // r = b - A x
   double rr = dot(exec, r, r);
   result.initial_residual = result.final_residual = std::sqrt(rr);
   const double target =
@@ -139,8 +139,8 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
     if constexpr (has_fused_update<Inner>::value) {
       rr = dot.fused_update(exec, alpha, p, q, x, r);
     } else {
-      blas1::axpy(exec, alpha, p, x);
-      blas1::axpy(exec, -alpha, q, r);
+      kernels::blas1::axpy(exec, alpha, p, x);
+      kernels::blas1::axpy(exec, -alpha, q, r);
       rr = dot(exec, r, r);
     }
     result.iterations = it;

@@ -49,7 +49,7 @@ struct DeviceCsrMatrix {
     const auto c = cols;
     const auto v = values;
     Kokkos::parallel_for(
-        "amphora::DeviceCsrMatrix::apply", RangePolicy<ExecSpace>(exec, 0, n),
+        "amphora::DeviceCsrMatrix::apply", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) {
           double s = 0.0;
           for (int e = rp(i); e < rp(i + 1); ++e) s += v(e) * x(c(e));
@@ -59,8 +59,8 @@ struct DeviceCsrMatrix {
 
  private:
   void copy(const CsrMatrix& A, bool with_inverse_diagonal) {
-    cols = to_view<MemSpace>(A.cols, "amphora::csr::cols");
-    values = to_view<MemSpace>(A.values, "amphora::csr::values");
+    cols = kernels::to_view<MemSpace>(A.cols, "amphora::csr::cols");
+    values = kernels::to_view<MemSpace>(A.values, "amphora::csr::values");
     finish(A, with_inverse_diagonal);
   }
   /// The row pointers (as int) and the inverse diagonal.
@@ -87,23 +87,19 @@ struct DeviceCsrMatrix {
   std::shared_ptr<const CsrMatrix> kept_;  ///< the arrays cols and values view, if kept
 };
 
-}  // namespace amphora::solvers
-
-namespace amphora::kernels::mac {
-
 /// r = b - A x for an assembled matrix.
 template <class ExecSpace, class MemSpace, class B, class X, class R>
-void residual_csr(const ExecSpace& exec, const solvers::DeviceCsrMatrix<MemSpace>& A, const B& b,
-                  const X& x, const R& r) {
+void residual_csr(const ExecSpace& exec, const DeviceCsrMatrix<MemSpace>& A, const B& b, const X& x,
+                  const R& r) {
   const auto rp = A.row_ptr;
   const auto c = A.cols;
   const auto v = A.values;
   Kokkos::parallel_for(
-      "amphora::residual_csr", RangePolicy<ExecSpace>(exec, 0, A.n), KOKKOS_LAMBDA(int i) {
+      "amphora::residual_csr", kernels::RangePolicy<ExecSpace>(exec, 0, A.n), KOKKOS_LAMBDA(int i) {
         double s = b(i);
         for (int e = rp(i); e < rp(i + 1); ++e) s -= v(e) * x(c(e));
         r(i) = s;
       });
 }
 
-}  // namespace amphora::kernels::mac
+}  // namespace amphora::solvers

@@ -13,7 +13,7 @@
 
 namespace {
 
-using namespace amphora::fsi;
+using namespace amphora::coupling::fsi;
 
 BeamChannelSetup setup(double rho_h, int n, BeamScheme scheme) {
   return beam_channel_wave_case(rho_h, n, scheme);

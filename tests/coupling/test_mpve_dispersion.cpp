@@ -8,7 +8,7 @@
 #include "coupling/fsi/mpve_traveling_wave.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 namespace {
 
 // k = 2 pi, H = 1, Hbar = 0.5, rho = 1, mu = 0.01, cp = sqrt(3), cs = 1 (lambda = mu = rho_bar),
@@ -118,18 +118,19 @@ TEST(MpveDispersion, ContinuationFollowsTheRootThereAndBack) {
 }
 
 }  // namespace
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi
 
 // The inviscid beam-channel relation omega^2 = (K + T k^2 + B k^4) / (rho_h + rho/(k tanh kH)).
 TEST(BeamChannelWave, AddedMassLowersTheBeamFrequency) {
-  amphora::beam::BeamParameters p;
+  amphora::physics::beam::BeamParameters p;
   p.rho_h = 0.1;
   p.tension = 1.0;
   const double k = 2 * 3.141592653589793;
   // Evaluated independently (Python, math module): 12.342387852994754.
-  EXPECT_NEAR(amphora::fsi::beam_channel_frequency(p, k, 1.0, 1.0), 12.342387852994754, 1e-12);
+  EXPECT_NEAR(amphora::coupling::fsi::beam_channel_frequency(p, k, 1.0, 1.0), 12.342387852994754,
+              1e-12);
   // Without fluid it is the beam's own frequency; a deep channel adds rho / k.
-  EXPECT_NEAR(amphora::fsi::beam_channel_frequency(p, k, 1.0, 0.0),
-              amphora::beam::beam_frequency(p, k), 1e-12);
-  EXPECT_NEAR(amphora::fsi::channel_added_mass(k, 50.0, 2.0), 2.0 / k, 1e-12);
+  EXPECT_NEAR(amphora::coupling::fsi::beam_channel_frequency(p, k, 1.0, 0.0),
+              amphora::physics::beam::beam_frequency(p, k), 1e-12);
+  EXPECT_NEAR(amphora::coupling::fsi::channel_added_mass(k, 50.0, 2.0), 2.0 / k, 1e-12);
 }

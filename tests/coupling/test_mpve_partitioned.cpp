@@ -13,7 +13,7 @@
 
 namespace {
 
-using namespace amphora::fsi;
+using namespace amphora::coupling::fsi;
 
 MpveSetup setup(double rho_bar, double mu, int n, MpveScheme scheme = MpveScheme::tp) {
   // The check case, its root followed to the requested densities and viscosity.

@@ -12,18 +12,18 @@ namespace {
 TEST(Hdf5File, RoundTripOfRankOwnedGroups) {
   Communicator comm;
   const std::string path = "test_hdf5_file_np" + std::to_string(comm.size()) + ".h5";
-  std::vector<H5Group> mine;
+  std::vector<io::H5Group> mine;
   std::vector<double> values(100 + 7 * comm.rank());
   for (size_t i = 0; i < values.size(); ++i) values[i] = 1.0 / (1.0 + i) + comm.rank();
   mine.push_back({"block" + std::to_string(comm.rank()), {{"u", values}, {"empty", {}}}});
-  H5Metadata meta;
+  io::H5Metadata meta;
   meta.reals["time"] = 0.1;
   meta.integers["step"] = 42;
   meta.texts["note"] = "written by " + std::to_string(comm.size()) + " ranks";
-  const auto layout = write_h5(path, comm, mine, meta);
+  const auto layout = io::write_h5(path, comm, mine, meta);
   EXPECT_EQ(layout.size(), size_t(2 * comm.size()));
 
-  H5Reader in(path, comm);
+  io::H5Reader in(path, comm);
   EXPECT_EQ(in.real("time"), 0.1);
   EXPECT_EQ(in.integer("step"), 42);
   EXPECT_EQ(in.text("note"), meta.texts["note"]);
@@ -45,7 +45,7 @@ TEST(Hdf5File, RoundTripOfRankOwnedGroups) {
 
 TEST(Hdf5File, UnwritablePathIsAnErrorOnEveryRank) {
   Communicator comm;
-  EXPECT_THROW(write_h5("/nonexistent_dir_amphora/x.h5", comm, {}, {}), std::runtime_error);
+  EXPECT_THROW(io::write_h5("/nonexistent_dir_amphora/x.h5", comm, {}, {}), std::runtime_error);
 }
 
 }  // namespace

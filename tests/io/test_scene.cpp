@@ -29,8 +29,8 @@ nu = 0.1
 std::string error_of(const std::string& name, const std::string& text) {
   const std::string path = write_scene(name, text);
   try {
-    load_scene(path);
-  } catch (const SceneError& e) {
+    io::load_scene(path);
+  } catch (const io::SceneError& e) {
     return e.what();
   }
   ADD_FAILURE() << "scene " << name << " loaded but should not";
@@ -42,7 +42,7 @@ void expect_contains(const std::string& s, const std::string& part) {
 }
 
 TEST(Scene, GoodSceneLoadsWithDefaults) {
-  const Scene s = load_scene(write_scene("good", kGood));
+  const io::Scene s = io::load_scene(write_scene("good", kGood));
   EXPECT_EQ(s.name, "test_scene_good");
   EXPECT_EQ(s.module, "advection_diffusion_1d");
   EXPECT_EQ(s.run.real("end_time"), 0.5);
@@ -53,9 +53,9 @@ TEST(Scene, GoodSceneLoadsWithDefaults) {
 }
 
 TEST(Scene, FingerprintFollowsPhysicsNotRunControl) {
-  const Scene a = load_scene(write_scene("fp", kGood));
-  const Scene b = load_scene(write_scene("fp", kGood), {"run.end_time=2.0"});
-  const Scene c = load_scene(write_scene("fp", kGood), {"advection_diffusion_1d.cells=80"});
+  const io::Scene a = io::load_scene(write_scene("fp", kGood));
+  const io::Scene b = io::load_scene(write_scene("fp", kGood), {"run.end_time=2.0"});
+  const io::Scene c = io::load_scene(write_scene("fp", kGood), {"advection_diffusion_1d.cells=80"});
   EXPECT_EQ(a.fingerprint, b.fingerprint);
   EXPECT_NE(a.fingerprint, c.fingerprint);
   EXPECT_EQ(c.module_parameters.integer("cells"), 80);
@@ -63,9 +63,9 @@ TEST(Scene, FingerprintFollowsPhysicsNotRunControl) {
 
 TEST(Scene, MissingFile) {
   try {
-    load_scene("no_such_scene.toml");
+    io::load_scene("no_such_scene.toml");
     FAIL();
-  } catch (const SceneError& e) {
+  } catch (const io::SceneError& e) {
     expect_contains(e.what(), "no_such_scene.toml: scene file not found");
   }
 }
@@ -131,10 +131,10 @@ TEST(Scene, MissingRequiredKey) {
 
 TEST(Scene, DefaultsAreThemselvesAValidScene) {
   // `amphora defaults` output, with the required keys filled in, loads unchanged.
-  std::string text = describe_defaults(run_parameter_table()) +
-                     describe_defaults(find_module("advection_diffusion_1d")->parameters());
+  std::string text = io::describe_defaults(io::run_parameter_table()) +
+                     io::describe_defaults(io::find_module("advection_diffusion_1d")->parameters());
   text.insert(text.find("[run]\n") + 6, "module = \"advection_diffusion_1d\"\nend_time = 1.0\n");
-  const Scene s = load_scene(write_scene("defaults", text));
+  const io::Scene s = io::load_scene(write_scene("defaults", text));
   EXPECT_EQ(s.module_parameters.real("nu"), 0.05);
 }
 

@@ -21,7 +21,7 @@ View from_host(const std::vector<double>& v) {
 }
 
 std::vector<double> to_host(const View& d) {
-  auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(), d);
+  auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), d);
   return std::vector<double>(h.data(), h.data() + h.size());
 }
 
@@ -35,9 +35,9 @@ TEST(Blas1, RunsOnTheRequestedThreadCount) {
 TEST(Blas1, FillCopyScale) {
   const TestExecSpace exec;
   View x("x", 1000), y("y", 1000);
-  blas1::fill(exec, x, 2.5);
-  blas1::copy(exec, x, y);
-  blas1::scale(exec, -2.0, y);
+  kernels::blas1::fill(exec, x, 2.5);
+  kernels::blas1::copy(exec, x, y);
+  kernels::blas1::scale(exec, -2.0, y);
   for (double v : to_host(x)) EXPECT_EQ(v, 2.5);
   for (double v : to_host(y)) EXPECT_EQ(v, -5.0);
 }
@@ -50,9 +50,9 @@ TEST(Blas1, AxpyAndAxpby) {
     ys[i] = 3.0 - double(i);
   }
   View x = from_host(xs), y = from_host(ys);
-  blas1::axpy(exec, 2.0, x, y);  // y = 3 - i + i = 3
+  kernels::blas1::axpy(exec, 2.0, x, y);  // y = 3 - i + i = 3
   for (double v : to_host(y)) EXPECT_EQ(v, 3.0);
-  blas1::axpby(exec, 4.0, x, -1.0, y);  // y = 2 i - 3
+  kernels::blas1::axpby(exec, 4.0, x, -1.0, y);  // y = 2 i - 3
   const auto r = to_host(y);
   for (size_t i = 0; i < r.size(); ++i) EXPECT_EQ(r[i], 2.0 * double(i) - 3.0);
 }
@@ -72,11 +72,11 @@ TEST(Blas1, ReductionsOnIntegerDataAreExact) {
     n1 += std::abs(v);
     ninf = std::max(ninf, std::abs(v));
   }
-  EXPECT_EQ(blas1::sum(exec, x), sum);
-  EXPECT_EQ(blas1::dot(exec, x, x), dot);
-  EXPECT_EQ(blas1::norm1(exec, x), n1);
-  EXPECT_EQ(blas1::norm_inf(exec, x), ninf);
-  EXPECT_DOUBLE_EQ(blas1::norm2(exec, x), std::sqrt(dot));
+  EXPECT_EQ(kernels::blas1::sum(exec, x), sum);
+  EXPECT_EQ(kernels::blas1::dot(exec, x, x), dot);
+  EXPECT_EQ(kernels::blas1::norm1(exec, x), n1);
+  EXPECT_EQ(kernels::blas1::norm_inf(exec, x), ninf);
+  EXPECT_DOUBLE_EQ(kernels::blas1::norm2(exec, x), std::sqrt(dot));
 }
 
 TEST(Blas1, DotOfRandomDataAgreesWithLongDoubleToRoundOff) {
@@ -94,15 +94,15 @@ TEST(Blas1, DotOfRandomDataAgreesWithLongDoubleToRoundOff) {
   }
   // Summation error bound: n * eps * sum |x_i y_i| (Higham, Accuracy and Stability, 3.1).
   const double bound = double(n) * std::numeric_limits<double>::epsilon() * double(mag);
-  EXPECT_NEAR(blas1::dot(exec, from_host(xs), from_host(ys)), double(ref), bound);
+  EXPECT_NEAR(kernels::blas1::dot(exec, from_host(xs), from_host(ys)), double(ref), bound);
 }
 
 TEST(Blas1, EmptyViews) {
   const TestExecSpace exec;
   View x("x", 0);
-  EXPECT_EQ(blas1::sum(exec, x), 0.0);
-  EXPECT_EQ(blas1::norm_inf(exec, x), 0.0);
-  EXPECT_EQ(blas1::norm2(exec, x), 0.0);
+  EXPECT_EQ(kernels::blas1::sum(exec, x), 0.0);
+  EXPECT_EQ(kernels::blas1::norm_inf(exec, x), 0.0);
+  EXPECT_EQ(kernels::blas1::norm2(exec, x), 0.0);
 }
 
 }  // namespace

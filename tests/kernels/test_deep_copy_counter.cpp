@@ -16,13 +16,13 @@ TEST(DeepCopyCounter, CountsCopiesFillsAndScalarReads) {
   View a("a", 1000), b("b", 1000);
   Kokkos::View<double, TestMemSpace> s("s");
   auto h = Kokkos::create_mirror_view(a);
-  DeepCopyCounter counter;
+  kernels::DeepCopyCounter counter;
   Kokkos::deep_copy(a, 1.0);  // a fill
   Kokkos::deep_copy(b, a);    // the same space
   Kokkos::deep_copy(h, a);    // to the host mirror (no copy at all on a host space, yet counted)
   double value = 0;
   Kokkos::deep_copy(value, s);  // a rank-0 read
-  const DeepCopyCount c = counter.count();
+  const kernels::DeepCopyCount c = counter.count();
   EXPECT_EQ(c.fills, 1);
   EXPECT_EQ(c.copies, 2);
   EXPECT_EQ(c.bytes, 2 * 1000 * long(sizeof(double)));
@@ -38,15 +38,15 @@ TEST(DeepCopyCounter, CountsCopiesFillsAndScalarReads) {
 TEST(DeepCopyCounter, ResetsStopsAndAllowsOneAtATime) {
   View a("a", 10), b("b", 10);
   {
-    DeepCopyCounter counter;
-    EXPECT_THROW(DeepCopyCounter second, std::logic_error);
+    kernels::DeepCopyCounter counter;
+    EXPECT_THROW(kernels::DeepCopyCounter second, std::logic_error);
     Kokkos::deep_copy(b, a);
     counter.reset();
     EXPECT_EQ(counter.count().copies, 0);
     Kokkos::deep_copy(b, a);
     EXPECT_EQ(counter.count().copies, 1);
   }
-  DeepCopyCounter again;  // the first one is gone: counting starts from zero
+  kernels::DeepCopyCounter again;  // the first one is gone: counting starts from zero
   EXPECT_EQ(again.count().copies, 0);
 }
 

@@ -57,14 +57,14 @@ TEST(LevelSetReinitialisation, KeepsTheZeroSetAndReachesTheDistance) {
   ASSERT_GT(before.size(), 500u);
 
   const Exec exec;
-  const auto p0 = to_view<Mem>(phi0);
-  auto phi = to_view<Mem>(phi0), next = to_view<Mem>(phi0);
+  const auto p0 = kernels::to_view<Mem>(phi0);
+  auto phi = kernels::to_view<Mem>(phi0), next = kernels::to_view<Mem>(phi0);
   const int iterations = 16;
   for (int it = 0; it < iterations; ++it) {
     reinitialise_step(exec, g, p0, phi, next);
     std::swap(phi, next);
   }
-  const auto after = to_std_vector(phi);
+  const auto after = kernels::to_std_vector(phi);
 
   // the zero set stays: every crossing keeps its edge and moves by a small fraction of h (the
   // Godunov update alone, without the subcell fix, moves them by 0.05 h in 2 steps, and in 16

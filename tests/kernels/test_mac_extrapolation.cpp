@@ -28,7 +28,7 @@ TEST(MacExtrapolation, LayersFromTheLowestAirRowEqualLayersOverTheWholeGrid) {
                                  : j < surface       ? MacCellType::fluid
                                                      : MacCellType::air;
       }
-  const auto types = to_view<Mem>(type);
+  const auto types = kernels::to_view<Mem>(type);
   const Exec exec;
   const int first = lowest_air_row(exec, g, types);
   int expected = g.ny;
@@ -44,14 +44,14 @@ TEST(MacExtrapolation, LayersFromTheLowestAirRowEqualLayersOverTheWholeGrid) {
     std::vector<double> results[2];
     std::vector<std::uint8_t> marks[2];
     for (int variant = 0; variant < 2; ++variant) {
-      Kokkos::View<double*, Mem> f = to_view<Mem>(face);
+      Kokkos::View<double*, Mem> f = kernels::to_view<Mem>(face);
       Kokkos::View<std::uint8_t*, Mem> mark("mark", g.padded_size());
       mark_fluid_faces(exec, g, d, types, mark);
       for (int layer = 2; layer < 5; ++layer)
         extrapolate_layer(exec, g, d, types, f, mark, layer, kernels::mac::box_edges(),
                           variant == 0 ? 0 : first);
-      results[variant] = to_std_vector(f);
-      const auto host_mark = Kokkos::create_mirror_view_and_copy(HostMemSpace(), mark);
+      results[variant] = kernels::to_std_vector(f);
+      const auto host_mark = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), mark);
       marks[variant].assign(host_mark.data(), host_mark.data() + host_mark.extent(0));
     }
     long filled = 0;

@@ -50,7 +50,7 @@ struct SpringLaw {
   KOKKOS_INLINE_FUNCTION void prefetch(int, int) const {}
   KOKKOS_INLINE_FUNCTION Effect interact(const Particle&, int, double, const double dx[3],
                                          double d2, double rsum, State& s) const {
-    const double d = math::sqrt(d2), push = k * (rsum - d) / d;
+    const double d = kernels::math::sqrt(d2), push = k * (rsum - d) / d;
     s.count += 1.0;
     return {{-push * dx[0], -push * dx[1], -push * dx[2]}};
   }
@@ -112,8 +112,8 @@ struct Pairs : test::DeviceSpheres<Mem> {
     } else {
       pair_sums_by_slabs(Exec(), schedule, pairs(), spheres(), n, live, law(false));
     }
-    auto hf = Kokkos::create_mirror_view_and_copy(HostMemSpace(), f);
-    auto hg = Kokkos::create_mirror_view_and_copy(HostMemSpace(), gid);
+    auto hf = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), f);
+    auto hg = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), gid);
     std::map<std::int64_t, std::array<double, 3>> out;
     for (int i = 0; i < n; ++i) out[hg(i)] = {hf(i, 0), hf(i, 1), hf(i, 2)};
     return out;
@@ -157,7 +157,7 @@ TEST(ParticlePairLoop, BothSchedulesGiveAllPairsForces) {
       for (int d = 0; d < 3; ++d) worst = std::max(worst, std::abs(got.at(g)[d] - F[d]));
     EXPECT_LT(worst, 1e-13) << (by_particle ? "by particle" : "by slabs");
     // every touching pair's state counted one evaluation, in the entry of its smaller gid
-    auto st = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.state);
+    auto st = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.state);
     EXPECT_EQ(std::accumulate(st.data(), st.data() + st.extent(0), 0.0), double(touching));
   }
 }
@@ -177,7 +177,7 @@ TEST(ParticlePairLoop, StatesResetWhenPairsPart) {
   Pairs p(s);
   p.forces(false);
   p.forces(false);  // touching pairs now count 2
-  auto st = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.state);
+  auto st = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.state);
   double twos = 0;
   for (size_t e = 0; e < st.extent(0); ++e) twos += st(e) == 2.0;
   EXPECT_GT(twos, 100);

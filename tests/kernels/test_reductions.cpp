@@ -15,7 +15,7 @@ using View = Kokkos::View<double*, test::TestMemSpace>;
 View ramp(int n) {
   View x("x", n);
   Kokkos::parallel_for(
-      "test::ramp", RangePolicy<TestExecSpace>(0, n),
+      "test::ramp", kernels::RangePolicy<TestExecSpace>(0, n),
       KOKKOS_LAMBDA(int i) { x(i) = double((i * 37) % n) - 0.5 * n; });
   Kokkos::fence();
   return x;
@@ -25,7 +25,7 @@ void set(const View& x, int i, double v) { Kokkos::deep_copy(Kokkos::subview(x, 
 
 TEST(Reductions, MinMax) {
   const int n = 10007;  // prime, so (i * 37) % n is a permutation of 0..n-1
-  const auto mm = reduce::min_max(TestExecSpace(), ramp(n));
+  const auto mm = kernels::reduce::min_max(TestExecSpace(), ramp(n));
   EXPECT_EQ(mm.min, -0.5 * n);
   EXPECT_EQ(mm.max, double(n - 1) - 0.5 * n);
 }
@@ -33,18 +33,18 @@ TEST(Reductions, MinMax) {
 TEST(Reductions, FirstNonFiniteFindsTheSmallestIndex) {
   const TestExecSpace exec;
   View x = ramp(50000);
-  EXPECT_EQ(reduce::first_nonfinite(exec, x), -1);
+  EXPECT_EQ(kernels::reduce::first_nonfinite(exec, x), -1);
   set(x, 41234, std::numeric_limits<double>::infinity());
-  EXPECT_EQ(reduce::first_nonfinite(exec, x), 41234);
+  EXPECT_EQ(kernels::reduce::first_nonfinite(exec, x), 41234);
   set(x, 1234, std::nan(""));
   set(x, 30000, -std::numeric_limits<double>::infinity());
-  EXPECT_EQ(reduce::first_nonfinite(exec, x), 1234);
+  EXPECT_EQ(kernels::reduce::first_nonfinite(exec, x), 1234);
   set(x, 0, std::nan(""));
-  EXPECT_EQ(reduce::first_nonfinite(exec, x), 0);
+  EXPECT_EQ(kernels::reduce::first_nonfinite(exec, x), 0);
 }
 
 TEST(Reductions, FirstNonFiniteOfEmptyView) {
-  EXPECT_EQ(reduce::first_nonfinite(TestExecSpace(), View("x", 0)), -1);
+  EXPECT_EQ(kernels::reduce::first_nonfinite(TestExecSpace(), View("x", 0)), -1);
 }
 
 }  // namespace test_reductions_cases

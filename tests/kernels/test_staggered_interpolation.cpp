@@ -37,7 +37,7 @@ int samples_differing(const kernels::mac::MacGrid& g, Staggering s, const V& u, 
         for (int e = 0; e < 3; ++e)
           if (a[e] != b[e]) Kokkos::atomic_add(&differ(0), 1);
       });
-  return Kokkos::create_mirror_view_and_copy(HostMemSpace(), differ)(0);
+  return Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), differ)(0);
 }
 
 TEST(StaggeredInterpolation, VelocityAtASampleIsTrilinearInterpolationThere) {
@@ -50,7 +50,8 @@ TEST(StaggeredInterpolation, VelocityAtASampleIsTrilinearInterpolationThere) {
       c.resize(g.padded_size());
       for (auto& x : c) x = U(rng);
     }
-    const auto u = to_view<Mem>(f[0]), v = to_view<Mem>(f[1]), w = to_view<Mem>(f[2]);
+    const auto u = kernels::to_view<Mem>(f[0]), v = kernels::to_view<Mem>(f[1]),
+               w = kernels::to_view<Mem>(f[2]);
     for (int st = -1; st < 3; ++st) {
       const auto s = static_cast<Staggering>(st);
       const int differ = samples_differing(g, s, u, v, w);

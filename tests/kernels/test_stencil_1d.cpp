@@ -20,7 +20,7 @@ View quadratic(const TestExecSpace& exec, int n, double x0, double dx, double p,
                double r) {
   View u("u", n);
   Kokkos::parallel_for(
-      "test::quadratic", RangePolicy<TestExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
+      "test::quadratic", kernels::RangePolicy<TestExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
         const double x = x0 + i * dx;
         u(i) = p + q * x + r * x * x;
       });
@@ -35,10 +35,10 @@ TEST(Stencil1D, ExactOnQuadratics) {
   const double x0 = -0.3, dx = 1.0 / 256, a = 0.7, nu = 0.05, dt = 1e-3, f = 0.25;
   const double p = 0.5, q = -1.25, r = 2.0;
   View u = quadratic(exec, n, x0, dx, p, q, r), v("v", n);
-  stencil::advection_diffusion_ftcs(exec, u, v, 1, n - 1, x0, dx, a, nu, 0.0, dt,
-                                    ConstantSource{f});
-  auto uh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), u);
-  auto vh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), v);
+  kernels::stencil::advection_diffusion_ftcs(exec, u, v, 1, n - 1, x0, dx, a, nu, 0.0, dt,
+                                             ConstantSource{f});
+  auto uh = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), u);
+  auto vh = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), v);
   for (int i = 1; i < n - 1; ++i) {
     const double x = x0 + i * dx;
     const double expected = uh(i) + dt * (-a * (q + 2 * r * x) + 2 * nu * r + f);
@@ -50,9 +50,9 @@ TEST(Stencil1D, ExactOnQuadratics) {
 
 TEST(Stencil1D, StabilityLimit) {
   // Diffusion-limited and advection-limited regimes of dt <= min(h^2/(2 nu), 2 nu / a^2).
-  EXPECT_DOUBLE_EQ(stencil::advection_diffusion_ftcs_dt_limit(1.0, 0.1, 0.01), 0.0005);
-  EXPECT_DOUBLE_EQ(stencil::advection_diffusion_ftcs_dt_limit(10.0, 0.01, 0.1), 0.0002);
-  EXPECT_DOUBLE_EQ(stencil::advection_diffusion_ftcs_dt_limit(0.0, 0.5, 0.1), 0.01);
+  EXPECT_DOUBLE_EQ(kernels::stencil::advection_diffusion_ftcs_dt_limit(1.0, 0.1, 0.01), 0.0005);
+  EXPECT_DOUBLE_EQ(kernels::stencil::advection_diffusion_ftcs_dt_limit(10.0, 0.01, 0.1), 0.0002);
+  EXPECT_DOUBLE_EQ(kernels::stencil::advection_diffusion_ftcs_dt_limit(0.0, 0.5, 0.1), 0.01);
 }
 
 }  // namespace test_stencil_1d_cases

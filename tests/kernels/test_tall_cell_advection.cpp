@@ -31,8 +31,8 @@ kernels::mac::TallCellColumns<M> columns(const MacGrid& g, const std::vector<int
       t[T.column(i, k)] = terrain[i + g.nx * k];
       b[T.column(i, k)] = band[i + g.nx * k];
     }
-  Kokkos::deep_copy(T.terrain, to_view<M>(t));
-  Kokkos::deep_copy(T.band, to_view<M>(b));
+  Kokkos::deep_copy(T.terrain, kernels::to_view<M>(t));
+  Kokkos::deep_copy(T.band, kernels::to_view<M>(b));
   return T;
 }
 
@@ -51,7 +51,7 @@ kernels::mac::TallCellColumns<M> uneven_columns(const MacGrid& g) {
 TEST(TallCellVelocity, LinearFitKeepsEachColumnsMomentumAndLinearProfiles) {
   const MacGrid g{9, 14, 7, 0.1, {0, 0, 0}};
   const auto T = uneven_columns(g);
-  const auto th = uneven_columns<HostMemSpace>(g);
+  const auto th = uneven_columns<kernels::HostMemSpace>(g);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
   long fitted = 0;
@@ -63,10 +63,10 @@ TEST(TallCellVelocity, LinearFitKeepsEachColumnsMomentumAndLinearProfiles) {
           random[g.index(i, j, k)] = U(rng);
           linear[g.index(i, j, k)] = 0.3 * i - 0.7 * k + (0.2 + 0.01 * i) * j;
         }
-    auto rf = to_view<Mem>(random), lf = to_view<Mem>(linear);
+    auto rf = kernels::to_view<Mem>(random), lf = kernels::to_view<Mem>(linear);
     fit_linear_in_tall_cells(Exec(), T, d, rf);
     fit_linear_in_tall_cells(Exec(), T, d, lf);
-    const auto r = to_std_vector(rf), l = to_std_vector(lf);
+    const auto r = kernels::to_std_vector(rf), l = kernels::to_std_vector(lf);
     for (int k = 0; k < g.nz + (d == 2); ++k)
       for (int i = 0; i < g.nx + (d == 0); ++i) {
         int lo, hi;
@@ -114,16 +114,16 @@ TEST(TallCellVelocity, FitSkipsOnlyTheColumnsWhoseTallRowsAreFitted) {
       old_band.push_back(band.back() + ((i * 3 + k) % 4 == 0));
     }
   const auto T = columns(g, terrain, band), old = columns(g, old_terrain, old_band);
-  const auto th = columns<HostMemSpace>(g, terrain, band),
-             oh = columns<HostMemSpace>(g, old_terrain, old_band);
+  const auto th = columns<kernels::HostMemSpace>(g, terrain, band),
+             oh = columns<kernels::HostMemSpace>(g, old_terrain, old_band);
   std::mt19937 rng(5);
   long skipped = 0, refitted = 0;
   for (int d = 0; d < 3; ++d) {
     const auto random = random_faces(g, rng);
-    auto all = to_view<Mem>(random), changed = to_view<Mem>(random);
+    auto all = kernels::to_view<Mem>(random), changed = kernels::to_view<Mem>(random);
     fit_linear_in_tall_cells(Exec(), T, d, all);
     fit_linear_in_tall_cells(Exec(), T, d, changed, old);
-    const auto a = to_std_vector(all), c = to_std_vector(changed);
+    const auto a = kernels::to_std_vector(all), c = kernels::to_std_vector(changed);
     for (int k = 0; k < g.nz + (d == 2); ++k)
       for (int i = 0; i < g.nx + (d == 0); ++i) {
         int lo, hi, olo, ohi;
@@ -159,13 +159,13 @@ TEST(TallCellVelocity, CourantSpeedFromTheEndsEqualsEveryRow) {
       band.push_back(6 + (2 * i + 3 * k) % 7);
     }
   const auto T = columns(g, terrain, band);
-  const auto th = columns<HostMemSpace>(g, terrain, band);
+  const auto th = columns<kernels::HostMemSpace>(g, terrain, band);
   std::mt19937 rng(11);
   std::vector<double> f[3];
   for (int d = 0; d < 3; ++d) {
-    auto view = to_view<Mem>(random_faces(g, rng));
+    auto view = kernels::to_view<Mem>(random_faces(g, rng));
     fit_linear_in_tall_cells(Exec(), T, d, view);
-    f[d] = to_std_vector(view);
+    f[d] = kernels::to_std_vector(view);
   }
   const int sy = g.stride_y(), sz = g.stride_z();
   long skipping = 0;
@@ -198,7 +198,8 @@ TEST(TallCellVelocity, CourantSpeedFromTheEndsEqualsEveryRow) {
             }
           }
         const double speed =
-            tall_cell_speed(Exec(), T, to_view<Mem>(m[0]), to_view<Mem>(m[1]), to_view<Mem>(m[2]));
+            tall_cell_speed(Exec(), T, kernels::to_view<Mem>(m[0]), kernels::to_view<Mem>(m[1]),
+                            kernels::to_view<Mem>(m[2]));
         EXPECT_NEAR(speed, every_row, 1e-14 * every_row)
             << "column " << i0 << ", " << k0 << ", scale " << scale;
         const int col = th.column(i0, k0);
@@ -207,9 +208,9 @@ TEST(TallCellVelocity, CourantSpeedFromTheEndsEqualsEveryRow) {
   EXPECT_GT(skipping, 10);  // columns with rows the kernel need not read
   // no tall cell at all: no speed limit from them
   const auto uniform = columns(g, terrain, terrain);
-  EXPECT_EQ(
-      tall_cell_speed(Exec(), uniform, to_view<Mem>(f[0]), to_view<Mem>(f[1]), to_view<Mem>(f[2])),
-      0.0);
+  EXPECT_EQ(tall_cell_speed(Exec(), uniform, kernels::to_view<Mem>(f[0]),
+                            kernels::to_view<Mem>(f[1]), kernels::to_view<Mem>(f[2])),
+            0.0);
 }
 
 TEST(TallCellVelocity, MaxAbsFromTheEndsOfLinearRowsEqualsEveryRow) {
@@ -218,13 +219,13 @@ TEST(TallCellVelocity, MaxAbsFromTheEndsOfLinearRowsEqualsEveryRow) {
   // ends, against every such row, for cuts below, inside and above the tall cells
   const MacGrid g{9, 14, 7, 0.1, {0, 0, 0}};
   const auto T = uneven_columns(g);
-  const auto th = uneven_columns<HostMemSpace>(g);
+  const auto th = uneven_columns<kernels::HostMemSpace>(g);
   std::mt19937 rng(5);
   long cut = 0;
   for (int d = 0; d < 3; ++d) {
-    auto view = to_view<Mem>(random_faces(g, rng));
+    auto view = kernels::to_view<Mem>(random_faces(g, rng));
     fit_linear_in_tall_cells(Exec(), T, d, view);
-    auto f = to_std_vector(view);
+    auto f = kernels::to_std_vector(view);
     for (int k = 0; k < g.nz + (d == 2); ++k)
       for (int i = 0; i < g.nx + (d == 0); ++i) {
         int lo, hi;
@@ -232,7 +233,7 @@ TEST(TallCellVelocity, MaxAbsFromTheEndsOfLinearRowsEqualsEveryRow) {
         for (int j = 0; j <= g.ny; ++j)
           if (j < lo || j >= hi) f[g.index(i, j, k)] *= 10.0;
       }
-    const auto scaled = to_view<Mem>(f);
+    const auto scaled = kernels::to_view<Mem>(f);
     for (int below : {0, 3, 6, 8, 11, g.ny + 1}) {
       double every_row = 0.0;
       for (int k = 0; k < g.nz + (d == 2); ++k)
@@ -269,8 +270,8 @@ TEST(TallCellVelocity, LevelSetKernelsFromTheFirstRowEqualTheWholeLatticeAbove) 
     v.resize(g.padded_size());
     for (auto& x : v) x = 0.5 * R(rng);
   }
-  const auto P = to_view<Mem>(phi), U = to_view<Mem>(vel[0]), V = to_view<Mem>(vel[1]),
-             W = to_view<Mem>(vel[2]);
+  const auto P = kernels::to_view<Mem>(phi), U = kernels::to_view<Mem>(vel[0]),
+             V = kernels::to_view<Mem>(vel[1]), W = kernels::to_view<Mem>(vel[2]);
   const double sentinel = 7.0;
   const auto run = [&](int first_row, bool advection) {
     const Kokkos::View<double*, Mem> out("out", g.padded_size());
@@ -280,7 +281,7 @@ TEST(TallCellVelocity, LevelSetKernelsFromTheFirstRowEqualTheWholeLatticeAbove) 
       advect(Exec(), T, Staggering::centre, P, out, U, V, W, 0.05, P, 1.0, g, none, first_row);
     else
       reinitialise_step(Exec(), T, P, P, out, kernels::mac::box_edges(), first_row);
-    return to_std_vector(out);
+    return kernels::to_std_vector(out);
   };
   for (bool advection : {true, false}) {
     const auto whole = run(0, advection);
@@ -310,7 +311,7 @@ double bump(const MacGrid& g, double x, double y, double z) {
   double b = 1.0;
   for (int d = 0; d < 3; ++d) {
     const double s = (p[d] - 2.5 * g.h) / (L[d] - 5 * g.h);
-    b *= s > 0 && s < 1 ? std::sin(math::pi * s) * std::sin(math::pi * s) : 0.0;
+    b *= s > 0 && s < 1 ? std::sin(kernels::math::pi * s) * std::sin(kernels::math::pi * s) : 0.0;
   }
   return b;
 }
@@ -333,12 +334,14 @@ TEST(TallCellVelocity, UpwindAdvectionInTallCellsConservesMomentum) {
               a[d] * bump(g, p[0], p[1], p[2]) * (1.0 + 0.5 * std::sin(7 * p[(d + 1) % 3]));
         }
   }
-  const auto u = to_view<Mem>(f[0]), v = to_view<Mem>(f[1]), w = to_view<Mem>(f[2]);
+  const auto u = kernels::to_view<Mem>(f[0]), v = kernels::to_view<Mem>(f[1]),
+             w = kernels::to_view<Mem>(f[2]);
   // linear in height in the tall cells, as the water step keeps the velocity there
   fit_linear_in_tall_cells(Exec(), T, 0, u);
   fit_linear_in_tall_cells(Exec(), T, 1, v);
   fit_linear_in_tall_cells(Exec(), T, 2, w);
-  f[0] = to_std_vector(u), f[1] = to_std_vector(v), f[2] = to_std_vector(w);
+  f[0] = kernels::to_std_vector(u), f[1] = kernels::to_std_vector(v),
+  f[2] = kernels::to_std_vector(w);
   const Kokkos::View<double*, Mem> all_fluid("phi", g.padded_size());
   Kokkos::deep_copy(all_fluid, -1.0);
   const double dt = 0.4 * g.h / 0.8;  // Courant sum below one
@@ -351,7 +354,7 @@ TEST(TallCellVelocity, UpwindAdvectionInTallCellsConservesMomentum) {
   // are those of the row-by-row step (AdvectionPerTallCellEqualsEveryRowThenTheFit).
   for (int d : {0, 2}) {
     advect(Exec(), T, static_cast<Staggering>(d), d == 0 ? u : w, out, u, v, w, dt, all_fluid, 1.0);
-    const auto r = to_std_vector(out);
+    const auto r = kernels::to_std_vector(out);
     double before = 0, after = 0, scale = 0;
     for (std::size_t c = 0; c < r.size(); ++c) {
       before += f[d][c], after += r[c], scale += std::abs(f[d][c]);
@@ -368,7 +371,7 @@ TEST(TallCellVelocity, AdvectionPerTallCellEqualsEveryRowThenTheFit) {
   // equal the upwind step of every row followed by the momentum-keeping fit, to round-off.
   const MacGrid g{9, 16, 7, 0.1, {0, 0, 0}};
   const auto T = uneven_columns(g);
-  const auto th = uneven_columns<HostMemSpace>(g);
+  const auto th = uneven_columns<kernels::HostMemSpace>(g);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> R(-1.0, 1.0);
   std::vector<double> f[3];
@@ -376,12 +379,13 @@ TEST(TallCellVelocity, AdvectionPerTallCellEqualsEveryRowThenTheFit) {
   for (int d = 0; d < 3; ++d) {
     f[d].resize(g.padded_size());
     for (auto& x : f[d]) x = R(rng);
-    vel[d] = to_view<Mem>(f[d]);
+    vel[d] = kernels::to_view<Mem>(f[d]);
     fit_linear_in_tall_cells(Exec(), T, d, vel[d]);  // linear in the tall cells
-    f[d] = to_std_vector(vel[d]);
+    f[d] = kernels::to_std_vector(vel[d]);
   }
-  const auto hu = to_view<HostMemSpace>(f[0]), hv = to_view<HostMemSpace>(f[1]),
-             hw = to_view<HostMemSpace>(f[2]);
+  const auto hu = kernels::to_view<kernels::HostMemSpace>(f[0]),
+             hv = kernels::to_view<kernels::HostMemSpace>(f[1]),
+             hw = kernels::to_view<kernels::HostMemSpace>(f[2]);
   const Kokkos::View<double*, Mem> all_fluid("phi", g.padded_size()), out("out", g.padded_size());
   Kokkos::deep_copy(all_fluid, -1.0);
   const double dt = 0.05;
@@ -389,10 +393,10 @@ TEST(TallCellVelocity, AdvectionPerTallCellEqualsEveryRowThenTheFit) {
   for (int d = 0; d < 3; ++d) {
     advect(Exec(), T, static_cast<Staggering>(d), vel[d], out, vel[0], vel[1], vel[2], dt,
            all_fluid, 1.0);
-    const auto got = to_std_vector(out);
+    const auto got = kernels::to_std_vector(out);
     // the reference: every tall row by conservative_upwind_sample, then the fit
     const auto hq = d == 0 ? hu : d == 1 ? hv : hw;
-    Kokkos::View<double*, HostMemSpace> ref("ref", g.padded_size());
+    Kokkos::View<double*, kernels::HostMemSpace> ref("ref", g.padded_size());
     Kokkos::deep_copy(ref, hq);
     for (int k = 0; k < g.nz + (d == 2); ++k)
       for (int i = 0; i < g.nx + (d == 0); ++i) {
@@ -436,9 +440,9 @@ TEST(TallCellVelocity, UpwindAdvectionTranslatesLinearFieldsExactly) {
   const Kokkos::View<double*, Mem> all_fluid("phi", g.padded_size()), out("out", g.padded_size());
   Kokkos::deep_copy(all_fluid, -1.0);
   const double dt = 0.1;
-  advect(Exec(), T, Staggering::x, to_view<Mem>(q), out, to_view<Mem>(vel[0]), to_view<Mem>(vel[1]),
-         to_view<Mem>(vel[2]), dt, all_fluid, 1.0);
-  const auto r = to_std_vector(out);
+  advect(Exec(), T, Staggering::x, kernels::to_view<Mem>(q), out, kernels::to_view<Mem>(vel[0]),
+         kernels::to_view<Mem>(vel[1]), kernels::to_view<Mem>(vel[2]), dt, all_fluid, 1.0);
+  const auto r = kernels::to_std_vector(out);
   const double change = -dt * (U[0] * b[0] + U[1] * b[1] + U[2] * b[2]);
   int checked = 0;
   for (int k = 1; k < g.nz - 1; ++k)

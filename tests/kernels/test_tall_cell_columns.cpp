@@ -38,12 +38,12 @@ struct Pool {
 /// solid or in a tall cell, and whether the row it names holds a cell that is neither.
 void check(const Pool& p, int D, int expected) {
   const MacGrid& g = p.g;
-  const auto type = to_view<Mem>(p.type);
+  const auto type = kernels::to_view<Mem>(p.type);
   TallCellColumns<Mem> T(g);
   find_tall_cell_columns(Exec(), type, D, T);
   const int lowest = lowest_band(Exec(), T, type);
   EXPECT_EQ(lowest, expected) << "optical depth " << D;
-  const auto terrain = to_std_vector(T.terrain), band = to_std_vector(T.band);
+  const auto terrain = kernels::to_std_vector(T.terrain), band = kernels::to_std_vector(T.band);
   bool bound_is_tight = lowest == 0;
   for (int k = 0; k < g.nz; ++k)
     for (int i = 0; i < g.nx; ++i) {

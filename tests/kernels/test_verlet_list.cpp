@@ -22,8 +22,8 @@ TEST(ParticleBinning, EveryPointInItsCellCellsInKeyOrder) {
   const double lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
   const CellGrid grid = CellGrid::covering(lo, hi, 0.07);
   const auto bins = bin_points(Exec(), grid, dev.x, s.n, dev.gid);
-  auto off = Kokkos::create_mirror_view_and_copy(HostMemSpace(), bins.offsets);
-  auto perm = Kokkos::create_mirror_view_and_copy(HostMemSpace(), bins.permutation);
+  auto off = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), bins.offsets);
+  auto perm = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), bins.permutation);
   ASSERT_EQ(off(grid.num_cells()), s.n);
   std::vector<int> seen(s.n, 0);
   for (int c = 0; c < grid.num_cells(); ++c)
@@ -47,9 +47,9 @@ TEST(ParticleVerletList, RowsEqualAllPairsSortedAndSplit) {
   const auto bins = bin_points(Exec(), grid, dev.x, s.n);
   const auto list = build_verlet_list(Exec(), grid, bins, dev.x, dev.r, dev.gid, s.n, skin);
   const auto half = half_starts(Exec(), list, dev.gid);
-  auto off = Kokkos::create_mirror_view_and_copy(HostMemSpace(), list.offsets);
-  auto nbr = Kokkos::create_mirror_view_and_copy(HostMemSpace(), list.neighbors);
-  auto hh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), half);
+  auto off = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), list.offsets);
+  auto nbr = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), list.neighbors);
+  auto hh = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), half);
   long long entries = 0;
   for (int i = 0; i < s.n; ++i) {
     std::vector<int> truth;

@@ -1,6 +1,7 @@
 # The house rules hold on src/, and their checks catch what they are for: the layer rules of
 # scripts/check_layers.py (a kernel header that includes mesh/, MPI or Eigen, a mesh file that
-# includes physics/), and no function over 150 lines (scripts/check_function_length.py).
+# includes physics/), namespaces that follow folders (scripts/check_namespaces.py) and no function
+# over 150 lines (scripts/check_function_length.py).
 set -euo pipefail
 root=$1
 python3 "$root/scripts/check_layers.py" "$root/src"
@@ -21,6 +22,16 @@ expect_wrong kernels/mac/a.hpp '#include "mesh/mac/lattice_halo.hpp"'
 expect_wrong kernels/b.hpp '#include <mpi.h>'
 expect_wrong kernels/c.hpp '#include <Eigen/Dense>'
 expect_wrong mesh/d.cpp '#include "physics/module.hpp"'
+python3 "$root/scripts/check_namespaces.py" "$root/src"
+mkdir -p "$work/ns/mesh/hex" "$work/ns/base"
+printf 'namespace amphora::mesh::hex {\nnamespace detail {}\n}  // namespace amphora::mesh::hex\n' > "$work/ns/mesh/hex/good.hpp"
+printf 'namespace amphora {\n}  // namespace amphora\n' > "$work/ns/base/good.hpp"
+python3 "$root/scripts/check_namespaces.py" "$work/ns" > /dev/null || { echo "FAIL: a clean namespace rejected"; exit 1; }
+printf '// a\nnamespace amphora::mesh {\n}  // namespace amphora::mesh\n' > "$work/ns/mesh/hex/bad.hpp"
+if out=$(python3 "$root/scripts/check_namespaces.py" "$work/ns"); then
+  echo "FAIL: amphora::mesh in mesh/hex/ passed the namespace check"; exit 1
+fi
+grep -q "bad.hpp:2: namespace amphora::mesh" <<< "$out" || { echo "FAIL: no file:line for bad.hpp: $out"; exit 1; }
 python3 "$root/scripts/check_function_length.py" "$root/src"
 mkdir -p "$work/long"
 {

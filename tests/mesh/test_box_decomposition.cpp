@@ -8,12 +8,12 @@ namespace {
 
 TEST(BoxDecomposition, BlocksTileTheBoxExactly) {
   for (int nranks : {1, 2, 3, 4, 6, 8, 12}) {
-    BoxDecomposition dec({30, 20, 10}, {false, false, false}, nranks);
+    mesh::BoxDecomposition dec({30, 20, 10}, {false, false, false}, nranks);
     EXPECT_EQ(dec.num_blocks(), nranks);
     long long cells = 0;
     std::set<long long> owned;
     for (int r = 0; r < nranks; ++r) {
-      const Box b = dec.box(r);
+      const mesh::Box b = dec.box(r);
       cells += b.cells();
       for (int d = 0; d < 3; ++d) {
         // Balanced: extents differ by at most one cell.
@@ -31,15 +31,15 @@ TEST(BoxDecomposition, BlocksTileTheBoxExactly) {
 }
 
 TEST(BoxDecomposition, SplitsAlongTheLongDirectionFirst) {
-  BoxDecomposition dec({64, 8, 8}, {false, false, false}, 2);
+  mesh::BoxDecomposition dec({64, 8, 8}, {false, false, false}, 2);
   EXPECT_EQ(dec.blocks()[0], 2);
   EXPECT_EQ(dec.blocks()[1], 1);
 }
 
 TEST(BoxDecomposition, NeighboursAndPeriodicImages) {
-  BoxDecomposition dec({8, 8, 4}, {true, false, false}, 4);
+  mesh::BoxDecomposition dec({8, 8, 4}, {true, false, false}, 4);
   for (int r = 0; r < 4; ++r) {
-    const Index3 c = dec.block_coords(r);
+    const mesh::Index3 c = dec.block_coords(r);
     for (int d = 0; d < 3; ++d) {
       for (int side = 0; side < 2; ++side) {
         const int nb = dec.neighbor(r, d, side);
@@ -58,15 +58,16 @@ TEST(BoxDecomposition, NeighboursAndPeriodicImages) {
 
 TEST(BoxDecomposition, MoreRanksThanBlocksIsAClearError) {
   try {
-    BoxDecomposition dec({4, 1, 1}, {false, false, false}, 3, 2);
+    mesh::BoxDecomposition dec({4, 1, 1}, {false, false, false}, 3, 2);
     FAIL() << "expected DecompositionError";
-  } catch (const DecompositionError& e) {
+  } catch (const mesh::DecompositionError& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("more ranks (3) than blocks"), std::string::npos) << m;
     EXPECT_NE(m.find("4x1x1"), std::string::npos) << m;
   }
-  EXPECT_THROW(BoxDecomposition({0, 4, 4}, {false, false, false}, 1), DecompositionError);
-  EXPECT_NO_THROW(BoxDecomposition({4, 1, 1}, {false, false, false}, 2, 2));
+  EXPECT_THROW(mesh::BoxDecomposition({0, 4, 4}, {false, false, false}, 1),
+               mesh::DecompositionError);
+  EXPECT_NO_THROW(mesh::BoxDecomposition({4, 1, 1}, {false, false, false}, 2, 2));
 }
 
 }  // namespace

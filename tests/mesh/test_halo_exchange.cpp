@@ -10,12 +10,12 @@ double tag(int i, int j, int k) { return i + 100.0 * j + 10000.0 * k; }
 
 TEST(HaloExchange, GhostsHoldTheirImagesAcrossRanks) {
   Communicator comm;
-  const Index3 global{12, 6, 5};
+  const mesh::Index3 global{12, 6, 5};
   const int g = 2;
-  BoxDecomposition dec(global, {true, false, false}, comm.size(), g);
-  HaloExchange<test::TestMemSpace> halo(dec, comm, g);
+  mesh::BoxDecomposition dec(global, {true, false, false}, comm.size(), g);
+  mesh::HaloExchange<test::TestMemSpace> halo(dec, comm, g);
   auto f = halo.allocate("f");
-  const Box b = halo.box();
+  const mesh::Box b = halo.box();
   auto h = Kokkos::create_mirror_view(f);
   Kokkos::deep_copy(h, -1.0);
   for (int k = 0; k < b.extent(2); ++k)
@@ -46,7 +46,7 @@ TEST(HaloExchange, GhostsHoldTheirImagesAcrossRanks) {
 
 TEST(HaloExchange, DecompositionMatchesRankCount) {
   Communicator comm;
-  BoxDecomposition dec({12, 6, 5}, {true, false, false}, comm.size(), 2);
+  mesh::BoxDecomposition dec({12, 6, 5}, {true, false, false}, comm.size(), 2);
   EXPECT_EQ(dec.num_blocks(), comm.size());
 }
 

@@ -47,26 +47,28 @@ double source(const std::array<double, 3>& x) { return 1.0 + x[0] * x[2]; }
 struct Block {
   MacGrid grid;
   kernels::mac::MacBoxBoundaries faces;
-  kernels::mac::PoissonStencil<HostMemSpace> A;
+  kernels::mac::PoissonStencil<kernels::HostMemSpace> A;
   std::vector<double> b;
 };
 
 /// A padded lattice array through the exchange of its ghost layer (host data).
 template <class T>
-void exchange(const mesh::LatticeGhostExchange& halo, const MacGrid& g, T* data) {
+void exchange(const mesh::mac::LatticeGhostExchange& halo, const MacGrid& g, T* data) {
   Kokkos::View<T*, Mem> v("v", g.padded_size());
-  Kokkos::deep_copy(v, Kokkos::View<T*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(
-                           data, g.padded_size()));
+  Kokkos::deep_copy(
+      v, Kokkos::View<T*, kernels::HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(
+             data, g.padded_size()));
   halo.exchange(Exec(), g, v);
-  Kokkos::deep_copy(Kokkos::View<T*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(
-                        data, g.padded_size()),
-                    v);
+  Kokkos::deep_copy(
+      Kokkos::View<T*, kernels::HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>>(
+          data, g.padded_size()),
+      v);
 }
 
 /// The block of `box` (global cell indices) with the given box faces; ghost types and phi come
 /// from the neighbours by halo exchange when `halo` is given, else the block is the whole box.
-Block make_block(const Box& box, const kernels::mac::MacBoxBoundaries& faces,
-                 const mesh::LatticeGhostExchange* halo) {
+Block make_block(const mesh::Box& box, const kernels::mac::MacBoxBoundaries& faces,
+                 const mesh::mac::LatticeGhostExchange* halo) {
   Block B;
   const double h = 1.0 / N;
   B.grid = MacGrid{box.extent(0),
@@ -95,8 +97,9 @@ Block make_block(const Box& box, const kernels::mac::MacBoxBoundaries& faces,
   }
   std::vector<MacCellType> t(type.size());
   for (std::size_t c = 0; c < t.size(); ++c) t[c] = MacCellType(type[c]);
-  B.A = kernels::mac::build_poisson_stencil<HostExecSpace, HostMemSpace>(
-      HostExecSpace(), g, to_view<HostMemSpace>(t), to_view<HostMemSpace>(phi), faces);
+  B.A = kernels::mac::build_poisson_stencil<kernels::HostExecSpace, kernels::HostMemSpace>(
+      kernels::HostExecSpace(), g, kernels::to_view<kernels::HostMemSpace>(t),
+      kernels::to_view<kernels::HostMemSpace>(phi), faces);
   if (halo) {  // the ghost cells' + faces: this block's - faces
     exchange(*halo, g, B.A.cx.data());
     exchange(*halo, g, B.A.cy.data());
@@ -111,7 +114,7 @@ Block make_block(const Box& box, const kernels::mac::MacBoxBoundaries& faces,
   return B;
 }
 
-std::vector<double> solve(MPI_Comm comm, const Block& B, const Index3& lower) {
+std::vector<double> solve(MPI_Comm comm, const Block& B, const mesh::Index3& lower) {
   solvers::StructPfmgCG pfmg(comm, B.grid, {lower[0], lower[1], lower[2]}, B.A.diag.data(),
                              B.A.cx.data(), B.A.cy.data(), B.A.cz.data());
   std::vector<double> x(B.grid.padded_size(), 0.0);
@@ -122,18 +125,18 @@ std::vector<double> solve(MPI_Comm comm, const Block& B, const Index3& lower) {
 
 /// The scene split horizontally over the ranks of comm (this rank's block) and whole.
 struct SplitScene {
-  Box box;
-  mesh::MacBlock block;
+  mesh::Box box;
+  mesh::mac::MacBlock block;
   Block local, whole;
 };
 /// Split along x (direction 0) or z (2). Both are tested: the lattice's x ghost columns sit
 /// beside the row below's in memory, which a flat loop over the cells meets only in an x split.
 SplitScene split_scene(const Communicator& comm, int direction) {
   SplitScene S;
-  const Index3 global{N, N, N};
+  const mesh::Index3 global{N, N, N};
   // horizontal only: the vertical (y) is never split
-  const BoxDecomposition dec(global, {false, false, false}, comm.size(), 4,
-                             {direction == 0, false, direction == 2});
+  const mesh::BoxDecomposition dec(global, {false, false, false}, comm.size(), 4,
+                                   {direction == 0, false, direction == 2});
   EXPECT_EQ(dec.blocks()[1], 1);
   EXPECT_EQ(dec.blocks()[direction], comm.size());
   S.box = dec.box(comm.rank());
@@ -143,12 +146,12 @@ SplitScene split_scene(const Communicator& comm, int direction) {
       faces[2 * d + side] = dec.neighbor(comm.rank(), d, side) >= 0
                                 ? kernels::mac::MacBoundary::neighbour
                                 : kernels::mac::MacBoundary::wall;
-  S.block = mesh::MacBlock::of(dec, comm.get(), comm.rank());
-  const mesh::LatticeGhostExchange halo(S.block);
+  S.block = mesh::mac::MacBlock::of(dec, comm.get(), comm.rank());
+  const mesh::mac::LatticeGhostExchange halo(S.block);
   S.local = make_block(S.box, faces, &halo);
   kernels::mac::MacBoxBoundaries walls;
   walls.fill(kernels::mac::MacBoundary::wall);
-  S.whole = make_block(Box{{0, 0, 0}, global}, walls, nullptr);
+  S.whole = make_block(mesh::Box{{0, 0, 0}, global}, walls, nullptr);
   return S;
 }
 
@@ -177,8 +180,8 @@ class MacDecomposition : public ::testing::TestWithParam<int> {};
 TEST_P(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock) {
   Communicator comm;
   const SplitScene S = split_scene(comm, GetParam());
-  const Box& box = S.box;
-  const mesh::MacBlock& block = S.block;
+  const mesh::Box& box = S.box;
+  const mesh::mac::MacBlock& block = S.block;
   const Block &local = S.local, &whole = S.whole;
 
   // every coefficient of this block's cells equals the single block's
@@ -213,8 +216,8 @@ TEST_P(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock)
   Kokkos::View<double*, Mem> x("x", local.grid.padded_size());
   solvers::SolverControl control;
   control.relative_tolerance = 1e-11;
-  EXPECT_TRUE(hypre->solve(Exec(), to_view<Mem>(local.b), x, control).converged);
-  const auto xh = to_std_vector(x);
+  EXPECT_TRUE(hypre->solve(Exec(), kernels::to_view<Mem>(local.b), x, control).converged);
+  const auto xh = kernels::to_std_vector(x);
   double d2 = 0;
   for (std::size_t c = 0; c < xh.size(); ++c) d2 = std::max(d2, std::abs(xh[c] - p[c]));
   EXPECT_LT(d2, 1e-12 * scale);
@@ -225,18 +228,19 @@ TEST_P(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock)
   }
 
   // multigrid-CG on the blocks takes the single block's V-cycle: the same iterations and pressure
-  const auto solve_mg = [&](const Block& B, const mesh::MacBlock& where, std::vector<double>& out) {
+  const auto solve_mg = [&](const Block& B, const mesh::mac::MacBlock& where,
+                            std::vector<double>& out) {
     auto mg = solvers::mac::make_pressure_solver(solvers::mac::PressureBackend::multigrid, Exec(),
                                                  kernels::mac::copy_stencil<Mem>(B.A), where);
     Kokkos::View<double*, Mem> xm("x", B.grid.padded_size());
-    const auto r = mg->solve(Exec(), to_view<Mem>(B.b), xm, control);
+    const auto r = mg->solve(Exec(), kernels::to_view<Mem>(B.b), xm, control);
     EXPECT_TRUE(r.converged);
-    out = to_std_vector(xm);
+    out = kernels::to_std_vector(xm);
     return r.iterations;
   };
   std::vector<double> pm, qm;
   const int split_iterations = solve_mg(local, block, pm);
-  const int whole_iterations = solve_mg(whole, mesh::MacBlock{}, qm);
+  const int whole_iterations = solve_mg(whole, mesh::mac::MacBlock{}, qm);
   EXPECT_EQ(split_iterations, whole_iterations) << "ranks " << comm.size();
   const double d3 = block_difference(comm, S, pm, qm).max;
   EXPECT_LT(d3, 1e-9 * scale) << "multigrid on " << comm.size() << " ranks, " << split_iterations
@@ -247,9 +251,10 @@ TEST_P(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock)
   const MG whole_mg(Exec(), kernels::mac::copy_stencil<Mem>(whole.A));
   EXPECT_EQ(split_mg.levels(), whole_mg.levels());
   Kokkos::View<double*, Mem> zs("zs", local.grid.padded_size()), zw("zw", whole.grid.padded_size());
-  split_mg.apply(Exec(), to_view<Mem>(local.b), zs);
-  whole_mg.apply(Exec(), to_view<Mem>(whole.b), zw);
-  const Difference z = block_difference(comm, S, to_std_vector(zs), to_std_vector(zw));
+  split_mg.apply(Exec(), kernels::to_view<Mem>(local.b), zs);
+  whole_mg.apply(Exec(), kernels::to_view<Mem>(whole.b), zw);
+  const Difference z =
+      block_difference(comm, S, kernels::to_std_vector(zs), kernels::to_std_vector(zw));
   const double d4 = z.max, zmax = z.scale;
   EXPECT_LT(d4, 1e-6 * zmax) << "V-cycle on " << comm.size() << " ranks";
   if (comm.rank() == 0) std::printf("V-cycle: max difference %.3g of %.3g\n", d4, zmax);
@@ -265,10 +270,10 @@ TEST_P(MacDecomposition, BlockMatricesAndDistributedPressureMatchTheSingleBlock)
 TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   Communicator comm;
   const SplitScene S = split_scene(comm, GetParam());
-  const Box& box = S.box;
+  const mesh::Box& box = S.box;
   const Block &local = S.local, &whole = S.whole;
   const int depth = 4;
-  const mesh::TallCellGrid T(local.A, depth, S.block), W(whole.A, depth);
+  const mesh::mac::TallCellGrid T(local.A, depth, S.block), W(whole.A, depth);
   ASSERT_GT(W.tall_cells(), 0);
   EXPECT_EQ(comm.sum(static_cast<long long>(T.unknowns())), static_cast<long long>(W.unknowns()));
   EXPECT_EQ(T.global_unknowns(), W.unknowns());
@@ -276,8 +281,8 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   std::vector<std::int64_t> mine(T.unknowns());
   for (int k = 0; k < local.grid.nz; ++k)
     for (int i = 0; i < local.grid.nx; ++i) {
-      const mesh::TallCellColumn& c = T.column(i, k);
-      const mesh::TallCellColumn& w = W.column(box.lo[0] + i, box.lo[2] + k);
+      const mesh::mac::TallCellColumn& c = T.column(i, k);
+      const mesh::mac::TallCellColumn& w = W.column(box.lo[0] + i, box.lo[2] + k);
       ASSERT_EQ(c.terrain, w.terrain);
       ASSERT_EQ(c.band, w.band);
       if (c.has_tall_cell())
@@ -315,17 +320,17 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   control.relative_tolerance = 1e-11;
   using solvers::mac::PressureBackend;
   int iterations[2] = {0, 0};
-  const auto solve_tall = [&](PressureBackend backend, const mesh::TallCellGrid& grid,
+  const auto solve_tall = [&](PressureBackend backend, const mesh::mac::TallCellGrid& grid,
                               const Block& B, const solvers::CsrMatrix& A_t, int& its) {
     std::vector<double> bt(grid.unknowns()), lattice(B.grid.padded_size());
     grid.restrict_to_unknowns(B.b.data(), bt.data());
     auto solver = solvers::mac::make_tall_cell_pressure_solver(
         backend, Exec(), grid, A_t, kernels::mac::copy_stencil<Mem>(B.A));
     Kokkos::View<double*, Mem> y("y", grid.unknowns());
-    const auto r = solver->solve(Exec(), to_view<Mem>(bt), y, control);
+    const auto r = solver->solve(Exec(), kernels::to_view<Mem>(bt), y, control);
     EXPECT_TRUE(r.converged);
     its = r.iterations;
-    grid.prolongate(to_std_vector(y).data(), lattice.data());
+    grid.prolongate(kernels::to_std_vector(y).data(), lattice.data());
     return lattice;
   };
   // BoomerAMG-CG and the own tall-cell multigrid-CG on the blocks: the single block's pressure
@@ -354,12 +359,12 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   const TallMG split_mg(Exec(), T, M, kernels::mac::copy_stencil<Mem>(local.A), deep);
   const TallMG whole_mg(Exec(), W, Mw, kernels::mac::copy_stencil<Mem>(whole.A), deep);
   EXPECT_EQ(split_mg.levels(), whole_mg.levels());
-  const auto vcycle = [&](const TallMG& mg, const mesh::TallCellGrid& grid, const Block& B) {
+  const auto vcycle = [&](const TallMG& mg, const mesh::mac::TallCellGrid& grid, const Block& B) {
     std::vector<double> bt(grid.unknowns()), lattice(B.grid.padded_size());
     grid.restrict_to_unknowns(B.b.data(), bt.data());
     Kokkos::View<double*, Mem> z("z", grid.unknowns());
-    mg.apply(Exec(), to_view<Mem>(bt), z);
-    grid.prolongate(to_std_vector(z).data(), lattice.data());
+    mg.apply(Exec(), kernels::to_view<Mem>(bt), z);
+    grid.prolongate(kernels::to_std_vector(z).data(), lattice.data());
     return lattice;
   };
   const Difference z =

@@ -9,7 +9,7 @@ namespace {
 
 TEST(OverlappingGrid1D, QuadraticWeightsReproduceQuadratics) {
   for (double s : {0.0, 0.3, 1.0, 1.5, 2.0}) {
-    const auto w = quadratic_weights(s);
+    const auto w = mesh::quadratic_weights(s);
     EXPECT_NEAR(w[0] + w[1] + w[2], 1.0, 1e-15);
     for (int p = 0; p <= 2; ++p) {  // f(t) = t^p at t = 0, 1, 2
       const double interp = w[0] * std::pow(0.0, p) + w[1] * 1.0 + w[2] * std::pow(2.0, p);
@@ -19,9 +19,9 @@ TEST(OverlappingGrid1D, QuadraticWeightsReproduceQuadratics) {
 }
 
 TEST(OverlappingGrid1D, GeometryAndInterpolationPoints) {
-  const OverlappingGrid1D g(80, 0.5, 1.5, 1.3);
-  const ComponentGrid1D& g1 = g.grid(0);
-  const ComponentGrid1D& g2 = g.grid(1);
+  const mesh::OverlappingGrid1D g(80, 0.5, 1.5, 1.3);
+  const mesh::ComponentGrid1D& g1 = g.grid(0);
+  const mesh::ComponentGrid1D& g2 = g.grid(1);
   EXPECT_DOUBLE_EQ(g1.x(0), 0.0);
   EXPECT_DOUBLE_EQ(g1.x(g1.size - 1), 0.5);     // interpolation point x_b
   EXPECT_NEAR(g2.x(g2.last - 1), 1.0, 1e-14);   // Neumann boundary point
@@ -39,7 +39,7 @@ TEST(OverlappingGrid1D, GeometryAndInterpolationPoints) {
 TEST(OverlappingGrid1D, ExtrapolatingStencilIsRejected) {
   // overlap / spacing_ratio = 1.9 / 0.5 > 2: grid 1's interpolation point lies outside the
   // three grid-2 donors.
-  EXPECT_THROW(OverlappingGrid1D(40, 0.5, 1.9, 0.5), std::invalid_argument);
+  EXPECT_THROW(mesh::OverlappingGrid1D(40, 0.5, 1.9, 0.5), std::invalid_argument);
 }
 
 }  // namespace

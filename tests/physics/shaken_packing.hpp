@@ -6,7 +6,7 @@
 #include "physics/dem/dem_system.hpp"
 #include "physics/dem/insertion.hpp"
 
-namespace amphora::dem::test_systems {
+namespace amphora::physics::dem::test_systems {
 
 template <class ExecSpace>
 DemSystem<ExecSpace> shaken_packing(int n, double L) {
@@ -45,4 +45,4 @@ DemSystem<ExecSpace> shaken_packing(int n, double L) {
   return s;
 }
 
-}  // namespace amphora::dem::test_systems
+}  // namespace amphora::physics::dem::test_systems

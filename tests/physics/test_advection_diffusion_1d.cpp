@@ -6,7 +6,7 @@
 #include "physics/advection_diffusion_1d/advection_diffusion_1d.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::advection_diffusion_1d {
+namespace amphora::physics::advection_diffusion_1d {
 namespace {
 
 using Solver = AdvectionDiffusion1D<test::TestExecSpace>;
@@ -76,4 +76,4 @@ TEST(AdvectionDiffusion1D, StateRoundTripsThroughSaveAndRestore) {
 }
 
 }  // namespace
-}  // namespace amphora::advection_diffusion_1d
+}  // namespace amphora::physics::advection_diffusion_1d

@@ -14,10 +14,10 @@
 
 namespace {
 
-using amphora::channel::ChannelGrid;
-using amphora::channel::ChannelStokes;
-using amphora::channel::StokesData;
-using amphora::channel::TopImpedance;
+using amphora::physics::channel_flow::ChannelGrid;
+using amphora::physics::channel_flow::ChannelStokes;
+using amphora::physics::channel_flow::StokesData;
+using amphora::physics::channel_flow::TopImpedance;
 
 constexpr double kPi = 3.141592653589793;
 double kMu = 0.1;  // the viscosity (the impedance cases lower it)

@@ -6,7 +6,7 @@
 #include "physics/dem/dem_system.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 namespace {
 
 using System = DemSystem<test::TestExecSpace>;
@@ -39,10 +39,10 @@ struct Host {
 };
 Host host(const System& s) {
   const auto& p = s.particles();
-  auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.x);
-  auto v = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.v);
-  auto w = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.omega);
-  auto gid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.gid);
+  auto x = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.x);
+  auto v = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.v);
+  auto w = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.omega);
+  auto gid = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.gid);
   Host h;
   h.x.resize(3 * p.n_owned);
   h.v.resize(3 * p.n_owned);
@@ -245,4 +245,4 @@ TEST(DemContact, EnergyIsConservedWithoutDampingOrFriction) {
 }
 
 }  // namespace
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

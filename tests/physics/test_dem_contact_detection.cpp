@@ -11,16 +11,16 @@
 #include "shaken_packing.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 namespace {
 
 using System = DemSystem<test::TestExecSpace>;
 
 std::vector<std::pair<std::int64_t, std::int64_t>> brute_force(const System& s) {
   const auto& p = s.particles();
-  auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.x);
-  auto r = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.radius);
-  auto gid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.gid);
+  auto x = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.x);
+  auto r = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.radius);
+  auto gid = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.gid);
   std::vector<std::pair<std::int64_t, std::int64_t>> out;
   for (int i = 0; i < p.n_owned; ++i)
     for (int j = 0; j < p.n_owned; ++j) {
@@ -68,10 +68,13 @@ TEST(DemContactDetection, ParticleScheduleEqualsSlabScheduleToRoundOff) {
     std::sort(b.begin(), b.end());
     ASSERT_EQ(a, b) << "step " << it;
   }
-  const auto xa = Kokkos::create_mirror_view_and_copy(HostMemSpace(), slabs.particles().x);
-  const auto xb = Kokkos::create_mirror_view_and_copy(HostMemSpace(), particles.particles().x);
-  const auto ga = Kokkos::create_mirror_view_and_copy(HostMemSpace(), slabs.particles().gid);
-  const auto gb = Kokkos::create_mirror_view_and_copy(HostMemSpace(), particles.particles().gid);
+  const auto xa = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), slabs.particles().x);
+  const auto xb =
+      Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), particles.particles().x);
+  const auto ga =
+      Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), slabs.particles().gid);
+  const auto gb =
+      Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), particles.particles().gid);
   ASSERT_EQ(slabs.particles().n_owned, particles.particles().n_owned);
   std::map<std::int64_t, int> where;
   for (int i = 0; i < particles.particles().n_owned; ++i) where[gb(i)] = i;
@@ -114,8 +117,8 @@ TEST(DemContactDetection, TangentialHistorySurvivesRebuilds) {
       if (rebuild_every_step) s.invalidate();
       s.step();
     }
-    auto v = Kokkos::create_mirror_view_and_copy(HostMemSpace(), s.particles().v);
-    auto g = Kokkos::create_mirror_view_and_copy(HostMemSpace(), s.particles().gid);
+    auto v = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), s.particles().v);
+    auto g = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), s.particles().gid);
     std::vector<double> out(9);
     for (int i = 0; i < 3; ++i)
       for (int k = 0; k < 3; ++k) out[3 * g(i) + k] = v(i, k);
@@ -146,4 +149,4 @@ TEST(DemContactDetection, ParticleOutsideAWallIsRejected) {
 }
 
 }  // namespace
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

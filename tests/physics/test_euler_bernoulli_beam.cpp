@@ -11,8 +11,8 @@
 
 namespace {
 
-using amphora::beam::BeamParameters;
-using amphora::beam::EulerBernoulliBeam;
+using amphora::physics::beam::BeamParameters;
+using amphora::physics::beam::EulerBernoulliBeam;
 
 constexpr double kPi = 3.141592653589793;
 
@@ -64,7 +64,7 @@ void expect_second_order(const Field& eta, const Field& v, const Field& load) {
 
 TEST(EulerBernoulliBeam, FreeTravelingWaveConvergesAtSecondOrder) {
   // eta = cos(k x - omega t) with omega^2 = (K + T k^2 + B k^4) / rho_h.
-  const double k = 2 * kPi, w = amphora::beam::beam_frequency(beam(8), k);
+  const double k = 2 * kPi, w = amphora::physics::beam::beam_frequency(beam(8), k);
   expect_second_order([=](double x, double t) { return std::cos(k * x - w * t); },
                       [=](double x, double t) { return w * std::sin(k * x - w * t); },
                       [](double, double) { return 0.0; });

@@ -11,9 +11,9 @@
 
 namespace {
 
-using amphora::elastic::ElasticGrid;
-using amphora::elastic::ElasticMaterial;
-using amphora::elastic::LinearElasticSolid;
+using amphora::physics::elastic_solid::ElasticGrid;
+using amphora::physics::elastic_solid::ElasticMaterial;
+using amphora::physics::elastic_solid::LinearElasticSolid;
 using Exec = amphora::test::TestExecSpace;
 
 constexpr double kPi = 3.141592653589793;
@@ -22,10 +22,10 @@ constexpr double kPi = 3.141592653589793;
 struct Manufactured {
   double a = 1.0, b = 0.5, k = 2 * kPi, l = 3.0, s = 0.4, w = 5.0;
   KOKKOS_INLINE_FUNCTION double operator()(double x, double y, double t, int c) const {
-    return c == 0 ? a * amphora::math::sin(k * x) * amphora::math::cos(l * y + s) *
-                        amphora::math::cos(w * t)
-                  : b * amphora::math::cos(k * x) * amphora::math::sin(l * y + s) *
-                        amphora::math::cos(w * t);
+    return c == 0 ? a * amphora::kernels::math::sin(k * x) *
+                        amphora::kernels::math::cos(l * y + s) * amphora::kernels::math::cos(w * t)
+                  : b * amphora::kernels::math::cos(k * x) *
+                        amphora::kernels::math::sin(l * y + s) * amphora::kernels::math::cos(w * t);
   }
 };
 
@@ -36,8 +36,8 @@ struct Traction {
   ElasticMaterial m;
   double y = 0.0;
   KOKKOS_INLINE_FUNCTION double operator()(double x, double t, int c) const {
-    using amphora::math::cos;
-    using amphora::math::sin;
+    using amphora::kernels::math::cos;
+    using amphora::kernels::math::sin;
     const double ct = cos(u.w * t), ly = u.l * y + u.s;
     const double u1_y = -u.a * u.l * sin(u.k * x) * sin(ly) * ct;
     const double u1_x = u.a * u.k * cos(u.k * x) * cos(ly) * ct;
@@ -52,16 +52,17 @@ struct Forcing {
   Manufactured u;
   ElasticMaterial m;
   KOKKOS_INLINE_FUNCTION double operator()(double x, double y, double t, int c) const {
-    const double lm = m.lambda + m.mu, l2m = m.lambda + 2 * m.mu, ct = amphora::math::cos(u.w * t);
+    const double lm = m.lambda + m.mu, l2m = m.lambda + 2 * m.mu,
+                 ct = amphora::kernels::math::cos(u.w * t);
     if (c == 0) {
       const double u1 = u(x, y, t, 0);
-      const double u2_xy =
-          -u.b * u.k * u.l * amphora::math::sin(u.k * x) * amphora::math::cos(u.l * y + u.s) * ct;
+      const double u2_xy = -u.b * u.k * u.l * amphora::kernels::math::sin(u.k * x) *
+                           amphora::kernels::math::cos(u.l * y + u.s) * ct;
       return -m.rho * u.w * u.w * u1 - (-l2m * u.k * u.k * u1 - m.mu * u.l * u.l * u1 + lm * u2_xy);
     }
     const double u2 = u(x, y, t, 1);
-    const double u1_xy =
-        -u.a * u.k * u.l * amphora::math::cos(u.k * x) * amphora::math::sin(u.l * y + u.s) * ct;
+    const double u1_xy = -u.a * u.k * u.l * amphora::kernels::math::cos(u.k * x) *
+                         amphora::kernels::math::sin(u.l * y + u.s) * ct;
     return -m.rho * u.w * u.w * u2 - (-m.mu * u.k * u.k * u2 - l2m * u.l * u.l * u2 + lm * u1_xy);
   }
 };
@@ -84,8 +85,8 @@ double error_at(int n, bool traction = false) {
   g.hy = 0.5 / g.ny;
   const ElasticMaterial m = material();
   const double t_end = 0.5;
-  const int steps =
-      static_cast<int>(std::ceil(t_end / (0.8 * amphora::elastic::elastic_wave_dt_limit(g, m))));
+  const int steps = static_cast<int>(
+      std::ceil(t_end / (0.8 * amphora::physics::elastic_solid::elastic_wave_dt_limit(g, m))));
   LinearElasticSolid<Exec> solid(g, m, t_end / steps);
   const Manufactured exact;
   const Forcing force{exact, m};
@@ -133,8 +134,8 @@ auto run_on(int n) {
   ElasticGrid g{n, n / 2, 1.0 / n, 0.5 / (n / 2)};
   const ElasticMaterial m = material();
   const double t_end = 0.5;
-  const int steps =
-      static_cast<int>(std::ceil(t_end / (0.8 * amphora::elastic::elastic_wave_dt_limit(g, m))));
+  const int steps = static_cast<int>(
+      std::ceil(t_end / (0.8 * amphora::physics::elastic_solid::elastic_wave_dt_limit(g, m))));
   LinearElasticSolid<E> solid(g, m, t_end / steps);
   const Manufactured exact;
   solid.set_state(0.0, exact);
@@ -164,7 +165,7 @@ TEST(LinearElasticSolid, ResultDoesNotDependOnTheBackendOrThreadCount) {
 TEST(LinearElasticSolid, RefusesBadParametersAndUnstableSteps) {
   ElasticGrid g{32, 16, 1.0 / 32, 0.5 / 32};
   ElasticMaterial m = material();
-  const double limit = amphora::elastic::elastic_wave_dt_limit(g, m);
+  const double limit = amphora::physics::elastic_solid::elastic_wave_dt_limit(g, m);
   EXPECT_THROW(LinearElasticSolid<Exec>(g, m, 1.01 * limit), std::invalid_argument);
   EXPECT_NO_THROW(LinearElasticSolid<Exec>(g, m, 0.99 * limit));
   m.mu = 0;

@@ -16,18 +16,18 @@
 namespace amphora {
 namespace test_step_transfers_cases {
 
-using System = dem::DemSystem<test::TestExecSpace>;
+using System = physics::dem::DemSystem<test::TestExecSpace>;
 
 TEST(StepTransfers, DemStepsStayOnTheDevice) {
-  System s = dem::test_systems::shaken_packing<test::TestExecSpace>(1000, 0.034);
+  System s = physics::dem::test_systems::shaken_packing<test::TestExecSpace>(1000, 0.034);
   s.step();  // the first step builds the lists
-  DeepCopyCounter counter;
+  kernels::DeepCopyCounter counter;
   int quiet_steps = 0, rebuild_steps = 0;
   for (int it = 0; it < 60; ++it) {
     const long long rebuilds = s.timers().rebuilds;
     counter.reset();
     s.step();
-    const DeepCopyCount c = counter.count();
+    const kernels::DeepCopyCount c = counter.count();
     const bool rebuilt = s.timers().rebuilds != rebuilds;
     (rebuilt ? rebuild_steps : quiet_steps) += 1;
     // a rebuild keeps the positions it was built at: one copy within the device
@@ -39,21 +39,21 @@ TEST(StepTransfers, DemStepsStayOnTheDevice) {
   ASSERT_GT(rebuild_steps, 2);
 }
 
-DeepCopyCount water_step_copies(int optical_depth) {
-  Parameters p(water_mac::parameter_table());
+kernels::DeepCopyCount water_step_copies(int optical_depth) {
+  Parameters p(physics::water_mac::parameter_table());
   p.set("scene", std::string("splash"));
   p.set("cells_x", std::int64_t(16));
   p.set("cells_y", std::int64_t(32));
   p.set("cells_z", std::int64_t(16));
   p.set("optical_depth", std::int64_t(optical_depth));
-  auto m = water_mac::create(p, Communicator());
+  auto m = physics::water_mac::create(p, Communicator());
   const double dt = 0.25 * m->stable_dt();
   m->set_time_step(dt);
   m->advance(0.0, dt);  // the first step allocates what the later ones reuse
-  DeepCopyCounter counter;
+  kernels::DeepCopyCounter counter;
   const int steps = 3;
   for (int s = 1; s <= steps; ++s) m->advance(s * dt, dt);
-  DeepCopyCount c = counter.count();
+  kernels::DeepCopyCount c = counter.count();
   std::printf(
       "[transfers] water step, optical depth %d: %.1f deep copies, %.0f B; host-device %.1f, %.0f "
       "B\n",
@@ -66,7 +66,7 @@ TEST(StepTransfers, UniformWaterStepCopiesOnlyTheCoarseGridSetup) {
   // Each sub-step sets the multigrid's coarsest grid up again: its 16 cells' list goes to the
   // device (int) and their matrix rows, packed there, to the host's direct solver (4 doubles a
   // cell). Measured on an H100 before the rows were packed: 5 copies a step, 1984 B.
-  const DeepCopyCount c = water_step_copies(0);
+  const kernels::DeepCopyCount c = water_step_copies(0);
   const int steps = 3, cells = 16;
   EXPECT_EQ(c.host_device(), 2 * steps);
   EXPECT_EQ(c.host_device_bytes(), steps * (cells * 4 + cells * 4 * 8));
@@ -77,7 +77,7 @@ TEST(StepTransfers, TallCellWaterStepCopiesAtMostItsHostRebuild) {
   // layout go back to the device (4 copies a step on a host build; a device build also copies
   // the stencil to the host, by create_mirror_view_and_copy, which a host build does not see:
   // 37.3 copies a step, 1.1 MB, on an H100).
-  const DeepCopyCount c = water_step_copies(4);
+  const kernels::DeepCopyCount c = water_step_copies(4);
   if (std::is_same_v<test::TestMemSpace, Kokkos::HostSpace>) EXPECT_LE(c.host_device(), 3 * 4);
   EXPECT_GT(c.host_device(), 0);
 }

@@ -6,7 +6,7 @@
 #include "physics/water_mac/water_mac.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::water_mac {
+namespace amphora::physics::water_mac {
 namespace {
 
 struct StillWater {
@@ -92,4 +92,4 @@ TEST(StokerDamBreak, SatisfiesTheJumpConditionsAndTheLimits) {
 }
 
 }  // namespace
-}  // namespace amphora::water_mac
+}  // namespace amphora::physics::water_mac

@@ -13,7 +13,7 @@ struct Laplacian1D {
     const int n = static_cast<int>(x.extent(0));
     const double s = shift;
     Kokkos::parallel_for(
-        "test::Laplacian1D", RangePolicy<TestExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
+        "test::Laplacian1D", kernels::RangePolicy<TestExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
           const double left = i > 0 ? x(i - 1) : 0.0, right = i < n - 1 ? x(i + 1) : 0.0;
           y(i) = (2.0 + s) * x(i) - left - right;
         });

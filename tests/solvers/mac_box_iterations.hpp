@@ -39,12 +39,12 @@ inline int box_iterations(int n, const kernels::mac::MacBoxBoundaries& faces, do
           b[c] = g.h * g.h * (1.0 + std::sin(7 * x[0]) * std::cos(5 * x[2]));
       }
   const auto A = kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
-      exec, g, to_view<TestMemSpace>(t), to_view<TestMemSpace>(phi), faces);
+      exec, g, kernels::to_view<TestMemSpace>(t), kernels::to_view<TestMemSpace>(phi), faces);
   const MacMultigrid<TestExecSpace> mg(exec, A);
   Kokkos::View<double*, TestMemSpace> x("x", g.padded_size());
   SolverControl control;
   control.relative_tolerance = 1e-8;
-  const SolverResult r = mg.solve(exec, to_view<TestMemSpace>(b), x, control);
+  const SolverResult r = mg.solve(exec, kernels::to_view<TestMemSpace>(b), x, control);
   EXPECT_TRUE(r.converged);
   return r.iterations;
 }

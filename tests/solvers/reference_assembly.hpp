@@ -110,17 +110,18 @@ Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gaus
 
 /// Mass, Laplace (times the field a(x) if given) or convection (by the field b(x)).
 template <int dim, class Space>
-Eigen::SparseMatrix<double> assemble_reference(const Space& space, solvers::OperatorKind kind,
-                                               int n_q, bool gauss_lobatto,
+Eigen::SparseMatrix<double> assemble_reference(const Space& space,
+                                               solvers::matrix_free::OperatorKind kind, int n_q,
+                                               bool gauss_lobatto,
                                                const std::vector<double>& field) {
-  const int field_comps = kind == solvers::OperatorKind::convection ? dim : 1;
+  const int field_comps = kind == solvers::matrix_free::OperatorKind::convection ? dim : 1;
   return assemble_form<dim>(
       space, n_q, gauss_lobatto, field, field_comps, 1,
       [&](int, int i, int, int j, const double* phi, const double* g, const double* f) {
         double v = 0.0;
-        if (kind == solvers::OperatorKind::mass) {
+        if (kind == solvers::matrix_free::OperatorKind::mass) {
           v = phi[i] * phi[j];
-        } else if (kind == solvers::OperatorKind::laplace) {
+        } else if (kind == solvers::matrix_free::OperatorKind::laplace) {
           for (int a = 0; a < dim; ++a) v += g[i * dim + a] * g[j * dim + a];
           v *= f[0];
         } else {

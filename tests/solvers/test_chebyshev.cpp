@@ -20,7 +20,7 @@ namespace test_chebyshev_cases {
 using test::TestExecSpace;
 using View = Kokkos::View<double*, test::TestMemSpace>;
 
-using math::pi;
+using kernels::math::pi;
 
 using test::Laplacian1D;
 
@@ -63,9 +63,9 @@ double mode_reduction(const ChebyshevSmoother<TestExecSpace, Laplacian1D, View>&
   auto xh = Kokkos::create_mirror_view(x);
   for (int i = 0; i < n; ++i) xh(i) = std::sin(k * pi * (i + 1) / (n + 1));
   Kokkos::deep_copy(x, xh);
-  const double before = std::sqrt(blas1::dot(exec, x, x));
+  const double before = std::sqrt(kernels::blas1::dot(exec, x, x));
   smoother.smooth(exec, b, x, false);
-  return std::sqrt(blas1::dot(exec, x, x)) / before;
+  return std::sqrt(kernels::blas1::dot(exec, x, x)) / before;
 }
 
 TEST(Chebyshev, DampsTheModesOfItsIntervalByTheChebyshevFactor) {
@@ -73,7 +73,7 @@ TEST(Chebyshev, DampsTheModesOfItsIntervalByTheChebyshevFactor) {
   const int n = 64;
   const double shift = 0.5;
   View inv_diag("d", n);
-  blas1::fill(exec, inv_diag, 1.0 / (2.0 + shift));
+  kernels::blas1::fill(exec, inv_diag, 1.0 / (2.0 + shift));
   const Laplacian1D A{shift};
   const double bound = jacobi_gershgorin_bound(laplacian_csr(n, shift));
   ChebyshevOptions estimated;

@@ -49,7 +49,7 @@ TEST(ConjugateGradient, MatchesTheDirectSolution) {
   // eigenvalues, near n for a rough right-hand side. Round-off adds a few.
   EXPECT_LE(r.iterations, n);
   const auto exact = thomas(n, 2.0, rhs);
-  auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
+  auto xh = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), x);
   double err = 0, mag = 0;
   for (int i = 0; i < n; ++i) {
     err = std::max(err, std::abs(xh(i) - exact[i]));
@@ -63,8 +63,8 @@ TEST(ConjugateGradient, JacobiOnAShiftedOperatorConvergesFast) {
   const TestExecSpace exec;
   const int n = 1000;
   View b("b", n), x("x", n), inv_diag("d", n);
-  blas1::fill(exec, b, 1.0);
-  blas1::fill(exec, inv_diag, 1.0 / 12.0);
+  kernels::blas1::fill(exec, b, 1.0);
+  kernels::blas1::fill(exec, inv_diag, 1.0 / 12.0);
   SolverControl control;
   control.relative_tolerance = 1e-10;
   // A = tridiag(-1, 12, -1): cond <= 14/10, so CG needs ~
@@ -75,7 +75,7 @@ TEST(ConjugateGradient, JacobiOnAShiftedOperatorConvergesFast) {
   EXPECT_LE(r.iterations, 14);
   std::vector<double> rhs(n, 1.0);
   const auto exact = thomas(n, 12.0, rhs);
-  auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
+  auto xh = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), x);
   for (int i = 0; i < n; i += 97) EXPECT_NEAR(xh(i), exact[i], 1e-10);
 }
 

@@ -16,16 +16,16 @@
 #include "solvers/matrix_free/multigrid.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 namespace {
 
 using test::TestExecSpace;
 using Vector = Kokkos::View<double*, test::TestMemSpace>;
-using mesh::FaceCondition;
+using mesh::hex::FaceCondition;
 
 template <int dim>
-mesh::StructuredHexMesh<dim> box(int n, const std::string& shape, bool periodic_split) {
-  mesh::StructuredHexMesh<dim> m;
+mesh::hex::StructuredHexMesh<dim> box(int n, const std::string& shape, bool periodic_split) {
+  mesh::hex::StructuredHexMesh<dim> m;
   m.cells = {n + 1, n, n + 2};
   m.faces = {FaceCondition::dirichlet, FaceCondition::neumann,   FaceCondition::periodic,
              FaceCondition::periodic,  FaceCondition::dirichlet, FaceCondition::dirichlet};
@@ -67,17 +67,17 @@ void check(const Case& c, int n) {
   }
 
   // The whole box on every rank: the reference.
-  const mesh::QkSpace<dim, TestExecSpace> whole(m, c.degree);
+  const mesh::hex::QkSpace<dim, TestExecSpace> whole(m, c.degree);
   const MatrixFreeOperator<dim, TestExecSpace> reference(whole, o);
   const long ng = whole.n_dofs();
   std::vector<double> xg(static_cast<size_t>(ng) * c.components);
   for (size_t i = 0; i < xg.size(); ++i) xg[i] = sample(static_cast<long>(i));
   Vector yg("yg", xg.size()), dg("dg", xg.size());
-  reference.apply(exec, to_view<test::TestMemSpace>(xg), yg);
+  reference.apply(exec, kernels::to_view<test::TestMemSpace>(xg), yg);
   reference.compute_diagonal(exec, dg);
-  const std::vector<double> y_ref = to_std_vector(yg), d_ref = to_std_vector(dg);
+  const std::vector<double> y_ref = kernels::to_std_vector(yg), d_ref = kernels::to_std_vector(dg);
 
-  const mesh::DistributedQkSpace<dim, TestExecSpace> space(m, c.degree, comm);
+  const mesh::hex::DistributedQkSpace<dim, TestExecSpace> space(m, c.degree, comm);
   ASSERT_EQ(space.n_global(), ng);
   const DistributedOperator<dim, TestExecSpace> op(space, o);
   const long nl = space.n_local();
@@ -85,9 +85,9 @@ void check(const Case& c, int n) {
   for (int a = 0; a < c.components; ++a)
     for (long i = 0; i < space.n_owned(); ++i) xl[a * nl + i] = xg[a * ng + space.global_index(i)];
   Vector y("y", xl.size()), d("d", xl.size());
-  op.apply(exec, to_view<test::TestMemSpace>(xl), y);
+  op.apply(exec, kernels::to_view<test::TestMemSpace>(xl), y);
   op.compute_diagonal(exec, d);
-  const std::vector<double> yl = to_std_vector(y), dl = to_std_vector(d);
+  const std::vector<double> yl = kernels::to_std_vector(y), dl = kernels::to_std_vector(d);
 
   double scale = 0, dscale = 0, err = 0, derr = 0;
   for (size_t i = 0; i < y_ref.size(); ++i) {
@@ -148,7 +148,7 @@ TEST(DistributedMatrixFree, ConjugateGradientOnSlabsReachesTheUndistributedSolut
   const auto m = box<dim>(3, "curved", false);
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
   const int k = 3;
-  const mesh::QkSpace<dim, TestExecSpace> whole(m, k);
+  const mesh::hex::QkSpace<dim, TestExecSpace> whole(m, k);
   const MatrixFreeOperator<dim, TestExecSpace> reference(whole, o);
   const long ng = whole.n_dofs();
   std::vector<double> bg(ng);
@@ -159,29 +159,29 @@ TEST(DistributedMatrixFree, ConjugateGradientOnSlabsReachesTheUndistributedSolut
 
   Vector dgv("dg", ng), xg("xg", ng);
   reference.compute_diagonal(exec, dgv);
-  auto inv = to_std_vector(dgv);
+  auto inv = kernels::to_std_vector(dgv);
   for (auto& v : inv) v = 1.0 / v;
-  const JacobiPreconditioner<Vector> mg{to_view<test::TestMemSpace>(inv)};
-  const SolverResult rg =
-      conjugate_gradient(exec, reference, to_view<test::TestMemSpace>(bg), xg, control, mg);
+  const JacobiPreconditioner<Vector> mg{kernels::to_view<test::TestMemSpace>(inv)};
+  const SolverResult rg = conjugate_gradient(
+      exec, reference, kernels::to_view<test::TestMemSpace>(bg), xg, control, mg);
   ASSERT_TRUE(rg.converged);
 
-  const mesh::DistributedQkSpace<dim, TestExecSpace> space(m, k, comm);
+  const mesh::hex::DistributedQkSpace<dim, TestExecSpace> space(m, k, comm);
   const DistributedOperator<dim, TestExecSpace> op(space, o);
   const long nl = space.n_local();
   std::vector<double> bl(nl, 0.0);
   for (long i = 0; i < space.n_owned(); ++i) bl[i] = bg[space.global_index(i)];
   Vector dl("dl", nl), xl("xl", nl);
   op.compute_diagonal(exec, dl);
-  auto invl = to_std_vector(dl);
+  auto invl = kernels::to_std_vector(dl);
   for (auto& v : invl) v = 1.0 / v;  // ghost layer: partial sums, never used
-  const JacobiPreconditioner<Vector> ml{to_view<test::TestMemSpace>(invl)};
-  const SolverResult rl = conjugate_gradient(exec, op, to_view<test::TestMemSpace>(bl), xl, control,
-                                             ml, space.inner_product());
+  const JacobiPreconditioner<Vector> ml{kernels::to_view<test::TestMemSpace>(invl)};
+  const SolverResult rl = conjugate_gradient(exec, op, kernels::to_view<test::TestMemSpace>(bl), xl,
+                                             control, ml, space.inner_product());
   ASSERT_TRUE(rl.converged);
   EXPECT_NEAR(rl.iterations, rg.iterations, 1);
 
-  const auto xgh = to_std_vector(xg), xlh = to_std_vector(xl);
+  const auto xgh = kernels::to_std_vector(xg), xlh = kernels::to_std_vector(xl);
   double scale = 0, err = 0;
   for (double v : xgh) scale = std::max(scale, std::abs(v));
   for (long i = 0; i < space.n_owned(); ++i)
@@ -199,28 +199,29 @@ TEST(DistributedMatrixFree, MultigridOnSlabsMatchesOneRank) {
   const TestExecSpace exec;
   constexpr int dim = 3;
   for (const int k : {2, 4}) {
-    auto m = mesh::unit_cube<dim>(8);
-    m.deformation = mesh::sinusoidal_deformation(dim, 0.05);
+    auto m = mesh::hex::unit_cube<dim>(8);
+    m.deformation = mesh::hex::sinusoidal_deformation(dim, 0.05);
     typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
     MultigridOptions mo;
     mo.max_coarse_dofs = 200;
     SolverControl control;
     control.relative_tolerance = 1e-10;
     control.max_iterations = 100;
-    auto solve = [&](const mesh::DistributedQkSpace<dim, TestExecSpace>& space,
+    auto solve = [&](const mesh::hex::DistributedQkSpace<dim, TestExecSpace>& space,
                      std::vector<double>& x_global, std::string& levels) {
       const DistributedOperator<dim, TestExecSpace> A(space, o);
       const MatrixFreeMultigrid<dim, TestExecSpace> mg(exec, A, mo);
       levels = mg.describe();
-      const auto f = space.local().interpolate(
-          [](const mesh::Point3& x, int) { return std::exp(x[0]) * std::sin(3 * x[1]) + x[2]; });
-      const Vector b = load_vector(exec, space.local(), to_view<test::TestMemSpace>(f),
+      const auto f = space.local().interpolate([](const mesh::hex::Point3& x, int) {
+        return std::exp(x[0]) * std::sin(3 * x[1]) + x[2];
+      });
+      const Vector b = load_vector(exec, space.local(), kernels::to_view<test::TestMemSpace>(f),
                                    GeometryMode::stored, k + 1);
       space.compress_add(exec, b);
       Vector x("x", space.n_local());
       const SolverResult r = conjugate_gradient(exec, A, b, x, control, mg, space.inner_product());
       EXPECT_TRUE(r.converged);
-      const auto xh = to_std_vector(x);
+      const auto xh = kernels::to_std_vector(x);
       x_global = space.communicator().allgatherv(
           std::vector<double>(xh.begin(), xh.begin() + space.n_owned()));
       return r.iterations;
@@ -228,9 +229,10 @@ TEST(DistributedMatrixFree, MultigridOnSlabsMatchesOneRank) {
     std::vector<double> x1, xp;
     std::string levels1, levelsp;
     const int it1 =
-        solve(mesh::DistributedQkSpace<dim, TestExecSpace>(m, k, Communicator(MPI_COMM_SELF)), x1,
-              levels1);
-    const int itp = solve(mesh::DistributedQkSpace<dim, TestExecSpace>(m, k, comm), xp, levelsp);
+        solve(mesh::hex::DistributedQkSpace<dim, TestExecSpace>(m, k, Communicator(MPI_COMM_SELF)),
+              x1, levels1);
+    const int itp =
+        solve(mesh::hex::DistributedQkSpace<dim, TestExecSpace>(m, k, comm), xp, levelsp);
     SCOPED_TRACE("k " + std::to_string(k) + ": 1 rank " + levels1 + "; " +
                  std::to_string(comm.size()) + " ranks " + levelsp);
     EXPECT_LE(it1, 12);
@@ -250,15 +252,15 @@ TEST(DistributedMatrixFree, MultigridOnSlabsMatchesOneRank) {
 
 TEST(DistributedMatrixFree, TooFewCellsForTheRanksAreRefused) {
   Communicator comm;
-  auto m = mesh::unit_cube<3>(2);
+  auto m = mesh::hex::unit_cube<3>(2);
   m.cells[2] = 1;
   if (comm.size() == 1) {
-    EXPECT_NO_THROW((mesh::DistributedQkSpace<3, TestExecSpace>(m, 2, comm)));
+    EXPECT_NO_THROW((mesh::hex::DistributedQkSpace<3, TestExecSpace>(m, 2, comm)));
   } else {
     try {
-      mesh::DistributedQkSpace<3, TestExecSpace> s(m, 2, comm);
+      mesh::hex::DistributedQkSpace<3, TestExecSpace> s(m, 2, comm);
       FAIL() << "1 cell over 2 ranks accepted";
-    } catch (const DecompositionError& e) {
+    } catch (const mesh::DecompositionError& e) {
       EXPECT_NE(std::string(e.what()).find("more ranks (2) than blocks"), std::string::npos)
           << e.what();
     }
@@ -267,7 +269,7 @@ TEST(DistributedMatrixFree, TooFewCellsForTheRanksAreRefused) {
   // waiting in a collective): here every rank claims the first cell of two.
   m.cells[2] = 2;
   try {
-    mesh::DistributedQkSpace<3, TestExecSpace> s(m, 2, comm, 0, 1);
+    mesh::hex::DistributedQkSpace<3, TestExecSpace> s(m, 2, comm, 0, 1);
     FAIL() << "slabs [0, 1) on every rank accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("do not tile the 2 cells"), std::string::npos) << e.what();
@@ -275,4 +277,4 @@ TEST(DistributedMatrixFree, TooFewCellsForTheRanksAreRefused) {
 }
 
 }  // namespace
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

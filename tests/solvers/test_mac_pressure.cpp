@@ -47,8 +47,8 @@ struct SphereScene {
           if (with_terrain && x[1] < 0.2 + 0.1 * std::sin(9 * x[0]) * std::cos(7 * x[2]))
             t[c] = MacCellType::solid;
         }
-    type = to_view<TestMemSpace>(t, "type");
-    phi = to_view<TestMemSpace>(p, "phi");
+    type = kernels::to_view<TestMemSpace>(t, "type");
+    phi = kernels::to_view<TestMemSpace>(p, "phi");
   }
   static double sq(double a) { return a * a; }
   kernels::mac::PoissonStencil<TestMemSpace> stencil() const {
@@ -76,23 +76,23 @@ TEST(MacSmoothers, RedBlackSweepsSolveTheirColourAndJacobiIsItsFormula) {
   const SphereScene s(16, true);
   const MacGrid& g = s.grid;
   const auto A = s.stencil();
-  const auto d = to_std_vector(A.diag);
+  const auto d = kernels::to_std_vector(A.diag);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> U(-1, 1);
   std::vector<double> bh(d.size(), 0.0), xh(d.size(), 0.0);
   for (std::size_t c = 0; c < d.size(); ++c)
     if (d[c] > 0) bh[c] = U(rng), xh[c] = U(rng);
-  const Vector b = to_view<TestMemSpace>(bh);
+  const Vector b = kernels::to_view<TestMemSpace>(bh);
   for (int sweep = 0; sweep < 4; ++sweep) {
     const int colour = sweep % 2;
-    const Vector x = to_view<TestMemSpace>(xh);
+    const Vector x = kernels::to_view<TestMemSpace>(xh);
     Vector r("r", d.size());
     if (sweep < 2)
       kernels::mac::red_black_gauss_seidel(exec, A, b, x, colour);
     else
       kernels::mac::red_black_gauss_seidel_cells(exec, A, b, x, colour);
     kernels::mac::residual(exec, A, b, x, r);
-    const auto rh = to_std_vector(r);
+    const auto rh = kernels::to_std_vector(r);
     double on = 0, off = 0;
     for (int k = 0; k < g.nz; ++k)
       for (int j = 0; j < g.ny; ++j)
@@ -105,11 +105,11 @@ TEST(MacSmoothers, RedBlackSweepsSolveTheirColourAndJacobiIsItsFormula) {
     EXPECT_LT(on, 1e-12) << "colour " << colour << (sweep < 2 ? ", rows" : ", cells");
     EXPECT_GT(off, 1e-3) << "colour " << colour;  // the other colour was not touched
   }
-  const Vector x = to_view<TestMemSpace>(xh);
+  const Vector x = kernels::to_view<TestMemSpace>(xh);
   Vector xn("xn", d.size()), r("r", d.size());
   kernels::mac::jacobi(exec, A, b, x, xn, 0.8);
   kernels::mac::residual(exec, A, b, x, r);
-  const auto xnh = to_std_vector(xn), rh = to_std_vector(r);
+  const auto xnh = kernels::to_std_vector(xn), rh = kernels::to_std_vector(r);
   double err = 0;
   for (std::size_t c = 0; c < d.size(); ++c)
     if (d[c] > 0) err = std::max(err, std::abs(xnh[c] - (xh[c] + 0.8 * rh[c] / d[c])));
@@ -124,14 +124,15 @@ TEST(MacGridTransfer, RestrictionIsTheTransposeOfProlongation) {
     const auto coarse = kernels::mac::coarsen_stencil(exec, fine);
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(-1, 1);
-    const auto fd = to_std_vector(fine.diag), cd = to_std_vector(coarse.diag);
+    const auto fd = kernels::to_std_vector(fine.diag), cd = kernels::to_std_vector(coarse.diag);
     std::vector<double> xc(cd.size()), yf(fd.size());
     for (std::size_t i = 0; i < xc.size(); ++i) xc[i] = cd[i] > 0 ? u(rng) : 0.0;
     for (std::size_t i = 0; i < yf.size(); ++i) yf[i] = fd[i] > 0 ? u(rng) : 0.0;
     Vector Pxc("Pxc", fd.size()), Ryf("Ryf", cd.size());
-    kernels::mac::prolongate_correction(exec, coarse, fine, to_view<TestMemSpace>(xc), Pxc);
-    kernels::mac::restrict_residual(exec, fine, coarse, to_view<TestMemSpace>(yf), Ryf);
-    const auto a = to_std_vector(Pxc), b = to_std_vector(Ryf);
+    kernels::mac::prolongate_correction(exec, coarse, fine, kernels::to_view<TestMemSpace>(xc),
+                                        Pxc);
+    kernels::mac::restrict_residual(exec, fine, coarse, kernels::to_view<TestMemSpace>(yf), Ryf);
+    const auto a = kernels::to_std_vector(Pxc), b = kernels::to_std_vector(Ryf);
     double ab = 0, ba = 0;
     for (std::size_t i = 0; i < a.size(); ++i) ab += a[i] * yf[i];
     for (std::size_t i = 0; i < b.size(); ++i) ba += xc[i] * b[i];
@@ -155,7 +156,7 @@ std::pair<double, int> solve_sphere(int n) {
   const TestExecSpace exec;
   const SphereScene s(n);
   const auto A = s.stencil();
-  const auto d = to_std_vector(A.diag);
+  const auto d = kernels::to_std_vector(A.diag);
   std::vector<double> b(d.size(), 0.0);
   const double h = s.grid.h;
   for (int k = 0; k < n; ++k)
@@ -168,9 +169,9 @@ std::pair<double, int> solve_sphere(int n) {
   Vector x("x", d.size());
   SolverControl control;
   control.relative_tolerance = 1e-10;
-  const SolverResult r = mg.solve(exec, to_view<TestMemSpace>(b), x, control);
+  const SolverResult r = mg.solve(exec, kernels::to_view<TestMemSpace>(b), x, control);
   EXPECT_TRUE(r.converged) << "n = " << n;
-  const auto p = to_std_vector(x);
+  const auto p = kernels::to_std_vector(x);
   double err = 0;
   for (int k = 0; k < n; ++k)
     for (int j = 0; j < n; ++j)
@@ -220,7 +221,7 @@ TEST(PressureSolver, ThreeBackEndsAgreeOnTheSphere) {
   const TestExecSpace exec;
   const SphereScene s(32);
   const auto A = s.stencil();
-  const auto d = to_std_vector(A.diag);
+  const auto d = kernels::to_std_vector(A.diag);
   std::vector<double> b(d.size(), 0.0);
   for (int k = 0; k < 32; ++k)
     for (int j = 0; j < 32; ++j)
@@ -228,7 +229,7 @@ TEST(PressureSolver, ThreeBackEndsAgreeOnTheSphere) {
         const int c = s.grid.index(i, j, k);
         if (d[c] > 0) b[c] = s.grid.h * s.grid.h * s.source(s.grid.cell_centre(i, j, k));
       }
-  const Vector bv = to_view<TestMemSpace>(b);
+  const Vector bv = kernels::to_view<TestMemSpace>(b);
   SolverControl control;
   control.relative_tolerance = 1e-10;
   std::vector<std::vector<double>> x;
@@ -238,7 +239,7 @@ TEST(PressureSolver, ThreeBackEndsAgreeOnTheSphere) {
     const SolverResult r = solver->solve(exec, bv, xv, control);
     EXPECT_TRUE(r.converged) << name << ": " << r.iterations << " iterations";
     EXPECT_LE(r.final_residual, 1.01e-10 * r.rhs_norm) << name;
-    x.push_back(to_std_vector(xv));
+    x.push_back(kernels::to_std_vector(xv));
   }
   double scale = 0, diff = 0;
   for (std::size_t c = 0; c < b.size(); ++c) {
@@ -261,8 +262,8 @@ TEST(MacProjection, ProjectedVelocityIsDiscretelyDivergenceFree) {
   std::uniform_real_distribution<double> U(-1, 1);
   std::vector<double> uh(g.padded_size()), vh(g.padded_size()), wh(g.padded_size());
   for (std::size_t c = 0; c < uh.size(); ++c) uh[c] = U(rng), vh[c] = U(rng), wh[c] = U(rng);
-  Vector u = to_view<TestMemSpace>(uh), v = to_view<TestMemSpace>(vh),
-         w = to_view<TestMemSpace>(wh);
+  Vector u = kernels::to_view<TestMemSpace>(uh), v = kernels::to_view<TestMemSpace>(vh),
+         w = kernels::to_view<TestMemSpace>(wh);
   const double rho = 1000.0, dt = 0.01;
   const auto A = s.stencil();
   for (auto [d, f] : {std::pair{0, u}, {1, v}, {2, w}})
@@ -282,8 +283,8 @@ TEST(MacProjection, ProjectedVelocityIsDiscretelyDivergenceFree) {
     kernels::mac::subtract_pressure_gradient(exec, g, 1, s.type, s.phi, p, rho, dt, vv);
     kernels::mac::subtract_pressure_gradient(exec, g, 2, s.type, s.phi, p, rho, dt, ww);
     kernels::mac::pressure_rhs(exec, g, s.type, uu, vv, ww, rho, dt, after);
-    const double before_norm = std::sqrt(blas1::dot(exec, b, b)),
-                 after_norm = std::sqrt(blas1::dot(exec, after, after));
+    const double before_norm = std::sqrt(kernels::blas1::dot(exec, b, b)),
+                 after_norm = std::sqrt(kernels::blas1::dot(exec, after, after));
     EXPECT_LE(after_norm, 1.01e-9 * before_norm) << backend;
     EXPECT_NEAR(after_norm, r.final_residual, 1e-6 * r.final_residual + 1e-14 * before_norm)
         << backend;
@@ -302,7 +303,7 @@ TEST(MacProjection, SolidFacesListsEveryFaceTouchingASolidOrTheBoxInOrder) {
     c = R(rng) < 0.2 ? MacCellType::solid : R(rng) < 0.5 ? MacCellType::fluid : MacCellType::air;
   kernels::mac::MacEdges edges = kernels::mac::box_edges();
   edges[0] = edges[5] = false;
-  const auto type = to_view<TestMemSpace>(t);
+  const auto type = kernels::to_view<TestMemSpace>(t);
   for (int d = 0; d < 3; ++d) {
     const int n[3] = {g.nx, g.ny, g.nz}, stride[3] = {1, g.stride_y(), g.stride_z()};
     std::vector<int> expected;
@@ -314,14 +315,15 @@ TEST(MacProjection, SolidFacesListsEveryFaceTouchingASolidOrTheBoxInOrder) {
           if (edge || t[c] == MacCellType::solid || t[c - stride[d]] == MacCellType::solid)
             expected.push_back(c);
         }
-    const auto list = to_std_vector(kernels::mac::solid_faces(TestExecSpace(), g, d, type, edges));
+    const auto list =
+        kernels::to_std_vector(kernels::mac::solid_faces(TestExecSpace(), g, d, type, edges));
     EXPECT_EQ(list, std::vector<double>(expected.begin(), expected.end())) << "component " << d;
     EXPECT_GT(expected.size(), 50u);
     std::vector<double> f(g.padded_size(), 1.0);
-    const auto face = to_view<TestMemSpace>(f);
+    const auto face = kernels::to_view<TestMemSpace>(f);
     kernels::mac::enforce_solid_faces(
         TestExecSpace(), kernels::mac::solid_faces(TestExecSpace(), g, d, type, edges), face);
-    const auto zeroed = to_std_vector(face);
+    const auto zeroed = kernels::to_std_vector(face);
     long zeros = 0;
     for (double v : zeroed) zeros += v == 0.0;
     EXPECT_EQ(zeros, static_cast<long>(expected.size())) << "component " << d;
@@ -340,7 +342,7 @@ long move_surface_from_row(const SphereScene& scene, int r,
   // a copy (create_mirror_view would alias scene.type on the host)
   auto types = Kokkos::create_mirror(scene.type);
   Kokkos::deep_copy(types, scene.type);
-  auto phi = to_std_vector(scene.phi);
+  auto phi = kernels::to_std_vector(scene.phi);
   long changed = 0;
   for (int k = 0; k < g.nz; ++k)
     for (int j = r; j < g.ny; ++j)
@@ -354,7 +356,7 @@ long move_surface_from_row(const SphereScene& scene, int r,
       }
   type2 = Kokkos::View<MacCellType*, TestMemSpace>("type2", g.padded_size());
   Kokkos::deep_copy(type2, types);
-  phi2 = to_view<TestMemSpace>(phi, "phi2");
+  phi2 = kernels::to_view<TestMemSpace>(phi, "phi2");
   return changed;
 }
 
@@ -543,7 +545,7 @@ TEST(MacPoissonStencil, CoarseLevelsWithALevelSetAreTheCoarseGridsBuilds) {
           t[c] = phi[c] < 0 ? MacCellType::fluid : MacCellType::air;
         }
     return kernels::mac::build_poisson_stencil<TestExecSpace, TestMemSpace>(
-        exec, g, to_view<TestMemSpace>(t), to_view<TestMemSpace>(phi), box);
+        exec, g, kernels::to_view<TestMemSpace>(t), kernels::to_view<TestMemSpace>(phi), box);
   };
   kernels::mac::MacBoxBoundaries open;
   open.fill(kernels::mac::MacBoundary::open);

@@ -18,16 +18,16 @@
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 namespace {
 
 using test::TestExecSpace;
 using Vector = Kokkos::View<double*, test::TestMemSpace>;
-using mesh::FaceCondition;
+using mesh::hex::FaceCondition;
 
 template <int dim>
-mesh::StructuredHexMesh<dim> mixed_mesh(int nx, int ny, int nz, const std::string& shape) {
-  mesh::StructuredHexMesh<dim> m;
+mesh::hex::StructuredHexMesh<dim> mixed_mesh(int nx, int ny, int nz, const std::string& shape) {
+  mesh::hex::StructuredHexMesh<dim> m;
   m.cells = {nx, ny, nz};
   m.faces = {FaceCondition::periodic, FaceCondition::periodic, FaceCondition::dirichlet,
              FaceCondition::neumann,  FaceCondition::neumann,  FaceCondition::dirichlet};
@@ -35,8 +35,8 @@ mesh::StructuredHexMesh<dim> mixed_mesh(int nx, int ny, int nz, const std::strin
   return m;
 }
 
-Vector to_device(const std::vector<double>& v) { return to_view<test::TestMemSpace>(v); }
-std::vector<double> to_host(const Vector& d) { return to_std_vector(d); }
+Vector to_device(const std::vector<double>& v) { return kernels::to_view<test::TestMemSpace>(v); }
+std::vector<double> to_host(const Vector& d) { return kernels::to_std_vector(d); }
 
 struct Case {
   OperatorKind kind;
@@ -59,17 +59,17 @@ void check(const Case& c, int nx, int ny, int nz) {
                (c.with_field ? " field" : ""));
   const TestExecSpace exec;
   const auto m = mixed_mesh<dim>(nx, ny, nz, c.shape);
-  const mesh::QkSpace<dim, TestExecSpace> space(m, c.degree);
+  const mesh::hex::QkSpace<dim, TestExecSpace> space(m, c.degree);
   const long n = space.n_dofs();
   std::vector<double> field;
   if (c.kind == OperatorKind::convection) {
     field = space.interpolate(
-        [](const mesh::Point3& x, int a) {
+        [](const mesh::hex::Point3& x, int a) {
           return a == 0 ? std::sin(3 * x[1]) : a == 1 ? std::cos(2 * x[0]) : 0.5;
         },
         dim);
   } else if (c.with_field) {
-    field = space.interpolate([](const mesh::Point3& x, int) {
+    field = space.interpolate([](const mesh::hex::Point3& x, int) {
       return 1.0 + 0.5 * std::sin(3 * x[0]) * std::cos(2 * x[1]);
     });
   }
@@ -183,7 +183,7 @@ TEST(MatrixFreeOperator, GenericKernelElementMatricesEqualTheCompiledKernels) {
   const TestExecSpace exec;
   for (const auto kind : {OperatorKind::laplace, OperatorKind::mass}) {
     const auto m = mixed_mesh<3>(3, 2, 2, "curved");
-    const mesh::QkSpace<3, TestExecSpace> space(m, 2);
+    const mesh::hex::QkSpace<3, TestExecSpace> space(m, 2);
     typename MatrixFreeOperator<3, TestExecSpace>::Options o;
     o.kind = kind;
     o.geometry = GeometryMode::on_the_fly;
@@ -226,7 +226,7 @@ void check_generic_in_teams(OperatorKind kind) {
   const int team_size = TestExecSpace().concurrency() >= 2 ? 2 : 1;
   {
     const auto m = mixed_mesh<3>(5, 3, 2, "curved");
-    const mesh::QkSpace<3, TestExecSpace> space(m, 3);
+    const mesh::hex::QkSpace<3, TestExecSpace> space(m, 3);
     const long n = space.n_dofs();
     typename MatrixFreeOperator<3, TestExecSpace>::Options o;
     o.kind = kind;
@@ -291,7 +291,7 @@ void check_elasticity(GeometryMode geometry, int degree, int nx, int ny, int nz)
   SCOPED_TRACE("elasticity dim " + std::to_string(dim) + " k " + std::to_string(degree));
   const TestExecSpace exec;
   const auto m = mixed_mesh<dim>(nx, ny, nz, "curved");
-  const mesh::QkSpace<dim, TestExecSpace> space(m, degree);
+  const mesh::hex::QkSpace<dim, TestExecSpace> space(m, degree);
   const long n = dim * space.n_dofs();
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
   o.kind = OperatorKind::elasticity;
@@ -330,7 +330,7 @@ TEST(MatrixFreeOperator, ElasticityMatchesAssembledBlockMatrix) {
 }
 
 TEST(MatrixFreeOperator, ElasticityRefusesPerCellGeometryAndScalarVectors) {
-  const mesh::QkSpace<3, TestExecSpace> space(mixed_mesh<3>(3, 2, 2, "cartesian"), 2);
+  const mesh::hex::QkSpace<3, TestExecSpace> space(mixed_mesh<3>(3, 2, 2, "cartesian"), 2);
   typename MatrixFreeOperator<3, TestExecSpace>::Options o;
   o.kind = OperatorKind::elasticity;
   o.components = 1;
@@ -343,9 +343,9 @@ TEST(MatrixFreeOperator, ElasticityRefusesPerCellGeometryAndScalarVectors) {
 TEST(MatrixFreeOperator, MassOfUnitCubeIsOneAndLaplacianOfConstantVanishes) {
   const TestExecSpace exec;
   for (int k : {1, 2, 4, 7, 8}) {
-    auto m = mesh::unit_cube<3>(k <= 2 ? 8 : 3, FaceCondition::neumann);
-    m.deformation = mesh::sinusoidal_deformation(3, 0.05);  // boundary fixed: volume stays 1
-    const mesh::QkSpace<3, TestExecSpace> space(m, k);
+    auto m = mesh::hex::unit_cube<3>(k <= 2 ? 8 : 3, FaceCondition::neumann);
+    m.deformation = mesh::hex::sinusoidal_deformation(3, 0.05);  // boundary fixed: volume stays 1
+    const mesh::hex::QkSpace<3, TestExecSpace> space(m, k);
     const long n = space.n_dofs();
     Vector one("one", n), y("y", n);
     Kokkos::deep_copy(one, 1.0);
@@ -356,14 +356,15 @@ TEST(MatrixFreeOperator, MassOfUnitCubeIsOneAndLaplacianOfConstantVanishes) {
     mass.apply(exec, one, y);
     // 1^T M 1 = volume; the deformation keeps the faces, so the volume is exactly 1 (quadrature
     // integrates det J of the curved map only approximately: tolerance from k+2 points).
-    EXPECT_NEAR(blas1::sum(exec, y), 1.0, k <= 2 ? 1e-4 : 1e-9) << "k " << k;
+    EXPECT_NEAR(kernels::blas1::sum(exec, y), 1.0, k <= 2 ? 1e-4 : 1e-9) << "k " << k;
     o.kind = OperatorKind::laplace;
     MatrixFreeOperator<3, TestExecSpace> lap(space, o);
     lap.apply(exec, one, y);
-    EXPECT_LT(blas1::norm_inf(exec, y), 1e-12) << "k " << k;
+    EXPECT_LT(kernels::blas1::norm_inf(exec, y), 1e-12) << "k " << k;
   }
   // undeformed: exact to round-off
-  const mesh::QkSpace<2, TestExecSpace> space(mesh::unit_cube<2>(5, FaceCondition::neumann), 3);
+  const mesh::hex::QkSpace<2, TestExecSpace> space(
+      mesh::hex::unit_cube<2>(5, FaceCondition::neumann), 3);
   Vector one("one", space.n_dofs()), y("y", space.n_dofs());
   Kokkos::deep_copy(one, 1.0);
   typename MatrixFreeOperator<2, TestExecSpace>::Options o;
@@ -371,7 +372,7 @@ TEST(MatrixFreeOperator, MassOfUnitCubeIsOneAndLaplacianOfConstantVanishes) {
   o.geometry = GeometryMode::cartesian;
   MatrixFreeOperator<2, TestExecSpace> mass(space, o);
   mass.apply(exec, one, y);
-  EXPECT_NEAR(blas1::sum(exec, y), 1.0, 1e-14);
+  EXPECT_NEAR(kernels::blas1::sum(exec, y), 1.0, 1e-14);
 }
 
 // Equal cells (a uniform box, uniformly sheared) keep one set of per-cell coefficients, whatever
@@ -384,11 +385,11 @@ TEST(MatrixFreeOperator, EqualCellsShareOneSetOfCoefficients) {
   for (const int n : {3, 8}) {
     typename Op::Options o;
     o.geometry = GeometryMode::cartesian;
-    const mesh::QkSpace<3, TestExecSpace> box(mixed_mesh<3>(n, n, n, "cartesian"), 2);
+    const mesh::hex::QkSpace<3, TestExecSpace> box(mixed_mesh<3>(n, n, n, "cartesian"), 2);
     EXPECT_EQ(Op(box, o).geometry_bytes(), 3 * simd)
         << "cartesian Laplace, n " << n;  // G_00, G_11, G_22
     o.geometry = GeometryMode::affine;
-    const mesh::QkSpace<3, TestExecSpace> sheared(mixed_mesh<3>(n, n, n, "affine"), 2);
+    const mesh::hex::QkSpace<3, TestExecSpace> sheared(mixed_mesh<3>(n, n, n, "affine"), 2);
     EXPECT_EQ(Op(sheared, o).geometry_bytes(), 6 * simd)
         << "affine Laplace, n " << n;  // packed symmetric G
     o.geometry = GeometryMode::stored;
@@ -397,7 +398,7 @@ TEST(MatrixFreeOperator, EqualCellsShareOneSetOfCoefficients) {
 }
 
 TEST(MatrixFreeOperator, BadOptionsAreRefusedWithAReason) {
-  const mesh::QkSpace<2, TestExecSpace> curved(mixed_mesh<2>(4, 4, 1, "curved"), 2);
+  const mesh::hex::QkSpace<2, TestExecSpace> curved(mixed_mesh<2>(4, 4, 1, "curved"), 2);
   typename MatrixFreeOperator<2, TestExecSpace>::Options o;
   o.geometry = GeometryMode::cartesian;
   EXPECT_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)), std::invalid_argument);
@@ -412,14 +413,14 @@ TEST(MatrixFreeOperator, BadOptionsAreRefusedWithAReason) {
   o.n_q = 7;  // convection has no generic kernel
   o.field = Vector("velocity", 2 * curved.n_dofs());
   EXPECT_THROW((MatrixFreeOperator<2, TestExecSpace>(curved, o)), std::invalid_argument);
-  EXPECT_THROW((mesh::QkSpace<2, TestExecSpace>(mixed_mesh<2>(4, 4, 1, ""), 9)),
+  EXPECT_THROW((mesh::hex::QkSpace<2, TestExecSpace>(mixed_mesh<2>(4, 4, 1, ""), 9)),
                std::invalid_argument);
 }
 
 }  // namespace
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 namespace {
 
 // CG's direction step in one sweep (apply_direction: p = z + beta p, q = A p, p.q) equals its
@@ -427,12 +428,12 @@ namespace {
 // periodic cube (the passes); one and three components, 2D and 3D, k = 1..4, beta = 0 (p not
 // read: NaN before) and beta != 0, slab counts of one and several blocks.
 template <int dim>
-void check_direction(const mesh::StructuredHexMesh<dim>& m, int k, int components,
+void check_direction(const mesh::hex::StructuredHexMesh<dim>& m, int k, int components,
                      bool gauss_lobatto) {
   SCOPED_TRACE(std::to_string(dim) + "D k " + std::to_string(k) + " components " +
                std::to_string(components) + (gauss_lobatto ? " GL" : ""));
   const TestExecSpace exec;
-  const mesh::QkSpace<dim, TestExecSpace> space(m, k);
+  const mesh::hex::QkSpace<dim, TestExecSpace> space(m, k);
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
   o.geometry = G::cartesian;
   o.components = components;
@@ -444,14 +445,14 @@ void check_direction(const mesh::StructuredHexMesh<dim>& m, int k, int component
   for (long i = 0; i < n; ++i) z[i] = std::sin(0.37 * i) + 0.1, p0[i] = std::cos(0.21 * i);
   for (const double beta : {0.0, 0.7}) {
     Vector zd = to_device(z), p = to_device(p0), q("q", n);
-    if (beta == 0.0) blas1::fill(exec, p, std::nan(""));
+    if (beta == 0.0) kernels::blas1::fill(exec, p, std::nan(""));
     const double pq = op.apply_direction(exec, zd, beta, p, q);
     // the passes, on the host's p = z + beta p
     std::vector<double> p_ref(n);
     for (long i = 0; i < n; ++i) p_ref[i] = z[i] + beta * p0[i];
     Vector pr = to_device(p_ref), qr("qr", n);
     op.apply(exec, pr, qr);
-    const double pq_ref = blas1::dot(exec, pr, qr);
+    const double pq_ref = kernels::blas1::dot(exec, pr, qr);
     const auto ph = to_host(p), qh = to_host(q), qrh = to_host(qr);
     double perr = 0.0, qerr = 0.0, qscale = 0.0;
     for (long i = 0; i < n; ++i) {
@@ -468,14 +469,15 @@ void check_direction(const mesh::StructuredHexMesh<dim>& m, int k, int component
 TEST(MatrixFreeOperator, DirectionStepInOneSweepEqualsItsPasses) {
   for (int k = 1; k <= 4; ++k)
     for (int nz : {3, 18}) {  // slab blocks: 3 of one slab; 9 of two
-      check_direction<3>(mesh::unit_cube<3>(nz + 1, FaceCondition::dirichlet), k, 1, true);
+      check_direction<3>(mesh::hex::unit_cube<3>(nz + 1, FaceCondition::dirichlet), k, 1, true);
       check_direction<3>(mixed_mesh<3>(11, 4, nz, "cartesian"), k, 1, false);
       check_direction<2>(mixed_mesh<2>(11, nz, 1, "cartesian"), k, 3, false);
-      auto box = mesh::unit_cube<2>(nz, FaceCondition::dirichlet);
+      auto box = mesh::hex::unit_cube<2>(nz, FaceCondition::dirichlet);
       check_direction<2>(box, k, 1, false);
     }
-  check_direction<3>(mesh::unit_cube<3>(9, FaceCondition::neumann), 3, 3, false);
-  check_direction<3>(mesh::unit_cube<3>(6, FaceCondition::periodic), 2, 1, false);  // the passes
+  check_direction<3>(mesh::hex::unit_cube<3>(9, FaceCondition::neumann), 3, 3, false);
+  check_direction<3>(mesh::hex::unit_cube<3>(6, FaceCondition::periodic), 2, 1,
+                     false);  // the passes
 }
 
 // CG takes the sweep wherever the operator offers it; its iterates equal those of the passes
@@ -494,7 +496,8 @@ TEST(MatrixFreeOperator, ConjugateGradientTakesTheSweepAndMatchesThePasses) {
   static_assert(
       !has_fused_direction<ApplyOnly<Op>, TestExecSpace, Vector, LocalInnerProduct>::value);
   const TestExecSpace exec;
-  const mesh::QkSpace<3, TestExecSpace> space(mesh::unit_cube<3>(10, FaceCondition::dirichlet), 2);
+  const mesh::hex::QkSpace<3, TestExecSpace> space(
+      mesh::hex::unit_cube<3>(10, FaceCondition::dirichlet), 2);
   Op::Options o;
   o.geometry = G::cartesian;
   const Op op(space, o);
@@ -503,7 +506,7 @@ TEST(MatrixFreeOperator, ConjugateGradientTakesTheSweepAndMatchesThePasses) {
   for (long i = 0; i < n; ++i) b[i] = std::sin(0.37 * i) + 0.1;
   Vector bd = to_device(b), d("d", n);
   op.compute_diagonal(exec, d);
-  blas1::reciprocal(exec, d);
+  kernels::blas1::reciprocal(exec, d);
   SolverControl control;
   control.max_iterations = 10;
   control.relative_tolerance = 0.0;
@@ -540,8 +543,8 @@ TEST(MatrixFreeOperator, ResultDoesNotDependOnTheBackendOrThreadCount) {
 #if defined(KOKKOS_ENABLE_SERIAL)
   for (int k : {3, 5}) {
     auto m = mixed_mesh<3>(17, 6, 18, "curved");  // 9 slab blocks of 2
-    const mesh::QkSpace<3, TestExecSpace> space(m, k);
-    const mesh::QkSpace<3, Kokkos::Serial> serial_space(m, k);
+    const mesh::hex::QkSpace<3, TestExecSpace> space(m, k);
+    const mesh::hex::QkSpace<3, Kokkos::Serial> serial_space(m, k);
     typename MatrixFreeOperator<3, TestExecSpace>::Options o;
     typename MatrixFreeOperator<3, Kokkos::Serial>::Options os;
     const MatrixFreeOperator<3, TestExecSpace> op(space, o);
@@ -561,7 +564,7 @@ TEST(MatrixFreeOperator, ResultDoesNotDependOnTheBackendOrThreadCount) {
       worst = std::max(worst, std::abs(y[i] - ys(i)));
       scale = std::max(scale, std::abs(ys(i)));
     }
-    if (runs_on_host_v<TestExecSpace>)
+    if (kernels::runs_on_host_v<TestExecSpace>)
       EXPECT_EQ(differ, 0) << "k " << k << ": entries differing from Serial";
     else  // 1e-12: ~4500 ulps of the largest entry; a wrong term is off by O(1) of it
       EXPECT_LT(worst, 1e-12 * scale) << "k " << k << ": " << differ << " entries differ";
@@ -570,4 +573,4 @@ TEST(MatrixFreeOperator, ResultDoesNotDependOnTheBackendOrThreadCount) {
 }
 
 }  // namespace
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

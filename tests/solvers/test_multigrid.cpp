@@ -12,24 +12,24 @@
 #include "solvers/matrix_free/multigrid.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 namespace {
 
 using test::TestExecSpace;
 using Vector = Kokkos::View<double*, test::TestMemSpace>;
-using mesh::FaceCondition;
+using mesh::hex::FaceCondition;
 
-Vector device(const std::vector<double>& v) { return to_view<test::TestMemSpace>(v); }
-std::vector<double> host(const Vector& d) { return to_std_vector(d); }
+Vector device(const std::vector<double>& v) { return kernels::to_view<test::TestMemSpace>(v); }
+std::vector<double> host(const Vector& d) { return kernels::to_std_vector(d); }
 
 template <int dim>
-void check_transfer(const mesh::StructuredHexMesh<dim>& mc, int kc,
-                    const mesh::StructuredHexMesh<dim>& mf, int kf) {
+void check_transfer(const mesh::hex::StructuredHexMesh<dim>& mc, int kc,
+                    const mesh::hex::StructuredHexMesh<dim>& mf, int kf) {
   const TestExecSpace exec;
-  const mesh::QkSpace<dim, TestExecSpace> coarse(mc, kc), fine(mf, kf);
+  const mesh::hex::QkSpace<dim, TestExecSpace> coarse(mc, kc), fine(mf, kf);
   const MatrixFreeTransfer<dim, TestExecSpace> t(coarse, fine);
   // a polynomial of degree kc per direction is reproduced (zeroed on Dirichlet DoFs)
-  auto poly = [kc](const mesh::Point3& x, int) {
+  auto poly = [kc](const mesh::hex::Point3& x, int) {
     double v = 1.0;
     for (int d = 0; d < dim; ++d) v *= std::pow(x[d] + 0.3 * d, kc) + 0.5;
     return v;
@@ -72,22 +72,22 @@ void check_transfer(const mesh::StructuredHexMesh<dim>& mc, int kc,
 TEST(MatrixFreeTransfer, ProlongationReproducesPolynomialsAndRestrictionIsItsTranspose) {
   for (FaceCondition f :
        {FaceCondition::neumann, FaceCondition::periodic, FaceCondition::dirichlet}) {
-    const auto m2 = mesh::unit_cube<2>(9, f);
-    const auto m3 = mesh::unit_cube<3>(9, f);
+    const auto m2 = mesh::hex::unit_cube<2>(9, f);
+    const auto m3 = mesh::hex::unit_cube<3>(9, f);
     for (auto [kc, kf] : {std::pair{1, 2}, {1, 3}, {2, 4}, {2, 5}, {3, 6}, {3, 7}, {4, 8}}) {
       if (f != FaceCondition::periodic)
         check_transfer<2>(m2, kc, m2, kf);  // periodic polys aren't periodic
       if (kf <= 4 && f != FaceCondition::periodic) check_transfer<3>(m3, kc, m3, kf);
     }
-    const auto c2 = mesh::unit_cube<2>(5, f);
-    const auto c3 = mesh::unit_cube<3>(5, f);
+    const auto c2 = mesh::hex::unit_cube<2>(5, f);
+    const auto c3 = mesh::hex::unit_cube<3>(5, f);
     if (f != FaceCondition::periodic) {
       check_transfer<2>(c2, 1, c2.refined(), 1);
       check_transfer<3>(c3, 1, c3.refined(), 1);
     }
   }
   // periodic: the adjoint identity still holds with random data
-  const auto p3 = mesh::unit_cube<3>(3, FaceCondition::periodic);
+  const auto p3 = mesh::hex::unit_cube<3>(3, FaceCondition::periodic);
   check_transfer<3>(p3, 1, p3.refined(), 1);
   check_transfer<3>(p3, 2, p3, 4);
 }
@@ -95,9 +95,10 @@ TEST(MatrixFreeTransfer, ProlongationReproducesPolynomialsAndRestrictionIsItsTra
 template <int dim>
 int mg_iterations(int k, int n) {
   const TestExecSpace exec;
-  auto m = mesh::unit_cube<dim>(n);
-  m.deformation = mesh::sinusoidal_deformation(dim, 0.05);
-  const mesh::DistributedQkSpace<dim, TestExecSpace> distributed(m, k, Communicator(MPI_COMM_SELF));
+  auto m = mesh::hex::unit_cube<dim>(n);
+  m.deformation = mesh::hex::sinusoidal_deformation(dim, 0.05);
+  const mesh::hex::DistributedQkSpace<dim, TestExecSpace> distributed(m, k,
+                                                                      Communicator(MPI_COMM_SELF));
   const auto& space = distributed.local();
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
   o.kind = OperatorKind::laplace;
@@ -105,8 +106,9 @@ int mg_iterations(int k, int n) {
   MultigridOptions mo;
   mo.max_coarse_dofs = 200;
   const MatrixFreeMultigrid<dim, TestExecSpace> mg(exec, A, mo);
-  const std::vector<double> f = space.interpolate(
-      [](const mesh::Point3& x, int) { return std::exp(x[0]) * std::sin(3 * x[1]) + x[dim - 1]; });
+  const std::vector<double> f = space.interpolate([](const mesh::hex::Point3& x, int) {
+    return std::exp(x[0]) * std::sin(3 * x[1]) + x[dim - 1];
+  });
   const Vector b = load_vector(exec, space, device(f), GeometryMode::stored, k + 1);
   Vector x("x", space.n_dofs());
   SolverControl control;
@@ -133,4 +135,4 @@ TEST(MatrixFreeMultigrid, IterationsDoNotGrowWithRefinement) {
 }
 
 }  // namespace
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

@@ -13,25 +13,25 @@
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "test_backend.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 // A named namespace, not an anonymous one: CUDA does not support extended lambdas in
 // anonymous namespaces (Kokkos issue #1547).
 namespace test_poisson_convergence_cases {
 
 using test::TestExecSpace;
 using Vector = Kokkos::View<double*, test::TestMemSpace>;
-using poisson_fem::SineSolution;
+using physics::poisson_fem::SineSolution;
 
 template <int dim>
 ErrorNorms solve(int k, int n) {
   const TestExecSpace exec;
-  auto m = mesh::unit_cube<dim>(n);
-  m.deformation = mesh::sinusoidal_deformation(dim, 0.05);
-  const mesh::QkSpace<dim, TestExecSpace> space(m, k);
+  auto m = mesh::hex::unit_cube<dim>(n);
+  m.deformation = mesh::hex::sinusoidal_deformation(dim, 0.05);
+  const mesh::hex::QkSpace<dim, TestExecSpace> space(m, k);
   const long N = space.n_dofs();
   const SineSolution<dim> exact;
-  const Vector f = to_view<test::TestMemSpace>(
-      space.interpolate([&](const mesh::Point3& x, int) { return exact.source(x); }));
+  const Vector f = kernels::to_view<test::TestMemSpace>(
+      space.interpolate([&](const mesh::hex::Point3& x, int) { return exact.source(x); }));
   const Vector b = load_vector(exec, space, f, GeometryMode::stored, k + 2);
   Vector u("u", N), diag("diag", N);
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
@@ -39,7 +39,7 @@ ErrorNorms solve(int k, int n) {
   o.n_q = k + 1;
   const MatrixFreeOperator<dim, TestExecSpace> A(space, o);
   A.compute_diagonal(exec, diag);
-  blas1::reciprocal(exec, diag);
+  kernels::blas1::reciprocal(exec, diag);
   SolverControl control;
   control.max_iterations = 5000;
   control.relative_tolerance = 1e-13;
@@ -82,4 +82,4 @@ TEST(PoissonConvergence, CurvedCubeOrdersKPlus1InL2AndKInH1) {
 
 }  // namespace test_poisson_convergence_cases
 using namespace test_poisson_convergence_cases;
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

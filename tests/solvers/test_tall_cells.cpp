@@ -21,7 +21,7 @@ namespace {
 
 using kernels::mac::MacCellType;
 using kernels::mac::MacGrid;
-using HostStencil = kernels::mac::PoissonStencil<HostMemSpace>;
+using HostStencil = kernels::mac::PoissonStencil<kernels::HostMemSpace>;
 
 /// Water at rest up to height eta over a sinusoidal terrain in a box with walls, open top.
 struct Basin {
@@ -50,8 +50,9 @@ struct Basin {
     kernels::mac::MacBoxBoundaries faces;
     faces.fill(kernels::mac::MacBoundary::wall);
     faces[3] = kernels::mac::MacBoundary::open;
-    A = kernels::mac::build_poisson_stencil<HostExecSpace, HostMemSpace>(
-        HostExecSpace(), grid, to_view<HostMemSpace>(type), to_view<HostMemSpace>(phi), faces);
+    A = kernels::mac::build_poisson_stencil<kernels::HostExecSpace, kernels::HostMemSpace>(
+        kernels::HostExecSpace(), grid, kernels::to_view<kernels::HostMemSpace>(type),
+        kernels::to_view<kernels::HostMemSpace>(phi), faces);
   }
 };
 
@@ -67,7 +68,7 @@ Eigen::SparseMatrix<double> to_eigen(const CsrMatrix& M, long cols) {
 
 TEST(TallCellMatrix, EqualsTheUniformMatrixWhenTheOpticalDepthCoversTheWater) {
   const Basin b(12, 16, 0.83);
-  const mesh::TallCellGrid T(b.A, b.grid.ny);
+  const mesh::mac::TallCellGrid T(b.A, b.grid.ny);
   EXPECT_EQ(T.tall_cells(), 0);
   CompactNumbering num;
   const CsrMatrix U = stencil_to_csr(b.A, num);
@@ -87,7 +88,7 @@ TEST(TallCellMatrix, EqualsTheUniformMatrixWhenTheOpticalDepthCoversTheWater) {
 TEST(TallCellMatrix, IsSymmetricAndEqualsPtAPWithTallCells) {
   for (int depth : {2, 3, 5}) {
     const Basin b(12, 24, 0.9);
-    const mesh::TallCellGrid T(b.A, depth);
+    const mesh::mac::TallCellGrid T(b.A, depth);
     EXPECT_GT(T.tall_cells(), 100);
     const CsrMatrix M = assemble_tall_cell_matrix(T, b.A);
     CompactNumbering num;
@@ -117,7 +118,7 @@ TEST(TallCellMatrix, IsSymmetricAndEqualsPtAPWithTallCells) {
 
 /// The stencil without what a build or coarsening knows of its values: every row read.
 HostStencil without_hints(const HostStencil& A) {
-  HostStencil B = kernels::mac::copy_stencil<HostMemSpace>(A);
+  HostStencil B = kernels::mac::copy_stencil<kernels::HostMemSpace>(A);
   Kokkos::deep_copy(B.surface_free_rows, std::uint8_t(0));
   B.unit_fluid_faces = false;
   return B;
@@ -151,8 +152,10 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
   kernels::mac::MacBoxBoundaries faces;
   faces.fill(kernels::mac::MacBoundary::wall);
   faces[3] = kernels::mac::MacBoundary::open;
-  const HostStencil A = kernels::mac::build_poisson_stencil<HostExecSpace, HostMemSpace>(
-      HostExecSpace(), b.grid, to_view<HostMemSpace>(type), to_view<HostMemSpace>(phi), faces);
+  const HostStencil A =
+      kernels::mac::build_poisson_stencil<kernels::HostExecSpace, kernels::HostMemSpace>(
+          kernels::HostExecSpace(), b.grid, kernels::to_view<kernels::HostMemSpace>(type),
+          kernels::to_view<kernels::HostMemSpace>(phi), faces);
   ASSERT_TRUE(A.unit_fluid_faces);
   // the marks: set exactly where no cell of the row has D != 0 (the built stencil is exact)
   int free_rows = 0, surface_rows = 0;
@@ -173,7 +176,7 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
   EXPECT_GT(free_rows, 0);
   EXPECT_GT(surface_rows, 0);
   for (int depth : {2, 4}) {
-    const mesh::TallCellGrid T(A, depth);
+    const mesh::mac::TallCellGrid T(A, depth);
     EXPECT_GT(T.tall_cells(), 100);
     expect_same_matrix(assemble_tall_cell_matrix(T, A),
                        assemble_tall_cell_matrix(T, without_hints(A)));
@@ -182,7 +185,7 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
     HostStencil A_halved = A;
     A_halved.phi = {};
     for (const HostStencil& fine : {A, A_halved}) {
-      const HostStencil C = kernels::mac::coarsen_stencil(HostExecSpace(), fine);
+      const HostStencil C = kernels::mac::coarsen_stencil(kernels::HostExecSpace(), fine);
       EXPECT_FALSE(C.unit_fluid_faces);
       long coarse_free = 0;
       for (std::size_t r = 0; r < C.surface_free_rows.extent(0); ++r)
@@ -205,7 +208,7 @@ TEST(TallCellMatrix, WhatTheStencilKnowsOfItsRowsChangesNothing) {
           }
         EXPECT_EQ(wrong, 0) << "coarse rows marked wrongly, depth " << depth;
       }
-      const mesh::TallCellGrid Tc(C, T);
+      const mesh::mac::TallCellGrid Tc(C, T);
       EXPECT_GT(Tc.tall_cells(), 10);
       expect_same_matrix(assemble_tall_cell_matrix(Tc, C),
                          assemble_tall_cell_matrix(Tc, without_hints(C)));
@@ -228,7 +231,7 @@ double hydrostatic_error(const Basin& b, int depth) {
         const bool solid_below = j == 0 || b.type[b.grid.index(i, j - 1, k)] == MacCellType::solid;
         if (solid_below) rhs[c] = -(rho * h * h / dt) * (-g * dt / h);
       }
-  const mesh::TallCellGrid T(b.A, depth);
+  const mesh::mac::TallCellGrid T(b.A, depth);
   const CsrMatrix M = assemble_tall_cell_matrix(T, b.A);
   std::vector<double> y(T.unknowns(), 0.0), bt(T.unknowns()), p(b.grid.padded_size());
   T.restrict_to_unknowns(rhs.data(), bt.data());
@@ -259,20 +262,20 @@ TEST(TallCellMatrix, HydrostaticPressureIsExactWithAndWithoutTallCells) {
 TEST(TallCellTransfer, GramSolveInvertsPtP) {
   // (P^T P)^-1 P^T P y = y for the linear-in-height prolongation, tall cells of 2 to ~25 rows
   const Basin b(16, 32, 0.83);
-  const mesh::TallCellGrid T(b.A, 3);
+  const mesh::mac::TallCellGrid T(b.A, 3);
   ASSERT_GT(T.tall_cells(), 100);
   using test::TestMemSpace;
   const test::TestExecSpace exec;
-  const auto layout = mesh::make_layout<TestMemSpace>(T);
+  const auto layout = mesh::mac::make_layout<TestMemSpace>(T);
   std::vector<double> y(T.unknowns());
   for (std::size_t u = 0; u < y.size(); ++u) y[u] = std::sin(0.37 * u) + 0.1 * (u % 7);
-  const auto yv = to_view<TestMemSpace>(y);
+  const auto yv = kernels::to_view<TestMemSpace>(y);
   Kokkos::View<double*, TestMemSpace> lattice("lattice", b.grid.padded_size()),
       z("z", T.unknowns());
   kernels::mac::tall_cell_prolongate(exec, layout, yv, lattice);
   kernels::mac::tall_cell_restrict(exec, layout, lattice, z);
   kernels::mac::tall_cell_gram_solve(exec, layout, z);
-  const auto zh = to_std_vector(z);
+  const auto zh = kernels::to_std_vector(z);
   for (std::size_t u = 0; u < y.size(); ++u) EXPECT_NEAR(zh[u], y[u], 1e-12) << "unknown " << u;
 }
 
@@ -281,7 +284,7 @@ std::pair<int, std::vector<double>> solve_basin(const Basin& b, int depth, const
   using test::TestExecSpace;
   using test::TestMemSpace;
   const TestExecSpace exec;
-  const mesh::TallCellGrid T(b.A, depth);
+  const mesh::mac::TallCellGrid T(b.A, depth);
   const CsrMatrix M = assemble_tall_cell_matrix(T, b.A);
   std::vector<double> f(b.grid.padded_size(), 0.0), bt(T.unknowns());
   for (int k = 0; k < b.grid.nz; ++k)
@@ -298,10 +301,10 @@ std::pair<int, std::vector<double>> solve_basin(const Basin& b, int depth, const
   Kokkos::View<double*, TestMemSpace> x("x", T.unknowns());
   SolverControl control;
   control.relative_tolerance = 1e-10;
-  const SolverResult r = solver->solve(exec, to_view<TestMemSpace>(bt), x, control);
+  const SolverResult r = solver->solve(exec, kernels::to_view<TestMemSpace>(bt), x, control);
   EXPECT_TRUE(r.converged) << backend;
   std::vector<double> p(b.grid.padded_size());
-  T.prolongate(to_std_vector(x).data(), p.data());
+  T.prolongate(kernels::to_std_vector(x).data(), p.data());
   return {r.iterations, p};
 }
 

@@ -9,7 +9,7 @@
 
 #include "coupling/fsi/beam_channel_wave.hpp"
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 BeamScheme parse_beam_scheme(const std::string& name) {
   if (name == "tp") return BeamScheme::traditional;
@@ -25,8 +25,8 @@ const char* to_string(BeamScheme s) {
 
 namespace {
 
-channel::ChannelGrid fluid_grid_of(const BeamChannelSetup& s) {
-  channel::ChannelGrid g;
+physics::channel_flow::ChannelGrid fluid_grid_of(const BeamChannelSetup& s) {
+  physics::channel_flow::ChannelGrid g;
   g.nx = s.beam.points;
   g.ny = s.fluid_rows;
   g.length = s.beam.length;
@@ -38,7 +38,8 @@ channel::ChannelGrid fluid_grid_of(const BeamChannelSetup& s) {
 /// (rho_h + dt^2/4 A) a^{n+1} = p - A eta*, with a^{n+1} = -p_y / rho from the fluid, is the
 /// Robin condition p + (rho_h I + dt^2/4 A) p_y / rho = A eta* (Newmark predictor eta* = eta +
 /// dt v + dt^2/4 a). Its leading weight is rho_h / rho; the dt^2 A part is the implicit beam's.
-channel::ChannelPressure fluid_of(const BeamChannelSetup& s, const beam::EulerBernoulliBeam& b) {
+physics::channel_flow::ChannelPressure fluid_of(const BeamChannelSetup& s,
+                                                const physics::beam::EulerBernoulliBeam& b) {
   std::array<double, 5> top{0, 0, 1, 0, 0};
   const bool amp = s.scheme == BeamScheme::amp;
   if (amp) {
@@ -46,7 +47,7 @@ channel::ChannelPressure fluid_of(const BeamChannelSetup& s, const beam::EulerBe
     for (int o = 0; o < 5; ++o)
       top[o] = (0.25 * s.dt * s.dt * c[o] + (o == 2 ? s.beam.rho_h : 0.0)) / s.rho;
   }
-  return channel::ChannelPressure(fluid_grid_of(s), amp ? 1.0 : 0.0, top);
+  return physics::channel_flow::ChannelPressure(fluid_grid_of(s), amp ? 1.0 : 0.0, top);
 }
 
 }  // namespace
@@ -155,7 +156,7 @@ void BeamChannelFsi::refresh_pressure() {
     mean_eta += beam_.displacement()[i] / nx;
   }
   std::array<double, 5> neumann{0, 0, 1, 0, 0};
-  const channel::ChannelPressure neumann_fluid(grid_, 0.0, neumann);
+  const physics::channel_flow::ChannelPressure neumann_fluid(grid_, 0.0, neumann);
   p_ = neumann_fluid.solve(g, s_.beam.spring * mean_eta);
   p_.resize(size_t(grid_.ny + 1) * nx);
 }
@@ -232,4 +233,4 @@ BeamChannelSetup beam_channel_wave_case(double rho_h, int points, BeamScheme sch
   return s;
 }
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

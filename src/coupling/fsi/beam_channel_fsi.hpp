@@ -25,18 +25,18 @@
 #include "physics/beam/euler_bernoulli_beam.hpp"
 #include "physics/channel_flow/channel_pressure.hpp"
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 enum class BeamScheme { traditional, traditional_aitken, amp };
 BeamScheme parse_beam_scheme(const std::string& name);  ///< "tp" | "tp_aitken" | "amp"
 const char* to_string(BeamScheme s);
 
 struct BeamChannelSetup {
-  beam::BeamParameters beam;  ///< length and points shared with the channel's x grid
-  double depth = 0.5;         ///< H
-  double rho = 1.0;           ///< fluid density
-  int fluid_rows = 16;        ///< channel cells in y
-  int mode = 1;               ///< k = 2 pi mode / length
+  physics::beam::BeamParameters beam;  ///< length and points shared with the channel's x grid
+  double depth = 0.5;                  ///< H
+  double rho = 1.0;                    ///< fluid density
+  int fluid_rows = 16;                 ///< channel cells in y
+  int mode = 1;                        ///< k = 2 pi mode / length
   double dt = 1e-3, end_time = 0.5;
   BeamScheme scheme = BeamScheme::amp;
   /// Declared unstable when max |eta| exceeds this multiple of the wave's amplitude (1).
@@ -75,9 +75,9 @@ class BeamChannelFsi {
   double time() const { return beam_.time(); }
   double omega() const { return omega_; }
   const BeamChannelSetup& setup() const { return s_; }
-  const channel::ChannelGrid& fluid_grid() const { return grid_; }
-  const beam::EulerBernoulliBeam& beam() const { return beam_; }
-  beam::EulerBernoulliBeam& beam() { return beam_; }
+  const physics::channel_flow::ChannelGrid& fluid_grid() const { return grid_; }
+  const physics::beam::EulerBernoulliBeam& beam() const { return beam_; }
+  physics::beam::EulerBernoulliBeam& beam() { return beam_; }
   /// The pressure of the last step's solve (at time()), rows 0..ny of the fluid grid.
   const std::vector<double>& pressure() const { return p_; }
   /// The exact wave at (x, y, t).
@@ -93,10 +93,10 @@ class BeamChannelFsi {
 
  private:
   BeamChannelSetup s_;
-  channel::ChannelGrid grid_;
+  physics::channel_flow::ChannelGrid grid_;
   double k_, omega_;
-  beam::EulerBernoulliBeam beam_;
-  channel::ChannelPressure fluid_;
+  physics::beam::EulerBernoulliBeam beam_;
+  physics::channel_flow::ChannelPressure fluid_;
   std::vector<double> p_;
   int subiterations_ = 0;
 };
@@ -104,4 +104,4 @@ class BeamChannelFsi {
 /// Runs the scheme from the exact traveling wave to end_time (or to a detected blow-up).
 BeamChannelResult run_beam_channel(const BeamChannelSetup& s);
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

@@ -8,7 +8,7 @@
 #include "coupling/fsi/beam_channel_wave.hpp"
 #include "mesh/box_decomposition.hpp"
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 ParamTable beam_channel_parameter_table() {
   return {
@@ -43,12 +43,13 @@ ParamTable beam_channel_parameter_table() {
 
 namespace {
 
-class BeamChannelModule final : public Module {
+class BeamChannelModule final : public physics::Module {
  public:
   BeamChannelModule(const Parameters& p, const Communicator& comm) {
     if (comm.size() > 1)
-      throw DecompositionError("more ranks (" + std::to_string(comm.size()) +
-                               ") than blocks (1): the beam-channel problem runs on one rank");
+      throw mesh::DecompositionError(
+          "more ranks (" + std::to_string(comm.size()) +
+          ") than blocks (1): the beam-channel problem runs on one rank");
     s_.scheme = parse_beam_scheme(p.string("scheme"));
     s_.beam.rho_h = p.real("rho_h");
     s_.beam.spring = p.real("spring");
@@ -128,10 +129,10 @@ class BeamChannelModule final : public Module {
   }
   std::string error_diagnostic() const override { return "eta_error"; }
 
-  std::optional<NonFiniteReport> find_nonfinite() const override {
+  std::optional<physics::NonFiniteReport> find_nonfinite() const override {
     if (!fsi_->blown_up()) return std::nullopt;
     // Unbounded growth is the failure this problem exists to show: stop like a divergence.
-    NonFiniteReport r;
+    physics::NonFiniteReport r;
     std::ostringstream f;
     f << "the " << to_string(s_.scheme)
       << " coupling is unstable at rho_h / rho = " << s_.beam.rho_h / s_.rho
@@ -183,8 +184,9 @@ class BeamChannelModule final : public Module {
 
 }  // namespace
 
-std::unique_ptr<Module> create_beam_channel(const Parameters& p, const Communicator& comm) {
+std::unique_ptr<physics::Module> create_beam_channel(const Parameters& p,
+                                                     const Communicator& comm) {
   return std::make_unique<BeamChannelModule>(p, comm);
 }
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

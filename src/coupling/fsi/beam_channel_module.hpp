@@ -9,11 +9,11 @@
 #include "physics/module.hpp"
 #include "base/parameters.hpp"
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 /// The scene table `[beam_channel]`.
 ParamTable beam_channel_parameter_table();
 
-std::unique_ptr<Module> create_beam_channel(const Parameters& p, const Communicator& comm);
+std::unique_ptr<physics::Module> create_beam_channel(const Parameters& p, const Communicator& comm);
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

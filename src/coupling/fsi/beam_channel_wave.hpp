@@ -11,7 +11,7 @@
 
 #include "physics/beam/euler_bernoulli_beam.hpp"
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 /// Added mass per unit length of the inviscid channel of depth H and density rho, mode k.
 inline double channel_added_mass(double k, double H, double rho) {
@@ -19,10 +19,10 @@ inline double channel_added_mass(double k, double H, double rho) {
 }
 
 /// omega of the traveling wave of mode k of the beam over the channel.
-inline double beam_channel_frequency(const beam::BeamParameters& p, double k, double H,
+inline double beam_channel_frequency(const physics::beam::BeamParameters& p, double k, double H,
                                      double rho) {
   const double restoring = p.spring + p.tension * k * k + p.stiffness * k * k * k * k;
   return std::sqrt(restoring / (p.rho_h + channel_added_mass(k, H, rho)));
 }
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

@@ -7,7 +7,7 @@
 #include "coupling/fsi/mpve_partitioned.hpp"
 #include "mesh/box_decomposition.hpp"
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 ParamTable mpve_parameter_table() {
   return {
@@ -32,12 +32,12 @@ ParamTable mpve_parameter_table() {
 
 namespace {
 
-class MpveModule final : public Module {
+class MpveModule final : public physics::Module {
  public:
   MpveModule(const Parameters& p, const Communicator& comm) {
     if (comm.size() > 1)
-      throw DecompositionError("more ranks (" + std::to_string(comm.size()) +
-                               ") than blocks (1): MP-VE runs on one rank");
+      throw mesh::DecompositionError("more ranks (" + std::to_string(comm.size()) +
+                                     ") than blocks (1): MP-VE runs on one rank");
     // The MP-VE check case (Banks et al. 2014), its root followed to the scene's solid and
     // viscosity.
     s_.physics = mpve_check_case();
@@ -115,9 +115,9 @@ class MpveModule final : public Module {
             {"omega_im", s_.omega.imag()}};
   }
   std::string error_diagnostic() const override { return "vbar_error"; }
-  std::optional<NonFiniteReport> find_nonfinite() const override {
+  std::optional<physics::NonFiniteReport> find_nonfinite() const override {
     if (!run_->blown_up()) return std::nullopt;
-    NonFiniteReport r;
+    physics::NonFiniteReport r;
     std::ostringstream m;
     m << "the " << to_string(s_.scheme)
       << " coupling is unstable at rho_bar / rho = " << s_.physics.rho_bar / s_.physics.rho
@@ -141,8 +141,8 @@ class MpveModule final : public Module {
 
 }  // namespace
 
-std::unique_ptr<Module> create_mpve(const Parameters& p, const Communicator& comm) {
+std::unique_ptr<physics::Module> create_mpve(const Parameters& p, const Communicator& comm) {
   return std::make_unique<MpveModule>(p, comm);
 }
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

@@ -10,9 +10,9 @@
 #include "physics/module.hpp"
 #include "base/parameters.hpp"
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 ParamTable mpve_parameter_table();
-std::unique_ptr<Module> create_mpve(const Parameters& p, const Communicator& comm);
+std::unique_ptr<physics::Module> create_mpve(const Parameters& p, const Communicator& comm);
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

@@ -11,12 +11,12 @@
 #include "physics/channel_flow/channel_stokes.hpp"
 #include "physics/elastic_solid/linear_elastic_solid.hpp"
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 namespace {
 
 using Host = Kokkos::DefaultHostExecutionSpace;
-using Solid = elastic::LinearElasticSolid<Host>;
+using Solid = physics::elastic_solid::LinearElasticSolid<Host>;
 
 /// The exact solid displacement, as the solid's initial-value functor.
 struct ExactDisplacement {
@@ -42,11 +42,11 @@ struct Fixed {
   double operator()(double, double, double, int) const { return 0.0; }
 };
 
-std::optional<channel::TopImpedance> fluid_top(const MpveSetup& s) {
+std::optional<physics::channel_flow::TopImpedance> fluid_top(const MpveSetup& s) {
   if (s.scheme != MpveScheme::amp) return std::nullopt;
   const auto& P = s.physics;
-  return channel::TopImpedance{std::sqrt(P.rho_bar * (P.lambda_bar + 2 * P.mu_bar)),
-                               std::sqrt(P.rho_bar * P.mu_bar)};
+  return physics::channel_flow::TopImpedance{std::sqrt(P.rho_bar * (P.lambda_bar + 2 * P.mu_bar)),
+                                             std::sqrt(P.rho_bar * P.mu_bar)};
 }
 
 }  // namespace
@@ -65,9 +65,9 @@ MpveScheme parse_mpve_scheme(const std::string& name) {
 struct MpvePartitioned::State {
   MpveSetup s;
   std::array<Complex, 8> mode;
-  channel::ChannelGrid fg;
-  elastic::ElasticGrid sg;
-  channel::ChannelStokes fluid;
+  physics::channel_flow::ChannelGrid fg;
+  physics::elastic_solid::ElasticGrid sg;
+  physics::channel_flow::ChannelStokes fluid;
   Solid solid;
   std::vector<double> p_prev;             // fluid pressure at t - 3 dt / 2
   std::vector<double> row_prev, row_now;  // solid interface displacement (u, v) at t - dt, t
@@ -75,18 +75,18 @@ struct MpvePartitioned::State {
   std::vector<double> gv_prev;         // AMP: the fluid's wall v at t - dt
   std::vector<double> g_now;           // AMP: the characteristics sent at t (x, y per node)
   std::vector<double> traction_prev;   // TP-Aitken: the traction at t - dt (x, y per node)
-  channel::TopImpedance z;             // AMP: the solid's impedances (z_p, z_s)
-  double z_fluid = 0;                  // AMP: the discrete fluid's impedance (fluid_traction)
-  int subiterations = 1;               // of the last step
+  physics::channel_flow::TopImpedance z;  // AMP: the solid's impedances (z_p, z_s)
+  double z_fluid = 0;                     // AMP: the discrete fluid's impedance (fluid_traction)
+  int subiterations = 1;                  // of the last step
   double v_scale = 0;
   Kokkos::View<double* [2], Kokkos::HostSpace>
       traction;  // the fluid's, on the solid's interface nodes
 
-  static channel::ChannelGrid fluid_grid(const MpveSetup& s) {
+  static physics::channel_flow::ChannelGrid fluid_grid(const MpveSetup& s) {
     const double L = 2 * M_PI / s.physics.k, h = L / s.nx;
     return {s.nx, std::max(2, int(std::lround(s.physics.H / h))), L, s.physics.H};
   }
-  static elastic::ElasticGrid solid_grid(const MpveSetup& s) {
+  static physics::elastic_solid::ElasticGrid solid_grid(const MpveSetup& s) {
     const double L = 2 * M_PI / s.physics.k, h = L / s.nx;
     const int ny = std::max(2, int(std::lround(s.physics.Hbar / h)));
     return {s.nx, ny, h, s.physics.Hbar / ny};
@@ -246,7 +246,7 @@ struct MpvePartitioned::State {
                          double t) -> const std::vector<double>& {
       return std::abs(t - t0) < 0.25 * dt ? a : b;
     };
-    channel::StokesData d;
+    physics::channel_flow::StokesData d;
     d.fx = d.fy = [](double, double, double) { return 0.0; };
     d.u_bottom = d.v_bottom = [](double, double) { return 0.0; };
     d.u_top = [&](double x, double t) { return pick(gu0, gu1, t)[wrap(int(std::lround(x / hx)))]; };
@@ -350,7 +350,7 @@ struct MpvePartitioned::State {
     std::vector<double> v_guess(nx);  // the interface's normal velocity at t + dt, extrapolated
     for (int i = 0; i < nx; ++i) v_guess[i] = 2 * gv_now[i] - gv_prev[i];
     const double hf = fg.hx();
-    channel::StokesData data;
+    physics::channel_flow::StokesData data;
     data.fx = data.fy = [](double, double, double) { return 0.0; };
     data.u_bottom = data.v_bottom = [](double, double) { return 0.0; };
     data.u_top = [](double, double) { return 0.0; };
@@ -522,4 +522,4 @@ MpveRun run_mpve(const MpveSetup& s) {
   return r;
 }
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

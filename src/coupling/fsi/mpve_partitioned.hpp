@@ -24,7 +24,7 @@
 
 #include "coupling/fsi/mpve_traveling_wave.hpp"
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 enum class MpveScheme { tp, tp_aitken, amp };
 const char* to_string(MpveScheme s);
@@ -89,4 +89,4 @@ struct MpveRun {
 };
 MpveRun run_mpve(const MpveSetup& s);
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

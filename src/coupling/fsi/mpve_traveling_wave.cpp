@@ -3,7 +3,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 namespace {
 const Complex I(0.0, 1.0);
@@ -193,4 +193,4 @@ DispersionRoot mpve_root_from_check_case(const MpveParameters& to, int steps) {
   return continue_mpve_dispersion(check, start.omega, to, steps);
 }
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

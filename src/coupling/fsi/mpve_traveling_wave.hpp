@@ -20,7 +20,7 @@
 #include <array>
 #include <complex>
 
-namespace amphora::fsi {
+namespace amphora::coupling::fsi {
 
 using Complex = std::complex<double>;
 
@@ -77,4 +77,4 @@ struct MpveSolidFields {
 MpveSolidFields mpve_solid(const MpveParameters& p, Complex omega, const std::array<Complex, 8>& c,
                            double x, double y, double t);
 
-}  // namespace amphora::fsi
+}  // namespace amphora::coupling::fsi

@@ -2,7 +2,7 @@
 // The column structure of a tall-cell grid (Irving, Guendelman, Losasso & Fedkiw 2006, sec. 3)
 // in a memory space: per (x, z) column the lowest fluid row (the terrain) and the lowest uniform
 // row (the band); rows [terrain, band) form the column's tall cell. Built on the device from the
-// cell types every sub-step, so the grid follows the surface; mesh::TallCellGrid uses the same
+// cell types every sub-step, so the grid follows the surface; mesh::mac::TallCellGrid uses the same
 // rule (tall_cell_rows) for the pressure unknowns.
 //
 // On a block of a grid split over ranks the columns of the ghost ring (i = -1 or nx, k = -1 or

@@ -1,7 +1,7 @@
 #pragma once
 // The arrays of a tall-cell grid (Irving et al. 2006, sec. 3) in a memory space, for kernels:
 // per (x, z) column the terrain, band and first unknown, per lattice cell its uniform unknown.
-// mesh::TallCellGrid builds them (mesh::make_layout).
+// mesh::mac::TallCellGrid builds them (mesh::mac::make_layout).
 #include "kernels/mac/mac_grid.hpp"
 
 namespace amphora::kernels::mac {

@@ -8,7 +8,7 @@
 #include "kernels/spaces.hpp"
 #include "mesh/box_decomposition.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::hex {
 
 namespace {
 
@@ -197,7 +197,8 @@ void DistributedQkSpace<dim, ExecSpace>::compress_add(const ExecSpace& exec, con
     exchange_layer(comm_, top, next_, received, prev_, kCompressTag + 16 * c);
     if (prev_ == MPI_PROC_NULL) continue;
     Kokkos::parallel_for(
-        "amphora::DistributedQkSpace::compress_add", RangePolicy<ExecSpace>(exec, 0, layer_),
+        "amphora::DistributedQkSpace::compress_add",
+        kernels::RangePolicy<ExecSpace>(exec, 0, layer_),
         KOKKOS_LAMBDA(long i) { y(base + i) += free(i) * received(i); });
   }
   exec.fence();
@@ -208,7 +209,7 @@ double DistributedQkSpace<dim, ExecSpace>::dot(const ExecSpace& exec, const Vect
                                                const Vector& y, int components) const {
   double local = 0.0;
   for (int c = 0; c < components; ++c)
-    local += blas1::dot(exec, Kokkos::subview(x, owned(c)), Kokkos::subview(y, owned(c)));
+    local += kernels::blas1::dot(exec, Kokkos::subview(x, owned(c)), Kokkos::subview(y, owned(c)));
   return comm_.sum(local);
 }
 
@@ -220,8 +221,8 @@ double DistributedQkSpace<dim, ExecSpace>::fused_cg_update(const ExecSpace& exec
   double local = 0.0;
   for (int c = 0; c < components; ++c) {
     const auto o = owned(c);
-    local += blas1::cg_update(exec, alpha, Kokkos::subview(p, o), Kokkos::subview(q, o),
-                              Kokkos::subview(x, o), Kokkos::subview(r, o));
+    local += kernels::blas1::cg_update(exec, alpha, Kokkos::subview(p, o), Kokkos::subview(q, o),
+                                       Kokkos::subview(x, o), Kokkos::subview(r, o));
   }
   return comm_.sum(local);
 }
@@ -233,4 +234,4 @@ AMPHORA_IF_SERIAL(AMPHORA_DISTRIBUTED_QK_SPACE(Kokkos::Serial))
 AMPHORA_IF_OPENMP(AMPHORA_DISTRIBUTED_QK_SPACE(Kokkos::OpenMP))
 AMPHORA_IF_CUDA(AMPHORA_DISTRIBUTED_QK_SPACE(Kokkos::Cuda))
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::hex

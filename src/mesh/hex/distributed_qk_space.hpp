@@ -19,7 +19,7 @@
 #include "base/communicator.hpp"
 #include "mesh/hex/qk_space.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::hex {
 
 template <int dim, class ExecSpace>
 class DistributedQkSpace {
@@ -110,4 +110,4 @@ class DistributedQkSpace {
   Vector received_;     // compress_add's receive buffer (one layer)
 };
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::hex

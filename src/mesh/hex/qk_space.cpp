@@ -6,7 +6,7 @@
 #include "kernels/spaces.hpp"
 #include "kernels/sumfac/quadrature_1d.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::hex {
 
 template <int dim, class ExecSpace>
 QkSpace<dim, ExecSpace>::QkSpace(const StructuredHexMesh<dim>& mesh, int degree) : mesh_(mesh) {
@@ -88,4 +88,4 @@ AMPHORA_IF_SERIAL(AMPHORA_QK_SPACE(Kokkos::Serial))
 AMPHORA_IF_OPENMP(AMPHORA_QK_SPACE(Kokkos::OpenMP))
 AMPHORA_IF_CUDA(AMPHORA_QK_SPACE(Kokkos::Cuda))
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::hex

@@ -11,7 +11,7 @@
 #include "kernels/sumfac/simd.hpp"
 #include "mesh/hex/structured_hex_mesh.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::hex {
 
 inline constexpr int max_qk_degree = 8;
 
@@ -59,4 +59,4 @@ std::vector<double> QkSpace<dim, ExecSpace>::interpolate(const F& f, int compone
   return v;
 }
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::hex

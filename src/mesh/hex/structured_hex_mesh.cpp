@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace amphora::mesh {
+namespace amphora::mesh::hex {
 
 template <int dim>
 void StructuredHexMesh<dim>::validate() const {
@@ -64,4 +64,4 @@ template struct StructuredHexMesh<3>;
 template StructuredHexMesh<2> unit_cube<2>(int, FaceCondition);
 template StructuredHexMesh<3> unit_cube<3>(int, FaceCondition);
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::hex

@@ -6,7 +6,7 @@
 #include <functional>
 #include <string>
 
-namespace amphora::mesh {
+namespace amphora::mesh::hex {
 
 /// `interface`: a face this box shares with a neighbouring rank's box (DistributedQkSpace):
 /// natural for an operator, like Neumann, but its nodes belong to cells on both sides.
@@ -67,4 +67,4 @@ StructuredHexMesh<dim> unit_cube(int n, FaceCondition all_faces = FaceCondition:
 /// (x_d += a sin(pi x_0) sin(pi x_1) [sin(pi x_2)] per direction with a phase), curving the cells.
 std::function<Point3(const Point3&)> sinusoidal_deformation(int dim, double amplitude);
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::hex

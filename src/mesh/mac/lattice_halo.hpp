@@ -13,7 +13,7 @@
 #include "mesh/box_decomposition.hpp"
 #include "kernels/mac/mac_grid.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::mac {
 
 /// Where a block lies: its communicator, its first cell in global indices, and the ranks
 /// beyond each box face (-1: a face of the global box). Default: the whole grid on one rank.
@@ -166,7 +166,7 @@ class LatticeGhostExchange {
     if (to >= 0) {
       const Region at = from_region;
       Kokkos::parallel_for(
-          "amphora::lattice_halo::pack", RangePolicy<ExecSpace>(exec, 0, size),
+          "amphora::lattice_halo::pack", kernels::RangePolicy<ExecSpace>(exec, 0, size),
           KOKKOS_LAMBDA(int m) { send(m) = static_cast<T>(src(at(m))); });
       Kokkos::deep_copy(exec, send_host, send);
       exec.fence();
@@ -180,7 +180,7 @@ class LatticeGhostExchange {
       const Region at = to_region;
       Kokkos::deep_copy(exec, recv, recv_host);
       Kokkos::parallel_for(
-          "amphora::lattice_halo::unpack", RangePolicy<ExecSpace>(exec, 0, size),
+          "amphora::lattice_halo::unpack", kernels::RangePolicy<ExecSpace>(exec, 0, size),
           KOKKOS_LAMBDA(int m) { dst(at(m)) = recv(m); });
     }
   }
@@ -189,4 +189,4 @@ class LatticeGhostExchange {
   MacBlock block_;
 };
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::mac

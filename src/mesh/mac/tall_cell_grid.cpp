@@ -5,14 +5,14 @@
 #include <algorithm>
 #include <stdexcept>
 
-namespace amphora::mesh {
+namespace amphora::mesh::mac {
 
 using kernels::mac::fluid_run;
 using kernels::mac::MacGrid;
 using kernels::mac::tall_cell_band;
 
-TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth,
-                           const MacBlock& block)
+TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A,
+                           int optical_depth, const MacBlock& block)
     : grid_(A.grid), block_(block), optical_depth_(optical_depth) {
   if (optical_depth < 1)
     throw std::invalid_argument("tall cells: the optical depth must be at least one cell");
@@ -22,7 +22,7 @@ TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, 
   });
 }
 
-TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A,
+TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A,
                            const TallCellGrid& finer, const MacBlock& block)
     : grid_(A.grid), block_(block), optical_depth_((finer.optical_depth() + 1) / 2) {
   const MacGrid& f = finer.grid();
@@ -43,7 +43,8 @@ TallCellGrid::TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A,
 }
 
 template <class Band>
-void TallCellGrid::build(const kernels::mac::PoissonStencil<HostMemSpace>& A, const Band& band_of) {
+void TallCellGrid::build(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A,
+                         const Band& band_of) {
   const MacGrid& g = grid_;
   const auto& d = A.diag;
   columns_.resize(static_cast<std::size_t>(g.nx) * g.nz);
@@ -51,29 +52,30 @@ void TallCellGrid::build(const kernels::mac::PoissonStencil<HostMemSpace>& A, co
   // Lines of columns in parallel: each column's rows and its number of unknowns, then (after the
   // running sum, in column order) its unknowns' numbers, so the numbering is the serial one.
   std::vector<int> count(columns_.size());
-  Kokkos::parallel_for(
-      "amphora::tall::grid_columns", Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
-        for (int i = 0; i < g.nx; ++i) {
-          TallCellColumn& col = columns_[i + g.nx * k];
-          // a fluid cell is one with a diagonal: the column's lowest run of them
-          int terrain, top;
-          fluid_run(
-              g.ny, [&](int j) { return d(g.index(i, j, k)) != 0.0; }, terrain, top);
-          col.terrain = terrain;
-          col.band = band_of(i, k, terrain, top);
-          int n = col.has_tall_cell() ? 2 : 0;
-          for (int j = col.band; j < g.ny; ++j) n += d(g.index(i, j, k)) != 0.0;
-          count[i + g.nx * k] = n;
-        }
-      });
+  Kokkos::parallel_for("amphora::tall::grid_columns",
+                       Kokkos::RangePolicy<kernels::HostExecSpace>(0, g.nz), [&](int k) {
+                         for (int i = 0; i < g.nx; ++i) {
+                           TallCellColumn& col = columns_[i + g.nx * k];
+                           // a fluid cell is one with a diagonal: the column's lowest run of them
+                           int terrain, top;
+                           fluid_run(
+                               g.ny, [&](int j) { return d(g.index(i, j, k)) != 0.0; }, terrain,
+                               top);
+                           col.terrain = terrain;
+                           col.band = band_of(i, k, terrain, top);
+                           int n = col.has_tall_cell() ? 2 : 0;
+                           for (int j = col.band; j < g.ny; ++j) n += d(g.index(i, j, k)) != 0.0;
+                           count[i + g.nx * k] = n;
+                         }
+                       });
   long next = 0;
   for (std::size_t c = 0; c < columns_.size(); ++c) {
     columns_[c].first_unknown = static_cast<int>(next);
     next += count[c];
     tall_cells_ += columns_[c].has_tall_cell();
   }
-  Kokkos::parallel_for("amphora::tall::grid_numbering", Kokkos::RangePolicy<HostExecSpace>(0, g.nz),
-                       [&](int k) {
+  Kokkos::parallel_for("amphora::tall::grid_numbering",
+                       Kokkos::RangePolicy<kernels::HostExecSpace>(0, g.nz), [&](int k) {
                          for (int i = 0; i < g.nx; ++i) {
                            const TallCellColumn& col = columns_[i + g.nx * k];
                            int u = col.first_unknown + (col.has_tall_cell() ? 2 : 0);
@@ -98,7 +100,7 @@ void TallCellGrid::build(const kernels::mac::PoissonStencil<HostMemSpace>& A, co
 // exchange the ring's columns are read back from their cells.
 void TallCellGrid::learn_ghost_ring() {
   const MacGrid& g = grid_;
-  Kokkos::View<long*, HostMemSpace> code("amphora::tall::ring_code", g.padded_size());
+  Kokkos::View<long*, kernels::HostMemSpace> code("amphora::tall::ring_code", g.padded_size());
   Kokkos::deep_copy(code, -1L);
   for (int k = 0; k < g.nz; ++k)
     for (int i = 0; i < g.nx; ++i) {
@@ -111,7 +113,7 @@ void TallCellGrid::learn_ghost_ring() {
           code(c) = first_unknown_ + cell_unknown_[c];
       }
     }
-  LatticeGhostExchange(block_).exchange(HostExecSpace(), g, code);
+  LatticeGhostExchange(block_).exchange(kernels::HostExecSpace(), g, code);
   ring_columns_.assign(static_cast<std::size_t>(g.nx + 2) * (g.nz + 2),
                        TallCellColumn{g.ny, g.ny, -1});
   ring_unknown_.assign(static_cast<std::size_t>(g.padded_size()), -1);
@@ -181,4 +183,4 @@ void TallCellGrid::restrict_to_unknowns(const double* lattice, double* y) const 
       }
 }
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::mac

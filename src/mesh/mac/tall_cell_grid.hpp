@@ -9,7 +9,7 @@
 // Unknowns are numbered column by column (x fastest over columns): the tall
 // cell's bottom and top samples, then the column's fluid cells upwards.
 //
-// On a grid split over ranks (mesh::MacBlock) each block numbers its own columns, after the
+// On a grid split over ranks (mesh::mac::MacBlock) each block numbers its own columns, after the
 // blocks of lower ranks (global number = local + first_unknown()), and learns the columns of
 // its ghost ring (their rows and global unknowns) from the neighbouring blocks, so the matrix
 // rows of its unknowns can be assembled with their couplings across the block faces.
@@ -22,7 +22,7 @@
 #include "kernels/mac/tall_cell_columns.hpp"
 #include "kernels/mac/tall_cell_layout.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::mac {
 
 /// One (x, z) column: lattice rows [terrain, band) form the tall cell (empty if band == terrain),
 /// rows band.. are uniform.
@@ -39,7 +39,7 @@ class TallCellGrid {
   /// non-fluid row above the terrain; a tall cell needs at least two rows (else the column stays
   /// uniform). A is on the host. On a split grid (block.split()) every rank of block.comm
   /// constructs its block's grid together (collective).
-  TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, int optical_depth,
+  TallCellGrid(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A, int optical_depth,
                const MacBlock& block = {});
   /// The next coarser multigrid level's grid over A, whose lattice has cells twice as wide as
   /// finer's: a column has a tall cell where the four finer columns under it all have one, and
@@ -47,8 +47,8 @@ class TallCellGrid {
   /// tall cells follow the finer ones (0.5 coarse rows at most apart) rather than A's surface
   /// (fewer CG iterations than bands from A's surface: docs/water.md). Collective on a split
   /// grid.
-  TallCellGrid(const kernels::mac::PoissonStencil<HostMemSpace>& A, const TallCellGrid& finer,
-               const MacBlock& block = {});
+  TallCellGrid(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A,
+               const TallCellGrid& finer, const MacBlock& block = {});
 
   const kernels::mac::MacGrid& grid() const { return grid_; }
   const MacBlock& block() const { return block_; }
@@ -115,7 +115,7 @@ class TallCellGrid {
   /// Columns (terrain: the lowest fluid row; band = band_of(i, k, terrain, top of the fluid run
   /// above it)), numbering and ghost ring.
   template <class Band>
-  void build(const kernels::mac::PoissonStencil<HostMemSpace>& A, const Band& band_of);
+  void build(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A, const Band& band_of);
   void learn_ghost_ring();
   /// f(u, i, j, k) for the unknowns of column (i, k) as `uniform` (per padded cell) and the
   /// column number them.
@@ -144,9 +144,9 @@ class TallCellGrid {
   std::vector<int> ring_unknown_;
 };
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::mac
 
-namespace amphora::mesh {
+namespace amphora::mesh::mac {
 
 /// The grid's arrays in a memory space, for kernels.
 template <class MemSpace>
@@ -156,11 +156,11 @@ kernels::mac::TallCellLayout<MemSpace> make_layout(const TallCellGrid& T) {
     t.push_back(c.terrain), b.push_back(c.band), f.push_back(c.first_unknown);
   kernels::mac::TallCellLayout<MemSpace> L;
   L.grid = T.grid();
-  L.terrain = to_view<MemSpace>(t, "amphora::tall::terrain");
-  L.band = to_view<MemSpace>(b, "amphora::tall::band");
-  L.first_unknown = to_view<MemSpace>(f, "amphora::tall::first_unknown");
-  L.cell_unknown = to_view<MemSpace>(T.cell_unknown(), "amphora::tall::cell_unknown");
+  L.terrain = kernels::to_view<MemSpace>(t, "amphora::tall::terrain");
+  L.band = kernels::to_view<MemSpace>(b, "amphora::tall::band");
+  L.first_unknown = kernels::to_view<MemSpace>(f, "amphora::tall::first_unknown");
+  L.cell_unknown = kernels::to_view<MemSpace>(T.cell_unknown(), "amphora::tall::cell_unknown");
   return L;
 }
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::mac

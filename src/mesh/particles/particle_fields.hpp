@@ -9,7 +9,7 @@
 
 #include "kernels/spaces.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::particles {
 
 template <class ExecSpace>
 class ParticleFields {
@@ -43,7 +43,7 @@ class ParticleFields {
   void pack(const ExecSpace& exec, const Indices& which, int count, const Buffer& buf) const {
     if (doubles_.count > 0)
       Kokkos::parallel_for("amphora::particles::pack_doubles",
-                           RangePolicy<ExecSpace>(exec, 0, count),
+                           kernels::RangePolicy<ExecSpace>(exec, 0, count),
                            PackDoubles{doubles_, which, buf, width_});
     for (const auto& f : fields_) f.pack(exec, which, count, buf, width_);
   }
@@ -51,7 +51,7 @@ class ParticleFields {
   void unpack(const ExecSpace& exec, const Buffer& buf, int count, int first) const {
     if (doubles_.count > 0)
       Kokkos::parallel_for("amphora::particles::unpack_doubles",
-                           RangePolicy<ExecSpace>(exec, 0, count),
+                           kernels::RangePolicy<ExecSpace>(exec, 0, count),
                            UnpackDoubles{doubles_, buf, width_, first});
     for (const auto& f : fields_) f.unpack(exec, buf, count, first, width_);
   }
@@ -113,14 +113,16 @@ class ParticleFields {
   template <class T>
   static PackFn packer(T* data, int inner, int offset) {
     return [=](const ExecSpace& exec, const Indices& which, int count, const Buffer& buf, int w) {
-      Kokkos::parallel_for("amphora::particles::pack", RangePolicy<ExecSpace>(exec, 0, count),
+      Kokkos::parallel_for("amphora::particles::pack",
+                           kernels::RangePolicy<ExecSpace>(exec, 0, count),
                            PackKernel<T>{data, which, buf, inner, offset, w});
     };
   }
   template <class T>
   static UnpackFn unpacker(T* data, int inner, int offset) {
     return [=](const ExecSpace& exec, const Buffer& buf, int count, int first, int w) {
-      Kokkos::parallel_for("amphora::particles::unpack", RangePolicy<ExecSpace>(exec, 0, count),
+      Kokkos::parallel_for("amphora::particles::unpack",
+                           kernels::RangePolicy<ExecSpace>(exec, 0, count),
                            UnpackKernel<T>{data, buf, inner, offset, w, first});
     };
   }
@@ -135,4 +137,4 @@ class ParticleFields {
   int width_ = 0;
 };
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::particles

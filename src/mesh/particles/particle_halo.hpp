@@ -10,7 +10,7 @@
 #include "mesh/particles/particle_fields.hpp"
 #include "mesh/particles/spatial_decomposition.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::particles {
 
 template <class ExecSpace>
 class ParticleHalo {
@@ -46,7 +46,7 @@ class ParticleHalo {
         Kokkos::View<double*, Mem> buf("amphora::halo::records", size_t(ns) * w);
         a.record.pack(exec, leg.send, ns, buf);
         exec.fence();
-        auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(), buf);
+        auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), buf);
         const std::vector<double> in =
             dec.exchange_face(d, side, std::vector<double>(h.data(), h.data() + h.size()));
         leg.recv_count = static_cast<int>(in.size()) / w;
@@ -80,7 +80,7 @@ class ParticleHalo {
       moving.pack(exec, leg.send, ns, leg.send_buf);
       exec.fence();
       // host mirrors (the buffers themselves on host spaces): both sides know the sizes
-      const auto hb = Kokkos::create_mirror_view_and_copy(HostMemSpace(), leg.send_buf);
+      const auto hb = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), leg.send_buf);
       const auto hrb = Kokkos::create_mirror_view(leg.recv_buf);
       dec.exchange_face(leg.d, leg.side, hb.data(), int(hb.size()), hrb.data(), int(hrb.size()));
       Kokkos::deep_copy(leg.recv_buf, hrb);
@@ -97,12 +97,12 @@ class ParticleHalo {
     const auto x = where;
     int count = 0;
     Kokkos::parallel_reduce(
-        "amphora::halo::count", RangePolicy<ExecSpace>(exec, 0, candidates),
+        "amphora::halo::count", kernels::RangePolicy<ExecSpace>(exec, 0, candidates),
         KOKKOS_LAMBDA(int i, int& c) { c += side == 0 ? x(i, d) < bound : x(i, d) >= bound; },
         count);
     Kokkos::View<int*, Mem> send("amphora::halo::send", count);
     Kokkos::parallel_scan(
-        "amphora::halo::choose", RangePolicy<ExecSpace>(exec, 0, candidates),
+        "amphora::halo::choose", kernels::RangePolicy<ExecSpace>(exec, 0, candidates),
         KOKKOS_LAMBDA(int i, int& before, bool final) {
           const bool goes = side == 0 ? x(i, d) < bound : x(i, d) >= bound;
           if (final && goes) send(before) = i;
@@ -122,4 +122,4 @@ class ParticleHalo {
   std::vector<Leg> legs_;
 };
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::particles

@@ -7,7 +7,7 @@
 #include "mesh/particles/particle_fields.hpp"
 #include "mesh/particles/spatial_decomposition.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::particles {
 
 template <class ExecSpace>
 class ParticleMigration {
@@ -18,7 +18,7 @@ class ParticleMigration {
   ParticleMigration(const SpatialDecomposition& dec, const Kokkos::View<int*, Mem>& dest, int n)
       : dec_(dec) {
     const int me = dec.comm().rank(), p = dec.comm().size();
-    auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(),
+    auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(),
                                                  Kokkos::subview(dest, Kokkos::make_pair(0, n)));
     // staying ones first, then to rank 0, 1, ... (index order within): a counting sort
     counts_.assign(p, 0);
@@ -47,7 +47,7 @@ class ParticleMigration {
     Kokkos::View<double*, Mem> buf("amphora::particles::migration_buffer", size_t(moving) * w);
     from.pack(exec, order_, moving, buf);
     exec.fence();
-    auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(), buf);
+    auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), buf);
     std::vector<std::vector<double>> out(counts_.size());
     size_t at = size_t(staying_) * w;
     for (size_t r = 0; r < counts_.size(); ++r) {
@@ -80,4 +80,4 @@ class ParticleMigration {
   Kokkos::View<double*, Mem> records_;
 };
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::particles

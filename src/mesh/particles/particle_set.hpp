@@ -7,11 +7,11 @@
 
 #include "kernels/spaces.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::particles {
 
 template <class MemSpace>
 struct ParticleSet {
-  static_assert(is_memory_space_v<MemSpace>, "ParticleSet is templated on a memory space");
+  static_assert(kernels::is_memory_space_v<MemSpace>, "ParticleSet is templated on a memory space");
   using Vec = Kokkos::View<double* [3], Kokkos::LayoutRight, MemSpace>;
   using Scalar = Kokkos::View<double*, MemSpace>;
   using Int = Kokkos::View<int*, MemSpace>;
@@ -60,4 +60,4 @@ struct ParticleSet {
   }
 };
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::particles

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace amphora::mesh {
+namespace amphora::mesh::particles {
 
 namespace {
 Index3 cells_of(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double w) {
@@ -92,4 +92,4 @@ void SpatialDecomposition::exchange_face(int d, int side, const double* out, int
                MPI_STATUS_IGNORE);
 }
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::particles

@@ -9,7 +9,7 @@
 #include "kernels/spaces.hpp"
 #include "mesh/box_decomposition.hpp"
 
-namespace amphora::mesh {
+namespace amphora::mesh::particles {
 
 /// SpatialDecomposition::owner as a device-copyable map (the same arithmetic, so the same
 /// owner on host and device).
@@ -21,7 +21,7 @@ struct OwnerMap {
     int c[3];
     for (int d = 0; d < 3; ++d) {
       const int n = cells[d];
-      int cell = static_cast<int>(math::floor((x[d] - lo[d]) / h[d]));
+      int cell = static_cast<int>(kernels::math::floor((x[d] - lo[d]) / h[d]));
       cell = cell < 0 ? 0 : (cell >= n ? n - 1 : cell);
       const int p = blocks[d], base = n / p, extra = n % p;
       const int long_cells = extra * (base + 1);
@@ -72,4 +72,4 @@ class SpatialDecomposition {
   BoxDecomposition boxes_;
 };
 
-}  // namespace amphora::mesh
+}  // namespace amphora::mesh::particles

@@ -7,7 +7,7 @@
 #include "kernels/stencil_1d.hpp"
 #include "mesh/box_decomposition.hpp"
 
-namespace amphora::advection_diffusion_1d {
+namespace amphora::physics::advection_diffusion_1d {
 
 // A named namespace and a free function: CUDA's extended lambdas may not be defined in a
 // constructor or in an anonymous namespace.
@@ -15,11 +15,11 @@ namespace initial_detail {
 /// u(s) = the exact solution at point s of grid cg at time t.
 template <class ExecSpace, class View>
 void fill_exact(const ExecSpace& exec, const View& u, const ManufacturedWave& exact,
-                const ComponentGrid1D& grid, double t) {
+                const mesh::ComponentGrid1D& grid, double t) {
   const ManufacturedWave ex = exact;
-  const ComponentGrid1D cg = grid;
+  const mesh::ComponentGrid1D cg = grid;
   Kokkos::parallel_for(
-      "amphora::AdvectionDiffusion1D::initial", RangePolicy<ExecSpace>(exec, 0, cg.size),
+      "amphora::AdvectionDiffusion1D::initial", kernels::RangePolicy<ExecSpace>(exec, 0, cg.size),
       KOKKOS_LAMBDA(int s) { u(s) = ex.value(cg.x0 + s * cg.dx, t); });
 }
 }  // namespace initial_detail
@@ -57,13 +57,13 @@ AdvectionDiffusion1D<ExecSpace>::AdvectionDiffusion1D(const Parameters& p, const
       grid_(static_cast<int>(p.integer("cells")), p.real("interface"), p.real("overlap"),
             p.real("spacing_ratio")) {
   if (comm_.size() > kGrids) {
-    throw DecompositionError("more ranks (" + std::to_string(comm_.size()) + ") than blocks (" +
-                             std::to_string(kGrids) +
-                             "): each component grid of the overlapping grid lives on one rank");
+    throw mesh::DecompositionError(
+        "more ranks (" + std::to_string(comm_.size()) + ") than blocks (" + std::to_string(kGrids) +
+        "): each component grid of the overlapping grid lives on one rank");
   }
   for (int g = 0; g < kGrids; ++g) {
     if (!owns(g)) continue;
-    const ComponentGrid1D cg = grid_.grid(g);
+    const mesh::ComponentGrid1D cg = grid_.grid(g);
     u_[g] = View(std::string("amphora::AdvectionDiffusion1D::u_") + block_name(g), cg.size);
     u_new_[g] = View(std::string("amphora::AdvectionDiffusion1D::u_new_") + block_name(g), cg.size);
     initial_detail::fill_exact(exec_, u_[g], exact_, cg, 0.0);
@@ -75,7 +75,7 @@ AdvectionDiffusion1D<ExecSpace>::AdvectionDiffusion1D(const Parameters& p, const
 template <class ExecSpace>
 double AdvectionDiffusion1D<ExecSpace>::stable_dt() const {
   const double h = std::min(grid_.grid(0).dx, grid_.grid(1).dx);
-  return stencil::advection_diffusion_ftcs_dt_limit(exact_.a, exact_.nu, h);
+  return kernels::stencil::advection_diffusion_ftcs_dt_limit(exact_.a, exact_.nu, h);
 }
 
 template <class ExecSpace>
@@ -84,15 +84,15 @@ void AdvectionDiffusion1D<ExecSpace>::apply_boundary_conditions(double t) {
   if (owns(0)) {  // Dirichlet u(0, t) = g0(t)
     const View u = u_[0];
     Kokkos::parallel_for(
-        "amphora::AdvectionDiffusion1D::dirichlet", RangePolicy<ExecSpace>(exec_, 0, 1),
+        "amphora::AdvectionDiffusion1D::dirichlet", kernels::RangePolicy<ExecSpace>(exec_, 0, 1),
         KOKKOS_LAMBDA(int) { u(0) = ex.value(0.0, t); });
   }
   if (owns(1)) {  // Neumann D0 u = g1(t) at x = 1 fixes the ghost point
     const View u = u_[1];
-    const ComponentGrid1D cg = grid_.grid(1);
+    const mesh::ComponentGrid1D cg = grid_.grid(1);
     const int b = cg.last - 1;
     Kokkos::parallel_for(
-        "amphora::AdvectionDiffusion1D::neumann", RangePolicy<ExecSpace>(exec_, 0, 1),
+        "amphora::AdvectionDiffusion1D::neumann", kernels::RangePolicy<ExecSpace>(exec_, 0, 1),
         KOKKOS_LAMBDA(int) { u(b + 1) = u(b - 1) + 2.0 * cg.dx * ex.derivative(1.0, t); });
   }
 }
@@ -102,18 +102,18 @@ void AdvectionDiffusion1D<ExecSpace>::interpolate() {
   // p = U_{N1+1} = wa0 q + wa1 V_0 + wa2 V_1,  q = V_{-1} = wb0 U_{N1-1} + wb1 U_N1 + wb2 p.
   // The donors live on different ranks: each rank contributes the ones it owns to a sum
   // (adding exact zeros, so the result is the same bits on 1 and 2 ranks).
-  const QuadraticInterpolation& ia = grid_.interpolation(0);
-  const QuadraticInterpolation& ib = grid_.interpolation(1);
+  const mesh::QuadraticInterpolation& ia = grid_.interpolation(0);
+  const mesh::QuadraticInterpolation& ib = grid_.interpolation(1);
   double donors[4] = {0.0, 0.0, 0.0, 0.0};  // U_{N1-1}, U_N1, V_0, V_1
   if (owns(0)) {
     auto u = Kokkos::subview(u_[0], Kokkos::make_pair(ib.donor_first, ib.donor_first + 2));
-    auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(), u);
+    auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), u);
     donors[0] = h(0);
     donors[1] = h(1);
   }
   if (owns(1)) {
     auto v = Kokkos::subview(u_[1], Kokkos::make_pair(ia.donor_first + 1, ia.donor_first + 3));
-    auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(), v);
+    auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), v);
     donors[2] = h(0);
     donors[3] = h(1);
   }
@@ -131,9 +131,9 @@ template <class ExecSpace>
 void AdvectionDiffusion1D<ExecSpace>::advance(double t, double dt) {
   for (int g = 0; g < kGrids; ++g) {
     if (!owns(g)) continue;
-    const ComponentGrid1D& cg = grid_.grid(g);
-    stencil::advection_diffusion_ftcs(exec_, u_[g], u_new_[g], cg.first, cg.last, cg.x0, cg.dx,
-                                      exact_.a, exact_.nu, t, dt, exact_);
+    const mesh::ComponentGrid1D& cg = grid_.grid(g);
+    kernels::stencil::advection_diffusion_ftcs(exec_, u_[g], u_new_[g], cg.first, cg.last, cg.x0,
+                                               cg.dx, exact_.a, exact_.nu, t, dt, exact_);
     // Points outside [first, last) (boundary, ghost, interpolation) are all set below.
     std::swap(u_[g], u_new_[g]);
   }
@@ -154,14 +154,14 @@ double AdvectionDiffusion1D<ExecSpace>::max_error(double t) const {
   const ManufacturedWave ex = exact_;
   for (int g = 0; g < kGrids; ++g) {
     if (!owns(g)) continue;
-    const ComponentGrid1D cg = grid_.grid(g);
+    const mesh::ComponentGrid1D cg = grid_.grid(g);
     const View u = u_[g];
     const int end = g == 0 ? cg.size : cg.last;  // grid 2's ghost carries no solution value
     double e = 0.0;
     Kokkos::parallel_reduce(
-        "amphora::AdvectionDiffusion1D::max_error", RangePolicy<ExecSpace>(exec_, 0, end),
+        "amphora::AdvectionDiffusion1D::max_error", kernels::RangePolicy<ExecSpace>(exec_, 0, end),
         KOKKOS_LAMBDA(int s, double& acc) {
-          acc = math::max(acc, math::abs(u(s) - ex.value(cg.x0 + s * cg.dx, t)));
+          acc = kernels::math::max(acc, kernels::math::abs(u(s) - ex.value(cg.x0 + s * cg.dx, t)));
         },
         Kokkos::Max<double>(e));
     err = std::max(err, e);
@@ -179,9 +179,9 @@ std::vector<OutputBlock> AdvectionDiffusion1D<ExecSpace>::output(double t) const
   std::vector<OutputBlock> blocks;
   for (int g = 0; g < kGrids; ++g) {
     if (!owns(g)) continue;
-    const ComponentGrid1D& cg = grid_.grid(g);
+    const mesh::ComponentGrid1D& cg = grid_.grid(g);
     const int n = g == 0 ? cg.size : cg.last;
-    auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(), u_[g]);
+    auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), u_[g]);
     OutputBlock b;
     b.name = block_name(g);
     b.y = {0.0};
@@ -205,7 +205,7 @@ std::optional<NonFiniteReport> AdvectionDiffusion1D<ExecSpace>::find_nonfinite()
   long long key = -1;
   for (int g = 0; g < kGrids && key < 0; ++g) {
     if (!owns(g)) continue;
-    const int i = reduce::first_nonfinite(exec_, u_[g]);
+    const int i = kernels::reduce::first_nonfinite(exec_, u_[g]);
     if (i >= 0) key = g * (1LL << 40) + i;
   }
   const long long big = 1LL << 62;
@@ -233,7 +233,7 @@ std::vector<StateBlock> AdvectionDiffusion1D<ExecSpace>::state() const {
   std::vector<StateBlock> blocks;
   for (int g = 0; g < kGrids; ++g) {
     if (!owns(g)) continue;
-    auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(), u_[g]);
+    auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), u_[g]);
     blocks.push_back({block_name(g), {{"u", std::vector<double>(h.data(), h.data() + h.size())}}});
   }
   return blocks;
@@ -266,4 +266,4 @@ void AdvectionDiffusion1D<ExecSpace>::restore(const std::vector<StateBlock>& blo
 
 AMPHORA_INSTANTIATE_ON_EXEC_SPACES(AdvectionDiffusion1D)
 
-}  // namespace amphora::advection_diffusion_1d
+}  // namespace amphora::physics::advection_diffusion_1d

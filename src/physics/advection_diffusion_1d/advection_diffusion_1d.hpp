@@ -15,7 +15,7 @@
 #include "physics/module.hpp"
 #include "base/parameters.hpp"
 
-namespace amphora::advection_diffusion_1d {
+namespace amphora::physics::advection_diffusion_1d {
 
 /// The scene table `[advection_diffusion_1d]`.
 ParamTable parameter_table();
@@ -45,7 +45,7 @@ class AdvectionDiffusion1D final : public Module {
   /// Max-norm error against the manufactured solution at time t, over every grid point that
   /// carries a solution value (ghost excluded). Collective.
   double max_error(double t) const;
-  const OverlappingGrid1D& grid() const { return grid_; }
+  const mesh::OverlappingGrid1D& grid() const { return grid_; }
 
  public:  // (CUDA: extended lambdas may not live in private member functions)
   static constexpr int kGrids = 2;
@@ -59,8 +59,8 @@ class AdvectionDiffusion1D final : public Module {
   Communicator comm_;
   ExecSpace exec_;
   ManufacturedWave exact_;
-  OverlappingGrid1D grid_;
+  mesh::OverlappingGrid1D grid_;
   std::array<View, kGrids> u_, u_new_;  // allocated only on the owning rank
 };
 
-}  // namespace amphora::advection_diffusion_1d
+}  // namespace amphora::physics::advection_diffusion_1d

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace amphora::beam {
+namespace amphora::physics::beam {
 
 namespace {
 
@@ -134,4 +134,4 @@ double EulerBernoulliBeam::energy() const {
   return 0.5 * h_ * e;
 }
 
-}  // namespace amphora::beam
+}  // namespace amphora::physics::beam

@@ -15,7 +15,7 @@
 #include <memory>
 #include <vector>
 
-namespace amphora::beam {
+namespace amphora::physics::beam {
 
 struct BeamParameters {
   double length = 1.0;
@@ -77,4 +77,4 @@ class EulerBernoulliBeam {
   std::unique_ptr<Factor> factor_;  // rho_h I + dt^2/4 A
 };
 
-}  // namespace amphora::beam
+}  // namespace amphora::physics::beam

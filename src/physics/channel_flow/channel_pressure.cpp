@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <array>
 
-namespace amphora::channel {
+namespace amphora::physics::channel_flow {
 
 struct ChannelPressure::Factor {
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
@@ -83,4 +83,4 @@ std::vector<double> ChannelPressure::top_normal_derivative(const std::vector<dou
   return out;
 }
 
-}  // namespace amphora::channel
+}  // namespace amphora::physics::channel_flow

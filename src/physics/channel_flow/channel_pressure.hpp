@@ -15,7 +15,7 @@
 #include <memory>
 #include <vector>
 
-namespace amphora::channel {
+namespace amphora::physics::channel_flow {
 
 struct ChannelGrid {
   int nx = 32, ny = 16;
@@ -48,4 +48,4 @@ class ChannelPressure {
   std::unique_ptr<Factor> factor_;
 };
 
-}  // namespace amphora::channel
+}  // namespace amphora::physics::channel_flow

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace amphora::channel {
+namespace amphora::physics::channel_flow {
 
 namespace {
 
@@ -274,4 +274,4 @@ double ChannelStokes::max_divergence() const {
   return m;
 }
 
-}  // namespace amphora::channel
+}  // namespace amphora::physics::channel_flow

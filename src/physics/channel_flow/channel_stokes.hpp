@@ -38,7 +38,7 @@
 
 #include "physics/channel_flow/channel_pressure.hpp"
 
-namespace amphora::channel {
+namespace amphora::physics::channel_flow {
 
 /// The problem data: body force and wall velocities as functions of position and time.
 struct StokesData {
@@ -104,4 +104,4 @@ class ChannelStokes {
   std::unique_ptr<Factors> f_;
 };
 
-}  // namespace amphora::channel
+}  // namespace amphora::physics::channel_flow

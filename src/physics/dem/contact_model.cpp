@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 namespace {
 
@@ -97,4 +97,4 @@ double rayleigh_time(const Material& m, double radius) {
   return M_PI * radius * std::sqrt(m.density / g) / (0.1631 * m.poisson_ratio + 0.8766);
 }
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 struct Material {
   double density = 2500.0;      ///< kg/m^3
@@ -56,4 +56,4 @@ double hertz_contact_time(double m_eff, double r_eff, double e_star, double v, d
 /// Rayleigh time step of a sphere: pi r sqrt(rho / G) / (0.1631 nu + 0.8766).
 double rayleigh_time(const Material& m, double radius);
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -6,12 +6,12 @@
 
 #include "physics/dem/dem_system.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 template <class ExecSpace>
 typename DemSystem<ExecSpace>::HostArrays DemSystem<ExecSpace>::to_host() const {
   auto copy = [](const auto& view) {
-    return Kokkos::create_mirror_view_and_copy(HostMemSpace(), view);
+    return Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), view);
   };
   return {copy(p_.x),     copy(p_.v),        copy(p_.omega),   copy(p_.force),   copy(p_.torque),
           copy(x_build_), copy(p_.radius),   copy(p_.mass),    copy(p_.inertia), copy(p_.material),
@@ -136,4 +136,4 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
   template void DemSystem<E>::load(const typename DemSystem<E>::HostState&);
 AMPHORA_FOR_EACH_EXEC_SPACE(AMPHORA_DEM_CHECKPOINT)
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -7,15 +7,15 @@
 #include "physics/dem/dem_system.hpp"
 #include "physics/dem/hertz_mindlin.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 template <class ExecSpace>
 std::vector<std::pair<std::int64_t, std::int64_t>> DemSystem<ExecSpace>::contact_pairs() const {
-  auto off = Kokkos::create_mirror_view_and_copy(HostMemSpace(), list_.offsets);
-  auto nbr = Kokkos::create_mirror_view_and_copy(HostMemSpace(), list_.neighbors);
-  auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.x);
-  auto r = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.radius);
-  auto gid = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p_.gid);
+  auto off = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), list_.offsets);
+  auto nbr = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), list_.neighbors);
+  auto x = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p_.x);
+  auto r = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p_.radius);
+  auto gid = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p_.gid);
   std::vector<std::pair<std::int64_t, std::int64_t>> pairs;
   for (int i = 0; i < p_.n_owned; ++i) {
     for (int k = off(i); k < off(i + 1); ++k) {
@@ -49,7 +49,7 @@ DemDiagnostics DemSystem<ExecSpace>::diagnostics() const {
   double ke = 0, re = 0, pe = 0, el = 0, mo = 0, wel = 0, wmo = 0;
   long long contacts = 0, wcontacts = 0;
   Kokkos::parallel_reduce(
-      "amphora::dem::diagnostics", RangePolicy<ExecSpace>(exec_, 0, n),
+      "amphora::dem::diagnostics", kernels::RangePolicy<ExecSpace>(exec_, 0, n),
       KOKKOS_LAMBDA(int i, double& k, double& r, double& p, double& e, long long& c, double& m,
                     double& we, long long& wc, double& wm) {
         k += 0.5 * mass(i) * (v(i, 0) * v(i, 0) + v(i, 1) * v(i, 1) + v(i, 2) * v(i, 2));
@@ -61,10 +61,11 @@ DemDiagnostics DemSystem<ExecSpace>::diagnostics() const {
           for (int d = 0; d < 3; ++d) d2 += (x(j, d) - x(i, d)) * (x(j, d) - x(i, d));
           const double rs = rad(i) + rad(j);
           if (d2 >= rs * rs) continue;
-          const double delta = rs - math::sqrt(d2), reff = rad(i) * rad(j) / rs;
+          const double delta = rs - kernels::math::sqrt(d2), reff = rad(i) * rad(j) / rs;
           e += hertz_energy(0.5, pairs(mat(i), mat(j)).e_star, reff, delta);
           ++c;
-          m = math::max(m, (rs - math::sqrt(d2)) / math::min(rad(i), rad(j)));
+          m = kernels::math::max(
+              m, (rs - kernels::math::sqrt(d2)) / kernels::math::min(rad(i), rad(j)));
         }
         const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
         for (int w = 0; w < nw; ++w) {
@@ -72,7 +73,7 @@ DemDiagnostics DemSystem<ExecSpace>::diagnostics() const {
           if (!wall_contact(walls(w), t, xi, rad(i), nn, delta, vw)) continue;
           we += hertz_energy(1.0, pairs(mat(i), walls(w).material).e_star, rad(i), delta);
           ++wc;
-          wm = math::max(wm, delta / rad(i));
+          wm = kernels::math::max(wm, delta / rad(i));
         }
       },
       ke, re, pe, el, contacts, Kokkos::Max<double>(mo), wel, wcontacts, Kokkos::Max<double>(wmo));
@@ -102,7 +103,8 @@ std::vector<int> DemSystem<ExecSpace>::contact_counts() const {
   const double t = time_;
   const bool have_list = has_lists();
   Kokkos::parallel_for(
-      "amphora::dem::contact_counts", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
+      "amphora::dem::contact_counts", kernels::RangePolicy<ExecSpace>(exec_, 0, n),
+      KOKKOS_LAMBDA(int i) {
         int c = 0;
         if (have_list) {
           for (int k = off(i); k < off(i + 1); ++k) {
@@ -120,7 +122,7 @@ std::vector<int> DemSystem<ExecSpace>::contact_counts() const {
         }
         counts(i) = c;
       });
-  auto h = Kokkos::create_mirror_view_and_copy(HostMemSpace(), counts);
+  auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), counts);
   return std::vector<int>(h.data(), h.data() + n);
 }
 
@@ -131,10 +133,11 @@ std::int64_t DemSystem<ExecSpace>::first_nonfinite() const {
   const auto gid = p_.gid;
   std::int64_t bad = std::numeric_limits<std::int64_t>::max();
   Kokkos::parallel_reduce(
-      "amphora::dem::first_nonfinite", RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
+      "amphora::dem::first_nonfinite", kernels::RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
       KOKKOS_LAMBDA(int i, std::int64_t& acc) {
         bool ok = true;
-        for (int d = 0; d < 3; ++d) ok = ok && math::isfinite(x(i, d)) && math::isfinite(v(i, d));
+        for (int d = 0; d < 3; ++d)
+          ok = ok && kernels::math::isfinite(x(i, d)) && kernels::math::isfinite(v(i, d));
         if (!ok && gid(i) < acc) acc = gid(i);
       },
       Kokkos::Min<std::int64_t>(bad));
@@ -150,4 +153,4 @@ std::int64_t DemSystem<ExecSpace>::first_nonfinite() const {
   template std::int64_t DemSystem<E>::first_nonfinite() const;
 AMPHORA_FOR_EACH_EXEC_SPACE(AMPHORA_DEM_DIAGNOSTICS)
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 ParamTable parameter_table() {
   return {
@@ -343,8 +343,8 @@ std::vector<OutputBlock> DemModule::output(double) const {
 
 DrumClassification DemModule::drum_regime() const {
   const auto& p = system_->particles();
-  auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.x);
-  auto v = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.v);
+  auto x = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.x);
+  auto v = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.v);
   const std::vector<int> contacts = system_->contact_counts();
   std::vector<double> xs, vs;
   for (int i = 0; i < p.n_owned; ++i)
@@ -489,4 +489,4 @@ void DemModule::restore(const std::vector<StateBlock>& blocks) {
   system_->load(s);
 }
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

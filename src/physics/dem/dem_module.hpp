@@ -10,14 +10,14 @@
 #include "physics/module.hpp"
 #include "base/parameters.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 /// The scene table `[dem]`.
 ParamTable parameter_table();
 
 class DemModule final : public Module {
  public:
-  using System = DemSystem<DefaultExecSpace>;
+  using System = DemSystem<kernels::DefaultExecSpace>;
   DemModule(const Parameters& p, const Communicator& comm);
 
   std::string name() const override { return "dem"; }
@@ -66,4 +66,4 @@ class DemModule final : public Module {
   std::unique_ptr<System> system_;
 };
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -8,7 +8,7 @@
 #include "physics/dem/hertz_mindlin.hpp"
 #include "physics/dem/walls.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 using kernels::particles::Rows3;
 
@@ -80,7 +80,7 @@ struct PairContact {
                                                       int mati, const double vi[3],
                                                       const double wi[3], const double dx[3],
                                                       double d2, double rsum, double s[3]) const {
-    const double dist = math::sqrt(d2);
+    const double dist = kernels::math::sqrt(d2);
     const double inv = 1.0 / dist;
     const double nn[3] = {dx[0] * inv, dx[1] * inv, dx[2] * inv};
     const double mj = mass(j);
@@ -147,8 +147,8 @@ struct HertzMindlinPairLaw {
   /// touch, which no hardware prefetcher foresees.
   KOKKOS_FORCEINLINE_FUNCTION void prefetch(int k0, int k1) const {
     const double* p = spring_out.p + 3 * size_t(k0);
-    if (k0 < k1) prefetch_line(p, true);
-    if (k0 + 1 < k1) prefetch_line(p + 5, true);
+    if (k0 < k1) kernels::prefetch_line(p, true);
+    if (k0 + 1 < k1) kernels::prefetch_line(p + 5, true);
   }
   KOKKOS_FORCEINLINE_FUNCTION ContactForce interact(const Particle& a, int b, double rb,
                                                     const double dx[3], double d2, double rsum,
@@ -188,4 +188,4 @@ struct HertzMindlinPairLaw {
   }
 };
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

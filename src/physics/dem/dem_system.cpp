@@ -13,7 +13,7 @@
 #include "mesh/particles/particle_migration.hpp"
 #include "physics/dem/dem_pair_law.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 // A named namespace, not an anonymous one: CUDA does not support extended lambdas in
 // anonymous namespaces (Kokkos issue #1547).
@@ -46,7 +46,7 @@ View permuted(const ExecSpace& exec, const View& src, const Perm& perm, int n) {
   auto* s = src.data();
   auto* d = dst.data();
   Kokkos::parallel_for(
-      "amphora::dem::permute", RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
+      "amphora::dem::permute", kernels::RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
         const size_t from = size_t(perm(i)) * inner, to = size_t(i) * inner;
         for (size_t k = 0; k < inner; ++k) d[to + k] = s[from + k];
       });
@@ -206,7 +206,7 @@ void DemSystem<ExecSpace>::history_to_records() {
   const auto rs = rec_shear_;
   int overflow = 0;
   Kokkos::parallel_reduce(
-      "amphora::dem::history_to_records", RangePolicy<ExecSpace>(exec_, 0, have ? n : 0),
+      "amphora::dem::history_to_records", kernels::RangePolicy<ExecSpace>(exec_, 0, have ? n : 0),
       KOKKOS_LAMBDA(int i, int& over) {
         // Both particles of a pair record its spring (in the pair's orientation): either may
         // be the one whose row evaluates it after the next rebuild.
@@ -249,7 +249,7 @@ void DemSystem<ExecSpace>::records_to_history() {
   const auto half = half_start_;
   const kernels::particles::HalfPairList<Mem> pairs{off, nbr, half};
   Kokkos::parallel_for(
-      "amphora::dem::records_to_history", RangePolicy<ExecSpace>(exec_, 0, n),
+      "amphora::dem::records_to_history", kernels::RangePolicy<ExecSpace>(exec_, 0, n),
       KOKKOS_LAMBDA(int i) {
         // Rows and records are both sorted by partner gid: merge. A spring goes to the row
         // that evaluates the pair: i's for larger-gid partners, a ghost partner's (which has
@@ -280,7 +280,7 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
   const bool top0 = hi[0] == dhi[0], top1 = hi[1] == dhi[1], top2 = hi[2] == dhi[2];
   int leaving = 0;
   Kokkos::parallel_reduce(
-      "amphora::dem::count_leaving", RangePolicy<ExecSpace>(exec_, 0, n),
+      "amphora::dem::count_leaving", kernels::RangePolicy<ExecSpace>(exec_, 0, n),
       KOKKOS_LAMBDA(int i, int& c) {
         const double a = x(i, 0), b = x(i, 1), z = x(i, 2);
         const bool in_domain = a >= d0 && a <= e0 && b >= d1 && b <= e1 && z >= d2 && z <= e2;
@@ -293,15 +293,16 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
 
   // Force and torque are not carried: the force evaluation under way zeroes them again.
   forces_zeroed_ = false;
-  const mesh::OwnerMap owner = decomposition_.owner_map();
+  const mesh::particles::OwnerMap owner = decomposition_.owner_map();
   Kokkos::View<int*, Mem> dest("amphora::dem::destination", n);
   Kokkos::parallel_for(
-      "amphora::dem::destination", RangePolicy<ExecSpace>(exec_, 0, n), KOKKOS_LAMBDA(int i) {
+      "amphora::dem::destination", kernels::RangePolicy<ExecSpace>(exec_, 0, n),
+      KOKKOS_LAMBDA(int i) {
         const double a = x(i, 0), b = x(i, 1), z = x(i, 2);
         const bool in_domain = a >= d0 && a <= e0 && b >= d1 && b <= e1 && z >= d2 && z <= e2;
         dest(i) = in_domain ? owner(a, b, z) : -1;  // -1: removed, it left the domain
       });
-  mesh::ParticleMigration<ExecSpace> migration(decomposition_, dest, n);
+  mesh::particles::ParticleMigration<ExecSpace> migration(decomposition_, dest, n);
   const int m = migration.send(exec_, migrating_fields());
   p_.n_owned = 0;
   resize_owned(m);
@@ -310,8 +311,8 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
 }
 
 template <class ExecSpace>
-mesh::ParticleFields<ExecSpace> DemSystem<ExecSpace>::migrating_fields() const {
-  mesh::ParticleFields<ExecSpace> f;
+mesh::particles::ParticleFields<ExecSpace> DemSystem<ExecSpace>::migrating_fields() const {
+  mesh::particles::ParticleFields<ExecSpace> f;
   f.add(p_.x).add(p_.v).add(p_.omega).add(p_.radius).add(p_.mass).add(p_.inertia);
   f.add(p_.material).add(p_.gid).add(wall_shear_).add(rec_gid_).add(rec_shear_).add(x_build_);
   return f;
@@ -352,14 +353,14 @@ void DemSystem<ExecSpace>::sort_owned_by_cell() {
 
 template <class ExecSpace>
 void DemSystem<ExecSpace>::build_ghosts() {
-  using Halo = mesh::ParticleHalo<ExecSpace>;
+  using Halo = mesh::particles::ParticleHalo<ExecSpace>;
   p_.n_ghost = 0;
   const int n = p_.n_owned;
   // What a ghost needs, chosen where the lists are built (x_build_).
   p_.n_ghost = halo_.build(exec_, decomposition_, n, ghost_width_, [&](int capacity) {
     p_.reserve(capacity);
     grow(x_build_, capacity);
-    mesh::ParticleFields<ExecSpace> record;
+    mesh::particles::ParticleFields<ExecSpace> record;
     record.add(p_.x).add(p_.v).add(p_.omega).add(p_.radius).add(p_.mass).add(p_.inertia);
     record.add(p_.material).add(p_.gid).add(x_build_);
     return typename Halo::Arrays{record, x_build_};
@@ -369,7 +370,7 @@ void DemSystem<ExecSpace>::build_ghosts() {
 template <class ExecSpace>
 void DemSystem<ExecSpace>::forward_ghosts() {
   if (halo_.empty()) return;
-  mesh::ParticleFields<ExecSpace> moving;
+  mesh::particles::ParticleFields<ExecSpace> moving;
   moving.add(p_.x).add(p_.v).add(p_.omega);
   halo_.forward(exec_, decomposition_, moving);
 }
@@ -426,7 +427,7 @@ void DemSystem<ExecSpace>::rebuild() {
     const int nw = n_walls_;
     const double t_now = time_, skin = config_.skin;
     Kokkos::parallel_for(
-        "amphora::dem::history_masks", RangePolicy<ExecSpace>(exec_, 0, total),
+        "amphora::dem::history_masks", kernels::RangePolicy<ExecSpace>(exec_, 0, total),
         KOKKOS_LAMBDA(int i) {
           // Bit b: the spring of the row's b-th own entry (from half(i) on) may be set.
           unsigned r = 0;
@@ -478,7 +479,7 @@ double DemSystem<ExecSpace>::kick_drift() {
   pending_kick_ = false;
   double max_d2 = 0.0;
   Kokkos::parallel_reduce(
-      "amphora::dem::kick_drift", RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
+      "amphora::dem::kick_drift", kernels::RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
       KOKKOS_LAMBDA(int i, double& acc) {
         const double hm = 0.5 * dt / m(i), hi = 0.5 * dt / in(i);
         double d2 = 0;
@@ -500,7 +501,7 @@ double DemSystem<ExecSpace>::kick_drift() {
           // used: the next force evaluation adds to zero (f is at hand here)
           f(i, d) = tq(i, d) = 0.0;
         }
-        acc = math::max(acc, d2);
+        acc = kernels::math::max(acc, d2);
       },
       Kokkos::Max<double>(max_d2));
   forces_zeroed_ = true;
@@ -513,7 +514,8 @@ void DemSystem<ExecSpace>::kick() const {
   const auto v = p_.v, om = p_.omega, f = p_.force, tq = p_.torque;
   const auto m = p_.mass, in = p_.inertia;
   Kokkos::parallel_for(
-      "amphora::dem::kick", RangePolicy<ExecSpace>(exec_, 0, p_.n_owned), KOKKOS_LAMBDA(int i) {
+      "amphora::dem::kick", kernels::RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
+      KOKKOS_LAMBDA(int i) {
         const double hm = 0.5 * dt / m(i), hi = 0.5 * dt / in(i);
         for (int d = 0; d < 3; ++d) {
           v(i, d) += hm * f(i, d);
@@ -618,11 +620,11 @@ void DemSystem<ExecSpace>::step() {
 template <class ExecSpace>
 void DemSystem<ExecSpace>::set_wall_angular_velocity(int w, const double omega[3]) {
   for (int d = 0; d < 3; ++d) config_.walls[w].angular_velocity[d] = omega[d];
-  auto wh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), walls_);
+  auto wh = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), walls_);
   for (int d = 0; d < 3; ++d) wh(w).angular_velocity[d] = omega[d];
   Kokkos::deep_copy(walls_, wh);
 }
 
 AMPHORA_INSTANTIATE_ON_EXEC_SPACES(DemSystem)
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

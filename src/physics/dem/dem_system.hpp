@@ -34,11 +34,11 @@
 #include "physics/dem/contact_model.hpp"
 #include "physics/dem/walls.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 using kernels::particles::CellGrid;
 using kernels::particles::NeighborList;
-using mesh::ParticleSet;
+using mesh::particles::ParticleSet;
 
 struct DemConfig {
   std::vector<Material> materials;  ///< particle and wall materials, indexed by material id
@@ -98,7 +98,7 @@ class DemSystem {
   long long steps() const { return steps_; }
   const DemConfig& config() const { return config_; }
   void set_dt(double dt) { config_.dt = dt; }
-  const mesh::SpatialDecomposition& decomposition() const { return decomposition_; }
+  const mesh::particles::SpatialDecomposition& decomposition() const { return decomposition_; }
   ParticleSet<Mem>& particles() {
     synchronize();
     return p_;
@@ -145,12 +145,12 @@ class DemSystem {
  public:  // (CUDA: extended lambdas may not live in private member functions)
   /// Host copies of every per-particle array (mirrors: no copy at all on a host backend).
   struct HostArrays {
-    host_mirror_t<Vec> x, v, omega, force, torque, x_build;
-    host_mirror_t<typename ParticleSet<Mem>::Scalar> radius, mass, inertia;
-    host_mirror_t<typename ParticleSet<Mem>::Int> material;
-    host_mirror_t<typename ParticleSet<Mem>::Id> gid;
-    host_mirror_t<Hist> wall_shear, rec_shear;
-    host_mirror_t<RecIds> rec_gid;
+    kernels::host_mirror_t<Vec> x, v, omega, force, torque, x_build;
+    kernels::host_mirror_t<typename ParticleSet<Mem>::Scalar> radius, mass, inertia;
+    kernels::host_mirror_t<typename ParticleSet<Mem>::Int> material;
+    kernels::host_mirror_t<typename ParticleSet<Mem>::Id> gid;
+    kernels::host_mirror_t<Hist> wall_shear, rec_shear;
+    kernels::host_mirror_t<RecIds> rec_gid;
   };
   HostArrays to_host() const;
   void from_host(const HostArrays& h);
@@ -163,7 +163,7 @@ class DemSystem {
   void records_to_history();
   void remove_and_migrate();
   /// Every per-particle array a particle carries to another rank.
-  mesh::ParticleFields<ExecSpace> migrating_fields() const;
+  mesh::particles::ParticleFields<ExecSpace> migrating_fields() const;
   void sort_owned_by_cell();
   void build_ghosts();
   void forward_ghosts();
@@ -191,7 +191,7 @@ class DemSystem {
   DemConfig config_;
   Communicator comm_;
   ExecSpace exec_;
-  mesh::SpatialDecomposition decomposition_;
+  mesh::particles::SpatialDecomposition decomposition_;
   Kokkos::View<PairCoefficients**, Mem> pairs_;
   Kokkos::View<Wall*, Mem> walls_;
   int n_walls_ = 0;
@@ -220,7 +220,7 @@ class DemSystem {
   Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> shear_;
   // forces_by_particle's springs of the next step (swapped with shear_ after each evaluation)
   Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> shear_next_;
-  bool by_particle_ = !runs_on_host_v<ExecSpace>;
+  bool by_particle_ = !kernels::runs_on_host_v<ExecSpace>;
   // Row i's entries from half_start_(i) on are its partners of larger gid: the pairs it
   // evaluates.
   Kokkos::View<int*, Mem> half_start_;
@@ -228,7 +228,7 @@ class DemSystem {
   // parallel).
   kernels::particles::SlabSchedule<Mem> schedule_;
 
-  mesh::ParticleHalo<ExecSpace> halo_;  // the ghosts' plan, refreshed each step
+  mesh::particles::ParticleHalo<ExecSpace> halo_;  // the ghosts' plan, refreshed each step
 
   double time_ = 0;
   long long steps_ = 0;
@@ -239,4 +239,4 @@ class DemSystem {
   DemTimers timers_;
 };
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -6,7 +6,7 @@
 
 #include <Eigen/Dense>
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 const char* to_string(DrumRegime r) {
   switch (r) {
@@ -90,4 +90,4 @@ DrumRegime regime_of(double upper_fraction, double airborne_fraction, double sur
   return DrumRegime::kRolling;
 }
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 enum class DrumRegime { kRolling = 0, kCascading = 1, kCataracting = 2, kCentrifuging = 3 };
 const char* to_string(DrumRegime r);
@@ -36,4 +36,4 @@ DrumRegime regime_of(double upper_fraction, double airborne_fraction, double sur
 DrumClassification classify_drum(const DrumState& drum, const std::vector<double>& x,
                                  const std::vector<double>& v, const std::vector<int>& contacts);
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -7,7 +7,7 @@
 #include "kernels/kokkos_compat.hpp"
 #include "physics/dem/contact_model.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 struct ContactForce {
   double force[3];    ///< on particle i (normal + tangential + cohesion); j takes minus this
@@ -29,8 +29,8 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(
     double vn, const double v_rel[3], const double w_rel[3], double dt, double shear[3]) {
   ContactForce out;
   // Contact radius a = sqrt(R* delta); stiffnesses grow with a, damping with sqrt(m* a).
-  const double a = math::sqrt(r_eff * delta);
-  const double sqrt_ma = math::sqrt(m_eff * a);
+  const double a = kernels::math::sqrt(r_eff * delta);
+  const double sqrt_ma = kernels::math::sqrt(m_eff * a);
   const double kn = c.kn * a;
   const double kt = c.kt * a;
   const double gamma_n = c.gamma_n * sqrt_ma;
@@ -52,7 +52,7 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(
   const double ft2 = ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2];
   const double ft_max = c.friction * fn;
   if (ft2 > ft_max * ft_max) {  // sliding: cap at Coulomb and keep the spring consistent with it
-    const double scale = ft_max / math::sqrt(ft2);
+    const double scale = ft_max / kernels::math::sqrt(ft2);
     for (int d = 0; d < 3; ++d) {
       ft[d] *= scale;
       shear[d] = kt > 0 ? -(ft[d] + gamma_t * vt[d]) / kt : 0.0;
@@ -60,7 +60,7 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(
   }
 
   // SJKR cohesion: attraction k_c * contact area, area from the overlap (pi R* delta).
-  const double f_coh = c.cohesion * math::pi * r_eff * delta;
+  const double f_coh = c.cohesion * kernels::math::pi * r_eff * delta;
   for (int d = 0; d < 3; ++d) out.force[d] = -(fn - f_coh) * n[d] + ft[d];
 
   // The tangential force at the contact point, l n from i's centre, has the torque l n x ft
@@ -72,7 +72,7 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(
   const double w2 = w_rel[0] * w_rel[0] + w_rel[1] * w_rel[1] + w_rel[2] * w_rel[2];
   for (int d = 0; d < 3; ++d) out.rolling[d] = 0.0;
   if (c.rolling_friction > 0 && w2 > 0) {
-    const double m = c.rolling_friction * r_eff * fn / math::sqrt(w2);
+    const double m = c.rolling_friction * r_eff * fn / kernels::math::sqrt(w2);
     for (int d = 0; d < 3; ++d) out.rolling[d] = -m * w_rel[d];
   }
   out.normal = fn;
@@ -91,7 +91,8 @@ KOKKOS_FORCEINLINE_FUNCTION ContactForce hertz_mindlin_force(
 /// integral of the normal force k_n sqrt(R* delta) delta over the overlap).
 KOKKOS_FORCEINLINE_FUNCTION double hertz_energy(double scale, double e_star, double r_eff,
                                                 double delta) {
-  return scale * (8.0 / 15.0) * e_star * math::sqrt(r_eff) * delta * delta * math::sqrt(delta);
+  return scale * (8.0 / 15.0) * e_star * kernels::math::sqrt(r_eff) * delta * delta *
+         kernels::math::sqrt(delta);
 }
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 namespace {
 
@@ -103,8 +103,8 @@ std::vector<ParticleSpec> random_insertion(const DemSystem<ExecSpace>& system,
                                            const std::vector<double>& material_fractions) {
   // Existing particles near the region, from every rank (x, y, z, r).
   const auto& p = system.particles();
-  auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.x);
-  auto r = Kokkos::create_mirror_view_and_copy(HostMemSpace(), p.radius);
+  auto x = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.x);
+  auto r = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.radius);
   const double margin = 2 * radii.max();
   std::vector<double> near;
   for (int i = 0; i < p.n_owned; ++i) {
@@ -164,4 +164,4 @@ AMPHORA_IF_CUDA(AMPHORA_RANDOM_INSERTION_ON(Kokkos::Cuda))
 AMPHORA_IF_HIP(AMPHORA_RANDOM_INSERTION_ON(Kokkos::Experimental::HIP))
 #undef AMPHORA_RANDOM_INSERTION_ON
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -10,7 +10,7 @@
 #include "base/communicator.hpp"
 #include "physics/dem/dem_system.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 /// Insertion that cannot be satisfied: bad input (the scene asks for more than fits).
 class InsertionError : public std::invalid_argument {
@@ -59,4 +59,4 @@ std::vector<ParticleSpec> random_insertion(const DemSystem<ExecSpace>& system,
                                            std::int64_t first_gid,
                                            const std::vector<double>& material_fractions);
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

@@ -4,7 +4,7 @@
 // cylinder can turn as a drum. The contact geometry is point-wise and device-safe.
 #include "kernels/kokkos_compat.hpp"
 
-namespace amphora::dem {
+namespace amphora::physics::dem {
 
 enum WallType : int { kPlane = 0, kCylinder = 1 };
 
@@ -41,7 +41,7 @@ KOKKOS_INLINE_FUNCTION bool wall_contact(const Wall& w, double t, const double x
     double radial[3];
     for (int d = 0; d < 3; ++d) radial[d] = rel[d] - along * w.axis[d];
     const double rho =
-        math::sqrt(radial[0] * radial[0] + radial[1] * radial[1] + radial[2] * radial[2]);
+        kernels::math::sqrt(radial[0] * radial[0] + radial[1] * radial[1] + radial[2] * radial[2]);
     delta = rho + r - w.radius;
     if (delta <= 0 || rho == 0) return false;
     for (int d = 0; d < 3; ++d) {
@@ -72,4 +72,4 @@ KOKKOS_INLINE_FUNCTION bool outside_wall(const Wall& w, double t, const double x
   return r2 > w.radius * w.radius;
 }
 
-}  // namespace amphora::dem
+}  // namespace amphora::physics::dem

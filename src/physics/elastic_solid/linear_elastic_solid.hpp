@@ -13,7 +13,7 @@
 
 #include "kernels/elastic/elastic_wave_step.hpp"
 
-namespace amphora::elastic {
+namespace amphora::physics::elastic_solid {
 
 // The grid, material and update of the kernel layer, as this module's vocabulary.
 using kernels::elastic::elastic_wave_dt_limit;
@@ -109,9 +109,9 @@ class LinearElasticSolid {
     const ElasticMaterial m = m_;
     const double t = t_;
     const Field u = u_;
-    const AnySpaceCall<Traction> traction_at{traction};
+    const kernels::AnySpaceCall<Traction> traction_at{traction};
     Kokkos::parallel_for(
-        "amphora::elastic::traction_ghosts", RangePolicy<ExecSpace>(exec_, 0, g.nx),
+        "amphora::elastic::traction_ghosts", kernels::RangePolicy<ExecSpace>(exec_, 0, g.nx),
         KOKKOS_LAMBDA(int i) {
           const int e = i + 1 < g.nx ? i + 1 : 0, w = i > 0 ? i - 1 : g.nx - 1;
           const double ux = (u(1, e, 0) - u(1, w, 0)) / (2 * g.hx);
@@ -133,7 +133,7 @@ class LinearElasticSolid {
     const ElasticGrid g = g_;
     const double t = t_ + dt_;
     const Field un = u_new_;
-    const AnySpaceCall<Boundary> boundary_at{boundary};
+    const kernels::AnySpaceCall<Boundary> boundary_at{boundary};
     Kokkos::parallel_for(
         "amphora::elastic::boundary_rows",
         Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>(exec_, {bottom ? 0 : 1, 0}, {2, g.nx}),
@@ -152,7 +152,7 @@ class LinearElasticSolid {
   template <class Value>
   void fill(const Field& field, const Value& value, double t) const {
     const ElasticGrid g = g_;
-    const AnySpaceCall<Value> value_at{value};
+    const kernels::AnySpaceCall<Value> value_at{value};
     Kokkos::parallel_for(
         "amphora::elastic::fill",
         Kokkos::MDRangePolicy<ExecSpace, Kokkos::Rank<2>>(exec_, {0, 0}, {g.ny + 1, g.nx}),
@@ -169,4 +169,4 @@ class LinearElasticSolid {
   Field u_old_, u_, u_new_, f_;
 };
 
-}  // namespace amphora::elastic
+}  // namespace amphora::physics::elastic_solid

@@ -16,7 +16,7 @@
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "solvers/matrix_free/multigrid.hpp"
 
-namespace amphora::poisson_fem {
+namespace amphora::physics::poisson_fem {
 // A named namespace, not an anonymous one: CUDA does not support extended lambdas in
 // anonymous namespaces (Kokkos issue #1547).
 namespace poisson_fem_kernels {
@@ -24,15 +24,15 @@ namespace poisson_fem_kernels {
 template <int dim>
 class PoissonFem final : public Module {
  public:
-  using Exec = DefaultExecSpace;
-  using Space = mesh::DistributedQkSpace<dim, Exec>;
-  using Operator = solvers::DistributedOperator<dim, Exec>;
+  using Exec = kernels::DefaultExecSpace;
+  using Space = mesh::hex::DistributedQkSpace<dim, Exec>;
+  using Operator = solvers::matrix_free::DistributedOperator<dim, Exec>;
   using Vector = typename Operator::Vector;
 
   PoissonFem(const Parameters& p, const Communicator& comm) : comm_(comm) {
-    auto m = mesh::unit_cube<dim>(static_cast<int>(p.integer("cells")));
+    auto m = mesh::hex::unit_cube<dim>(static_cast<int>(p.integer("cells")));
     const double amplitude = p.real("deformation");
-    if (amplitude > 0.0) m.deformation = mesh::sinusoidal_deformation(dim, amplitude);
+    if (amplitude > 0.0) m.deformation = mesh::hex::sinusoidal_deformation(dim, amplitude);
     const std::string geometry = p.string("geometry");
     if (geometry == "cartesian" && amplitude > 0.0)
       throw std::invalid_argument(
@@ -40,17 +40,17 @@ class PoissonFem final : public Module {
           "cells: stored, on_the_fly)");
     const int cells = static_cast<int>(p.integer("cells"));
     if (cells < comm.size())
-      throw DecompositionError("more ranks (" + std::to_string(comm.size()) + ") than cells (" +
-                               std::to_string(cells) +
-                               ") along the last direction: each rank "
-                               "needs a slab of at least one cell");
+      throw mesh::DecompositionError("more ranks (" + std::to_string(comm.size()) +
+                                     ") than cells (" + std::to_string(cells) +
+                                     ") along the last direction: each rank "
+                                     "needs a slab of at least one cell");
     space_ = std::make_unique<Space>(m, static_cast<int>(p.integer("degree")), comm);
     n_global_ = space_->n_global();
     typename Operator::Local::Options o;
-    o.kind = solvers::OperatorKind::laplace;
-    o.geometry = geometry == "cartesian"    ? solvers::GeometryMode::cartesian
-                 : geometry == "on_the_fly" ? solvers::GeometryMode::on_the_fly
-                                            : solvers::GeometryMode::stored;
+    o.kind = solvers::matrix_free::OperatorKind::laplace;
+    o.geometry = geometry == "cartesian"    ? solvers::matrix_free::GeometryMode::cartesian
+                 : geometry == "on_the_fly" ? solvers::matrix_free::GeometryMode::on_the_fly
+                                            : solvers::matrix_free::GeometryMode::stored;
     A_ = std::make_unique<Operator>(*space_, o);
     multigrid_ = p.string("solver") == "multigrid";
     control_.relative_tolerance = p.real("tolerance");
@@ -66,20 +66,20 @@ class PoissonFem final : public Module {
     const long n = space_->n_local();
     const auto& local = space_->local();
     const SineSolution<dim> exact;
-    const Vector f = to_view<typename Exec::memory_space>(
-        local.interpolate([&](const mesh::Point3& x, int) { return exact.source(x); }));
-    const Vector b =
-        solvers::load_vector(exec, local, f, A_->local().options().geometry, local.degree() + 2);
+    const Vector f = kernels::to_view<typename Exec::memory_space>(
+        local.interpolate([&](const mesh::hex::Point3& x, int) { return exact.source(x); }));
+    const Vector b = solvers::matrix_free::load_vector(
+        exec, local, f, A_->local().options().geometry, local.degree() + 2);
     space_->compress_add(exec, b);
-    blas1::fill(exec, u_, 0.0);
+    kernels::blas1::fill(exec, u_, 0.0);
     const auto dot = space_->inner_product();
     if (multigrid_) {
-      const solvers::MatrixFreeMultigrid<dim, Exec> mg(exec, *A_);
+      const solvers::matrix_free::MatrixFreeMultigrid<dim, Exec> mg(exec, *A_);
       result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_, mg, dot);
     } else {
       Vector d("d", n);
       A_->compute_diagonal(exec, d);
-      blas1::reciprocal(exec, d);
+      kernels::blas1::reciprocal(exec, d);
       result_ = solvers::conjugate_gradient(exec, *A_, b, u_, control_,
                                             solvers::JacobiPreconditioner<Vector>{d}, dot);
     }
@@ -90,7 +90,8 @@ class PoissonFem final : public Module {
                                std::to_string(result_.final_residual / result_.rhs_norm) + ")");
     space_->update_ghosts(exec, u_);
     // Each rank integrates over its own cells.
-    const solvers::ErrorNorms e = solvers::error_norms(exec, local, u_, SineSolution<dim>{});
+    const solvers::matrix_free::ErrorNorms e =
+        solvers::matrix_free::error_norms(exec, local, u_, SineSolution<dim>{});
     errors_ = {std::sqrt(comm_.sum(e.l2 * e.l2)), std::sqrt(comm_.sum(e.h1semi * e.h1semi))};
     solved_ = true;
   }
@@ -141,7 +142,7 @@ class PoissonFem final : public Module {
   }
   std::string error_diagnostic() const override { return "l2_error"; }
   std::optional<NonFiniteReport> find_nonfinite() const override {
-    const long i = reduce::first_nonfinite(Exec(), u_);
+    const long i = kernels::reduce::first_nonfinite(Exec(), u_);
     if (i < 0) return std::nullopt;
     return NonFiniteReport{"u", "solution", i, 0.0, {}};
   }
@@ -191,7 +192,7 @@ class PoissonFem final : public Module {
   bool multigrid_ = true;
   solvers::SolverControl control_;
   solvers::SolverResult result_;
-  solvers::ErrorNorms errors_;
+  solvers::matrix_free::ErrorNorms errors_;
   Vector u_;
   bool solved_ = false;
 };
@@ -204,7 +205,7 @@ ParamTable parameter_table() {
           "-lap u = f on curved Q_k hexahedra of the unit square/cube, manufactured sine solution",
           {
               int_param("dim", 3, at_least(2) & at_most(3), "space dimension"),
-              int_param("degree", 4, at_least(1) & at_most(mesh::max_qk_degree),
+              int_param("degree", 4, at_least(1) & at_most(mesh::hex::max_qk_degree),
                         "polynomial degree k of Q_k"),
               int_param("cells", 8, at_least(1) & at_most(1024), "cells per direction"),
               real_param("deformation", 0.05, "1", at_least(0.0) & at_most(0.1),
@@ -225,4 +226,4 @@ std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {
   return std::make_unique<PoissonFem<3>>(p, comm);
 }
 
-}  // namespace amphora::poisson_fem
+}  // namespace amphora::physics::poisson_fem

@@ -10,7 +10,7 @@
 #include "physics/module.hpp"
 #include "base/parameters.hpp"
 
-namespace amphora::poisson_fem {
+namespace amphora::physics::poisson_fem {
 
 /// The scene table `[poisson_fem]`.
 ParamTable parameter_table();
@@ -18,4 +18,4 @@ ParamTable parameter_table();
 /// The module for the dimension the parameters name.
 std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm);
 
-}  // namespace amphora::poisson_fem
+}  // namespace amphora::physics::poisson_fem

@@ -4,28 +4,29 @@
 #include "kernels/kokkos_compat.hpp"
 #include "mesh/hex/structured_hex_mesh.hpp"
 
-namespace amphora::poisson_fem {
+namespace amphora::physics::poisson_fem {
 
 template <int dim>
 struct SineSolution {
   static constexpr double pi = 3.14159265358979323846;
   KOKKOS_INLINE_FUNCTION double value(const double* x) const {
     double v = 1.0;
-    for (int d = 0; d < dim; ++d) v *= math::sin(pi * x[d]);
+    for (int d = 0; d < dim; ++d) v *= kernels::math::sin(pi * x[d]);
     return v;
   }
   KOKKOS_INLINE_FUNCTION void gradient(const double* x, double* g) const {
     for (int a = 0; a < dim; ++a) {
       g[a] = pi;
-      for (int d = 0; d < dim; ++d) g[a] *= d == a ? math::cos(pi * x[d]) : math::sin(pi * x[d]);
+      for (int d = 0; d < dim; ++d)
+        g[a] *= d == a ? kernels::math::cos(pi * x[d]) : kernels::math::sin(pi * x[d]);
     }
   }
   /// -lap u at x (host; for interpolating the right-hand side).
-  double source(const mesh::Point3& x) const {
+  double source(const mesh::hex::Point3& x) const {
     double v = dim * pi * pi;
-    for (int d = 0; d < dim; ++d) v *= math::sin(pi * x[d]);
+    for (int d = 0; d < dim; ++d) v *= kernels::math::sin(pi * x[d]);
     return v;
   }
 };
 
-}  // namespace amphora::poisson_fem
+}  // namespace amphora::physics::poisson_fem

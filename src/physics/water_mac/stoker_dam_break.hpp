@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace amphora::water_mac {
+namespace amphora::physics::water_mac {
 
 struct StokerDamBreak {
   double hm = 0.0;          ///< depth between the rarefaction and the bore
@@ -41,4 +41,4 @@ inline StokerDamBreak stoker_dam_break(double g, double h0, double h1) {
   return s;
 }
 
-}  // namespace amphora::water_mac
+}  // namespace amphora::physics::water_mac

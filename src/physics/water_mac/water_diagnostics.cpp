@@ -2,7 +2,7 @@
 
 #include <mpi.h>
 
-namespace amphora::water_mac {
+namespace amphora::physics::water_mac {
 
 double martin_moyce_front(double T) {
   // Martin & Moyce (1952), fig. 3, n^2 = 2, a = 2.25 in (digitised; as tabulated in PySPH's
@@ -89,4 +89,4 @@ double mean_surface_height(const LevelSetBlock& b) {
   return b.comm.sum(sum) / (double(b.global.nx) * b.global.nz);
 }
 
-}  // namespace amphora::water_mac
+}  // namespace amphora::physics::water_mac

@@ -7,7 +7,7 @@
 #include "base/communicator.hpp"
 #include "kernels/mac/mac_grid.hpp"
 
-namespace amphora::water_mac {
+namespace amphora::physics::water_mac {
 
 /// Martin & Moyce (1952), fig. 3, n^2 = 2, a = 2.25 in: front position Z = x/a against
 /// T = t sqrt(2 g / a), linearly interpolated (T within the measured 0.832 .. 9.237).
@@ -33,4 +33,4 @@ double bore_position(const LevelSetBlock& b, double half_depth);
 /// Mean height of the highest zero crossing of the level set over the columns. Collective.
 double mean_surface_height(const LevelSetBlock& b);
 
-}  // namespace amphora::water_mac
+}  // namespace amphora::physics::water_mac

@@ -25,10 +25,10 @@
 #include "solvers/mac/lattice_pressure.hpp"
 #include "solvers/mac/mac_multigrid.hpp"
 
-namespace amphora::water_mac {
+namespace amphora::physics::water_mac {
 
 // The module lives in a named namespace: CUDA takes no extended lambda in an anonymous one.
-using Exec = DefaultExecSpace;
+using Exec = kernels::DefaultExecSpace;
 using Mem = Exec::memory_space;
 using Vector = Kokkos::View<double*, Mem>;
 using Types = Kokkos::View<kernels::mac::MacCellType*, Mem>;
@@ -48,15 +48,15 @@ class WaterMac final : public Module {
     // its neighbours: sqrt(3) cfl cells (the speed against its largest component) plus the
     // interpolation's cell and one to spare.
     trace_reach_ = static_cast<int>(std::ceil(std::sqrt(3.0) * cfl_)) + 2;
-    decomposition_ = std::make_unique<BoxDecomposition>(
-        Index3{nx, ny, nz}, std::array<bool, 3>{false, false, false}, comm.size(),
+    decomposition_ = std::make_unique<mesh::BoxDecomposition>(
+        mesh::Index3{nx, ny, nz}, std::array<bool, 3>{false, false, false}, comm.size(),
         comm.size() > 1 ? trace_reach_ : 1, std::array<bool, 3>{true, false, true});
-    block_ = mesh::MacBlock::of(*decomposition_, comm.get(), comm.rank());
-    const Box box = decomposition_->box(comm.rank());
+    block_ = mesh::mac::MacBlock::of(*decomposition_, comm.get(), comm.rank());
+    const mesh::Box box = decomposition_->box(comm.rank());
     const double h = global_.h;
     grid_ = kernels::mac::MacGrid{
         box.extent(0), ny, box.extent(2), h, {box.lo[0] * h, 0.0, box.lo[2] * h}};
-    halo_ = mesh::LatticeGhostExchange(block_);
+    halo_ = mesh::mac::LatticeGhostExchange(block_);
     edges_ = block_.edges();
     gravity_ = p.real("gravity");
     rho_ = p.real("density");
@@ -140,8 +140,9 @@ class WaterMac final : public Module {
     for (int i = 0; i < g.nx; ++i) b.x.push_back(g.origin[0] + (i + 0.5) * g.h);
     for (int j = 0; j < g.ny; ++j) b.y.push_back(g.origin[1] + (j + 0.5) * g.h);
     for (int k = 0; k < g.nz; ++k) b.z.push_back(g.origin[2] + (k + 0.5) * g.h);
-    const auto phi = to_std_vector(phi_), p = to_std_vector(p_);
-    const auto u = to_std_vector(u_), v = to_std_vector(v_), w = to_std_vector(w_);
+    const auto phi = kernels::to_std_vector(phi_), p = kernels::to_std_vector(p_);
+    const auto u = kernels::to_std_vector(u_), v = kernels::to_std_vector(v_),
+               w = kernels::to_std_vector(w_);
     std::vector<double> fphi, fp, fu, fv, fw, fspeed;
     for (int k = 0; k < g.nz; ++k)
       for (int j = 0; j < g.ny; ++j)
@@ -202,7 +203,7 @@ class WaterMac final : public Module {
     // this block's first non-finite entry (field, padded index, x), then the lowest rank's
     double found[3] = {-1.0, 0.0, 0.0};
     for (int f = 0; f < 5 && found[0] < 0; ++f) {
-      const int bad = reduce::first_nonfinite(exec, fields[f]);
+      const int bad = kernels::reduce::first_nonfinite(exec, fields[f]);
       if (bad >= 0 && bad < static_cast<int>(fields[f].extent(0))) {
         int i, j, k;
         grid_.ijk(bad, i, j, k);
@@ -229,7 +230,7 @@ class WaterMac final : public Module {
     const std::pair<const char*, Vector> fields[5] = {
         {"phi", phi_}, {"u", u_}, {"v", v_}, {"w", w_}, {"pressure", p_}};
     for (const auto& [name, f] : fields) {
-      const std::vector<double> whole = to_global(to_std_vector(f));
+      const std::vector<double> whole = to_global(kernels::to_std_vector(f));
       if (comm_.is_root()) b.arrays.push_back({name, whole});
     }
     if (!comm_.is_root()) return {};
@@ -250,7 +251,7 @@ class WaterMac final : public Module {
                         : name == "pressure" ? p_
                                              : Vector();
         if (target.extent(0) > 0 && static_cast<long>(a.size()) == global_.padded_size())
-          Kokkos::deep_copy(target, to_view<Mem>(from_global(a)));
+          Kokkos::deep_copy(target, kernels::to_view<Mem>(from_global(a)));
       }
     classify();
   }
@@ -261,7 +262,7 @@ class WaterMac final : public Module {
   /// The padded-lattice range of the whole grid this rank's block holds in the checkpoint:
   /// its cells, and the ghost layer where it meets the box faces ([lo, hi] inclusive).
   void owned_range(int rank, int lo[3], int hi[3]) const {
-    const Box box = decomposition_->box(rank);
+    const mesh::Box box = decomposition_->box(rank);
     const int n[3] = {global_.nx, global_.ny, global_.nz};
     for (int d = 0; d < 3; ++d) {
       lo[d] = box.lo[d] == 0 ? -1 : box.lo[d];
@@ -338,9 +339,9 @@ class WaterMac final : public Module {
   void initialise(const Parameters& p) {
     const WaterScene scene{scene_, column_width_, reservoir_depth_, tailwater_depth_};
     const InitialWater init = initial_water(p, scene, grid_, global_, comm_);
-    Kokkos::deep_copy(phi_, to_view<Mem>(init.phi));
-    Kokkos::deep_copy(v_, to_view<Mem>(init.v));
-    Kokkos::deep_copy(solid_, to_view<Mem>(init.solid));
+    Kokkos::deep_copy(phi_, kernels::to_view<Mem>(init.phi));
+    Kokkos::deep_copy(v_, kernels::to_view<Mem>(init.v));
+    Kokkos::deep_copy(solid_, kernels::to_view<Mem>(init.solid));
     halo_.exchange(Exec(), grid_, solid_);
     classify();
     // the solids do not move: their faces are listed once (classify() gave the ghost cells' types)
@@ -592,9 +593,9 @@ class WaterMac final : public Module {
         KOKKOS_LAMBDA(int k, int j, int i, double& acc) {
           const int c = g.index(i, j, k);
           const bool in_x = i < g.nx, in_y = j < g.ny, in_z = k < g.nz;
-          if (in_y && in_z) acc = math::max(acc, math::abs(u(c)));
-          if (in_x && in_z) acc = math::max(acc, math::abs(v(c)));
-          if (in_x && in_y) acc = math::max(acc, math::abs(w(c)));
+          if (in_y && in_z) acc = kernels::math::max(acc, kernels::math::abs(u(c)));
+          if (in_x && in_z) acc = kernels::math::max(acc, kernels::math::abs(v(c)));
+          if (in_x && in_y) acc = kernels::math::max(acc, kernels::math::abs(w(c)));
         },
         Kokkos::Max<double>(above));
     return comm_.max(std::max(m, above));
@@ -611,7 +612,7 @@ class WaterMac final : public Module {
         Kokkos::MDRangePolicy<Exec, Kokkos::Rank<3>>({0, 0, 0}, {g.nz, g.ny, g.nx}),
         KOKKOS_LAMBDA(int k, int j, int i, double& acc) {
           const int c = g.index(i, j, k);
-          if (!solid(c)) acc += math::clamp(0.5 - phi(c) / g.h, 0.0, 1.0);
+          if (!solid(c)) acc += kernels::math::clamp(0.5 - phi(c) / g.h, 0.0, 1.0);
         },
         vol);
     return comm_.sum(vol) * g.h * g.h * g.h;
@@ -619,7 +620,7 @@ class WaterMac final : public Module {
 
   /// The level set on the host with where this block lies, for the surface diagnostics.
   LevelSetBlock level_set() const {
-    return {to_std_vector(phi_), grid_, global_, block_.global_lower, edges_[1], comm_};
+    return {kernels::to_std_vector(phi_), grid_, global_, block_.global_lower, edges_[1], comm_};
   }
   double front() const { return dam_break_front(level_set()); }
   double bore() const { return bore_position(level_set(), 0.5 * (tailwater_depth_ + stoker_.hm)); }
@@ -630,12 +631,12 @@ class WaterMac final : public Module {
   std::string scene_;
   kernels::mac::MacGrid global_;  ///< the whole grid
   kernels::mac::MacGrid grid_;    ///< this rank's block of it
-  std::unique_ptr<BoxDecomposition> decomposition_;
-  mesh::MacBlock block_;
-  mesh::LatticeGhostExchange halo_;
+  std::unique_ptr<mesh::BoxDecomposition> decomposition_;
+  mesh::mac::MacBlock block_;
+  mesh::mac::LatticeGhostExchange halo_;
   kernels::mac::MacEdges edges_ = kernels::mac::box_edges();
   int trace_reach_ = 3;
-  mesh::WideGrid wide_;
+  mesh::mac::WideGrid wide_;
   Vector wide_phi_, wide_u_, wide_v_, wide_w_;
   kernels::mac::TallCellColumns<Mem> wide_tall_;
   Types wide_type_;
@@ -691,4 +692,4 @@ std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {
   return std::make_unique<WaterMac>(p, comm);
 }
 
-}  // namespace amphora::water_mac
+}  // namespace amphora::physics::water_mac

@@ -19,11 +19,11 @@
 #include "base/parameters.hpp"
 #include "physics/water_mac/water_diagnostics.hpp"
 
-namespace amphora::water_mac {
+namespace amphora::physics::water_mac {
 
 /// The scene table `[water_mac]`.
 ParamTable parameter_table();
 
 std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm);
 
-}  // namespace amphora::water_mac
+}  // namespace amphora::physics::water_mac

@@ -3,7 +3,7 @@
 
 #include <string>
 
-namespace amphora::water_mac {
+namespace amphora::physics::water_mac {
 
 ParamTable parameter_table() {
   return {
@@ -54,4 +54,4 @@ ParamTable parameter_table() {
       }};
 }
 
-}  // namespace amphora::water_mac
+}  // namespace amphora::physics::water_mac

@@ -6,7 +6,7 @@
 
 #include "kernels/kokkos_compat.hpp"
 
-namespace amphora::water_mac {
+namespace amphora::physics::water_mac {
 
 InitialWater initial_water(const Parameters& p, const WaterScene& scene,
                            const kernels::mac::MacGrid& g, const kernels::mac::MacGrid& global,
@@ -17,7 +17,8 @@ InitialWater initial_water(const Parameters& p, const WaterScene& scene,
   const double lx = global.nx * g.h, ly = global.ny * g.h, lz = global.nz * g.h;
   const double amp = p.real("terrain_amplitude"), base = p.real("terrain_base");
   auto floor = [&](double x, double z) {
-    return base + amp * std::sin(2 * math::pi * x / lx) * std::cos(2 * math::pi * z / lz + 0.3);
+    return base + amp * std::sin(2 * kernels::math::pi * x / lx) *
+                      std::cos(2 * kernels::math::pi * z / lz + 0.3);
   };
   const double a = scene.column_width, pool = p.real("pool_depth"), r = p.real("drop_radius"),
                hc = p.real("drop_height");
@@ -65,4 +66,4 @@ InitialWater initial_water(const Parameters& p, const WaterScene& scene,
   return {phi, v, solid};
 }
 
-}  // namespace amphora::water_mac
+}  // namespace amphora::physics::water_mac

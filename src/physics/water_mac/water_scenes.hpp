@@ -11,7 +11,7 @@
 #include "base/parameters.hpp"
 #include "kernels/mac/mac_grid.hpp"
 
-namespace amphora::water_mac {
+namespace amphora::physics::water_mac {
 
 struct WaterScene {
   std::string name;  ///< dam_break, wet_dam_break, splash, still
@@ -29,4 +29,4 @@ InitialWater initial_water(const Parameters& p, const WaterScene& scene,
                            const kernels::mac::MacGrid& g, const kernels::mac::MacGrid& global,
                            const Communicator& comm);
 
-}  // namespace amphora::water_mac
+}  // namespace amphora::physics::water_mac

@@ -3,7 +3,7 @@
 // ranks (a tall-cell matrix, or a transfer from another level's unknowns), as an operator:
 // columns of this block's unknowns first, then those of the ghost ring, whose values arrive
 // through the lattice ghost exchange (every unknown is carried by one lattice cell,
-// mesh::TallCellGrid::unknown_cells), so no communication pattern of its own is needed. On one
+// mesh::mac::TallCellGrid::unknown_cells), so no communication pattern of its own is needed. On one
 // block it is the plain CSR product.
 #include <stdexcept>
 #include <unordered_map>
@@ -26,7 +26,7 @@ struct BlockCsrMatrix {
   DeviceCsrMatrix<MemSpace> local;  ///< columns [0, columns): this block's, then the ring's
   Vector inverse_diagonal;
   kernels::mac::MacGrid grid;
-  mesh::LatticeGhostExchange halo;
+  mesh::mac::LatticeGhostExchange halo;
   Kokkos::View<int*, MemSpace> own_cells, ghost_cells;  ///< lattice cells carrying the unknowns
   Vector lattice, extended;                             ///< scratch of apply()
 
@@ -34,10 +34,11 @@ struct BlockCsrMatrix {
   /// M: this block's rows with global columns, the unknowns of T (assemble_tall_cell_matrix:
   /// T's own rows; a level transfer: another grid's, with_inverse_diagonal false as it has
   /// none).
-  BlockCsrMatrix(const CsrMatrix& M, const mesh::TallCellGrid& T, bool with_inverse_diagonal = true)
+  BlockCsrMatrix(const CsrMatrix& M, const mesh::mac::TallCellGrid& T,
+                 bool with_inverse_diagonal = true)
       : BlockCsrMatrix(CsrMatrix(M), T, with_inverse_diagonal) {}
   /// The same, keeping M's arrays where it can (DeviceCsrMatrix).
-  BlockCsrMatrix(CsrMatrix&& M, const mesh::TallCellGrid& T, bool with_inverse_diagonal)
+  BlockCsrMatrix(CsrMatrix&& M, const mesh::mac::TallCellGrid& T, bool with_inverse_diagonal)
       : grid(T.grid()), halo(T.block()) {
     n = static_cast<int>(M.n);
     columns = static_cast<int>(T.unknowns());
@@ -72,8 +73,8 @@ struct BlockCsrMatrix {
     ghosts = static_cast<int>(ghost.size());
     local = DeviceCsrMatrix<MemSpace>(std::move(C), with_inverse_diagonal);
     inverse_diagonal = local.inverse_diagonal;
-    own_cells = to_view<MemSpace>(T.unknown_cells(), "amphora::block_csr::own_cells");
-    ghost_cells = to_view<MemSpace>(ghost, "amphora::block_csr::ghost_cells");
+    own_cells = kernels::to_view<MemSpace>(T.unknown_cells(), "amphora::block_csr::own_cells");
+    ghost_cells = kernels::to_view<MemSpace>(ghost, "amphora::block_csr::ghost_cells");
     extended = Vector("amphora::block_csr::extended", columns + ghosts);
     lattice = Vector("amphora::block_csr::lattice", grid.padded_size());
   }
@@ -90,14 +91,14 @@ struct BlockCsrMatrix {
     const auto own = own_cells, ring = ghost_cells;
     const int first_ghost = columns;
     Kokkos::parallel_for(
-        "amphora::block_csr::to_lattice", RangePolicy<ExecSpace>(exec, 0, columns),
+        "amphora::block_csr::to_lattice", kernels::RangePolicy<ExecSpace>(exec, 0, columns),
         KOKKOS_LAMBDA(int u) {
           L(own(u)) = x(u);
           E(u) = x(u);
         });
     halo.exchange(exec, grid, L);
     Kokkos::parallel_for(
-        "amphora::block_csr::from_ring", RangePolicy<ExecSpace>(exec, 0, ghosts),
+        "amphora::block_csr::from_ring", kernels::RangePolicy<ExecSpace>(exec, 0, ghosts),
         KOKKOS_LAMBDA(int g) { E(first_ghost + g) = L(ring(g)); });
     local.apply(exec, E, y);
   }
@@ -106,11 +107,11 @@ struct BlockCsrMatrix {
   template <class ExecSpace, class B, class X, class R>
   void residual(const ExecSpace& exec, const B& b, const X& x, const R& r) const {
     if (!halo.block().split()) {
-      kernels::mac::residual_csr(exec, local, b, x, r);
+      solvers::residual_csr(exec, local, b, x, r);
       return;
     }
     apply(exec, x, r);
-    blas1::axpby(exec, 1.0, b, -1.0, r);
+    kernels::blas1::axpby(exec, 1.0, b, -1.0, r);
   }
 };
 

@@ -9,7 +9,7 @@ namespace amphora::solvers::mac {
 template <class ExecSpace>
 LatticePressure<ExecSpace>::LatticePressure(const ExecSpace& exec, PressureBackend backend,
                                             int optical_depth, const Stencil& A,
-                                            const mesh::MacBlock& block, const Vector& b,
+                                            const mesh::mac::MacBlock& block, const Vector& b,
                                             const Vector& p, KeptCoarseStencils<Mem>* kept)
     : b_(b), p_(p) {
   if (optical_depth == 0) {
@@ -18,12 +18,12 @@ LatticePressure<ExecSpace>::LatticePressure(const ExecSpace& exec, PressureBacke
   }
   Kokkos::Profiling::pushRegion("amphora::water::tall_cell_grid");
   const auto H = kernels::mac::host_stencil(A);
-  const mesh::TallCellGrid T(H, optical_depth, block);
+  const mesh::mac::TallCellGrid T(H, optical_depth, block);
   Kokkos::Profiling::popRegion();
   Kokkos::Profiling::pushRegion("amphora::water::tall_cell_matrix");
   CsrMatrix M = assemble_tall_cell_matrix(T, H);
   Kokkos::Profiling::popRegion();
-  layout_ = mesh::make_layout<Mem>(T);
+  layout_ = mesh::mac::make_layout<Mem>(T);
   bt_ = Vector("amphora::water::b_tall", T.unknowns());
   y_ = Vector("amphora::water::p_tall", T.unknowns());
   kernels::mac::tall_cell_restrict(exec, *layout_, b_, bt_);
@@ -44,7 +44,7 @@ SolverResult LatticePressure<ExecSpace>::solve(const ExecSpace& exec,
   return r;
 }
 
-template class LatticePressure<DefaultExecSpace>;
+template class LatticePressure<kernels::DefaultExecSpace>;
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template class LatticePressure<Kokkos::Serial>;
 #endif

@@ -29,8 +29,8 @@ class LatticePressure {
   /// tall-cell multigrid's coarse stencils, kept between projections (may be null). Collective
   /// on a split grid.
   LatticePressure(const ExecSpace& exec, PressureBackend backend, int optical_depth,
-                  const Stencil& A, const mesh::MacBlock& block, const Vector& b, const Vector& p,
-                  KeptCoarseStencils<Mem>* kept = nullptr);
+                  const Stencil& A, const mesh::mac::MacBlock& block, const Vector& b,
+                  const Vector& p, KeptCoarseStencils<Mem>* kept = nullptr);
   /// Solves to `control` and leaves the lattice pressure in p.
   SolverResult solve(const ExecSpace& exec, const SolverControl& control);
   /// The unknowns of the solve over all blocks: the tall-cell grid's, or (uniform) none known

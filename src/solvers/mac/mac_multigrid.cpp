@@ -50,7 +50,7 @@ std::string multigrid_size_error(const kernels::mac::MacGrid& g, long max_coarse
 template <class ExecSpace>
 MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A,
                                       const MacMultigridOptions& options,
-                                      const mesh::MacBlock& block)
+                                      const mesh::mac::MacBlock& block)
     : options_(options), halo_(block) {
   const MPI_Comm comm = block.comm;
   // every rank decides together, so none is left waiting in an exchange
@@ -88,7 +88,7 @@ MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A,
 }
 
 template <class ExecSpace, class MemSpace>
-void complete_block_stencil(const ExecSpace& exec, const mesh::LatticeGhostExchange& halo,
+void complete_block_stencil(const ExecSpace& exec, const mesh::mac::LatticeGhostExchange& halo,
                             const kernels::mac::PoissonStencil<MemSpace>* fine,
                             kernels::mac::PoissonStencil<MemSpace>& level) {
   const MPI_Comm comm = halo.block().comm;
@@ -128,14 +128,14 @@ void complete_block_stencil(const ExecSpace& exec, const mesh::LatticeGhostExcha
 
 template <class ExecSpace>
 auto MacMultigrid<ExecSpace>::coarsest_rows(const Stencil& coarsest) const
-    -> host_mirror_t<Kokkos::View<double*, MemSpace>> {
+    -> kernels::host_mirror_t<Kokkos::View<double*, MemSpace>> {
   // this block's rows (diagonal, x, y, z couplings) packed on the device: one copy to the host
   const auto cells = coarse_cells_;
   const auto d = coarsest.diag;
   const auto cx = coarsest.cx, cy = coarsest.cy, cz = coarsest.cz;
   Kokkos::View<double*, MemSpace> packed("amphora::mac_mg::coarse_rows", 4 * cells.extent(0));
   Kokkos::parallel_for(
-      "amphora::mac_mg::coarse_rows", RangePolicy<ExecSpace>(0, int(cells.extent(0))),
+      "amphora::mac_mg::coarse_rows", kernels::RangePolicy<ExecSpace>(0, int(cells.extent(0))),
       KOKKOS_LAMBDA(int m) {
         const int c = cells(m);
         packed(4 * m) = d(c), packed(4 * m + 1) = cx(c), packed(4 * m + 2) = cy(c);
@@ -148,7 +148,7 @@ auto MacMultigrid<ExecSpace>::coarsest_rows(const Stencil& coarsest) const
 
 template <class ExecSpace>
 void MacMultigrid<ExecSpace>::setup_coarse_solve(const Stencil& coarsest) {
-  const mesh::MacBlock& block = halo_.block();
+  const mesh::mac::MacBlock& block = halo_.block();
   const MPI_Comm comm = block.comm;
   int rank = 0, ranks = 1;
   MPI_Comm_rank(comm, &rank);
@@ -188,7 +188,7 @@ void MacMultigrid<ExecSpace>::setup_coarse_solve(const Stencil& coarsest) {
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < g.ny; ++j)
       for (int i = 0; i < g.nx; ++i) cells.push_back(g.index(i, j, k));
-  coarse_cells_ = to_view<MemSpace>(cells, "amphora::mac_mg::coarse_cells");
+  coarse_cells_ = kernels::to_view<MemSpace>(cells, "amphora::mac_mg::coarse_cells");
   const auto rows = coarsest_rows(coarsest);
   std::vector<int> counts4(ranks), displacements4(ranks);
   for (int r = 0; r < ranks; ++r)
@@ -217,11 +217,13 @@ template <class ExecSpace>
 void MacMultigrid<ExecSpace>::apply(const ExecSpace& exec, const Vector& r, const Vector& z) const {
   const LevelVector b = b_[0], x = x_[0];
   Kokkos::parallel_for(
-      "amphora::mac_mg::to_single", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(r.extent(0))),
+      "amphora::mac_mg::to_single",
+      kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(r.extent(0))),
       KOKKOS_LAMBDA(int c) { b(c) = static_cast<float>(r(c)); });
   vcycle(exec, 0);
   Kokkos::parallel_for(
-      "amphora::mac_mg::to_double", RangePolicy<ExecSpace>(exec, 0, static_cast<int>(z.extent(0))),
+      "amphora::mac_mg::to_double",
+      kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(z.extent(0))),
       KOKKOS_LAMBDA(int c) { z(c) = x(c); });
 }
 
@@ -234,7 +236,7 @@ void MacMultigrid<ExecSpace>::coarse_solve(const ExecSpace& exec) const {
   const auto local = coarse_local_;
   const int n = static_cast<int>(cells.extent(0));
   Kokkos::parallel_for(
-      "amphora::mac_mg::coarse_pack", RangePolicy<ExecSpace>(exec, 0, n),
+      "amphora::mac_mg::coarse_pack", kernels::RangePolicy<ExecSpace>(exec, 0, n),
       KOKKOS_LAMBDA(int m) { local(m) = b(cells(m)); });
   const auto host = coarse_send_;
   Kokkos::deep_copy(exec, host, local);
@@ -251,9 +253,9 @@ void MacMultigrid<ExecSpace>::coarse_solve(const ExecSpace& exec) const {
   for (int m = 0; m < n; ++m)
     host(m) = static_cast<float>(coarse_lattice_[gathered_index_[my_offset_ + m]]);
   Kokkos::deep_copy(exec, local, host);
-  blas1::fill(exec, x, 0.0f);
+  kernels::blas1::fill(exec, x, 0.0f);
   Kokkos::parallel_for(
-      "amphora::mac_mg::coarse_unpack", RangePolicy<ExecSpace>(exec, 0, n),
+      "amphora::mac_mg::coarse_unpack", kernels::RangePolicy<ExecSpace>(exec, 0, n),
       KOKKOS_LAMBDA(int m) { x(cells(m)) = local(m); });
 }
 
@@ -289,7 +291,7 @@ void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
   const LevelStencil &A = levels_[l], &C = levels_[l + 1];
   const LevelVector x = x_[l];
   const int nu = options_.smoothing_steps << l;
-  blas1::fill(exec, x, 0.0f);
+  kernels::blas1::fill(exec, x, 0.0f);
   for (int s = 0; s < nu; ++s) smooth(exec, l, 0);
   // restriction R = E^T P^T: the fine residual's ghosts feed P^T, the coarse ghosts E^T
   sync(exec, l, x);
@@ -311,15 +313,15 @@ void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
   for (int s = 0; s < nu; ++s) smooth(exec, l, 1);
 }
 
-template class MacMultigrid<DefaultExecSpace>;
+template class MacMultigrid<kernels::DefaultExecSpace>;
 template void complete_block_stencil(
-    const DefaultExecSpace&, const mesh::LatticeGhostExchange&,
-    const kernels::mac::PoissonStencil<DefaultExecSpace::memory_space>*,
-    kernels::mac::PoissonStencil<DefaultExecSpace::memory_space>&);
+    const kernels::DefaultExecSpace&, const mesh::mac::LatticeGhostExchange&,
+    const kernels::mac::PoissonStencil<kernels::DefaultExecSpace::memory_space>*,
+    kernels::mac::PoissonStencil<kernels::DefaultExecSpace::memory_space>&);
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template class MacMultigrid<Kokkos::Serial>;
 template void complete_block_stencil(
-    const Kokkos::Serial&, const mesh::LatticeGhostExchange&,
+    const Kokkos::Serial&, const mesh::mac::LatticeGhostExchange&,
     const kernels::mac::PoissonStencil<Kokkos::Serial::memory_space>*,
     kernels::mac::PoissonStencil<Kokkos::Serial::memory_space>&);
 #endif

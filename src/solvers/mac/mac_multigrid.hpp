@@ -7,10 +7,10 @@
 // coarsest grid. The preconditioner works in single precision (matrices and vectors): on these
 // memory-bound sweeps that halves the time, and CG, in double, is unaffected at 1e-8.
 //
-// On a grid split horizontally over ranks (mesh::MacBlock) every level keeps the blocks (halved),
-// ghost layers are exchanged before each half-sweep, residual and transfer, the red-black colour
-// follows the global cell index, the coarsest grid is gathered on every rank and solved there,
-// and CG's inner products are summed over the ranks: the V-cycle is the single-block one, so
+// On a grid split horizontally over ranks (mesh::mac::MacBlock) every level keeps the blocks
+// (halved), ghost layers are exchanged before each half-sweep, residual and transfer, the red-black
+// colour follows the global cell index, the coarsest grid is gathered on every rank and solved
+// there, and CG's inner products are summed over the ranks: the V-cycle is the single-block one, so
 // the iterations do not depend on the rank count.
 #include <memory>
 #include <string>
@@ -39,7 +39,7 @@ std::string multigrid_size_error(const kernels::mac::MacGrid& g, long max_coarse
 /// then on every level the ghost diagonal, solid flags and solid shares; `any_solid` becomes the
 /// same on every rank. Collective over the block's ranks; on one block only `any_solid` is set.
 template <class ExecSpace, class MemSpace>
-void complete_block_stencil(const ExecSpace& exec, const mesh::LatticeGhostExchange& halo,
+void complete_block_stencil(const ExecSpace& exec, const mesh::mac::LatticeGhostExchange& halo,
                             const kernels::mac::PoissonStencil<MemSpace>* fine,
                             kernels::mac::PoissonStencil<MemSpace>& level);
 
@@ -50,12 +50,12 @@ struct BlockInnerProduct {
   static constexpr bool fuses_cg_update = true;
   template <class ExecSpace, class X, class Y>
   double operator()(const ExecSpace& exec, const X& x, const Y& y) const {
-    return sum(blas1::dot(exec, x, y));
+    return sum(kernels::blas1::dot(exec, x, y));
   }
   template <class ExecSpace, class View>
   double fused_update(const ExecSpace& exec, double alpha, const View& p, const View& q,
                       const View& x, const View& r) const {
-    return sum(blas1::cg_update(exec, alpha, p, q, x, r));
+    return sum(kernels::blas1::cg_update(exec, alpha, p, q, x, r));
   }
   double sum(double local) const {
     double global = local;
@@ -76,7 +76,7 @@ class MacMultigrid {
   /// Throws std::invalid_argument (multigrid_size_error) for grids it cannot coarsen. A is this
   /// block's matrix, its ghost conductances exchanged (see build_poisson_stencil).
   MacMultigrid(const ExecSpace& exec, const Stencil& A, const MacMultigridOptions& options = {},
-               const mesh::MacBlock& block = {});
+               const mesh::mac::MacBlock& block = {});
 
   /// z = one V-cycle applied to r (the preconditioner of CG).
   void apply(const ExecSpace& exec, const Vector& r, const Vector& z) const;
@@ -84,7 +84,7 @@ class MacMultigrid {
   /// every ghost cell.
   struct FineOperator {
     Stencil A;
-    mesh::LatticeGhostExchange halo;
+    mesh::mac::LatticeGhostExchange halo;
     void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {
       halo.exchange(exec, A.grid, x);
       kernels::mac::apply(exec, A, x, y);
@@ -125,11 +125,12 @@ class MacMultigrid {
     halo_.exchange(exec, levels_[l].grid, v);
   }
   void setup_coarse_solve(const Stencil& coarsest);
-  host_mirror_t<Kokkos::View<double*, MemSpace>> coarsest_rows(const Stencil& coarsest) const;
+  kernels::host_mirror_t<Kokkos::View<double*, MemSpace>> coarsest_rows(
+      const Stencil& coarsest) const;
 
  private:
   MacMultigridOptions options_;
-  mesh::LatticeGhostExchange halo_;
+  mesh::mac::LatticeGhostExchange halo_;
   Stencil fine_;
   std::vector<LevelStencil> levels_;
   std::vector<int> parity_;             // per level: (global i + k of the block's first cell) % 2
@@ -142,12 +143,12 @@ class MacMultigrid {
   CompactNumbering coarse_numbering_;
   std::unique_ptr<CoarseCholesky> coarse_;
   mutable Kokkos::View<float*, MemSpace> coarse_local_;
-  host_mirror_t<Kokkos::View<float*, MemSpace>> coarse_send_;  // coarse_local_'s host side
+  kernels::host_mirror_t<Kokkos::View<float*, MemSpace>> coarse_send_;  // coarse_local_'s host side
   mutable std::vector<float> coarse_gathered_;
   mutable std::vector<double> coarse_lattice_, coarse_rhs_;
 };
 
-extern template class MacMultigrid<DefaultExecSpace>;
+extern template class MacMultigrid<kernels::DefaultExecSpace>;
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 extern template class MacMultigrid<Kokkos::Serial>;
 #endif

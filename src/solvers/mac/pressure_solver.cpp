@@ -59,10 +59,10 @@ SolverResult solve_on_host(const ExecSpace& exec,
                            const Kokkos::View<double*, typename ExecSpace::memory_space>& x,
                            HostSolve&& host_solve) {
   exec.fence();
-  const auto bh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), b);
-  const auto xh = Kokkos::create_mirror_view_and_copy(HostMemSpace(), x);
-  const SolverResult r =
-      host_solve(Kokkos::View<double*, HostMemSpace>(bh), Kokkos::View<double*, HostMemSpace>(xh));
+  const auto bh = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), b);
+  const auto xh = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), x);
+  const SolverResult r = host_solve(Kokkos::View<double*, kernels::HostMemSpace>(bh),
+                                    Kokkos::View<double*, kernels::HostMemSpace>(xh));
   Kokkos::deep_copy(x, xh);
   return r;
 }
@@ -97,10 +97,10 @@ class PfmgPressureSolver final : public PressureSolver<ExecSpace> {
   using typename PressureSolver<ExecSpace>::Vector;
   PfmgPressureSolver(const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
                      const MacBlock& block) {
-    const auto d = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.diag);
-    const auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cx);
-    const auto y = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cy);
-    const auto z = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cz);
+    const auto d = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), A.diag);
+    const auto x = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), A.cx);
+    const auto y = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), A.cy);
+    const auto z = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), A.cz);
     comm_ = block.comm;
     pfmg_ = std::make_unique<StructPfmgCG>(block.comm, A.grid, block.global_lower, d.data(),
                                            x.data(), y.data(), z.data());
@@ -124,17 +124,17 @@ template <class ExecSpace>
 class Mic0PressureSolver final : public PressureSolver<ExecSpace> {
  public:
   using typename PressureSolver<ExecSpace>::Vector;
-  using HostVector = Kokkos::View<double*, HostMemSpace>;
+  using HostVector = Kokkos::View<double*, kernels::HostMemSpace>;
 #if defined(KOKKOS_ENABLE_SERIAL)
   using SequentialSpace = Kokkos::Serial;
 #else
-  using SequentialSpace = HostExecSpace;
+  using SequentialSpace = kernels::HostExecSpace;
 #endif
-  using HostStencil = kernels::mac::PoissonStencil<HostMemSpace>;
+  using HostStencil = kernels::mac::PoissonStencil<kernels::HostMemSpace>;
 
   explicit Mic0PressureSolver(
       const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A)
-      : A_(kernels::mac::copy_stencil<HostMemSpace>(A)), mic_(A_) {}
+      : A_(kernels::mac::copy_stencil<kernels::HostMemSpace>(A)), mic_(A_) {}
   SolverResult solve(const ExecSpace& exec, const Vector& b, const Vector& x,
                      const SolverControl& c) override {
     return solve_on_host(exec, b, x, [&](const auto& bh, const auto& xh) {
@@ -184,7 +184,7 @@ class CsrMic0PressureSolver final : public PressureSolver<ExecSpace> {
 #if defined(KOKKOS_ENABLE_SERIAL)
   using SequentialSpace = Kokkos::Serial;
 #else
-  using SequentialSpace = HostExecSpace;
+  using SequentialSpace = kernels::HostExecSpace;
 #endif
   // No modification (tau = 0): P^T A P is not an M-matrix (the linear weights couple a tall
   // cell's samples to its neighbours' with positive entries), and the row-sum compensation of
@@ -207,7 +207,7 @@ class CsrMic0PressureSolver final : public PressureSolver<ExecSpace> {
 
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
-    PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t,
+    PressureBackend backend, const ExecSpace& exec, const mesh::mac::TallCellGrid& T, CsrMatrix A_t,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
     KeptCoarseStencils<typename ExecSpace::memory_space>* kept) {
   if (T.block().split() && backend == PressureBackend::mic0)
@@ -252,18 +252,19 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
   throw std::invalid_argument("make_pressure_solver: unknown back end");
 }
 
-template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_pressure_solver(
-    PressureBackend, const DefaultExecSpace&, const kernels::mac::PoissonStencil<DefaultMemSpace>&,
-    const MacBlock&);
-template std::unique_ptr<PressureSolver<DefaultExecSpace>> make_tall_cell_pressure_solver(
-    PressureBackend, const DefaultExecSpace&, const mesh::TallCellGrid&, CsrMatrix,
-    const kernels::mac::PoissonStencil<DefaultMemSpace>&, KeptCoarseStencils<DefaultMemSpace>*);
+template std::unique_ptr<PressureSolver<kernels::DefaultExecSpace>> make_pressure_solver(
+    PressureBackend, const kernels::DefaultExecSpace&,
+    const kernels::mac::PoissonStencil<kernels::DefaultMemSpace>&, const MacBlock&);
+template std::unique_ptr<PressureSolver<kernels::DefaultExecSpace>> make_tall_cell_pressure_solver(
+    PressureBackend, const kernels::DefaultExecSpace&, const mesh::mac::TallCellGrid&, CsrMatrix,
+    const kernels::mac::PoissonStencil<kernels::DefaultMemSpace>&,
+    KeptCoarseStencils<kernels::DefaultMemSpace>*);
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_pressure_solver(
     PressureBackend, const Kokkos::Serial&, const kernels::mac::PoissonStencil<Kokkos::HostSpace>&,
     const MacBlock&);
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_tall_cell_pressure_solver(
-    PressureBackend, const Kokkos::Serial&, const mesh::TallCellGrid&, CsrMatrix,
+    PressureBackend, const Kokkos::Serial&, const mesh::mac::TallCellGrid&, CsrMatrix,
     const kernels::mac::PoissonStencil<Kokkos::HostSpace>&, KeptCoarseStencils<Kokkos::HostSpace>*);
 #endif
 

@@ -46,10 +46,10 @@ class PressureSolver {
   virtual double bytes_per_iteration() const { return 0.0; }
 };
 
-/// A grid split over ranks: `block` says where this rank's part lies (mesh::MacBlock; its
+/// A grid split over ranks: `block` says where this rank's part lies (mesh::mac::MacBlock; its
 /// stencil's ghost conductances exchanged). The multigrid and hypre back ends solve a split
 /// grid; MIC(0), sequential by nature, refuses one.
-using mesh::MacBlock;
+using mesh::mac::MacBlock;
 
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_pressure_solver(
@@ -66,7 +66,7 @@ struct KeptCoarseStencils;  // tall_cell_multigrid.hpp
 /// have none).
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
-    PressureBackend backend, const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t,
+    PressureBackend backend, const ExecSpace& exec, const mesh::mac::TallCellGrid& T, CsrMatrix A_t,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
     KeptCoarseStencils<typename ExecSpace::memory_space>* kept = nullptr);
 

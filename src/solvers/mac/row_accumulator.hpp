@@ -56,7 +56,8 @@ class RowAccumulator {
     M.values.resize(M.row_ptr[n]);
     // each row alone (sorted in place): in parallel, the same for any number of threads
     Kokkos::parallel_for(
-        "amphora::mac::rows_to_csr", Kokkos::RangePolicy<HostExecSpace>(0, n), [&](long r) {
+        "amphora::mac::rows_to_csr", Kokkos::RangePolicy<kernels::HostExecSpace>(0, n),
+        [&](long r) {
           std::pair<int, double> inline_row[K];
           const int m = count_[r];
           for (int e = 0; e < m; ++e) inline_row[e] = {cols_[r * K + e], values_[r * K + e]};

@@ -24,10 +24,10 @@ CsrMatrix stencil_to_csr(const kernels::mac::MacGrid& g, const double* diag, con
 template <class MemSpace>
 CsrMatrix stencil_to_csr(const kernels::mac::PoissonStencil<MemSpace>& A,
                          CompactNumbering& numbering) {
-  const auto d = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.diag);
-  const auto x = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cx);
-  const auto y = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cy);
-  const auto z = Kokkos::create_mirror_view_and_copy(HostMemSpace(), A.cz);
+  const auto d = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), A.diag);
+  const auto x = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), A.cx);
+  const auto y = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), A.cy);
+  const auto z = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), A.cz);
   return stencil_to_csr(A.grid, d.data(), x.data(), y.data(), z.data(), numbering);
 }
 

@@ -11,7 +11,7 @@ namespace amphora::solvers::mac {
 
 class StencilMic0 {
  public:
-  using HostStencil = kernels::mac::PoissonStencil<HostMemSpace>;
+  using HostStencil = kernels::mac::PoissonStencil<kernels::HostMemSpace>;
 
   explicit StencilMic0(const HostStencil& A, double tau = 0.97, double sigma = 0.25) : A_(A) {
     const kernels::mac::MacGrid& g = A.grid;

@@ -34,8 +34,8 @@ int axis_weights(int f, int n_coarse, bool edge_lo, bool edge_hi, bool wall_lo, 
 }  // namespace
 
 TallCellLevelTransfer tall_cell_level_transfer(
-    const mesh::TallCellGrid& fine, const mesh::TallCellGrid& coarse,
-    const kernels::mac::PoissonStencil<HostMemSpace>& coarse_A) {
+    const mesh::mac::TallCellGrid& fine, const mesh::mac::TallCellGrid& coarse,
+    const kernels::mac::PoissonStencil<kernels::HostMemSpace>& coarse_A) {
   const kernels::mac::MacGrid &gf = fine.grid(), &gc = coarse.grid();
   const auto edge = coarse_A.edges();
   const auto wall = coarse_A.walls();
@@ -49,7 +49,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
   csr_vector<Carrier> carriers(static_cast<std::size_t>(fine.unknowns()));  // each written below
   carriers.reserve(carriers.size() + ring.size());
   Kokkos::parallel_for("amphora::tall_mg::transfer_carriers",
-                       Kokkos::RangePolicy<HostExecSpace>(0, gf.nz), [&](int k) {
+                       Kokkos::RangePolicy<kernels::HostExecSpace>(0, gf.nz), [&](int k) {
                          for (int i = 0; i < gf.nx; ++i)
                            fine.for_each_unknown_in_column(
                                i, k, [&](int u, int ci, int cj, int ck) {
@@ -62,7 +62,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
     carriers.push_back(c);
   }
   const auto is_tall_top = [&](const Carrier& c) {
-    const mesh::TallCellColumn& column = fine.column(c.i, c.k);
+    const mesh::mac::TallCellColumn& column = fine.column(c.i, c.k);
     return c.j < column.band && c.j == column.terrain + 1;
   };
 
@@ -86,7 +86,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
   csr_vector<CoarseCell> coarse_cells(
       static_cast<std::size_t>(gc.padded_size()));  // each written below
   Kokkos::parallel_for("amphora::tall_mg::transfer_coarse_cells",
-                       Kokkos::RangePolicy<HostExecSpace>(0, gc.nz + 2), [&](int kk) {
+                       Kokkos::RangePolicy<kernels::HostExecSpace>(0, gc.nz + 2), [&](int kk) {
                          const int k = kk - 1;
                          for (int j = -1; j <= gc.ny; ++j)
                            for (int i = -1; i <= gc.nx; ++i) {
@@ -198,7 +198,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
     };
     for (std::size_t r = r_begin; r < r_end; ++r) {
       const int i = carriers[r].i, j = carriers[r].j, k = carriers[r].k;
-      const mesh::TallCellColumn& column = fine.column(i, k);
+      const mesh::mac::TallCellColumn& column = fine.column(i, k);
       if (j >= column.band) {  // a uniform cell
         const Trilinear tri = trilinear(i, j, k);
         if (plain_row(tri)) continue;
@@ -219,7 +219,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
         const Trilinear tr = trilinear(i, t, k);  // its coarse columns
         for (int c = 0; c < tr.n[2]; ++c)
           for (int a = 0; a < tr.n[0]; ++a) {
-            const mesh::TallCellColumn& C = coarse.column(tr.index[0][a], tr.index[2][c]);
+            const mesh::mac::TallCellColumn& C = coarse.column(tr.index[0][a], tr.index[2][c]);
             if (!C.has_tall_cell()) hi = lo - 1;
             lo = std::max(lo, 2 * C.terrain + 1);
             hi = std::min(hi, 2 * C.band - 2);
@@ -266,7 +266,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
   }
   std::vector<Rows> parts(chunks);
   Kokkos::parallel_for("amphora::tall_mg::transfer_rows",
-                       Kokkos::RangePolicy<HostExecSpace>(0, chunks),
+                       Kokkos::RangePolicy<kernels::HostExecSpace>(0, chunks),
                        [&](std::size_t c) { build(bound[c], bound[c + 1], parts[c]); });
   // The parts one after the other (each copied in parallel to its place): Q's rows for all
   // carriers.
@@ -280,7 +280,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
   csr_vector<double> values(part_entry[chunks]);
   row_ptr[0] = 0;
   Kokkos::parallel_for(
-      "amphora::tall_mg::transfer_merge", Kokkos::RangePolicy<HostExecSpace>(0, chunks),
+      "amphora::tall_mg::transfer_merge", Kokkos::RangePolicy<kernels::HostExecSpace>(0, chunks),
       [&](std::size_t c) {
         const Rows& part = parts[c];
         for (std::size_t r = 0; r < part.ends.size(); ++r)
@@ -297,14 +297,14 @@ TallCellLevelTransfer tall_cell_level_transfer(
   CsrMatrix& R = t.restriction;
   const long first = coarse.first_unknown();
   R.n = coarse.unknowns();
-  const std::size_t groups =
-      std::min<std::size_t>(chunks, 2 * static_cast<std::size_t>(HostExecSpace().concurrency()));
+  const std::size_t groups = std::min<std::size_t>(
+      chunks, 2 * static_cast<std::size_t>(kernels::HostExecSpace().concurrency()));
   std::vector<std::size_t> group_bound(groups + 1);
   for (std::size_t q = 0; q <= groups; ++q) group_bound[q] = bound[q * chunks / groups];
   std::vector<long> count(groups * R.n, 0);  // per group, per coarse row
   const auto own_row = [&](int U) { return U >= first && U < first + R.n ? U - first : -1L; };
   Kokkos::parallel_for("amphora::tall_mg::transpose_count",
-                       Kokkos::RangePolicy<HostExecSpace>(0, groups), [&](std::size_t q) {
+                       Kokkos::RangePolicy<kernels::HostExecSpace>(0, groups), [&](std::size_t q) {
                          long* n = count.data() + q * R.n;
                          for (long e = row_ptr[group_bound[q]]; e < row_ptr[group_bound[q + 1]];
                               ++e) {
@@ -327,7 +327,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
   R.cols.resize(at);
   R.values.resize(at);
   Kokkos::parallel_for("amphora::tall_mg::transpose_fill",
-                       Kokkos::RangePolicy<HostExecSpace>(0, groups), [&](std::size_t q) {
+                       Kokkos::RangePolicy<kernels::HostExecSpace>(0, groups), [&](std::size_t q) {
                          long* next = count.data() + q * R.n;
                          for (std::size_t r = group_bound[q]; r < group_bound[q + 1]; ++r)
                            for (long e = row_ptr[r]; e < row_ptr[r + 1]; ++e) {

@@ -27,7 +27,7 @@ struct TallCellLevelTransfer {
 /// is the coarse lattice matrix on the host (its solid and fluid cells, its box faces; on a split
 /// grid with its ghost ring exchanged).
 TallCellLevelTransfer tall_cell_level_transfer(
-    const mesh::TallCellGrid& fine, const mesh::TallCellGrid& coarse,
-    const kernels::mac::PoissonStencil<HostMemSpace>& coarse_A);
+    const mesh::mac::TallCellGrid& fine, const mesh::mac::TallCellGrid& coarse,
+    const kernels::mac::PoissonStencil<kernels::HostMemSpace>& coarse_A);
 
 }  // namespace amphora::solvers::mac

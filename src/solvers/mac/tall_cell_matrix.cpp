@@ -18,8 +18,9 @@ namespace {
 /// as uniform_row_length counts them). The neighbours are visited in the order of the
 /// numbering (columns x fastest, each column upwards: -z, -x, -y, the cell, +y, +x, +z), so on
 /// one block the entries come sorted and the sort only checks them.
-int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<HostMemSpace>& A,
-                int i, int j, int k, int u, std::pair<int, double>* row) {
+int uniform_row(const mesh::mac::TallCellGrid& T,
+                const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A, int i, int j, int k,
+                int u, std::pair<int, double>* row) {
   const kernels::mac::MacGrid& g = T.grid();
   const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
   int n = 0;
@@ -45,8 +46,9 @@ int uniform_row(const mesh::TallCellGrid& T, const kernels::mac::PoissonStencil<
 /// The number of entries uniform_row gives, from the columns alone: the cell, and per neighbour
 /// across a face with c != 0 (a fluid cell, so an unknown or a tall cell's row) one entry, or two
 /// for a tall cell's inner row (at its bottom and top rows one sample's weight is zero).
-int uniform_row_length(const mesh::TallCellGrid& T,
-                       const kernels::mac::PoissonStencil<HostMemSpace>& A, int i, int j, int k) {
+int uniform_row_length(const mesh::mac::TallCellGrid& T,
+                       const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A, int i, int j,
+                       int k) {
   const kernels::mac::MacGrid& g = T.grid();
   const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
   const int di[6] = {0, -1, 0, 0, 1, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {-1, 0, 0, 0, 0, 1};
@@ -54,7 +56,7 @@ int uniform_row_length(const mesh::TallCellGrid& T,
   int n = 1;
   for (int f = 0; f < 6; ++f) {
     if (cond[f] == 0.0f) continue;
-    const mesh::TallCellColumn& col = T.column(i + di[f], k + dk[f]);
+    const mesh::mac::TallCellColumn& col = T.column(i + di[f], k + dk[f]);
     const int jj = j + dj[f];
     const bool inner = jj > col.terrain && jj + 1 < col.band;  // tall, and neither end row
     n += inner ? 2 : 1;
@@ -68,8 +70,8 @@ int uniform_row_length(const mesh::TallCellGrid& T,
 /// uniform unknown).
 class TallRows {
  public:
-  TallRows(const mesh::TallCellGrid& grid,
-           const kernels::mac::PoissonStencil<HostMemSpace>& stencil)
+  TallRows(const mesh::mac::TallCellGrid& grid,
+           const kernels::mac::PoissonStencil<kernels::HostMemSpace>& stencil)
       : T(grid),
         A(stencil),
         g(grid.grid()),
@@ -92,9 +94,9 @@ class TallRows {
   const std::vector<int>& slots() const { return slot; }
 
  private:
-  static long number_samples(const mesh::TallCellGrid& grid, std::vector<int>& slots) {
+  static long number_samples(const mesh::mac::TallCellGrid& grid, std::vector<int>& slots) {
     long count = 0;
-    for (const mesh::TallCellColumn& col : grid.columns())
+    for (const mesh::mac::TallCellColumn& col : grid.columns())
       if (col.has_tall_cell())
         for (int s = 0; s < 2; ++s) slots[col.first_unknown + s] = static_cast<int>(count++);
     return count;
@@ -124,7 +126,7 @@ class TallRows {
       if (w[e] != 0.0) ids[m] = cell_ids[e], v[m++] = -w[e];
     add_outer(ids, v, m, c);
   }
-  static double tall_step(const mesh::TallCellColumn& c) {
+  static double tall_step(const mesh::mac::TallCellColumn& c) {
     return c.has_tall_cell() ? 1.0 / (c.band - 1 - c.terrain) : 0.0;
   }
   /// What the stencil knows of its values lets most rows of a tall cell go unread (their sums
@@ -139,7 +141,7 @@ class TallRows {
   void column_terms(int i, int k) {
     const auto& d = A.diag;
     const auto &cx = A.cx, &cy = A.cy, &cz = A.cz;
-    const mesh::TallCellColumn& col = T.column(i, k);
+    const mesh::mac::TallCellColumn& col = T.column(i, k);
     if (!col.has_tall_cell()) return;
     const int bot = static_cast<int>(T.global_first_unknown(i, k));
     for (int j = col.terrain; j < col.band; ++j) {
@@ -173,7 +175,7 @@ class TallRows {
     const auto &cx = A.cx, &cz = A.cz;
     const auto& cond = dir == 0 ? cx : cz;
     const int in = i + (dir == 0), kn = k + (dir == 1);
-    const mesh::TallCellColumn &col = T.column(i, k), &next = T.column(in, kn);
+    const mesh::mac::TallCellColumn &col = T.column(i, k), &next = T.column(in, kn);
     if (!col.has_tall_cell() && !next.has_tall_cell()) return;
     const double dc = tall_step(col), dn = tall_step(next);
     // tall against tall: sum_j c_j v(j) v(j)^T with v = (1 - t, t, -(1 - s), -s) linear in
@@ -217,8 +219,8 @@ class TallRows {
     }
   }
 
-  const mesh::TallCellGrid& T;
-  const kernels::mac::PoissonStencil<HostMemSpace>& A;
+  const mesh::mac::TallCellGrid& T;
+  const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A;
   const kernels::mac::MacGrid& g;
   const int sy, sz;
   const long n, first;
@@ -237,7 +239,7 @@ CsrMatrix TallRows::assemble() {
   const int k_lo = nb[4] >= 0 ? -1 : 0, k_hi = nb[5] >= 0 ? g.nz : g.nz - 1;
   if (tall_rows > 0) {
     Kokkos::parallel_for("amphora::tall::assemble_lines",
-                         Kokkos::RangePolicy<HostExecSpace>(0, g.nz), [&](int k) {
+                         Kokkos::RangePolicy<kernels::HostExecSpace>(0, g.nz), [&](int k) {
                            for (int i = 0; i < g.nx; ++i) column_terms(i, k);
                            for (int i = i_lo; i < i_hi; ++i) face_terms(0, i, k);
                          });
@@ -245,7 +247,8 @@ CsrMatrix TallRows::assemble() {
       const int first_line = k_lo + ((parity - k_lo) % 2 + 2) % 2,
                 lines = (k_hi - first_line + 1) / 2;
       Kokkos::parallel_for("amphora::tall::assemble_z_faces",
-                           Kokkos::RangePolicy<HostExecSpace>(0, std::max(lines, 0)), [&](int m) {
+                           Kokkos::RangePolicy<kernels::HostExecSpace>(0, std::max(lines, 0)),
+                           [&](int m) {
                              for (int i = 0; i < g.nx; ++i) face_terms(1, i, first_line + 2 * m);
                            });
     }
@@ -257,8 +260,8 @@ CsrMatrix TallRows::assemble() {
 /// length first (a uniform row's counted, a tall row's from `tall`), then the rows in place
 /// (cheaper than a scratch of 13 entries per unknown filled in the first pass, whose fresh
 /// pages cost more than the second walk).
-CsrMatrix merge_rows(const mesh::TallCellGrid& T,
-                     const kernels::mac::PoissonStencil<HostMemSpace>& A,
+CsrMatrix merge_rows(const mesh::mac::TallCellGrid& T,
+                     const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A,
                      const std::vector<int>& slot, const CsrMatrix& tall) {
   const kernels::mac::MacGrid& g = T.grid();
   const long n = T.unknowns(), first = T.first_unknown();
@@ -266,20 +269,21 @@ CsrMatrix merge_rows(const mesh::TallCellGrid& T,
   M.n = n;
   M.row_ptr.assign(n + 1, 0);
   const auto for_each_row = [&](const char* name, bool entries, const auto& f) {
-    Kokkos::parallel_for(name, Kokkos::RangePolicy<HostExecSpace>(0, g.nx * g.nz), [&](int col) {
-      std::pair<int, double> row[13];
-      T.for_each_unknown_in_column(col % g.nx, col / g.nx, [&](int u, int i, int j, int k) {
-        if (slot[u] < 0) {
-          f(u,
-            entries ? uniform_row(T, A, i, j, k, static_cast<int>(first + u), row)
-                    : uniform_row_length(T, A, i, j, k),
-            nullptr, nullptr, row);
-          return;
-        }
-        const long from = tall.row_ptr[slot[u]], length = tall.row_ptr[slot[u] + 1] - from;
-        f(u, length, tall.cols.data() + from, tall.values.data() + from, nullptr);
-      });
-    });
+    Kokkos::parallel_for(
+        name, Kokkos::RangePolicy<kernels::HostExecSpace>(0, g.nx * g.nz), [&](int col) {
+          std::pair<int, double> row[13];
+          T.for_each_unknown_in_column(col % g.nx, col / g.nx, [&](int u, int i, int j, int k) {
+            if (slot[u] < 0) {
+              f(u,
+                entries ? uniform_row(T, A, i, j, k, static_cast<int>(first + u), row)
+                        : uniform_row_length(T, A, i, j, k),
+                nullptr, nullptr, row);
+              return;
+            }
+            const long from = tall.row_ptr[slot[u]], length = tall.row_ptr[slot[u] + 1] - from;
+            f(u, length, tall.cols.data() + from, tall.values.data() + from, nullptr);
+          });
+        });
   };
   for_each_row("amphora::tall::row_lengths", false,
                [&](int u, long length, const int*, const double*, const std::pair<int, double>*) {
@@ -311,8 +315,8 @@ CsrMatrix merge_rows(const mesh::TallCellGrid& T,
 
 }  // namespace
 
-CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T,
-                                    const kernels::mac::PoissonStencil<HostMemSpace>& A) {
+CsrMatrix assemble_tall_cell_matrix(const mesh::mac::TallCellGrid& T,
+                                    const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A) {
   TallRows tall(T, A);
   const CsrMatrix rows = tall.assemble();
   return merge_rows(T, A, tall.slots(), rows);

@@ -12,7 +12,7 @@
 
 namespace amphora::solvers::mac {
 
-CsrMatrix assemble_tall_cell_matrix(const mesh::TallCellGrid& T,
-                                    const kernels::mac::PoissonStencil<HostMemSpace>& A);
+CsrMatrix assemble_tall_cell_matrix(const mesh::mac::TallCellGrid& T,
+                                    const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A);
 
 }  // namespace amphora::solvers::mac

@@ -54,22 +54,23 @@ CsrMatrix gather_rows(MPI_Comm comm, const CsrMatrix& M, std::vector<int>& count
 }  // namespace
 
 template <class ExecSpace>
-TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T,
-                                                CsrMatrix A_t, const Stencil& A,
+TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec,
+                                                const mesh::mac::TallCellGrid& T, CsrMatrix A_t,
+                                                const Stencil& A,
                                                 const TallCellMultigridOptions& options,
                                                 KeptCoarseStencils<MemSpace>* kept)
     : halo_(T.block()) {
-  const mesh::MacBlock& block = T.block();
+  const mesh::mac::MacBlock& block = T.block();
   const MPI_Comm comm = block.comm;
   const BlockInnerProduct inner{comm};
   // the level's matrix (moved into the level's operator once read) and grid (T itself on the
   // finest)
   CsrMatrix level_matrix = std::move(A_t);
-  const mesh::TallCellGrid* level_grid = &T;
-  std::optional<mesh::TallCellGrid> coarse_level_grid;
+  const mesh::mac::TallCellGrid* level_grid = &T;
+  std::optional<mesh::mac::TallCellGrid> coarse_level_grid;
   Stencil level_A = A;
   complete_block_stencil(exec, halo_, static_cast<const Stencil*>(nullptr), level_A);
-  mesh::MacBlock level_block = block;
+  mesh::mac::MacBlock level_block = block;
   int unchanged_below = kept ? kept->unchanged_below : 0;  // on this level's lattice
   for (int l = 0;; ++l) {
     auto L = std::make_unique<Level>();
@@ -135,7 +136,7 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec, const mes
     level_A = coarse;
     for (int d : {0, 2}) level_block.global_lower[d] /= 2;
     const auto host_A = kernels::mac::host_stencil(level_A);
-    mesh::TallCellGrid coarse_grid(host_A, *level_grid, level_block);
+    mesh::mac::TallCellGrid coarse_grid(host_A, *level_grid, level_block);
     Kokkos::Profiling::popRegion();
     Kokkos::Profiling::pushRegion("amphora::tall_mg::transfer");
     TallCellLevelTransfer transfer = tall_cell_level_transfer(*level_grid, coarse_grid, host_A);
@@ -159,7 +160,7 @@ void TallCellMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l, const Ve
   const Level& L = *levels_[l];
   if (l + 1 == levels()) {
     const int n = static_cast<int>(coarse_local_.size());
-    Kokkos::View<double*, HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> local(
+    Kokkos::View<double*, kernels::HostMemSpace, Kokkos::MemoryTraits<Kokkos::Unmanaged>> local(
         coarse_local_.data(), n);
     Kokkos::deep_copy(exec, local, b);
     exec.fence();
@@ -180,11 +181,11 @@ void TallCellMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l, const Ve
   L.restriction.apply(exec, L.r, C.b);
   vcycle(exec, l + 1, C.b, C.x);
   L.prolongation.apply(exec, C.x, L.r);
-  blas1::axpy(exec, 1.0, L.r, x);
+  kernels::blas1::axpy(exec, 1.0, L.r, x);
   L.smoother->smooth(exec, b, x, false);
 }
 
-template class TallCellMultigrid<DefaultExecSpace>;
+template class TallCellMultigrid<kernels::DefaultExecSpace>;
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template class TallCellMultigrid<Kokkos::Serial>;
 #endif

@@ -1,7 +1,7 @@
 #pragma once
 // Multigrid for the tall-cell pressure matrix A_t = P^T A P, as a CG preconditioner: a
 // hierarchy of tall-cell grids over lattices with cells twice as wide, each coarse tall cell
-// ending where the finer ones under it end (mesh::TallCellGrid's coarser-level constructor; in
+// ending where the finer ones under it end (mesh::mac::TallCellGrid's coarser-level constructor; in
 // the spirit of the restricted tall-cell grids of Chentanez & Müller 2011), each level's matrix
 // assembled as P_l^T A_l P_l from the rediscretised lattice matrix A_l. Between
 // tall-cell levels the prolongation Q interpolates the coarse tall-cell pressure at the fine
@@ -61,7 +61,7 @@ class TallCellMultigrid {
   /// ghost conductances exchanged). Collective over T.block()'s ranks. A_t by value: a moved
   /// one's arrays are kept as the finest level's matrix where the host can read them.
   /// With `kept`, the coarse lattice stencils are taken from and left in it.
-  TallCellMultigrid(const ExecSpace& exec, const mesh::TallCellGrid& T, CsrMatrix A_t,
+  TallCellMultigrid(const ExecSpace& exec, const mesh::mac::TallCellGrid& T, CsrMatrix A_t,
                     const Stencil& A, const TallCellMultigridOptions& options = {},
                     KeptCoarseStencils<MemSpace>* kept = nullptr);
   TallCellMultigrid(const TallCellMultigrid&) = delete;  // the smoothers point at the matrices
@@ -91,7 +91,7 @@ class TallCellMultigrid {
   };
   void vcycle(const ExecSpace& exec, int l, const Vector& b, const Vector& x) const;
 
-  mesh::LatticeGhostExchange halo_;
+  mesh::mac::LatticeGhostExchange halo_;
   std::vector<std::unique_ptr<Level>> levels_;
   std::unique_ptr<CoarseCholesky> coarse_;
   // the coarsest system gathered: this block's rows start at coarse_first_ of coarse_host_
@@ -100,7 +100,7 @@ class TallCellMultigrid {
   mutable std::vector<double> coarse_host_, coarse_local_;
 };
 
-extern template class TallCellMultigrid<DefaultExecSpace>;
+extern template class TallCellMultigrid<kernels::DefaultExecSpace>;
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 extern template class TallCellMultigrid<Kokkos::Serial>;
 #endif

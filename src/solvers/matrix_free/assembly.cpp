@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 template <int dim, class ExecSpace>
 CsrMatrix assemble(const ExecSpace& exec, const MatrixFreeOperator<dim, ExecSpace>& op) {
@@ -67,4 +67,4 @@ AMPHORA_IF_SERIAL(AMPHORA_ASSEMBLE(Kokkos::Serial))
 AMPHORA_IF_OPENMP(AMPHORA_ASSEMBLE(Kokkos::OpenMP))
 AMPHORA_IF_CUDA(AMPHORA_ASSEMBLE(Kokkos::Cuda))
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

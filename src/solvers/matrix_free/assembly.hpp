@@ -5,9 +5,9 @@
 #include "solvers/csr_matrix.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 template <int dim, class ExecSpace>
 CsrMatrix assemble(const ExecSpace& exec, const MatrixFreeOperator<dim, ExecSpace>& op);
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

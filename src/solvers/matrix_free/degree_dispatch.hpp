@@ -11,7 +11,7 @@
 #define AMPHORA_SUMFAC_MAX_DEGREE 8
 #endif
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 inline constexpr int max_compiled_degree = AMPHORA_SUMFAC_MAX_DEGREE;
 
@@ -46,4 +46,4 @@ void dispatch_degree(int degree, int n_q, F&& f) {
   }
 }
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

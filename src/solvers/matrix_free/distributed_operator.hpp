@@ -7,12 +7,12 @@
 #include "solvers/conjugate_gradient.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 template <int dim, class ExecSpace>
 class DistributedOperator {
  public:
-  using Space = mesh::DistributedQkSpace<dim, ExecSpace>;
+  using Space = mesh::hex::DistributedQkSpace<dim, ExecSpace>;
   using Local = MatrixFreeOperator<dim, ExecSpace>;
   using Vector = typename Local::Vector;
 
@@ -50,4 +50,4 @@ class DistributedOperator {
   Local local_;
 };
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

@@ -8,7 +8,7 @@
 #include "solvers/matrix_free/degree_dispatch.hpp"
 #include "mesh/hex/qk_space.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 struct ErrorNorms {
   double l2 = 0.0;      ///< ||u_h - u||_L2
@@ -21,7 +21,7 @@ namespace error_norms_detail {
 /// The squared L2 and H1-seminorm errors (l2, h1) with n_p nodes and n_q Gauss points per
 /// direction.
 template <int dim, int n_p, int n_q, class ExecSpace, class Exact>
-void squared_errors(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& space,
+void squared_errors(const ExecSpace& exec, const mesh::hex::QkSpace<dim, ExecSpace>& space,
                     const Kokkos::View<double*, typename ExecSpace::memory_space>& u,
                     const Exact& exact, double& l2, double& h1) {
   using K = kernels::sumfac::CellOperatorKernel<dim, n_p, n_q, ExecSpace,
@@ -33,7 +33,7 @@ void squared_errors(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& 
   kern.coordinates = space.coordinates();
   const double* src = u.data();
   Kokkos::parallel_reduce(
-      "amphora::error_norms", RangePolicy<ExecSpace>(exec, 0, kern.lattice.n_batches()),
+      "amphora::error_norms", kernels::RangePolicy<ExecSpace>(exec, 0, kern.lattice.n_batches()),
       KOKKOS_LAMBDA(int b, double& e0, double& e1) {
         typename K::Scratch s;
         T uloc[K::n_dofs], x[dim * K::n_points];
@@ -74,7 +74,7 @@ void squared_errors(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& 
 }  // namespace error_norms_detail
 
 template <int dim, class ExecSpace, class Exact>
-ErrorNorms error_norms(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& space,
+ErrorNorms error_norms(const ExecSpace& exec, const mesh::hex::QkSpace<dim, ExecSpace>& space,
                        const Kokkos::View<double*, typename ExecSpace::memory_space>& u,
                        const Exact& exact) {
   ErrorNorms result;
@@ -89,4 +89,4 @@ ErrorNorms error_norms(const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace
   return result;
 }
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

@@ -3,11 +3,11 @@
 // interpolated into Q_k: an O(h^(k+1)) perturbation), zero on the Dirichlet DoFs.
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 template <int dim, class ExecSpace>
 typename MatrixFreeOperator<dim, ExecSpace>::Vector load_vector(
-    const ExecSpace& exec, const mesh::QkSpace<dim, ExecSpace>& space,
+    const ExecSpace& exec, const mesh::hex::QkSpace<dim, ExecSpace>& space,
     const typename MatrixFreeOperator<dim, ExecSpace>::Vector& f_nodal, GeometryMode geometry,
     int n_q) {
   typename MatrixFreeOperator<dim, ExecSpace>::Options o;
@@ -19,9 +19,9 @@ typename MatrixFreeOperator<dim, ExecSpace>::Vector load_vector(
   const auto cons = space.constrained_dofs();
   Kokkos::parallel_for(
       "amphora::load_vector::dirichlet",
-      RangePolicy<ExecSpace>(exec, 0, static_cast<int>(cons.extent(0))),
+      kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(cons.extent(0))),
       KOKKOS_LAMBDA(int i) { b(cons(i)) = 0.0; });
   return b;
 }
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

@@ -14,7 +14,7 @@
 #include "solvers/conjugate_gradient.hpp"
 #include "kernels/sumfac/cell_operator_kernel.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 /// The operators built in, one point functor each: mass (MassPoint), Laplace with an optional
 /// coefficient field (LaplacePoint), convection by a velocity field (ConvectionPoint), isotropic
@@ -27,7 +27,7 @@ class MatrixFreeOperator {
  public:
   using memory_space = typename ExecSpace::memory_space;
   using Vector = Kokkos::View<double*, memory_space>;
-  using Space = mesh::QkSpace<dim, ExecSpace>;
+  using Space = mesh::hex::QkSpace<dim, ExecSpace>;
 
   struct Options {
     OperatorKind kind = OperatorKind::laplace;
@@ -85,4 +85,4 @@ class MatrixFreeOperator {
   std::shared_ptr<const Impl> impl_;
 };
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

@@ -11,7 +11,7 @@
 #include "solvers/matrix_free/degree_dispatch.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 template <int dim, class ExecSpace>
 struct MatrixFreeOperator<dim, ExecSpace>::Impl {
@@ -88,8 +88,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const double* src = x.data();
     double* dst = y.data();
     const int comps = op.options_.components;
-    constexpr bool atomic = !runs_on_host_v<ExecSpace>;
-    if (atomic) blas1::fill(exec, y, 0.0);
+    constexpr bool atomic = !kernels::runs_on_host_v<ExecSpace>;
+    if (atomic) kernels::blas1::fill(exec, y, 0.0);
     const auto zero = first_touch_zero(op, y);
     kernels::sumfac::for_each_batch_coloured(
         exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
@@ -109,7 +109,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   template <class P, int n_p, int n_q>
   static double direction_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& z,
                                double beta, const Vector& p, const Vector& q) {
-    constexpr bool host = runs_on_host_v<ExecSpace>;
+    constexpr bool host = kernels::runs_on_host_v<ExecSpace>;
     if constexpr (!host) {
       return direction_in_passes(op, exec, z, beta, p, q);
     } else {  // (discarded on devices: the partial sums are read on the host)
@@ -138,7 +138,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       double constrained = 0.0;
       Kokkos::parallel_reduce(
           "amphora::MatrixFreeOperator::constrained_rows",
-          RangePolicy<ExecSpace>(exec, 0, nc * comps),
+          kernels::RangePolicy<ExecSpace>(exec, 0, nc * comps),
           KOKKOS_LAMBDA(int m, double& acc) {
             const long i = (m / nc) * n + cons(m % nc);
             acc += p(i) * (p(i) - q(i));
@@ -161,8 +161,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const K k = *static_cast<const K*>(op.impl_->generic.get());
     const int comps = op.options_.components;
     const long n = op.space_->n_dofs();
-    constexpr bool atomic = !runs_on_host_v<ExecSpace>;
-    blas1::fill(exec, y, 0.0);
+    constexpr bool atomic = !kernels::runs_on_host_v<ExecSpace>;
+    kernels::blas1::fill(exec, y, 0.0);
     double* out = y.data();
     kernels::sumfac::for_each_batch_team(
         exec, k.lattice, "amphora::MatrixFreeOperator::generic", k.scratch_bytes(),
@@ -194,7 +194,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     for (int d = 0; d < dim; ++d) nc *= k.lattice.cells[d];
     Kokkos::View<double*, memory_space> out("amphora::MatrixFreeOperator::generic_elements",
                                             static_cast<std::size_t>(nc) * nd * nd);
-    const bool host = runs_on_host_v<ExecSpace>;
+    const bool host = kernels::runs_on_host_v<ExecSpace>;
     Policy policy = host ? Policy(exec, nc, 1) : Policy(exec, nc, Kokkos::AUTO);
     policy.set_scratch_size(1, Kokkos::PerTeam(k.scratch_bytes()));
     Kokkos::parallel_for(
@@ -223,8 +223,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const auto k = kernel<P, n_p, n_q>(op);
     double* dst = d.data();
     const int comps = op.options_.components;
-    constexpr bool atomic = !runs_on_host_v<ExecSpace>;
-    if (atomic) blas1::fill(exec, d, 0.0);
+    constexpr bool atomic = !kernels::runs_on_host_v<ExecSpace>;
+    if (atomic) kernels::blas1::fill(exec, d, 0.0);
     kernels::sumfac::for_each_batch_coloured(
         exec, k.lattice, "amphora::MatrixFreeOperator::diagonal", first_touch_zero(op, d),
         KOKKOS_LAMBDA(int b) { k.template diagonal_batch<atomic>(dst, comps, b); });
@@ -240,7 +240,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     Kokkos::View<T*, memory_space> out("amphora::MatrixFreeOperator::elements",
                                        static_cast<std::size_t>(nb) * nd * nd);
     Kokkos::parallel_for(
-        "amphora::MatrixFreeOperator::element_matrices", RangePolicy<ExecSpace>(exec, 0, nb),
+        "amphora::MatrixFreeOperator::element_matrices",
+        kernels::RangePolicy<ExecSpace>(exec, 0, nb),
         KOKKOS_LAMBDA(int b) { k.element_matrix(b, out.data() + static_cast<long>(b) * nd * nd); });
     auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
     const auto& lat = k.lattice;
@@ -275,8 +276,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       Kokkos::View<T*, memory_space> pc("amphora::MatrixFreeOperator::point_coef",
                                         static_cast<std::size_t>(nb) * n_all * K::n_points);
       Kokkos::parallel_for(
-          "amphora::MatrixFreeOperator::setup_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
-          KOKKOS_LAMBDA(int b) {
+          "amphora::MatrixFreeOperator::setup_geometry",
+          kernels::RangePolicy<ExecSpace>(exec, 0, nb), KOKKOS_LAMBDA(int b) {
             typename K::Scratch s;
             kern.point_coefficients(b, s);
             T* dst = pc.data() + static_cast<long>(b) * n_all * K::n_points;
@@ -291,8 +292,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       const bool diagonal_only =
           P::structure == kernels::sumfac::PointStructure::laplace && n_keep != n_all;
       Kokkos::parallel_for(
-          "amphora::MatrixFreeOperator::setup_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
-          KOKKOS_LAMBDA(int b) {
+          "amphora::MatrixFreeOperator::setup_geometry",
+          kernels::RangePolicy<ExecSpace>(exec, 0, nb), KOKKOS_LAMBDA(int b) {
             typename K::Scratch s;
             kern.point_coefficients(b, s);
             const T w0(K::Eval::weight(kern.shape, 0));
@@ -311,22 +312,24 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       const auto lat = op.space_->lattice();
       int differing = 0;
       Kokkos::parallel_reduce(
-          "amphora::MatrixFreeOperator::uniform_geometry", RangePolicy<ExecSpace>(exec, 0, nb),
+          "amphora::MatrixFreeOperator::uniform_geometry",
+          kernels::RangePolicy<ExecSpace>(exec, 0, nb),
           KOKKOS_LAMBDA(int b, int& acc) {
             const int lanes = lat.active_lanes(b);
             double scale = 0.0;
-            for (int e = 0; e < n_keep; ++e) scale = math::max(scale, math::abs(bc(e)[0]));
+            for (int e = 0; e < n_keep; ++e)
+              scale = kernels::math::max(scale, kernels::math::abs(bc(e)[0]));
             for (int e = 0; e < n_keep; ++e)
               for (int l = 0; l < lanes; ++l)
-                acc +=
-                    math::abs(bc(static_cast<long>(b) * n_keep + e)[l] - bc(e)[0]) > 1e-12 * scale;
+                acc += kernels::math::abs(bc(static_cast<long>(b) * n_keep + e)[l] - bc(e)[0]) >
+                       1e-12 * scale;
           },
           differing);
       if (differing == 0) {
         Kokkos::View<T*, memory_space> once("amphora::MatrixFreeOperator::batch_coef", n_keep);
         Kokkos::parallel_for(
             "amphora::MatrixFreeOperator::uniform_geometry",
-            RangePolicy<ExecSpace>(exec, 0, n_keep),
+            kernels::RangePolicy<ExecSpace>(exec, 0, n_keep),
             KOKKOS_LAMBDA(int e) { once(e) = T(bc(e)[0]); });
         impl.batch_coef = once;
         impl.batch_coef_stride = 0;
@@ -354,7 +357,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     for (int comp = 0; comp < op.options_.components; ++comp) {
       const long off = comp * n;
       Kokkos::parallel_for(
-          "amphora::MatrixFreeOperator::constraints", RangePolicy<ExecSpace>(exec, 0, nc),
+          "amphora::MatrixFreeOperator::constraints", kernels::RangePolicy<ExecSpace>(exec, 0, nc),
           KOKKOS_LAMBDA(int i) { y(off + cons(i)) = from_x ? x(off + cons(i)) : value; });
     }
   }
@@ -444,4 +447,4 @@ std::size_t MatrixFreeOperator<dim, ExecSpace>::geometry_bytes() const {
   return bytes;
 }
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

@@ -7,7 +7,7 @@
 
 #include "solvers/matrix_free/matrix_free_operator_impl.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 /// Highest compiled degree of functor P: all of the table for mass and Laplace (the
 /// benchmarks' and solvers' operators), max_compiled_degree_general for the others.
@@ -73,13 +73,13 @@ void MatrixFreeOperator<dim, ExecSpace>::Impl::setup(const MatrixFreeOperator& o
   });
 }
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free
 
 /// Instances of functor template F (F<2>, F<3>) for every enabled backend.
-#define AMPHORA_MF_FUNCTOR_DIM(F, dim, E)                                                   \
-  template void amphora::solvers::MatrixFreeOperator<dim, E>::Impl::install<F<dim>>(        \
-      const MatrixFreeOperator<dim, E>&, const F<dim>&, MatrixFreeOperator<dim, E>::Impl&); \
-  template void amphora::solvers::MatrixFreeOperator<dim, E>::Impl::setup<F<dim>>(          \
+#define AMPHORA_MF_FUNCTOR_DIM(F, dim, E)                                                         \
+  template void amphora::solvers::matrix_free::MatrixFreeOperator<dim, E>::Impl::install<F<dim>>( \
+      const MatrixFreeOperator<dim, E>&, const F<dim>&, MatrixFreeOperator<dim, E>::Impl&);       \
+  template void amphora::solvers::matrix_free::MatrixFreeOperator<dim, E>::Impl::setup<F<dim>>(   \
       const MatrixFreeOperator<dim, E>&, MatrixFreeOperator<dim, E>::Impl&);
 #define AMPHORA_MF_FUNCTOR_E(F, E) AMPHORA_MF_FUNCTOR_DIM(F, 2, E) AMPHORA_MF_FUNCTOR_DIM(F, 3, E)
 #define AMPHORA_MF_FUNCTOR(F)                                \

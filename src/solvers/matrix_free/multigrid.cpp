@@ -6,7 +6,7 @@
 #include "kernels/blas1.hpp"
 #include "solvers/matrix_free/assembly.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 // A named namespace and a free function: CUDA's extended lambdas may not be defined in a
 // constructor (nor in the lambdas inside one) or in an anonymous namespace.
@@ -16,7 +16,8 @@ template <class ExecSpace, class Global, class Vector>
 void start_from_global_numbers(const ExecSpace& exec, const Global& global, const Vector& start) {
   Kokkos::parallel_for(
       "amphora::mg::start_vector",
-      RangePolicy<ExecSpace>(exec, 0, static_cast<int>(start.extent(0))), KOKKOS_LAMBDA(int i) {
+      kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(start.extent(0))),
+      KOKKOS_LAMBDA(int i) {
         const unsigned g = static_cast<unsigned>(global(i));
         start(i) = static_cast<double>((g * 2654435761u) % 1000003u) / 1000003.0 - 0.5;
       });
@@ -64,7 +65,7 @@ MatrixFreeMultigrid<dim, ExecSpace>::MatrixFreeMultigrid(const ExecSpace& exec,
     // lambda_max, so the same smoother, on any rank count.
     const auto global = sp.global_indices();
     const Vector start("amphora::mg::start", n);
-    blas1::reciprocal(exec, d);
+    kernels::blas1::reciprocal(exec, d);
     multigrid_detail::start_from_global_numbers(exec, global, start);
     L->smoother = std::make_unique<
         ChebyshevSmoother<ExecSpace, Operator, Vector, typename Space::InnerProduct>>(
@@ -89,7 +90,7 @@ MatrixFreeMultigrid<dim, ExecSpace>::MatrixFreeMultigrid(const ExecSpace& exec,
 
   // Coarse solver: BoomerAMG on the coarsest operator of the whole box, on every rank.
   const Space& cs = levels_.back()->op->space();
-  const mesh::QkSpace<dim, ExecSpace> whole(cs.global_mesh(), 1);
+  const mesh::hex::QkSpace<dim, ExecSpace> whole(cs.global_mesh(), 1);
   const MatrixFreeOperator<dim, ExecSpace> whole_op(whole, levels_.back()->op->local().options());
   coarse_ = std::make_unique<BoomerAMG>(assemble(exec, whole_op), options.coarse_amg);
   coarse_b_.assign(whole.n_dofs(), 0.0);
@@ -133,7 +134,7 @@ void MatrixFreeMultigrid<dim, ExecSpace>::vcycle(const ExecSpace& exec, std::siz
   const Space& coarse = C.op->space();
   L.smoother->smooth(exec, b, x, true);
   L.op->apply(exec, x, L.r);
-  blas1::axpby(exec, 1.0, b, -1.0, L.r);  // r = b - A x
+  kernels::blas1::axpby(exec, 1.0, b, -1.0, L.r);  // r = b - A x
   fine.update_ghosts(exec, L.r);
   transfers_[l].restrict_to_coarse(exec, L.r, C.b);
   coarse.compress_add(exec, C.b);
@@ -141,7 +142,7 @@ void MatrixFreeMultigrid<dim, ExecSpace>::vcycle(const ExecSpace& exec, std::siz
   coarse.update_ghosts(exec, C.x);
   transfers_[l].prolongate(exec, C.x, L.r);
   fine.compress_add(exec, L.r);
-  blas1::axpy(exec, 1.0, L.r, x);
+  kernels::blas1::axpy(exec, 1.0, L.r, x);
   L.smoother->smooth(exec, b, x, false);
 }
 
@@ -157,11 +158,11 @@ std::string MatrixFreeMultigrid<dim, ExecSpace>::describe() const {
   return s.str();
 }
 
-template class MatrixFreeMultigrid<2, DefaultExecSpace>;
-template class MatrixFreeMultigrid<3, DefaultExecSpace>;
+template class MatrixFreeMultigrid<2, kernels::DefaultExecSpace>;
+template class MatrixFreeMultigrid<3, kernels::DefaultExecSpace>;
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
 template class MatrixFreeMultigrid<2, Kokkos::Serial>;
 template class MatrixFreeMultigrid<3, Kokkos::Serial>;
 #endif
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

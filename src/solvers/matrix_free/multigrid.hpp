@@ -16,7 +16,7 @@
 #include "solvers/matrix_free/distributed_operator.hpp"
 #include "solvers/matrix_free/transfer.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 struct MultigridOptions {
   ChebyshevOptions smoother;
@@ -30,7 +30,7 @@ class MatrixFreeMultigrid {
  public:
   using Operator = DistributedOperator<dim, ExecSpace>;
   using Vector = typename Operator::Vector;
-  using Space = mesh::DistributedQkSpace<dim, ExecSpace>;
+  using Space = mesh::hex::DistributedQkSpace<dim, ExecSpace>;
 
   /// Levels below the (scalar, coefficient-free Laplace) operator `fine`, which must outlive this.
   MatrixFreeMultigrid(const ExecSpace& exec, const Operator& fine,
@@ -56,4 +56,4 @@ class MatrixFreeMultigrid {
   mutable std::vector<double> coarse_b_, coarse_x_;
 };
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

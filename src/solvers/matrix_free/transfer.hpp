@@ -12,13 +12,13 @@
 
 #include "mesh/hex/qk_space.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 template <int dim, class ExecSpace>
 class MatrixFreeTransfer {
  public:
   using Vector = Kokkos::View<double*, typename ExecSpace::memory_space>;
-  using Space = mesh::QkSpace<dim, ExecSpace>;
+  using Space = mesh::hex::QkSpace<dim, ExecSpace>;
 
   /// `fine` has the cells of `coarse` and a higher degree (p), or twice the cells per
   /// direction and both have degree 1 (h). Throws otherwise. Degree pairs compiled: k_f <= 2 k_c
@@ -37,4 +37,4 @@ class MatrixFreeTransfer {
   std::shared_ptr<const Impl> impl_;
 };
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free

@@ -11,7 +11,7 @@
 #include "solvers/matrix_free/degree_dispatch.hpp"
 #include "solvers/matrix_free/transfer.hpp"
 
-namespace amphora::solvers {
+namespace amphora::solvers::matrix_free {
 
 template <int dim, class ExecSpace>
 struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
@@ -26,7 +26,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
                                double* y) {
     Kokkos::parallel_for(
         "amphora::MatrixFreeTransfer::constraints",
-        RangePolicy<ExecSpace>(exec, 0, static_cast<int>(c.extent(0))),
+        kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(c.extent(0))),
         KOKKOS_LAMBDA(int i) { y[c(i)] = 0.0; });
   }
   std::shared_ptr<void> shape;
@@ -81,7 +81,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
   static void prolongate_impl(const Impl& impl, const ExecSpace& exec, const Vector& xc,
                               const Vector& xf) {
     const auto k = kernel<n_pc, n_pf>(impl);
-    constexpr bool atomic = !runs_on_host_v<ExecSpace>;
+    constexpr bool atomic = !kernels::runs_on_host_v<ExecSpace>;
     if (atomic) Kokkos::deep_copy(exec, xf, 0.0);
     const long nc = impl.coarse.n_dofs(), nf = impl.fine.n_dofs();
     for (int comp = 0; comp < impl.components; ++comp) {
@@ -99,7 +99,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
   static void restrict_impl(const Impl& impl, const ExecSpace& exec, const Vector& xf,
                             const Vector& xc) {
     const auto k = kernel<n_pc, n_pf>(impl);
-    constexpr bool atomic = !runs_on_host_v<ExecSpace>;
+    constexpr bool atomic = !kernels::runs_on_host_v<ExecSpace>;
     if (atomic) Kokkos::deep_copy(exec, xc, 0.0);
     const long nc = impl.coarse.n_dofs(), nf = impl.fine.n_dofs();
     for (int comp = 0; comp < impl.components; ++comp) {
@@ -193,4 +193,4 @@ void MatrixFreeTransfer<dim, ExecSpace>::restrict_to_coarse(const ExecSpace& exe
   impl_->restrict_to_coarse(*impl_, exec, fine, coarse);
 }
 
-}  // namespace amphora::solvers
+}  // namespace amphora::solvers::matrix_free
