@@ -51,9 +51,10 @@ void check(const Pool& p, int D, int expected) {
       for (int j = 0; j <= std::min(lowest, g.ny - 1); ++j) {
         const bool tall = band[col] > terrain[col] && j >= terrain[col] && j < band[col];
         const bool skipped = tall || p.type[g.index(i, j, k)] == MacCellType::solid;
-        if (j < lowest)
+        if (j < lowest) {
           EXPECT_TRUE(skipped) << "cell (" << i << ", " << j << ", " << k << ") below row "
                                << lowest;
+        }
         if (j == lowest && !skipped) bound_is_tight = true;
       }
     }

@@ -78,7 +78,9 @@ TEST(StepTransfers, TallCellWaterStepCopiesAtMostItsHostRebuild) {
   // the stencil to the host, by create_mirror_view_and_copy, which a host build does not see:
   // 37.3 copies a step, 1.1 MB, on an H100).
   const kernels::DeepCopyCount c = water_step_copies(4);
-  if (std::is_same_v<test::TestMemSpace, Kokkos::HostSpace>) EXPECT_LE(c.host_device(), 3 * 4);
+  if (std::is_same_v<test::TestMemSpace, Kokkos::HostSpace>) {
+    EXPECT_LE(c.host_device(), 3 * 4);
+  }
   EXPECT_GT(c.host_device(), 0);
 }
 

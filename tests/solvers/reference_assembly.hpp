@@ -14,9 +14,9 @@
 
 namespace amphora::test {
 
-/// The matrix of the bilinear form entry(ci, i, cj, j, phi, gphys, f) (components ci, cj of
-/// basis functions i, j; values phi, physical gradients gphys[i * dim + a], field values f at
-/// the point), times w det J, summed over points; comps blocked components.
+/// The matrix of the bilinear form entry(ci, i, cj, j, phi, gphys, f, det) (components ci, cj
+/// of basis functions i, j; values phi, physical gradients gphys[i * dim + a], field values f and
+/// det J at the point), times w det J, summed over points; comps blocked components.
 template <int dim, class Space, class Entry>
 Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gauss_lobatto,
                                           const std::vector<double>& field, int field_comps,
@@ -91,7 +91,7 @@ Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gaus
       for (int i = 0; i < m; ++i)
         for (int j = 0; j < m; ++j)
           elem[i * m + j] +=
-              w * det * entry(i / nd, i % nd, j / nd, j % nd, phi.data(), gphys.data(), f);
+              w * det * entry(i / nd, i % nd, j / nd, j % nd, phi.data(), gphys.data(), f, det);
     }
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < m; ++j)
@@ -117,7 +117,7 @@ Eigen::SparseMatrix<double> assemble_reference(const Space& space,
   const int field_comps = kind == solvers::matrix_free::OperatorKind::convection ? dim : 1;
   return assemble_form<dim>(
       space, n_q, gauss_lobatto, field, field_comps, 1,
-      [&](int, int i, int, int j, const double* phi, const double* g, const double* f) {
+      [&](int, int i, int, int j, const double* phi, const double* g, const double* f, double) {
         double v = 0.0;
         if (kind == solvers::matrix_free::OperatorKind::mass) {
           v = phi[i] * phi[j];
@@ -138,7 +138,7 @@ Eigen::SparseMatrix<double> assemble_elasticity_reference(const Space& space, in
                                                           double lambda, double mu) {
   return assemble_form<dim>(
       space, n_q, false, {}, 0, dim,
-      [&](int ci, int i, int cj, int j, const double*, const double* g, const double*) {
+      [&](int ci, int i, int cj, int j, const double*, const double* g, const double*, double) {
         // eps(phi_j e_cj) : eps(phi_i e_ci) = (d_ci dphi_j...) from the symmetric gradients
         double eps_u[dim][dim] = {}, eps_v[dim][dim] = {};
         for (int a = 0; a < dim; ++a) {
@@ -148,6 +148,56 @@ Eigen::SparseMatrix<double> assemble_elasticity_reference(const Space& space, in
         double v = lambda * g[j * dim + cj] * g[i * dim + ci];
         for (int a = 0; a < dim; ++a)
           for (int b = 0; b < dim; ++b) v += 2.0 * mu * eps_u[a][b] * eps_v[a][b];
+        return v;
+      });
+}
+
+/// The stabilised Oseen operator of kernels::sumfac::OseenPoint, written out term by term for
+/// test function (ci, i) and trial function (cj, j), components 0 .. dim-1 velocity, dim
+/// pressure; `field` the advecting velocity b (dim blocked).
+template <int dim, class Space, class Options>
+Eigen::SparseMatrix<double> assemble_oseen_reference(const Space& space, int n_q,
+                                                     const std::vector<double>& field,
+                                                     const Options& o) {
+  const int k = space.degree();
+  return assemble_form<dim>(
+      space, n_q, false, field, dim, dim + 1,
+      [&](int ci, int i, int cj, int j, const double* phi, const double* g, const double* b,
+          double det) {
+        const double h2 = std::pow(std::abs(det), 2.0 / dim) / (k * k);
+        double bb = 0.0, b_gi = 0.0, b_gj = 0.0;
+        for (int a = 0; a < dim; ++a)
+          bb += b[a] * b[a], b_gi += b[a] * g[i * dim + a], b_gj += b[a] * g[j * dim + a];
+        const double visc = 12.0 * o.nu / h2;
+        const double tau =
+            1.0 / std::sqrt(4.0 * o.dt_inverse * o.dt_inverse + 4.0 * bb / h2 + visc * visc);
+        const double alpha = o.history ? 1.0 : o.alpha;
+        // strong residual of the trial function: alpha u + b.grad u + grad p (history: u)
+        double r[3] = {0.0, 0.0, 0.0};
+        if (cj < dim)
+          r[cj] = alpha * phi[j] + (o.history ? 0.0 : b_gj);
+        else if (!o.history)
+          for (int a = 0; a < dim; ++a) r[a] = g[j * dim + a];
+        // the test function's stabilisation weight: b.grad v or grad q
+        double stab = 0.0;
+        if (ci < dim)
+          stab = b_gi * r[ci];
+        else
+          for (int a = 0; a < dim; ++a) stab += g[i * dim + a] * r[a];
+        double v = tau * stab;
+        if (ci < dim && cj < dim && ci == cj) v += alpha * phi[i] * phi[j];
+        if (o.history) return v;
+        if (ci < dim && cj < dim) {
+          if (ci == cj) {
+            v += phi[i] * b_gj;
+            for (int a = 0; a < dim; ++a) v += o.nu * g[i * dim + a] * g[j * dim + a];
+          }
+          v += o.grad_div * g[i * dim + ci] * g[j * dim + cj];
+        } else if (ci < dim) {
+          v -= g[i * dim + ci] * phi[j];  // -(div v, p)
+        } else if (cj < dim) {
+          v += phi[i] * g[j * dim + cj];  // (q, div u)
+        }
         return v;
       });
 }

@@ -20,7 +20,9 @@
 // All functions are templates on the number type (a SIMD batch of cells or double).
 #include <Kokkos_Core.hpp>
 
+#include "kernels/kokkos_compat.hpp"
 #include "kernels/sumfac/point_geometry.hpp"
+#include "kernels/sumfac/simd.hpp"
 
 namespace amphora::kernels::sumfac {
 
@@ -137,6 +139,114 @@ struct ElasticityPoint {
       for (int b = 0; b < dim; ++b) {
         T s = T(0.0);
         for (int a = 0; a < dim; ++a) s += sigma[i * dim + a] * c[1 + b * dim + a];
+        g_out[i * dim + b] = c[0] * s;
+      }
+  }
+};
+
+namespace detail {
+
+/// The SUPG/PSPG parameter from s = tau^-2, lane by lane (0 where s is not positive: the padding
+/// lanes of a batch).
+KOKKOS_INLINE_FUNCTION double tau_from(double s) { return s > 0.0 ? 1.0 / math::sqrt(s) : 0.0; }
+template <int W>
+KOKKOS_INLINE_FUNCTION Simd<W> tau_from(Simd<W> s) {
+  for (int l = 0; l < W; ++l) s[l] = tau_from(s[l]);
+  return s;
+}
+/// (|det J|^(1/dim) / k)^2, the squared length of a cell per degree (1 where det J is 0).
+template <int dim>
+KOKKOS_INLINE_FUNCTION double h_squared(double det, int k) {
+  const double v = math::fabs(det);
+  return v > 0.0 ? math::pow(v, 2.0 / dim) / (k * k) : 1.0;
+}
+template <int dim, int W>
+KOKKOS_INLINE_FUNCTION Simd<W> h_squared(Simd<W> det, int k) {
+  for (int l = 0; l < W; ++l) det[l] = h_squared<dim>(det[l], k);
+  return det;
+}
+
+}  // namespace detail
+
+/// The Oseen operator of one implicit step of incompressible flow with equal-order velocity and
+/// pressure, stabilised by SUPG/PSPG and grad-div (Tezduyar, Adv. Appl. Mech. 28, 1992; the form
+/// Lethe's matrix-free solver takes, Blais et al., J. Comput. Phys. 2020): dim + 1 coupled
+/// components (u, p) and an advecting velocity b, a field of dim components. For test
+/// functions (v, q):
+///   (v, alpha u + b.grad u) + nu (grad v, grad u) - (div v, p) + (q, div u)
+///     + gamma (div v, div u) + tau (b.grad v + grad q, alpha u + b.grad u + grad p),
+/// tau = ((2 / dt)^2 + (2 |b| / h)^2 + 9 (4 nu / h^2)^2)^(-1/2), h = |det J|^(1/dim) / k at the
+/// point (the viscous part of the strong residual is left out, as is usual for the Jacobian).
+/// alpha is the BDF coefficient over dt; dt_inverse enters tau only (0: steady).
+/// With `history` set, only the terms that multiply alpha u (alpha = 1): the right-hand side
+/// of the BDF step from the history or a force, (v + tau b.grad v, h) + tau (grad q, h).
+/// Coefficients: w det J, J^-1 (row-major), b, tau.
+template <int dim>
+struct OseenPoint {
+  static constexpr int n_components = dim + 1, n_fields = dim;
+  static constexpr int n_coefficients = 1 + dim * dim + dim + 1;
+  static constexpr bool reads_values = true, reads_gradients = true;
+  static constexpr bool writes_values = true, writes_gradients = true;
+  static constexpr PointStructure structure = PointStructure::general;
+  static constexpr bool per_cell_geometry = false;
+  double nu = 1.0, alpha = 0.0, gamma = 0.0, dt_inverse = 0.0;
+  int degree = 1;
+  bool history = false;
+
+  template <class T>
+  KOKKOS_INLINE_FUNCTION void coefficients(const T* J, const T& w, const T* f, T* c) const {
+    const T det = inverse<dim>(J, c + 1);
+    c[0] = w * det;
+    T bb = T(0.0);
+    for (int a = 0; a < dim; ++a) {
+      c[1 + dim * dim + a] = f ? f[a] : T(0.0);
+      bb += c[1 + dim * dim + a] * c[1 + dim * dim + a];
+    }
+    const T h2 = detail::h_squared<dim>(det, degree);
+    const T viscous = T(12.0 * nu) / h2;  // 3 * 4 nu / h^2, squared below: 9 (4 nu / h^2)^2
+    c[1 + dim * dim + dim] =
+        detail::tau_from(T(4.0 * dt_inverse * dt_inverse) + T(4.0) * bb / h2 + viscous * viscous);
+  }
+
+  template <class T, class C>
+  KOKKOS_INLINE_FUNCTION void at_point(const C& c, const T* u, const T* g, T* u_out,
+                                       T* g_out) const {
+    T grad[(dim + 1) * dim];  // physical gradients of u_0 .. u_dim-1, p
+    for (int i = 0; i <= dim; ++i)
+      for (int a = 0; a < dim; ++a) {
+        T s = T(0.0);
+        for (int b = 0; b < dim; ++b) s += g[i * dim + b] * c[1 + b * dim + a];
+        grad[i * dim + a] = s;
+      }
+    const T tau = c[1 + dim * dim + dim];
+    T conv[dim], r[dim], div = T(0.0);
+    for (int i = 0; i < dim; ++i) {
+      T s = T(0.0);
+      for (int a = 0; a < dim; ++a) s += c[1 + dim * dim + a] * grad[i * dim + a];
+      conv[i] = s;
+      div += grad[i * dim + i];
+    }
+    const T a_u = T(history ? 1.0 : alpha);
+    for (int i = 0; i < dim; ++i)
+      r[i] = history ? u[i] : a_u * u[i] + conv[i] + grad[dim * dim + i];
+    T flux[(dim + 1) * dim];  // physical gradient integrands, then mapped back below
+    for (int i = 0; i < dim; ++i) {
+      u_out[i] = c[0] * (history ? u[i] : a_u * u[i] + conv[i]);
+      for (int a = 0; a < dim; ++a) {
+        T s = tau * c[1 + dim * dim + a] * r[i];
+        if (!history) {
+          s += T(nu) * grad[i * dim + a];
+          if (a == i) s += T(gamma) * div - u[dim];
+        }
+        flux[i * dim + a] = s;
+      }
+    }
+    u_out[dim] = history ? T(0.0) : c[0] * div;
+    for (int a = 0; a < dim; ++a) flux[dim * dim + a] = tau * r[a];
+    for (int i = 0; i <= dim; ++i)  // times w det J, to the reference gradients: flux J^-T
+      for (int b = 0; b < dim; ++b) {
+        T s = T(0.0);
+        for (int a = 0; a < dim; ++a) s += flux[i * dim + a] * c[1 + b * dim + a];
         g_out[i * dim + b] = c[0] * s;
       }
   }

@@ -18,8 +18,9 @@ namespace amphora::solvers::matrix_free {
 
 /// The operators built in, one point functor each: mass (MassPoint), Laplace with an optional
 /// coefficient field (LaplacePoint), convection by a velocity field (ConvectionPoint), isotropic
-/// linear elasticity on dim components (ElasticityPoint).
-enum class OperatorKind { mass, laplace, convection, elasticity };
+/// linear elasticity on dim components (ElasticityPoint), the stabilised Oseen operator of an
+/// implicit flow step on dim + 1 components, velocity and pressure (OseenPoint).
+enum class OperatorKind { mass, laplace, convection, elasticity, oseen };
 using kernels::sumfac::GeometryMode;
 
 template <int dim, class ExecSpace>
@@ -35,13 +36,19 @@ class MatrixFreeOperator {
     kernels::sumfac::QuadratureKind quadrature = kernels::sumfac::QuadratureKind::gauss;
     int n_q = 0;  ///< points per direction; 0: degree + 1
     /// Blocked components: copies of a scalar operator (3 for the vector Laplace/mass of CEED
-    /// BP2/4/6), or dim for elasticity.
+    /// BP2/4/6), dim for elasticity, dim + 1 for Oseen.
     int components = 1;
     double lambda = 1.0, mu = 1.0;  ///< Lame constants (elasticity)
+    /// Oseen: viscosity, BDF coefficient over dt (of u), grad-div weight, 1 / dt in the SUPG/PSPG
+    /// parameter (0: steady); `history`: only the terms of alpha u, alpha = 1 (the step's
+    /// right-hand side from the history or a force). See kernels::sumfac::OseenPoint.
+    double nu = 1.0, alpha = 0.0, grad_div = 0.0, dt_inverse = 0.0;
+    bool history = false;
     /// Use the run-time-size kernel even where a compiled one exists (it serves the pairs the
     /// table lacks on its own; mass and constant-coefficient Laplace).
     bool generic_kernel = false;
-    /// Laplace: coefficient a(x) as a Q_k field (n_dofs); convection: velocity (dim blocked).
+    /// Laplace: coefficient a(x) as a Q_k field (n_dofs); convection and Oseen: the advecting
+    /// velocity (dim blocked).
     Vector field;
   };
 

@@ -32,10 +32,15 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
 
   /// The point functor of the options' kind, with its parameters.
   template <class P>
-  static P make_point(const Options& o) {
+  static P make_point(const Options& o, int degree) {
     P p;
     if constexpr (std::is_same_v<P, kernels::sumfac::ElasticityPoint<dim>>)
       p.lambda = o.lambda, p.mu = o.mu;
+    if constexpr (std::is_same_v<P, kernels::sumfac::OseenPoint<dim>>) {
+      p.nu = o.nu, p.alpha = o.alpha, p.gamma = o.grad_div, p.dt_inverse = o.dt_inverse;
+      p.history = o.history;
+      p.degree = degree;
+    }
     return p;
   }
 
@@ -47,6 +52,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       case OperatorKind::laplace: return f(kernels::sumfac::LaplacePoint<dim>{});
       case OperatorKind::convection: return f(kernels::sumfac::ConvectionPoint<dim>{});
       case OperatorKind::elasticity: return f(kernels::sumfac::ElasticityPoint<dim>{});
+      case OperatorKind::oseen: return f(kernels::sumfac::OseenPoint<dim>{});
     }
   }
 
@@ -55,7 +61,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     Kernel<P, n_p, n_q> k;
     k.lattice = op.space_->lattice();
     k.shape = *static_cast<const kernels::sumfac::ShapeData<n_p, n_q>*>(op.impl_->shape.get());
-    k.point = make_point<P>(op.options_);
+    k.point = make_point<P>(op.options_, op.space_->degree());
     k.mode = op.options_.geometry;
     k.n_coef = coefficient_count<P>(op.options_);
     k.batch_coef = op.impl_->batch_coef;
@@ -398,6 +404,16 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
     fail("elasticity keeps J^-1 at the points: use geometry 'stored' or 'on_the_fly'");
   if (options.kind == OperatorKind::elasticity && options.field.extent(0) > 0)
     fail("elasticity takes no field (constant Lame constants)");
+  if (options.kind == OperatorKind::oseen) {
+    if (options.components != dim + 1)
+      fail("Oseen acts on velocity and pressure: set components = " + std::to_string(dim + 1));
+    if (per_cell) fail("Oseen keeps J^-1 at the points: use geometry 'stored' or 'on_the_fly'");
+    if (options.field.extent(0) != static_cast<std::size_t>(dim * space.n_dofs()))
+      fail("Oseen needs an advecting velocity field of dim x n_dofs entries (zero: Stokes)");
+    if (!(options.nu > 0.0)) fail("Oseen needs a positive viscosity nu");
+    if (options.alpha < 0.0 || options.grad_div < 0.0 || options.dt_inverse < 0.0)
+      fail("Oseen's alpha, grad_div and dt_inverse must not be negative");
+  }
 
   auto impl = std::make_shared<Impl>();
   Impl::with_point(options.kind, [&](auto point) { Impl::install(*this, point, *impl); });
@@ -434,7 +450,7 @@ std::vector<double> MatrixFreeOperator<dim, ExecSpace>::element_matrices(
     const ExecSpace& exec) const {
   if (!impl_->elements)
     throw std::invalid_argument(
-        "MatrixFreeOperator::element_matrices: scalar operators only (not elasticity)");
+        "MatrixFreeOperator::element_matrices: scalar operators only (not elasticity or Oseen)");
   return impl_->elements(*this, exec);
 }
 

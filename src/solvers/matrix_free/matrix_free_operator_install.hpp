@@ -40,7 +40,7 @@ void MatrixFreeOperator<dim, ExecSpace>::Impl::install(const MatrixFreeOperator&
              std::to_string(K::max_nodes_1d - 1) +
              ", points <= " + std::to_string(K::max_points_1d) + ")");
       impl.generic = std::make_shared<K>(kernels::sumfac::make_generic_cell_kernel<dim, ExecSpace>(
-          op.space_->lattice(), op.space_->coordinates(), make_point<P>(options), k, n_q,
+          op.space_->lattice(), op.space_->coordinates(), make_point<P>(options, k), k, n_q,
           options.quadrature));
       impl.apply = &Impl::template generic_apply<P>;
       impl.diagonal = &Impl::template generic_diagonal<P>;
