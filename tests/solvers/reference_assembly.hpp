@@ -16,11 +16,14 @@ namespace amphora::test {
 
 /// The matrix of the bilinear form entry(ci, i, cj, j, phi, gphys, f, det) (components ci, cj
 /// of basis functions i, j; values phi, physical gradients gphys[i * dim + a], field values f and
-/// det J at the point), times w det J, summed over points; comps blocked components.
+/// det J at the point), times w det J, summed over points; comps blocked components, of which
+/// the first `constrained_comps` (-1: all) have the Dirichlet rows.
 template <int dim, class Space, class Entry>
 Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gauss_lobatto,
                                           const std::vector<double>& field, int field_comps,
-                                          int comps, const Entry& entry) {
+                                          int comps, const Entry& entry,
+                                          int constrained_comps = -1) {
+  if (constrained_comps < 0) constrained_comps = comps;
   const auto& lat = space.lattice();
   const int k = lat.degree, np = k + 1;
   const std::vector<double> nodes = kernels::sumfac::gauss_lobatto(np).points;
@@ -35,7 +38,7 @@ Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gaus
   std::vector<Eigen::Triplet<double>> triplets;
   int cell[3] = {0, 0, 0};
   const int n_cells = static_cast<int>(space.mesh().n_cells());
-  std::vector<long> dof(nd), node(nd);
+  std::vector<long> dof(nd), free_dof(nd), node(nd);
   const int m = comps * nd;
   std::vector<double> phi(nd), dphi(nd * dim), elem(m * m);
   for (int c = 0; c < n_cells; ++c) {
@@ -44,7 +47,8 @@ Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gaus
     for (int j = 0; j < nd; ++j) {
       int ijk[3] = {0, 0, 0}, r = j;
       for (int d = 0; d < dim; ++d) ijk[d] = cell[d] * k + r % np, r /= np;
-      dof[j] = lat.constrained(ijk) ? -1 : lat.dof_index(ijk);
+      free_dof[j] = lat.dof_index(ijk);
+      dof[j] = lat.constrained(ijk) ? -1 : free_dof[j];
       node[j] = lat.node_index(ijk);
     }
     std::fill(elem.begin(), elem.end(), 0.0);
@@ -93,14 +97,14 @@ Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gaus
           elem[i * m + j] +=
               w * det * entry(i / nd, i % nd, j / nd, j % nd, phi.data(), gphys.data(), f, det);
     }
+    auto row = [&](int i) { return (i / nd < constrained_comps ? dof : free_dof)[i % nd]; };
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < m; ++j)
-        if (dof[i % nd] >= 0 && dof[j % nd] >= 0)
-          triplets.emplace_back((i / nd) * n + dof[i % nd], (j / nd) * n + dof[j % nd],
-                                elem[i * m + j]);
+        if (row(i) >= 0 && row(j) >= 0)
+          triplets.emplace_back((i / nd) * n + row(i), (j / nd) * n + row(j), elem[i * m + j]);
   }
   auto cons = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space.constrained_dofs());
-  for (int c = 0; c < comps; ++c)
+  for (int c = 0; c < constrained_comps; ++c)
     for (std::size_t i = 0; i < cons.extent(0); ++i)
       triplets.emplace_back(c * n + cons(i), c * n + cons(i), 1.0);
   Eigen::SparseMatrix<double> A(comps * n, comps * n);
@@ -154,7 +158,7 @@ Eigen::SparseMatrix<double> assemble_elasticity_reference(const Space& space, in
 
 /// The stabilised Oseen operator of kernels::sumfac::OseenPoint, written out term by term for
 /// test function (ci, i) and trial function (cj, j), components 0 .. dim-1 velocity, dim
-/// pressure; `field` the advecting velocity b (dim blocked).
+/// pressure; `field` the advecting velocity b (dim blocked). The pressure has no Dirichlet rows.
 template <int dim, class Space, class Options>
 Eigen::SparseMatrix<double> assemble_oseen_reference(const Space& space, int n_q,
                                                      const std::vector<double>& field,
@@ -199,7 +203,8 @@ Eigen::SparseMatrix<double> assemble_oseen_reference(const Space& space, int n_q
           v += phi[i] * g[j * dim + cj];  // (q, div u)
         }
         return v;
-      });
+      },
+      dim);  // Dirichlet rows for the velocity only: the pressure is free on every face
 }
 
 }  // namespace amphora::test

@@ -74,12 +74,14 @@ struct BatchDofAccess {
       }
   }
 
-  /// u = src at the batch's nodes (DoF lattice); constrained DoFs read as zero.
-  KOKKOS_INLINE_FUNCTION void gather(const double* src, const BatchIndex& ix, T* u) const {
+  /// u = src at the batch's nodes (DoF lattice); constrained DoFs read as zero (unless
+  /// `constrained` is false: a component without Dirichlet conditions, as a pressure).
+  KOKKOS_INLINE_FUNCTION void gather(const double* src, const BatchIndex& ix, T* u,
+                                     bool constrained = true) const {
     const int k = lattice.degree;
     if (ix.fast) {
       for (int r = 0; r < n_rows; ++r) {
-        if (ix.row_constrained[r]) {
+        if (constrained && ix.row_constrained[r]) {
           for (int i = 0; i < n_p; ++i) u[r * n_p + i] = T(0.0);
           continue;
         }
@@ -101,8 +103,8 @@ struct BatchDofAccess {
             for (int l = 0; l < W; ++l) v[l] = p[l * k + i];
           }
         }
-        if (ix.x_lower) u[r * n_p][0] = 0.0;
-        if (ix.x_upper) u[r * n_p + n_p - 1][W - 1] = 0.0;
+        if (constrained && ix.x_lower) u[r * n_p][0] = 0.0;
+        if (constrained && ix.x_upper) u[r * n_p + n_p - 1][W - 1] = 0.0;
       }
       return;
     }
@@ -111,19 +113,22 @@ struct BatchDofAccess {
       for (int i = 0; i < n_p; ++i) {
         T& v = u[r * n_p + i];
         for (int l = 0; l < W; ++l)
-          v[l] = (ix.row_constrained[r] || ix.x_constrained[l][i]) ? 0.0 : p[ix.x[l][i]];
+          v[l] = constrained && (ix.row_constrained[r] || ix.x_constrained[l][i]) ? 0.0
+                                                                                  : p[ix.x[l][i]];
       }
     }
   }
 
   /// dst += u at the batch's nodes, inactive lanes skipped. Constrained DoFs may receive
-  /// contributions (fast batches on an x face): callers overwrite them afterwards.
+  /// contributions (fast batches on an x face): callers overwrite them afterwards. With
+  /// `constrained` false, every node receives its part.
   template <bool atomic>
-  KOKKOS_INLINE_FUNCTION void scatter_add(double* dst, const BatchIndex& ix, const T* u) const {
+  KOKKOS_INLINE_FUNCTION void scatter_add(double* dst, const BatchIndex& ix, const T* u,
+                                          bool constrained = true) const {
     const int k = lattice.degree;
     if (ix.fast) {
       for (int r = 0; r < n_rows; ++r) {
-        if (ix.row_constrained[r]) continue;
+        if (constrained && ix.row_constrained[r]) continue;
         double* p = dst + ix.rows[r] + ix.start;
         if constexpr (!atomic && n_p > 1) {
           if (k == n_p - 1) {
@@ -137,11 +142,12 @@ struct BatchDofAccess {
       return;
     }
     for (int r = 0; r < n_rows; ++r) {
-      if (ix.row_constrained[r]) continue;
+      if (constrained && ix.row_constrained[r]) continue;
       double* p = dst + ix.rows[r];
       for (int i = 0; i < n_p; ++i)
         for (int l = 0; l < ix.active; ++l)
-          if (!ix.x_constrained[l][i]) add<atomic>(p + ix.x[l][i], u[r * n_p + i][l]);
+          if (!constrained || !ix.x_constrained[l][i])
+            add<atomic>(p + ix.x[l][i], u[r * n_p + i][l]);
     }
   }
 

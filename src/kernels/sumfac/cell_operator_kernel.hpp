@@ -63,6 +63,9 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
   Kokkos::View<const double*, memory_space> coordinates;  ///< node lattice, blocked
   /// The functor's field (Point::n_fields blocked components) as a Q_k field; empty: none.
   Kokkos::View<const double*, memory_space> field;
+  /// Components 0 .. constrained_components - 1 take the lattice's Dirichlet constraints; the
+  /// rest (a pressure) are free on every face.
+  int constrained_components = 1 << 20;
 
   /// Scratch of one batch. Allocated on the stack of the calling thread.
   struct Scratch {
@@ -265,7 +268,8 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
                                      : static_cast<long>(k) * lattice.dofs[0] - ix.start;
       for (int block = 0; block < n_components; block += n_comp) {
         for (int comp = 0; comp < n_comp; ++comp)
-          gather(src + (block + comp) * n, ix, u + comp * n_dofs);
+          gather(src + (block + comp) * n, ix, u + comp * n_dofs,
+                 block + comp < constrained_components);
         if constexpr (Access::prefetch_rows) {
           // while the batch computes: the lines its scatter will add to, and the next batch's
           this->prefetch(dst + block * n, ix, true);
@@ -273,7 +277,8 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
         }
         apply_local(c, u, s);
         for (int comp = 0; comp < n_comp; ++comp)
-          this->template scatter_add<atomic>(dst + (block + comp) * n, ix, u + comp * n_dofs);
+          this->template scatter_add<atomic>(dst + (block + comp) * n, ix, u + comp * n_dofs,
+                                             block + comp < constrained_components);
       }
     }
   }
@@ -290,7 +295,8 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
     batch_index(b, ix);
     for (int block = 0; block < n_components; block += n_comp)
       for (int comp = 0; comp < n_comp; ++comp)
-        this->template scatter_add<atomic>(diag + (block + comp) * n, ix, d + comp * n_dofs);
+        this->template scatter_add<atomic>(diag + (block + comp) * n, ix, d + comp * n_dofs,
+                                           block + comp < constrained_components);
   }
 
   /// Columns of A_cell (cell-local, component-blocked, lexicographic) of batch b:

@@ -44,6 +44,9 @@ class MatrixFreeOperator {
     /// right-hand side from the history or a force). See kernels::sumfac::OseenPoint.
     double nu = 1.0, alpha = 0.0, grad_div = 0.0, dt_inverse = 0.0;
     bool history = false;
+    /// Components that take the space's Dirichlet constraints (the leading ones); -1: all, or
+    /// for Oseen the velocity's dim (the pressure is free on every face).
+    int constrained_components = -1;
     /// Use the run-time-size kernel even where a compiled one exists (it serves the pairs the
     /// table lacks on its own; mass and constant-coefficient Laplace).
     bool generic_kernel = false;
@@ -76,6 +79,8 @@ class MatrixFreeOperator {
   std::vector<double> element_matrices(const ExecSpace& exec) const;
 
   long size() const { return space_->n_dofs() * options_.components; }
+  /// Components with identity rows at the space's constrained DoFs (Options).
+  int constrained_components() const { return constrained_components_; }
   const Space& space() const { return *space_; }
   const Options& options() const { return options_; }
   int n_q() const { return n_q_; }
@@ -89,6 +94,7 @@ class MatrixFreeOperator {
   const Space* space_;
   Options options_;
   int n_q_;
+  int constrained_components_;
   std::shared_ptr<const Impl> impl_;
 };
 

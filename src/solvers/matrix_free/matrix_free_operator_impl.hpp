@@ -69,6 +69,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     k.point_coef = op.impl_->point_coef;
     k.coordinates = op.space_->coordinates();
     k.field = op.options_.field;
+    k.constrained_components = op.constrained_components_;
     return k;
   }
 
@@ -144,7 +145,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       double constrained = 0.0;
       Kokkos::parallel_reduce(
           "amphora::MatrixFreeOperator::constrained_rows",
-          kernels::RangePolicy<ExecSpace>(exec, 0, nc * comps),
+          kernels::RangePolicy<ExecSpace>(exec, 0, nc * op.constrained_components_),
           KOKKOS_LAMBDA(int m, double& acc) {
             const long i = (m / nc) * n + cons(m % nc);
             acc += p(i) * (p(i) - q(i));
@@ -360,7 +361,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     const long n = op.space_->n_dofs();
     const int nc = static_cast<int>(cons.extent(0));
     const bool from_x = x.extent(0) > 0;
-    for (int comp = 0; comp < op.options_.components; ++comp) {
+    for (int comp = 0; comp < op.constrained_components_; ++comp) {
       const long off = comp * n;
       Kokkos::parallel_for(
           "amphora::MatrixFreeOperator::constraints", kernels::RangePolicy<ExecSpace>(exec, 0, nc),
@@ -374,11 +375,16 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
     : space_(&space), options_(options) {
   const int k = space.degree();
   n_q_ = options.n_q > 0 ? options.n_q : k + 1;
+  constrained_components_ = options.constrained_components >= 0   ? options.constrained_components
+                            : options.kind == OperatorKind::oseen ? dim
+                                                                  : options.components;
   const auto& mesh = space.mesh();
   auto fail = [](const std::string& what) {
     throw std::invalid_argument("MatrixFreeOperator: " + what);
   };
   if (options.components < 1) fail("components must be at least 1");
+  if (constrained_components_ > options.components)
+    fail("constrained_components must be -1 (default) or 0 .. components");
   if (options.geometry == GeometryMode::cartesian && !mesh.cartesian())
     fail("geometry 'cartesian' needs an undeformed box; use 'affine', 'stored' or 'on_the_fly'");
   if (options.geometry == GeometryMode::affine && !mesh.affine())
@@ -418,6 +424,8 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
   auto impl = std::make_shared<Impl>();
   Impl::with_point(options.kind, [&](auto point) { Impl::install(*this, point, *impl); });
   impl_ = impl;
+  if (impl->generic && constrained_components_ != options.components)
+    fail("the generic kernel constrains every component: constrained_components must be -1");
   if (options.geometry == GeometryMode::on_the_fly || impl->generic) return;
   Impl::with_point(options.kind,
                    [&](auto point) { Impl::template setup<decltype(point)>(*this, *impl); });
