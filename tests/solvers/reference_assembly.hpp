@@ -14,10 +14,11 @@
 
 namespace amphora::test {
 
-/// The matrix of the bilinear form entry(ci, i, cj, j, phi, gphys, f, det) (components ci, cj
-/// of basis functions i, j; values phi, physical gradients gphys[i * dim + a], field values f and
-/// det J at the point), times w det J, summed over points; comps blocked components, of which
-/// the first `constrained_comps` (-1: all) have the Dirichlet rows.
+/// The matrix of the bilinear form entry(ci, i, cj, j, phi, gphys, f, det, lap) (components
+/// ci, cj of basis functions i, j; values phi, physical gradients gphys[i * dim + a], field
+/// values f, det J and the physical Laplacians lap (exact on affine cells) at the point), times w
+/// det J, summed over points; comps blocked components, of which the first `constrained_comps` (-1:
+/// all) have the Dirichlet rows.
 template <int dim, class Space, class Entry>
 Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gauss_lobatto,
                                           const std::vector<double>& field, int field_comps,
@@ -31,6 +32,12 @@ Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gaus
       gauss_lobatto ? kernels::sumfac::gauss_lobatto(n_q) : kernels::sumfac::gauss(n_q);
   const std::vector<double> val = kernels::sumfac::lagrange_values(nodes, q.points);
   const std::vector<double> der = kernels::sumfac::lagrange_derivatives(nodes, q.points);
+  // second derivatives: the derivative's nodal values differentiated again
+  const std::vector<double> dn = kernels::sumfac::lagrange_derivatives(nodes, nodes);
+  std::vector<double> der2(q.points.size() * np, 0.0);
+  for (std::size_t p = 0; p < q.points.size(); ++p)
+    for (int j = 0; j < np; ++j)
+      for (int m = 0; m < np; ++m) der2[p * np + j] += der[p * np + m] * dn[m * np + j];
   auto coords = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space.coordinates());
   const long n_nodes = lat.n_nodes(), n = lat.n_dofs();
   int nd = 1, nqt = 1;
@@ -92,10 +99,29 @@ Eigen::SparseMatrix<double> assemble_form(const Space& space, int n_q, bool gaus
           for (int b = 0; b < dim; ++b) s += inv[b * dim + a] * dphi[j * dim + b];
           gphys[j * dim + a] = s;
         }
+      // physical Laplacians J^-T H J^-1 (exact on affine cells: no derivative of J^-1)
+      std::vector<double> lap(nd, 0.0);
+      for (int j = 0; j < nd; ++j) {
+        int ji[3] = {0, 0, 0}, rj = j;
+        for (int d = 0; d < dim; ++d) ji[d] = rj % np, rj /= np;
+        for (int b = 0; b < dim; ++b)
+          for (int c2 = 0; c2 < dim; ++c2) {
+            double h = 1.0;
+            for (int d = 0; d < dim; ++d) {
+              const int order = (d == b) + (d == c2);
+              const std::vector<double>& t = order == 2 ? der2 : order == 1 ? der : val;
+              h *= t[qi[d] * np + ji[d]];
+            }
+            double metric = 0.0;
+            for (int a = 0; a < dim; ++a) metric += inv[b * dim + a] * inv[c2 * dim + a];
+            lap[j] += metric * h;
+          }
+      }
       for (int i = 0; i < m; ++i)
         for (int j = 0; j < m; ++j)
           elem[i * m + j] +=
-              w * det * entry(i / nd, i % nd, j / nd, j % nd, phi.data(), gphys.data(), f, det);
+              w * det *
+              entry(i / nd, i % nd, j / nd, j % nd, phi.data(), gphys.data(), f, det, lap.data());
     }
     auto row = [&](int i) { return (i / nd < constrained_comps ? dof : free_dof)[i % nd]; };
     for (int i = 0; i < m; ++i)
@@ -119,20 +145,20 @@ Eigen::SparseMatrix<double> assemble_reference(const Space& space,
                                                bool gauss_lobatto,
                                                const std::vector<double>& field) {
   const int field_comps = kind == solvers::matrix_free::OperatorKind::convection ? dim : 1;
-  return assemble_form<dim>(
-      space, n_q, gauss_lobatto, field, field_comps, 1,
-      [&](int, int i, int, int j, const double* phi, const double* g, const double* f, double) {
-        double v = 0.0;
-        if (kind == solvers::matrix_free::OperatorKind::mass) {
-          v = phi[i] * phi[j];
-        } else if (kind == solvers::matrix_free::OperatorKind::laplace) {
-          for (int a = 0; a < dim; ++a) v += g[i * dim + a] * g[j * dim + a];
-          v *= f[0];
-        } else {
-          for (int a = 0; a < dim; ++a) v += phi[i] * f[a] * g[j * dim + a];
-        }
-        return v;
-      });
+  return assemble_form<dim>(space, n_q, gauss_lobatto, field, field_comps, 1,
+                            [&](int, int i, int, int j, const double* phi, const double* g,
+                                const double* f, double, const double*) {
+                              double v = 0.0;
+                              if (kind == solvers::matrix_free::OperatorKind::mass) {
+                                v = phi[i] * phi[j];
+                              } else if (kind == solvers::matrix_free::OperatorKind::laplace) {
+                                for (int a = 0; a < dim; ++a) v += g[i * dim + a] * g[j * dim + a];
+                                v *= f[0];
+                              } else {
+                                for (int a = 0; a < dim; ++a) v += phi[i] * f[a] * g[j * dim + a];
+                              }
+                              return v;
+                            });
 }
 
 /// Isotropic linear elasticity: a(u, v) = int lambda div u div v + 2 mu eps(u) : eps(v), the
@@ -142,7 +168,8 @@ Eigen::SparseMatrix<double> assemble_elasticity_reference(const Space& space, in
                                                           double lambda, double mu) {
   return assemble_form<dim>(
       space, n_q, false, {}, 0, dim,
-      [&](int ci, int i, int cj, int j, const double*, const double* g, const double*, double) {
+      [&](int ci, int i, int cj, int j, const double*, const double* g, const double*, double,
+          const double*) {
         // eps(phi_j e_cj) : eps(phi_i e_ci) = (d_ci dphi_j...) from the symmetric gradients
         double eps_u[dim][dim] = {}, eps_v[dim][dim] = {};
         for (int a = 0; a < dim; ++a) {
@@ -167,7 +194,7 @@ Eigen::SparseMatrix<double> assemble_oseen_reference(const Space& space, int n_q
   return assemble_form<dim>(
       space, n_q, false, field, dim, dim + 1,
       [&](int ci, int i, int cj, int j, const double* phi, const double* g, const double* b,
-          double det) {
+          double det, const double* lap) {
         const double h2 = std::pow(std::abs(det), 2.0 / dim) / (k * k);
         double bb = 0.0, b_gi = 0.0, b_gj = 0.0;
         for (int a = 0; a < dim; ++a)
@@ -179,7 +206,8 @@ Eigen::SparseMatrix<double> assemble_oseen_reference(const Space& space, int n_q
         // strong residual of the trial function: alpha u + b.grad u + grad p (history: u)
         double r[3] = {0.0, 0.0, 0.0};
         if (cj < dim)
-          r[cj] = alpha * phi[j] + (o.history ? 0.0 : b_gj);
+          r[cj] = alpha * phi[j] +
+                  (o.history ? 0.0 : b_gj - (o.viscous_residual ? o.nu * lap[j] : 0.0));
         else if (!o.history)
           for (int a = 0; a < dim; ++a) r[a] = g[j * dim + a];
         // the test function's stabilisation weight: b.grad v or grad q

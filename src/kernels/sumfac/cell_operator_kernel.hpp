@@ -167,6 +167,10 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
     }
     const bool cell = per_cell();
     const long stride = cell ? 1 : n_points;  // [coef] per cell, [coef][point] stored
+    constexpr int n_lap = laplacian_components_v<Point>;
+    T lap[n_lap > 0 ? n_lap * n_points : 1];
+    if constexpr (n_lap > 0)
+      if (point.needs_laplacian()) laplacians(c, lap, s);
     for (int q = 0; q < n_points; ++q) {
       T val[n_comp], g[n_comp * dim], val_out[n_comp], g_out[n_comp * dim];
       for (int comp = 0; comp < n_comp; ++comp) {
@@ -174,7 +178,14 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
         if constexpr (Point::reads_values) val[comp] = v[q];
         for (int a = 0; a < dim; ++a) g[comp * dim + a] = s.grad[(comp * dim + a) * n_points + q];
       }
-      point.at_point(PointCoefficients<T>{c + (cell ? 0 : q), stride}, val, g, val_out, g_out);
+      const PointCoefficients<T> pc{c + (cell ? 0 : q), stride};
+      if constexpr (n_lap > 0) {
+        T lq[n_lap];
+        for (int i = 0; i < n_lap; ++i) lq[i] = lap[i * n_points + q];
+        point.at_point(pc, val, g, lq, val_out, g_out);
+      } else {
+        point.at_point(pc, val, g, val_out, g_out);
+      }
       const T w = cell ? T(Eval::weight(shape, q)) : T(1.0);
       for (int comp = 0; comp < n_comp; ++comp) {
         T* const out = collocated ? u + comp * n_dofs : s.v + comp * n_points;
@@ -191,6 +202,33 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
             shape, s.grad + comp * dim * n_points, out);
       if (!collocated) Eval::integrate_values(shape, out, u + comp * n_dofs, s.tmp);
     }
+  }
+
+  /// lap[i * n_points + q] = the physical Laplacian of component i at point q, from the
+  /// reference gradients in s.grad (stored or on-the-fly coefficients): the physical gradient
+  /// J^-T grad_xi u at the points, differentiated again through the points' collocation
+  /// derivative (exact on affine cells; on curved ones J^-1 is interpolated at the points, as
+  /// deal.II's hessians are without jacobian gradients).
+  KOKKOS_INLINE_FUNCTION void laplacians(const T* c, T* lap, Scratch& s) const {
+    constexpr int n_lap = laplacian_components_v<Point>;
+    T G[n_points], H[dim * n_points];
+    for (int q = 0; q < n_lap * n_points; ++q) lap[q] = T(0.0);
+    for (int i = 0; i < n_lap; ++i)
+      for (int a = 0; a < dim; ++a) {
+        for (int q = 0; q < n_points; ++q) {
+          const PointCoefficients<T> pc{c + q, n_points};
+          T v = T(0.0);
+          for (int b = 0; b < dim; ++b)
+            v += s.grad[(i * dim + b) * n_points + q] * Point::inverse_jacobian(pc, b, a);
+          G[q] = v;
+        }
+        Eval::gradients(shape, G, H);
+        for (int q = 0; q < n_points; ++q) {
+          const PointCoefficients<T> pc{c + q, n_points};
+          for (int b = 0; b < dim; ++b)
+            lap[i * n_points + q] += H[b * n_points + q] * Point::inverse_jacobian(pc, b, a);
+        }
+      }
   }
 
   /// Entry e of the point coefficients at point q (per-cell modes: times the weight; the

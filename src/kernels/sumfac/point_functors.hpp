@@ -17,7 +17,13 @@
 //                                the integrands out: the operator is
 //                                  (A u)_i = sum_q u_out . phi_i + g_out . grad_xi phi_i
 //
+// A functor that also needs the physical Laplacian of its first dim components (the viscous
+// term of a strong residual) says so with laplacian_components = dim, gives J^-1 at the point
+// through inverse_jacobian(c, b, a) = (J^-1)_ba, and takes at_point(c, u, g, lap, u_out, g_out).
+//
 // All functions are templates on the number type (a SIMD batch of cells or double).
+#include <type_traits>
+
 #include <Kokkos_Core.hpp>
 
 #include "kernels/kokkos_compat.hpp"
@@ -25,6 +31,15 @@
 #include "kernels/sumfac/simd.hpp"
 
 namespace amphora::kernels::sumfac {
+
+/// Components whose physical Laplacian functor P reads at the points (0: none).
+template <class P, class = void>
+struct laplacian_components : std::integral_constant<int, 0> {};
+template <class P>
+struct laplacian_components<P, std::void_t<decltype(P::laplacian_components)>>
+    : std::integral_constant<int, P::laplacian_components> {};
+template <class P>
+inline constexpr int laplacian_components_v = laplacian_components<P>::value;
 
 /// Fast paths of the cell loop through the 1D matrices (Kronecker sums and products) or the
 /// diagonal's 1D tensors: only for operators of this exact form.
@@ -185,6 +200,7 @@ template <int dim>
 struct OseenPoint {
   static constexpr int n_components = dim + 1, n_fields = dim;
   static constexpr int n_coefficients = 1 + dim * dim + dim + 1;
+  static constexpr int laplacian_components = dim;
   static constexpr bool reads_values = true, reads_gradients = true;
   static constexpr bool writes_values = true, writes_gradients = true;
   static constexpr PointStructure structure = PointStructure::general;
@@ -192,6 +208,15 @@ struct OseenPoint {
   double nu = 1.0, alpha = 0.0, gamma = 0.0, dt_inverse = 0.0;
   int degree = 1;
   bool history = false;
+  /// The strong residual includes -nu lap u (consistent at every degree; without it the
+  /// stabilisation perturbs the solution by O(h^2) where viscosity dominates the cell).
+  bool viscous_residual = true;
+
+  KOKKOS_INLINE_FUNCTION bool needs_laplacian() const { return viscous_residual && !history; }
+  template <class C>
+  KOKKOS_INLINE_FUNCTION static auto inverse_jacobian(const C& c, int b, int a) {
+    return c[1 + b * dim + a];
+  }
 
   template <class T>
   KOKKOS_INLINE_FUNCTION void coefficients(const T* J, const T& w, const T* f, T* c) const {
@@ -209,7 +234,7 @@ struct OseenPoint {
   }
 
   template <class T, class C>
-  KOKKOS_INLINE_FUNCTION void at_point(const C& c, const T* u, const T* g, T* u_out,
+  KOKKOS_INLINE_FUNCTION void at_point(const C& c, const T* u, const T* g, const T* lap, T* u_out,
                                        T* g_out) const {
     T grad[(dim + 1) * dim];  // physical gradients of u_0 .. u_dim-1, p
     for (int i = 0; i <= dim; ++i)
@@ -227,8 +252,10 @@ struct OseenPoint {
       div += grad[i * dim + i];
     }
     const T a_u = T(history ? 1.0 : alpha);
-    for (int i = 0; i < dim; ++i)
+    for (int i = 0; i < dim; ++i) {
       r[i] = history ? u[i] : a_u * u[i] + conv[i] + grad[dim * dim + i];
+      if (needs_laplacian()) r[i] -= T(nu) * lap[i];
+    }
     T flux[(dim + 1) * dim];  // physical gradient integrands, then mapped back below
     for (int i = 0; i < dim; ++i) {
       u_out[i] = c[0] * (history ? u[i] : a_u * u[i] + conv[i]);

@@ -2,6 +2,7 @@
 // L2 and H1-seminorm errors of a Q_k field against an exact solution, by Gauss quadrature with
 // k + 2 points per direction on the (possibly curved) cells. `Exact` is a device-callable type
 // with value(const double* x) and gradient(const double* x, double* g).
+#include <algorithm>
 #include <cmath>
 
 #include "kernels/sumfac/cell_operator_kernel.hpp"
@@ -11,19 +12,25 @@
 namespace amphora::solvers::matrix_free {
 
 struct ErrorNorms {
-  double l2 = 0.0;      ///< ||u_h - u||_L2
-  double h1semi = 0.0;  ///< ||grad(u_h - u)||_L2
+  double l2 = 0.0;        ///< ||u_h - u||_L2
+  double h1semi = 0.0;    ///< ||grad(u_h - u)||_L2
+  double integral = 0.0;  ///< int (u_h - u) dx
+  double volume = 0.0;    ///< |Omega|
+  /// ||u_h - u - c||_L2 with the best constant c (a pressure known up to a constant).
+  double l2_mean_free() const {
+    return std::sqrt(std::max(0.0, l2 * l2 - integral * integral / volume));
+  }
 };
 
 // A named function per degree: CUDA's extended lambdas may not be defined inside a generic
 // lambda (the degree dispatch's).
 namespace error_norms_detail {
-/// The squared L2 and H1-seminorm errors (l2, h1) with n_p nodes and n_q Gauss points per
-/// direction.
+/// The squared L2 and H1-seminorm errors (l2, h1), the error's integral and the volume with n_p
+/// nodes and n_q Gauss points per direction.
 template <int dim, int n_p, int n_q, class ExecSpace, class Exact>
 void squared_errors(const ExecSpace& exec, const mesh::hex::QkSpace<dim, ExecSpace>& space,
                     const Kokkos::View<double*, typename ExecSpace::memory_space>& u,
-                    const Exact& exact, double& l2, double& h1) {
+                    const Exact& exact, double& l2, double& h1, double& mean, double& vol) {
   using K = kernels::sumfac::CellOperatorKernel<dim, n_p, n_q, ExecSpace,
                                                 kernels::sumfac::LaplacePoint<dim>>;
   using T = typename K::T;
@@ -34,7 +41,7 @@ void squared_errors(const ExecSpace& exec, const mesh::hex::QkSpace<dim, ExecSpa
   const double* src = u.data();
   Kokkos::parallel_reduce(
       "amphora::error_norms", kernels::RangePolicy<ExecSpace>(exec, 0, kern.lattice.n_batches()),
-      KOKKOS_LAMBDA(int b, double& e0, double& e1) {
+      KOKKOS_LAMBDA(int b, double& e0, double& e1, double& e2, double& e3) {
         typename K::Scratch s;
         T uloc[K::n_dofs], x[dim * K::n_points];
         const long n_nodes = kern.lattice.n_nodes();
@@ -66,10 +73,12 @@ void squared_errors(const ExecSpace& exec, const mesh::hex::QkSpace<dim, ExecSpa
             }
             e0 += w * det[l] * d0 * d0;
             e1 += w * det[l] * d1;
+            e2 += w * det[l] * d0;
+            e3 += w * det[l];
           }
         }
       },
-      l2, h1);
+      l2, h1, mean, vol);
 }
 }  // namespace error_norms_detail
 
@@ -82,7 +91,7 @@ ErrorNorms error_norms(const ExecSpace& exec, const mesh::hex::QkSpace<dim, Exec
   dispatch_degree(k, k + 2, [&](auto np_c, auto nq_c) {
     double l2 = 0.0, h1 = 0.0;
     error_norms_detail::squared_errors<dim, decltype(np_c)::value, decltype(nq_c)::value>(
-        exec, space, u, exact, l2, h1);
+        exec, space, u, exact, l2, h1, result.integral, result.volume);
     result.l2 = std::sqrt(l2);
     result.h1semi = std::sqrt(h1);
   });

@@ -44,6 +44,9 @@ class MatrixFreeOperator {
     /// right-hand side from the history or a force). See kernels::sumfac::OseenPoint.
     double nu = 1.0, alpha = 0.0, grad_div = 0.0, dt_inverse = 0.0;
     bool history = false;
+    /// Oseen: -nu lap u in the strong residual of the stabilisation (consistent; off: the
+    /// usual simplification, O(h^2) where viscosity dominates a cell).
+    bool viscous_residual = true;
     /// Components that take the space's Dirichlet constraints (the leading ones); -1: all, or
     /// for Oseen the velocity's dim (the pressure is free on every face).
     int constrained_components = -1;
@@ -59,6 +62,9 @@ class MatrixFreeOperator {
 
   /// y = A x (constrained rows: y_i = x_i).
   void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const;
+  /// y = A x of the operator without Dirichlet rows or columns: with x holding Dirichlet values,
+  /// the free rows give what they contribute (the lifting of inhomogeneous conditions).
+  void apply_unconstrained(const ExecSpace& exec, const Vector& x, const Vector& y) const;
   /// CG's direction step in one sweep over the cells: p = z + beta p (p = z if beta is 0),
   /// q = A p; returns p.q over all entries. The update runs on the nodes a row of batches reads
   /// first and the product on those it writes last, while their lines are in cache

@@ -22,6 +22,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   std::shared_ptr<void> generic;  // GenericCellKernel<dim, ExecSpace, P>, where no compiled fits
   void (*apply)(const MatrixFreeOperator&, const ExecSpace&, const Vector&,
                 const Vector&) = nullptr;
+  void (*apply_unconstrained)(const MatrixFreeOperator&, const ExecSpace&, const Vector&,
+                              const Vector&) = nullptr;
   double (*direction)(const MatrixFreeOperator&, const ExecSpace&, const Vector&, double,
                       const Vector&, const Vector&) = &direction_in_passes;
   void (*diagonal)(const MatrixFreeOperator&, const ExecSpace&, const Vector&) = nullptr;
@@ -39,6 +41,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     if constexpr (std::is_same_v<P, kernels::sumfac::OseenPoint<dim>>) {
       p.nu = o.nu, p.alpha = o.alpha, p.gamma = o.grad_div, p.dt_inverse = o.dt_inverse;
       p.history = o.history;
+      p.viscous_residual = o.viscous_residual;
       p.degree = degree;
     }
     return p;
@@ -88,10 +91,12 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     return P::n_coefficients;
   }
 
-  template <class P, int n_p, int n_q>
+  /// y = A x; unconstrained: without Dirichlet rows and columns.
+  template <class P, int n_p, int n_q, bool constrained = true>
   static void apply_impl(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
                          const Vector& y) {
-    const auto k = kernel<P, n_p, n_q>(op);
+    auto k = kernel<P, n_p, n_q>(op);
+    if (!constrained) k.constrained_components = 0;
     const double* src = x.data();
     double* dst = y.data();
     const int comps = op.options_.components;
@@ -101,7 +106,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     kernels::sumfac::for_each_batch_coloured(
         exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
         KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<atomic>(src, dst, comps, b0, b1); });
-    copy_constrained(op, exec, x, y);
+    if (constrained) copy_constrained(op, exec, x, y);
   }
 
   /// apply_direction as three passes: the update, the application, the product.
@@ -435,6 +440,15 @@ template <int dim, class ExecSpace>
 void MatrixFreeOperator<dim, ExecSpace>::apply(const ExecSpace& exec, const Vector& x,
                                                const Vector& y) const {
   impl_->apply(*this, exec, x, y);
+}
+
+template <int dim, class ExecSpace>
+void MatrixFreeOperator<dim, ExecSpace>::apply_unconstrained(const ExecSpace& exec, const Vector& x,
+                                                             const Vector& y) const {
+  if (!impl_->apply_unconstrained)
+    throw std::invalid_argument(
+        "MatrixFreeOperator::apply_unconstrained: compiled kernels only (not the generic one)");
+  impl_->apply_unconstrained(*this, exec, x, y);
 }
 
 template <int dim, class ExecSpace>

@@ -57,6 +57,7 @@ void MatrixFreeOperator<dim, ExecSpace>::Impl::install(const MatrixFreeOperator&
     impl.shape = std::make_shared<kernels::sumfac::ShapeData<n_p, nq>>(
         kernels::sumfac::ShapeData<n_p, nq>::create(options.quadrature));
     impl.apply = &Impl::template apply_impl<P, n_p, nq>;
+    impl.apply_unconstrained = &Impl::template apply_impl<P, n_p, nq, false>;
     if constexpr (P::structure != kernels::sumfac::PointStructure::general)
       impl.direction = &Impl::template direction_impl<P, n_p, nq>;
     impl.diagonal = &Impl::template diagonal_impl<P, n_p, nq>;

@@ -1,0 +1,322 @@
+#pragma once
+// Incompressible Navier-Stokes on equal-order continuous Q_k velocity and pressure, stabilised
+// by SUPG/PSPG and grad-div (docs/ins.md): variable-step BDF2 (BDF1 for the first step), one
+// linear Oseen problem per step with the advecting velocity extrapolated from the last two
+// steps, or Picard iterations to a steady state. Each linear problem is solved by GMRES with the
+// coupled point Jacobi preconditioner; every operator is a matrix-free point functor on the
+// device. State: (dim + 1) n_dofs blocked, velocity components then pressure.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Kokkos_Core.hpp>
+
+#include "kernels/blas1.hpp"
+#include "kernels/host_vector.hpp"
+#include "mesh/hex/qk_space.hpp"
+#include "solvers/gmres.hpp"
+#include "solvers/matrix_free/matrix_free_operator.hpp"
+
+namespace amphora::physics::ins_fem {
+
+struct InsOptions {
+  double nu = 0.01;       ///< kinematic viscosity
+  double grad_div = 0.0;  ///< grad-div weight gamma
+  /// (2 / dt)^2 in the SUPG/PSPG parameter tau. Off by default: with it, tau ~ dt / 2 shrinks
+  /// with the step and the pressure stabilisation with it (Bochev, Gunzburger & Shadid 2004,
+  /// CMAME 193); the 2D Taylor-Green vortex then lost up to one order of convergence in space
+  /// (tests/physics/test_ins_fem.cpp; docs/ins.md).
+  bool transient_tau = false;
+  double tolerance = 1e-9;  ///< GMRES: relative reduction of each step's residual
+  int max_iterations = 5000;
+  int restart = 60;
+  solvers::matrix_free::GeometryMode geometry = solvers::matrix_free::GeometryMode::stored;
+};
+
+/// What one step (or one Picard iteration) of the solver did.
+struct InsStepReport {
+  int linear_iterations = 0;
+  bool converged = false;
+  double residual = 0.0;  ///< final linear residual
+};
+
+template <int dim, class ExecSpace>
+class InsSolver {
+ public:
+  using Space = mesh::hex::QkSpace<dim, ExecSpace>;
+  using Operator = solvers::matrix_free::MatrixFreeOperator<dim, ExecSpace>;
+  using Vector = typename Operator::Vector;
+
+  /// The pressure is fixed up to a constant where no face is Neumann (periodic or walls all
+  /// round): its mean is then kept zero and each step's right-hand side made consistent.
+  InsSolver(const mesh::hex::StructuredHexMesh<dim>& mesh, int degree, const InsOptions& options)
+      : space_(mesh, degree), options_(options), n_(space_.n_dofs()) {
+    if (!(options.nu > 0.0))
+      throw std::invalid_argument("ins_fem: viscosity nu must be positive, got " +
+                                  std::to_string(options.nu));
+    pressure_null_space_ = true;
+    for (int f = 0; f < 2 * dim; ++f)
+      if (mesh.faces[f] == mesh::hex::FaceCondition::neumann) pressure_null_space_ = false;
+    x_ = Vector("amphora::ins_fem::state", (dim + 1) * n_);
+    u_old_ = Vector("amphora::ins_fem::u_old", dim * n_);
+    field_ = Vector("amphora::ins_fem::advecting", dim * n_);
+    history_ = Vector("amphora::ins_fem::history", (dim + 1) * n_);
+    rhs_ = Vector("amphora::ins_fem::rhs", (dim + 1) * n_);
+    delta_ = Vector("amphora::ins_fem::delta", (dim + 1) * n_);
+    diagonal_ = Vector("amphora::ins_fem::diagonal", (dim + 1) * n_);
+    make_diagnostic_operators();
+  }
+
+  const Space& space() const { return space_; }
+  const InsOptions& options() const { return options_; }
+  long n_dofs() const { return n_; }
+  /// The state (velocity, pressure), blocked; Dirichlet values are those it holds on
+  /// constrained velocity DoFs, kept from set_state on.
+  const Vector& state() const { return x_; }
+  Vector velocity() const { return Kokkos::subview(x_, Kokkos::make_pair(0L, dim * n_)); }
+  Vector pressure() const {
+    return Kokkos::subview(x_, Kokkos::make_pair(dim * n_, (dim + 1) * n_));
+  }
+  long steps() const { return steps_; }
+
+  /// Sets the state from a host vector of (dim + 1) n_dofs entries; restarts the BDF history.
+  void set_state(const std::vector<double>& state) {
+    if (static_cast<long>(state.size()) != (dim + 1) * n_)
+      throw std::invalid_argument("ins_fem: state needs (dim + 1) x n_dofs entries");
+    Kokkos::deep_copy(x_, kernels::to_view<typename ExecSpace::memory_space>(state));
+    steps_ = 0;
+  }
+  /// Restores the two-step history (checkpoints): state, previous velocity and step.
+  void set_history(const std::vector<double>& u_old, double dt_old, long steps) {
+    Kokkos::deep_copy(u_old_, kernels::to_view<typename ExecSpace::memory_space>(u_old));
+    dt_old_ = dt_old, steps_ = steps;
+  }
+  const Vector& previous_velocity() const { return u_old_; }
+  double previous_dt() const { return dt_old_; }
+
+  /// A body force amplitude(t) F(x), F with dim n_dofs entries (host); set once.
+  void set_force(const std::vector<double>& force) {
+    force_ = kernels::to_view<typename ExecSpace::memory_space>(force);
+  }
+
+  /// One time step of length dt to time t + dt; force_amplitude scales F at t + dt.
+  InsStepReport step(double dt, double force_amplitude = 0.0) {
+    const ExecSpace exec;
+    const bool bdf2 = steps_ > 0;
+    const double w = bdf2 ? dt / dt_old_ : 0.0;  // BDF2 with variable steps
+    const double a0 = bdf2 ? (1.0 + 2.0 * w) / (1.0 + w) : 1.0;
+    const double a1 = bdf2 ? -(1.0 + w) : -1.0, a2 = bdf2 ? w * w / (1.0 + w) : 0.0;
+    const Vector u = velocity();
+    extrapolate(exec, u, bdf2 ? w : 0.0);
+    form_history(exec, u, -a1 / dt, -a2 / dt, force_amplitude);
+    typename Operator::Options o = oseen_options(a0 / dt, 1.0 / dt);
+    const Operator A(space_, o);
+    o.history = true;
+    const Operator H(space_, o);
+    H.apply(exec, history_, rhs_);
+    kernels::blas1::copy(exec, u, u_old_);  // u^(n-1) <- u^n; the guess: extrapolated velocity
+    kernels::blas1::copy(exec, field_, u);
+    const InsStepReport report = solve(exec, A);
+    dt_old_ = dt;
+    ++steps_;
+    return report;
+  }
+
+  /// Picard iterations to the steady state from the current state (force F at
+  /// force_amplitude): stops when the velocity changes by less than `tolerance` relative to its
+  /// norm. Restarts the BDF history.
+  InsStepReport solve_steady(double tolerance, int max_picard, int* picard = nullptr,
+                             double force_amplitude = 1.0) {
+    steps_ = 0;
+    const ExecSpace exec;
+    InsStepReport total;
+    const Vector u = velocity();
+    for (int it = 0; it < max_picard; ++it) {
+      kernels::blas1::copy(exec, u, field_);
+      form_history(exec, u, 0.0, 0.0, force_amplitude);
+      typename Operator::Options o = oseen_options(0.0, 0.0);
+      const Operator A(space_, o);
+      o.history = true;
+      const Operator H(space_, o);
+      H.apply(exec, history_, rhs_);
+      const InsStepReport r = solve(exec, A);
+      total.linear_iterations += r.linear_iterations;
+      total.residual = r.residual;
+      kernels::blas1::axpy(exec, -1.0, u, field_);  // field <- u_old - u_new
+      const double change = kernels::blas1::norm2(exec, field_);
+      const double size = kernels::blas1::norm2(exec, u);
+      if (picard) *picard = it + 1;
+      if (!r.converged) return total;
+      if (change <= tolerance * size) {
+        total.converged = true;
+        return total;
+      }
+    }
+    return total;
+  }
+
+  // Diagnostics, as integrals over the domain divided by its volume.
+
+  /// E_k = 1 / |Omega| int |u|^2 / 2.
+  double kinetic_energy() const { return 0.5 * quadratic(*mass_) / volume_; }
+  /// nu / |Omega| int |grad u|^2: -dE_k/dt for periodic or no-slip flows, and 2 nu times the
+  /// enstrophy (int |omega|^2 / 2 / |Omega|) where the velocity is divergence-free.
+  double viscous_dissipation() const { return options_.nu * quadratic(*laplace_) / volume_; }
+  /// (1 / |Omega| int (div u)^2)^(1/2).
+  double divergence_rms() const { return std::sqrt(std::max(0.0, quadratic(*div_) / volume_)); }
+  double volume() const { return volume_; }
+  /// max over nodes of |u|.
+  double max_speed() const {
+    const long n = n_;
+    const Vector x = x_;
+    double m = 0.0;
+    Kokkos::parallel_reduce(
+        "amphora::ins_fem::max_speed",
+        kernels::RangePolicy<ExecSpace>(ExecSpace(), 0, static_cast<int>(n)),
+        KOKKOS_LAMBDA(int i, double& acc) {
+          double s = 0.0;
+          for (int d = 0; d < dim; ++d) s += x(d * n + i) * x(d * n + i);
+          if (s > acc) acc = s;
+        },
+        Kokkos::Max<double>(m));
+    return std::sqrt(m);
+  }
+  /// Convective CFL number of step dt: dt max|u| k / h_min (h_min: the smallest cell width of
+  /// the undeformed box).
+  double cfl(double dt) const {
+    const auto& m = space_.mesh();
+    double h = 1e300;
+    for (int d = 0; d < dim; ++d) h = std::min(h, (m.upper[d] - m.lower[d]) / m.cells[d]);
+    return dt * max_speed() * space_.degree() / h;
+  }
+
+  // (public for CUDA: extended lambdas may not live in private member functions)
+
+  /// field = (1 + w) u^n - w u^(n-1), the advecting velocity (w = 0: u^n).
+  void extrapolate(const ExecSpace& exec, const Vector& u, double w) {
+    kernels::blas1::copy(exec, u, field_);
+    if (w != 0.0) kernels::blas1::axpby(exec, -w, u_old_, 1.0 + w, field_);
+  }
+  /// history = (c1 u^n + c2 u^(n-1) + s F, 0).
+  void form_history(const ExecSpace& exec, const Vector& u, double c1, double c2, double s) {
+    const Vector h = history_, uo = u_old_, f = force_;
+    const bool force = f.extent(0) > 0 && s != 0.0;
+    const long nu = dim * n_;
+    Kokkos::parallel_for(
+        "amphora::ins_fem::history",
+        kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(h.extent(0))),
+        KOKKOS_LAMBDA(int i) {
+          h(i) =
+              i < nu ? c1 * u(i) + (c2 != 0.0 ? c2 * uo(i) : 0.0) + (force ? s * f(i) : 0.0) : 0.0;
+        });
+  }
+
+  typename Operator::Options oseen_options(double alpha, double dt_inverse) const {
+    typename Operator::Options o;
+    o.kind = solvers::matrix_free::OperatorKind::oseen;
+    o.geometry = options_.geometry;
+    o.components = dim + 1;
+    o.nu = options_.nu, o.alpha = alpha, o.grad_div = options_.grad_div;
+    o.dt_inverse = options_.transient_tau ? dt_inverse : 0.0;
+    o.field = field_;
+    return o;
+  }
+
+  /// x += the solution of A delta = rhs - A x (zero on constrained DoFs), by Jacobi-GMRES.
+  InsStepReport solve(const ExecSpace& exec, const Operator& A) {
+    A.apply_unconstrained(exec, x_, delta_);               // with the Dirichlet values x holds
+    kernels::blas1::axpby(exec, 1.0, rhs_, -1.0, delta_);  // delta = rhs - A x
+    zero_constrained(exec, delta_);
+    if (pressure_null_space_) remove_pressure_mean(exec, delta_, false);
+    kernels::blas1::copy(exec, delta_, rhs_);
+    A.compute_diagonal(exec, diagonal_);
+    kernels::blas1::reciprocal(exec, diagonal_);
+    const solvers::JacobiPreconditioner<Vector> jacobi{diagonal_};
+    solvers::SolverControl control;
+    control.relative_tolerance = options_.tolerance;
+    control.max_iterations = options_.max_iterations;
+    kernels::blas1::fill(exec, delta_, 0.0);
+    const auto r = solvers::gmres(exec, A, rhs_, delta_, control, options_.restart, jacobi);
+    kernels::blas1::axpy(exec, 1.0, delta_, x_);
+    if (pressure_null_space_) remove_pressure_mean(exec, x_, true);
+    return {r.iterations, r.converged, r.final_residual};
+  }
+
+  /// Zeroes the velocity entries of v at the constrained DoFs.
+  void zero_constrained(const ExecSpace& exec, const Vector& v) const {
+    const auto cons = space_.constrained_dofs();
+    const long n = n_;
+    const int nc = static_cast<int>(cons.extent(0));
+    Kokkos::parallel_for(
+        "amphora::ins_fem::zero_constrained", kernels::RangePolicy<ExecSpace>(exec, 0, dim * nc),
+        KOKKOS_LAMBDA(int m) { v((m / nc) * n + cons(m % nc)) = 0.0; });
+  }
+
+  /// Subtracts from the pressure block of v its mean: the integral mean (mass-weighted, for a
+  /// state) or the plain mean (a residual: orthogonal to the constant the operator annihilates).
+  void remove_pressure_mean(const ExecSpace& exec, const Vector& v, bool weighted) const {
+    const Vector p = Kokkos::subview(v, Kokkos::make_pair(dim * n_, (dim + 1) * n_));
+    double mean = 0.0;
+    if (weighted) {
+      const Vector pm = Kokkos::subview(delta_, Kokkos::make_pair(0L, n_));
+      scalar_mass_->apply(exec, p, pm);
+      mean = kernels::blas1::sum(exec, pm) / volume_;
+    } else {
+      mean = kernels::blas1::sum(exec, p) / static_cast<double>(n_);
+    }
+    Kokkos::parallel_for(
+        "amphora::ins_fem::pressure_mean",
+        kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(n_)),
+        KOKKOS_LAMBDA(int i) { p(i) -= mean; });
+  }
+
+  /// u . (B u) for a diagnostic operator B on the velocity (dim components).
+  double quadratic(const Operator& B) const {
+    const ExecSpace exec;
+    const Vector u = velocity();
+    const Vector bu = Kokkos::subview(work_, Kokkos::make_pair(0L, dim * n_));
+    B.apply(exec, u, bu);
+    return kernels::blas1::dot(exec, u, bu);
+  }
+
+ private:
+  void make_diagnostic_operators() {
+    typename Operator::Options o;
+    o.geometry = options_.geometry;
+    o.components = dim;
+    o.constrained_components = 0;  // integrals over every node, boundary included
+    o.kind = solvers::matrix_free::OperatorKind::mass;
+    mass_ = std::make_unique<Operator>(space_, o);
+    o.kind = solvers::matrix_free::OperatorKind::laplace;
+    laplace_ = std::make_unique<Operator>(space_, o);
+    o.kind = solvers::matrix_free::OperatorKind::elasticity;  // lambda div div, mu = 0
+    o.lambda = 1.0, o.mu = 0.0;
+    div_ = std::make_unique<Operator>(space_, o);
+    o = typename Operator::Options();
+    o.kind = solvers::matrix_free::OperatorKind::mass;
+    o.geometry = options_.geometry;
+    o.constrained_components = 0;
+    scalar_mass_ = std::make_unique<Operator>(space_, o);
+    work_ = Vector("amphora::ins_fem::work", (dim + 1) * n_);
+    const ExecSpace exec;
+    const Vector one = Kokkos::subview(work_, Kokkos::make_pair(0L, n_));
+    const Vector m1 = Kokkos::subview(work_, Kokkos::make_pair(n_, 2 * n_));
+    kernels::blas1::fill(exec, one, 1.0);
+    scalar_mass_->apply(exec, one, m1);
+    volume_ = kernels::blas1::sum(exec, m1);
+  }
+
+  Space space_;
+  InsOptions options_;
+  long n_;
+  bool pressure_null_space_ = true;
+  Vector x_, u_old_, field_, history_, rhs_, delta_, diagonal_, force_, work_;
+  std::unique_ptr<Operator> mass_, laplace_, div_, scalar_mass_;
+  double volume_ = 0.0, dt_old_ = 0.0;
+  long steps_ = 0;
+};
+
+}  // namespace amphora::physics::ins_fem
