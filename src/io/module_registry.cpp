@@ -4,6 +4,7 @@
 #include "coupling/fsi/mpve_module.hpp"
 #include "physics/advection_diffusion_1d/advection_diffusion_1d.hpp"
 #include "physics/dem/dem_module.hpp"
+#include "physics/ins_fem/ins_module.hpp"
 #include "physics/poisson_fem/poisson_fem.hpp"
 #include "physics/water_mac/water_mac.hpp"
 
@@ -23,6 +24,7 @@ const std::vector<ModuleInfo>& module_registry() {
        [](const Parameters& p, const Communicator& c) -> std::unique_ptr<physics::Module> {
          return std::make_unique<physics::dem::DemModule>(p, c);
        }},
+      {"ins_fem", physics::ins_fem::parameter_table, physics::ins_fem::create},
       {"mpve", coupling::fsi::mpve_parameter_table, coupling::fsi::create_mpve},
       {"poisson_fem", physics::poisson_fem::parameter_table, physics::poisson_fem::create},
       {"water_mac", physics::water_mac::parameter_table, physics::water_mac::create},

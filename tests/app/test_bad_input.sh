@@ -53,3 +53,18 @@ no_output restart-other-scene
 expect_error 2 "more ranks \(3\) than blocks \(2\)" "$MPIEXEC" -n 3 "$AMPHORA" run good.toml
 no_output ranks
 echo "bad input: ok"
+
+# The flow solver: viscosity, degree (with the compiled range) and a step over its CFL limit.
+ins_scene() {
+  sed -e 's|^output_dir = .*|output_dir = "out"|' -e "$2" \
+    "$AMPHORA_SOURCE_DIR/scenes/ins_lid_cavity.toml" > "$1"
+}
+ins_scene ins_nu.toml 's/^nu = .*/nu = 0.0/'
+expect_error 2 "ins_nu.toml:[0-9]+: key 'ins_fem.nu' = 0 is out of range; allowed: a real number > 0" \
+  "$AMPHORA" run ins_nu.toml; no_output ins_nu
+ins_scene ins_degree.toml 's/^degree = .*/degree = 9/'
+expect_error 2 "ins_degree.toml:[0-9]+: key 'ins_fem.degree' = 9 is out of range; allowed: an integer in \[1, [0-9]\]" \
+  "$AMPHORA" run ins_degree.toml; no_output ins_degree
+ins_scene ins_cfl.toml 's/^dt = .*/dt = 0.2/'
+expect_error 2 "ins_cfl.toml: ins_fem: time step 0.2.* gives a CFL number of 4.8.*, above max_cfl = 2" \
+  "$AMPHORA" run ins_cfl.toml; no_output ins_cfl

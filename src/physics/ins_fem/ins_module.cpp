@@ -1,0 +1,287 @@
+#include "physics/ins_fem/ins_module.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "kernels/reductions.hpp"
+#include "physics/ins_fem/flow_solutions.hpp"
+#include "physics/ins_fem/ins_solver.hpp"
+#include "solvers/matrix_free/degree_dispatch.hpp"
+#include "solvers/matrix_free/error_norms.hpp"
+
+namespace amphora::physics::ins_fem {
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces (Kokkos issue #1547).
+namespace ins_module_detail {
+
+constexpr double pi = kernels::math::pi;
+
+/// The box, its faces and whether the flow is steady, for each case.
+template <int dim>
+mesh::hex::StructuredHexMesh<dim> case_mesh(const std::string& flow, int cells) {
+  mesh::hex::StructuredHexMesh<dim> m;
+  for (int d = 0; d < dim; ++d) m.cells[d] = cells;
+  if (flow == "taylor_green_2d" || flow == "taylor_green_3d") {
+    const double lo = flow == "taylor_green_2d" ? 0.0 : -pi;
+    for (int d = 0; d < dim; ++d) m.lower[d] = lo, m.upper[d] = lo + 2.0 * pi;
+    for (int f = 0; f < 2 * dim; ++f) m.faces[f] = mesh::hex::FaceCondition::periodic;
+  } else if (flow == "kovasznay") {
+    m.lower = {-0.5, 0.0, 0.0};
+    m.upper = {1.5, 2.0, 0.0};
+  }  // lid_cavity: the unit square, walls (the default faces)
+  return m;
+}
+
+template <int dim>
+class InsModule final : public Module {
+ public:
+  using Exec = kernels::DefaultExecSpace;
+  using Solver = InsSolver<dim, Exec>;
+  using Vector = typename Solver::Vector;
+
+  InsModule(const Parameters& p, const Communicator& comm) : flow_(p.string("flow")) {
+    if (comm.size() > 1)
+      throw std::invalid_argument(
+          "ins_fem runs on one rank (the distributed space is not wired in yet); run without "
+          "mpirun or with -n 1");
+    InsOptions o;
+    o.nu = p.real("nu");
+    o.grad_div = p.real("grad_div");
+    o.tolerance = p.real("tolerance");
+    o.max_iterations = static_cast<int>(p.integer("max_iterations"));
+    o.restart = static_cast<int>(p.integer("restart"));
+    o.geometry = p.string("geometry") == "on_the_fly"
+                     ? solvers::matrix_free::GeometryMode::on_the_fly
+                     : solvers::matrix_free::GeometryMode::stored;
+    max_cfl_ = p.real("max_cfl");
+    steady_ = flow_ == "kovasznay";
+    solver_ = std::make_unique<Solver>(case_mesh<dim>(flow_, static_cast<int>(p.integer("cells"))),
+                                       static_cast<int>(p.integer("degree")), o);
+    solver_->set_state(initial_state());
+    energy_ = solver_->kinetic_energy();
+  }
+
+  /// The initial state: the exact flow (Taylor-Green), its boundary values and rest
+  /// (Kovasznay), rest with the lid's velocity on the top wall (cavity).
+  std::vector<double> initial_state() const {
+    const auto& s = solver_->space();
+    const double re = 1.0 / solver_->options().nu;
+    return s.interpolate(
+        [&](const mesh::hex::Point3& x, int c) {
+          if (flow_ == "taylor_green_2d") return TaylorGreen2D{c, 1.0}.value(x.data());
+          if (flow_ == "taylor_green_3d") return TaylorGreen3D{c}.value(x.data());
+          const bool boundary =
+              x[0] <= s.mesh().lower[0] + 1e-12 || x[0] >= s.mesh().upper[0] - 1e-12 ||
+              x[1] <= s.mesh().lower[1] + 1e-12 || x[1] >= s.mesh().upper[1] - 1e-12;
+          if (!boundary || c == dim) return 0.0;
+          if (flow_ == "kovasznay") return Kovasznay{c, re}.value(x.data());
+          // the regularised lid: u = 16 x^2 (1 - x)^2 on y = 1 (no corner singularity)
+          const bool lid = x[1] >= s.mesh().upper[1] - 1e-12;
+          return lid && c == 0 ? 16.0 * x[0] * x[0] * (1.0 - x[0]) * (1.0 - x[0]) : 0.0;
+        },
+        dim + 1);
+  }
+
+  std::string name() const override { return "ins_fem"; }
+  /// The step of convective CFL 1 (the scene's cfl scales it); steady flows: one step.
+  double stable_dt() const override {
+    const double cfl = solver_->cfl(1.0);
+    return steady_ || !(cfl > 0.0) ? 1.0 : 1.0 / cfl;
+  }
+  void set_time_step(double dt) override {
+    if (steady_) return;
+    const double cfl = solver_->cfl(dt);
+    if (cfl > max_cfl_)
+      throw std::invalid_argument("ins_fem: time step " + std::to_string(dt) +
+                                  " gives a CFL number of " + std::to_string(cfl) +
+                                  ", above max_cfl = " + std::to_string(max_cfl_) +
+                                  " (lower [run] dt or cfl, or raise [ins_fem] max_cfl)");
+  }
+  void advance(double t, double dt) override {
+    if (steady_) {
+      if (solved_) return;
+      int picard = 0;
+      last_ = solver_->solve_steady(1e-10, 100, &picard);
+      picard_ = picard;
+      solved_ = last_.converged;
+      if (!solved_) fail("Picard/GMRES did not converge", t);
+      return;
+    }
+    last_ = solver_->step(dt);
+    if (!last_.converged) fail("GMRES did not reach the tolerance", t + dt);
+    const double e = solver_->kinetic_energy();
+    decay_rate_ = (energy_ - e) / dt;
+    energy_ = e;
+  }
+  [[noreturn]] void fail(const std::string& what, double t) const {
+    throw std::runtime_error("ins_fem: " + what + " in step " +
+                             std::to_string(solver_->steps() + 1) + " at t = " + std::to_string(t) +
+                             " after " + std::to_string(last_.linear_iterations) +
+                             " iterations (residual " + std::to_string(last_.residual) + ")");
+  }
+  long long work_per_step() const override { return (dim + 1) * solver_->n_dofs(); }
+  std::string work_unit() const override { return "DoF-steps"; }
+
+  std::vector<OutputBlock> output(double) const override;
+  Diagnostics diagnostics(double t) const override;
+  std::string error_diagnostic() const override {
+    return has_exact() ? "velocity_l2_error" : "kinetic_energy";
+  }
+  std::optional<NonFiniteReport> find_nonfinite() const override {
+    const long i = kernels::reduce::first_nonfinite(Exec(), solver_->state());
+    if (i < 0) return std::nullopt;
+    const long n = solver_->n_dofs();
+    return NonFiniteReport{i / n < dim ? "velocity" : "pressure", "flow", i % n, 0.0, {}};
+  }
+  std::vector<StateBlock> state() const override;
+  void restore(const std::vector<StateBlock>& blocks) override;
+  std::vector<std::string> owned_blocks() const override { return {"flow"}; }
+
+  bool periodic() const { return flow_ == "taylor_green_2d" || flow_ == "taylor_green_3d"; }
+  bool has_exact() const { return flow_ == "taylor_green_2d" || flow_ == "kovasznay"; }
+  /// Velocity and pressure (mean-free) L2 errors against the exact flow at time t.
+  template <class Exact>
+  std::pair<double, double> errors(Exact exact) const {
+    const Exec exec;
+    const long n = solver_->n_dofs();
+    double eu = 0.0;
+    for (int c = 0; c < dim; ++c) {
+      exact.component = c;
+      const Vector uc = Kokkos::subview(solver_->state(), Kokkos::make_pair(c * n, (c + 1) * n));
+      const double e = solvers::matrix_free::error_norms(exec, solver_->space(), uc, exact).l2;
+      eu += e * e;
+    }
+    exact.component = dim;
+    const double ep =
+        solvers::matrix_free::error_norms(exec, solver_->space(), solver_->pressure(), exact)
+            .l2_mean_free();
+    return {std::sqrt(eu), ep};
+  }
+
+ private:
+  std::string flow_;
+  std::unique_ptr<Solver> solver_;
+  double max_cfl_ = 1.0, energy_ = 0.0, decay_rate_ = 0.0;
+  bool steady_ = false, solved_ = false;
+  int picard_ = 0;
+  InsStepReport last_;
+};
+
+template <int dim>
+Diagnostics InsModule<dim>::diagnostics(double t) const {
+  const double viscous = solver_->viscous_dissipation();
+  Diagnostics d = {{"kinetic_energy", solver_->kinetic_energy()},
+                   {"dissipation_rate", decay_rate_},
+                   {"viscous_dissipation", viscous}};
+  // The energy balance -dE_k/dt = nu |grad u|^2 holds for periodic flows (no work by walls):
+  // the gap is what the discretisation dissipates.
+  if (periodic()) d.push_back({"numerical_dissipation", decay_rate_ - viscous});
+  d.push_back({"divergence_rms", solver_->divergence_rms()});
+  d.push_back({"cfl", steady_ ? 0.0 : solver_->cfl(solver_->previous_dt())});
+  d.push_back({"linear_iterations", static_cast<double>(last_.linear_iterations)});
+  if (steady_) d.push_back({"picard_iterations", static_cast<double>(picard_)});
+  if (has_exact()) {
+    const auto e = flow_ == "kovasznay"
+                       ? errors(Kovasznay{0, 1.0 / solver_->options().nu})
+                       : errors(TaylorGreen2D{0, std::exp(-2.0 * solver_->options().nu * t)});
+    d.push_back({"velocity_l2_error", e.first});
+    d.push_back({"pressure_l2_error", e.second});
+  }
+  return d;
+}
+
+template <int dim>
+std::vector<OutputBlock> InsModule<dim>::output(double) const {
+  const auto& space = solver_->space();
+  const auto& lat = space.lattice();
+  const long n_nodes = lat.n_nodes(), n = solver_->n_dofs();
+  auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space.coordinates());
+  auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_->state());
+  OutputBlock b;
+  b.name = "flow";
+  b.curvilinear = true;
+  for (int d = 0; d < dim; ++d) b.nodes[d] = lat.nodes[d];
+  b.x.resize(n_nodes);
+  b.y.resize(n_nodes);
+  b.z.assign(n_nodes, 0.0);
+  std::vector<std::vector<double>> f(dim + 1, std::vector<double>(n_nodes));
+  for (long node = 0; node < n_nodes; ++node) {
+    int ijk[3] = {0, 0, 0};
+    long rest = node;
+    for (int d = 0; d < dim; ++d)
+      ijk[d] = static_cast<int>(rest % lat.nodes[d]), rest /= lat.nodes[d];
+    b.x[node] = xh(node);
+    b.y[node] = xh(n_nodes + node);
+    if (dim == 3) b.z[node] = xh(2 * n_nodes + node);
+    const long dof = lat.dof_index(ijk);
+    for (int c = 0; c <= dim; ++c) f[c][node] = sh(c * n + dof);
+  }
+  const char* names[3] = {"u", "v", "w"};
+  for (int c = 0; c < dim; ++c) b.fields.push_back({names[c], f[c]});
+  b.fields.push_back({"p", f[dim]});
+  return {b};
+}
+
+template <int dim>
+std::vector<StateBlock> InsModule<dim>::state() const {
+  auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_->state());
+  auto oh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_->previous_velocity());
+  return {{"flow",
+           {{"state", std::vector<double>(sh.data(), sh.data() + sh.extent(0))},
+            {"u_old", std::vector<double>(oh.data(), oh.data() + oh.extent(0))},
+            {"history",
+             {solver_->previous_dt(), static_cast<double>(solver_->steps()), energy_, decay_rate_,
+              solved_ ? 1.0 : 0.0, static_cast<double>(last_.linear_iterations)}}}}};
+}
+
+template <int dim>
+void InsModule<dim>::restore(const std::vector<StateBlock>& blocks) {
+  std::vector<double> state, u_old, history;
+  for (const auto& b : blocks)
+    if (b.name == "flow")
+      for (const auto& [key, v] : b.arrays)
+        (key == "state" ? state : key == "u_old" ? u_old : history) = v;
+  if (static_cast<long>(state.size()) != (dim + 1) * solver_->n_dofs() || history.size() < 6)
+    throw std::runtime_error("ins_fem: the checkpoint's flow block does not fit this scene (" +
+                             std::to_string(state.size()) + " state entries, the scene has " +
+                             std::to_string((dim + 1) * solver_->n_dofs()) + ")");
+  solver_->set_state(state);
+  solver_->set_history(u_old, history[0], static_cast<long>(history[1]));
+  energy_ = history[2], decay_rate_ = history[3], solved_ = history[4] != 0.0;
+  last_.linear_iterations = static_cast<int>(history[5]);
+}
+
+}  // namespace ins_module_detail
+using namespace ins_module_detail;
+
+ParamTable parameter_table() {
+  return {"ins_fem",
+          "incompressible Navier-Stokes, equal-order Q_k with SUPG/PSPG and grad-div, BDF2, "
+          "matrix-free",
+          {
+              string_param("flow", std::string("taylor_green_2d"), "the case",
+                           {"taylor_green_2d", "taylor_green_3d", "kovasznay", "lid_cavity"}),
+              int_param("degree", 2,
+                        at_least(1) & at_most(solvers::matrix_free::max_compiled_degree_general),
+                        "polynomial degree k of velocity and pressure (Q_k; the compiled range)"),
+              int_param("cells", 16, at_least(1) & at_most(512), "cells per direction"),
+              real_param("nu", 0.01, "m^2/s", above(0.0), "kinematic viscosity"),
+              real_param("grad_div", 0.0, "1", at_least(0.0), "grad-div stabilisation weight"),
+              real_param("max_cfl", 2.0, "1", above(0.0),
+                         "largest convective CFL number dt max|u| k / h a step may have"),
+              string_param("geometry", std::string("stored"),
+                           "how geometry reaches the quadrature points", {"stored", "on_the_fly"}),
+              real_param("tolerance", 1e-8, "1", above(0.0) & below(1.0),
+                         "relative residual reduction of each step's GMRES solve"),
+              int_param("max_iterations", 5000, at_least(1), "GMRES iteration limit per step"),
+              int_param("restart", 60, at_least(2) & at_most(500), "GMRES restart length"),
+          }};
+}
+
+std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {
+  if (p.string("flow") == "taylor_green_3d") return std::make_unique<InsModule<3>>(p, comm);
+  return std::make_unique<InsModule<2>>(p, comm);
+}
+
+}  // namespace amphora::physics::ins_fem
