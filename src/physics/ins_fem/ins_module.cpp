@@ -59,6 +59,7 @@ class InsModule final : public Module {
     solver_ = std::make_unique<Solver>(case_mesh<dim>(flow_, static_cast<int>(p.integer("cells"))),
                                        static_cast<int>(p.integer("degree")), o);
     solver_->set_state(initial_state());
+    solver_->set_phase_times(&times_);
     energy_ = solver_->kinetic_energy();
   }
 
@@ -137,6 +138,7 @@ class InsModule final : public Module {
   std::vector<StateBlock> state() const override;
   void restore(const std::vector<StateBlock>& blocks) override;
   std::vector<std::string> owned_blocks() const override { return {"flow"}; }
+  Diagnostics phase_seconds() const override { return times_.seconds(); }
 
   bool periodic() const { return flow_ == "taylor_green_2d" || flow_ == "taylor_green_3d"; }
   bool has_exact() const { return flow_ == "taylor_green_2d" || flow_ == "kovasznay"; }
@@ -166,6 +168,7 @@ class InsModule final : public Module {
   bool steady_ = false, solved_ = false;
   int picard_ = 0;
   InsStepReport last_;
+  PhaseTimes times_{ins_phase_names()};
 };
 
 template <int dim>

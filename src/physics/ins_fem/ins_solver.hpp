@@ -17,6 +17,7 @@
 #include "kernels/blas1.hpp"
 #include "kernels/host_vector.hpp"
 #include "mesh/hex/qk_space.hpp"
+#include "physics/phase_times.hpp"
 #include "solvers/gmres.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
@@ -41,6 +42,27 @@ struct InsStepReport {
   int linear_iterations = 0;
   bool converged = false;
   double residual = 0.0;  ///< final linear residual
+};
+
+/// The phases a step's time is booked to (PhaseTimes indices).
+enum InsPhase { ins_setup = 0, ins_operator = 1, ins_preconditioner = 2, ins_other = 3 };
+inline std::vector<std::string> ins_phase_names() {
+  return {"setup", "operator", "preconditioner", "other"};
+}
+
+/// An operator or preconditioner whose applications are booked to a phase (the time before
+/// each, since the last lap, to ins_other).
+template <class Op>
+struct TimedApply {
+  const Op* op;
+  PhaseTimes* times;
+  int phase;
+  template <class E, class X, class Y>
+  void apply(const E& exec, const X& x, const Y& y) const {
+    if (times) times->lap(ins_other);
+    op->apply(exec, x, y);
+    if (times) times->lap(phase);
+  }
 };
 
 template <int dim, class ExecSpace>
@@ -102,9 +124,14 @@ class InsSolver {
     force_ = kernels::to_view<typename ExecSpace::memory_space>(force);
   }
 
+  /// Books each step's time to the phases of ins_phase_names() (nullptr: no timing, no
+  /// fences).
+  void set_phase_times(PhaseTimes* times) { times_ = times; }
+
   /// One time step of length dt to time t + dt; force_amplitude scales F at t + dt.
   InsStepReport step(double dt, double force_amplitude = 0.0) {
     const ExecSpace exec;
+    if (times_) times_->start();
     const bool bdf2 = steps_ > 0;
     const double w = bdf2 ? dt / dt_old_ : 0.0;  // BDF2 with variable steps
     const double a0 = bdf2 ? (1.0 + 2.0 * w) / (1.0 + w) : 1.0;
@@ -239,9 +266,14 @@ class InsSolver {
     control.relative_tolerance = options_.tolerance;
     control.max_iterations = options_.max_iterations;
     kernels::blas1::fill(exec, delta_, 0.0);
-    const auto r = solvers::gmres(exec, A, rhs_, delta_, control, options_.restart, jacobi);
+    if (times_) times_->lap(ins_setup);
+    const TimedApply<Operator> timed_a{&A, times_, ins_operator};
+    const TimedApply<solvers::JacobiPreconditioner<Vector>> timed_m{&jacobi, times_,
+                                                                    ins_preconditioner};
+    const auto r = solvers::gmres(exec, timed_a, rhs_, delta_, control, options_.restart, timed_m);
     kernels::blas1::axpy(exec, 1.0, delta_, x_);
     if (pressure_null_space_) remove_pressure_mean(exec, x_, true);
+    if (times_) times_->lap(ins_other);
     return {r.iterations, r.converged, r.final_residual};
   }
 
@@ -317,6 +349,7 @@ class InsSolver {
   std::unique_ptr<Operator> mass_, laplace_, div_, scalar_mass_;
   double volume_ = 0.0, dt_old_ = 0.0;
   long steps_ = 0;
+  PhaseTimes* times_ = nullptr;
 };
 
 }  // namespace amphora::physics::ins_fem
