@@ -141,4 +141,31 @@ HypreSolveResult BoomerAMG::pcg(const double* b, double* x, double relative_tole
   return r;
 }
 
+HypreSolveResult BoomerAMG::gmres(const double* b, double* x, double relative_tolerance,
+                                  int max_iterations, int restart) const {
+  auto& s = *impl_;
+  s.set_vectors(b, x);
+  HYPRE_Solver gmres = nullptr, amg = nullptr;
+  HYPRE_ParCSRGMRESCreate(s.comm, &gmres);
+  HYPRE_GMRESSetTol(gmres, relative_tolerance);
+  HYPRE_GMRESSetMaxIter(gmres, max_iterations);
+  HYPRE_GMRESSetKDim(gmres, restart);
+  HYPRE_GMRESSetPrintLevel(gmres, 0);
+  HYPRE_BoomerAMGCreate(&amg);
+  Impl::configure(amg, s.options);
+  HYPRE_GMRESSetPrecond(gmres, reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSolve),
+                        reinterpret_cast<HYPRE_PtrToSolverFcn>(HYPRE_BoomerAMGSetup), amg);
+  HYPRE_ParCSRGMRESSetup(gmres, s.A, s.b, s.x);
+  HYPRE_ParCSRGMRESSolve(gmres, s.A, s.b, s.x);
+  HypreSolveResult r;
+  HYPRE_Int it = 0;
+  HYPRE_GMRESGetNumIterations(gmres, &it);
+  r.iterations = it;
+  HYPRE_GMRESGetFinalRelativeResidualNorm(gmres, &r.final_relative_residual);
+  HYPRE_IJVectorGetValues(s.xij, static_cast<HYPRE_Int>(s.n), s.index.data(), x);
+  HYPRE_BoomerAMGDestroy(amg);
+  HYPRE_ParCSRGMRESDestroy(gmres);
+  return r;
+}
+
 }  // namespace amphora::solvers

@@ -44,6 +44,10 @@ class BoomerAMG {
   /// time is part of what a caller measures).
   HypreSolveResult pcg(const double* b, double* x, double relative_tolerance,
                        int max_iterations) const;
+  /// BoomerAMG-preconditioned restarted GMRES (hypre's own; right preconditioning) for
+  /// non-symmetric systems, the same way.
+  HypreSolveResult gmres(const double* b, double* x, double relative_tolerance, int max_iterations,
+                         int restart = 60) const;
 
  private:
   struct Impl;

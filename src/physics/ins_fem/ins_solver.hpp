@@ -7,6 +7,7 @@
 // device. State: (dim + 1) n_dofs blocked, velocity components then pressure.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -123,6 +124,12 @@ class InsSolver {
   void set_force(const std::vector<double>& force) {
     force_ = kernels::to_view<typename ExecSpace::memory_space>(force);
   }
+
+  /// Solves A delta = r for delta (zero on entry) in place of the built-in Jacobi-GMRES: the
+  /// same scheme with other linear algebra (the assembled comparison of perf/ins_fem.cpp).
+  using LinearSolver =
+      std::function<InsStepReport(const ExecSpace&, const Operator&, const Vector&, const Vector&)>;
+  void set_linear_solver(LinearSolver solver) { linear_solver_ = std::move(solver); }
 
   /// Books each step's time to the phases of ins_phase_names() (nullptr: no timing, no
   /// fences).
@@ -259,6 +266,13 @@ class InsSolver {
     zero_constrained(exec, delta_);
     if (pressure_null_space_) remove_pressure_mean(exec, delta_, false);
     kernels::blas1::copy(exec, delta_, rhs_);
+    if (linear_solver_) {
+      kernels::blas1::fill(exec, delta_, 0.0);
+      const InsStepReport r = linear_solver_(exec, A, rhs_, delta_);
+      kernels::blas1::axpy(exec, 1.0, delta_, x_);
+      if (pressure_null_space_) remove_pressure_mean(exec, x_, true);
+      return r;
+    }
     A.compute_diagonal(exec, diagonal_);
     kernels::blas1::reciprocal(exec, diagonal_);
     const solvers::JacobiPreconditioner<Vector> jacobi{diagonal_};
@@ -350,6 +364,7 @@ class InsSolver {
   double volume_ = 0.0, dt_old_ = 0.0;
   long steps_ = 0;
   PhaseTimes* times_ = nullptr;
+  LinearSolver linear_solver_;
 };
 
 }  // namespace amphora::physics::ins_fem

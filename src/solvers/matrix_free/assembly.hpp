@@ -1,7 +1,8 @@
 #pragma once
-// The assembled matrix of a matrix-free operator (scalar), from its element matrices, with
-// Dirichlet rows and columns replaced by identity: the same constrained system the operator
-// applies. For coarse-grid AMG and for comparisons against sparse-matrix solvers.
+// The assembled matrix of a matrix-free operator (any number of blocked components), from its
+// element matrices, with the Dirichlet rows and columns of its constrained components replaced
+// by identity: the same constrained system the operator applies. For coarse-grid AMG and for
+// comparisons against sparse-matrix solvers.
 #include "solvers/csr_matrix.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 

@@ -80,8 +80,9 @@ class MatrixFreeOperator {
   }
   /// The diagonal of A, computed cell by cell (constrained rows: 1).
   void compute_diagonal(const ExecSpace& exec, const Vector& diagonal) const;
-  /// Element matrices of every cell, host, [cell][j][i] (column j), cell = lexicographic index;
-  /// Dirichlet constraints not applied. For assembly (coarse grids, tests).
+  /// Element matrices of every cell, host, [cell][j][i] (column j, local indices blocked by the
+  /// functor's components), cell = lexicographic index; Dirichlet constraints not applied. For
+  /// assembly (coarse grids, tests, comparisons).
   std::vector<double> element_matrices(const ExecSpace& exec) const;
 
   long size() const { return space_->n_dofs() * options_.components; }

@@ -472,7 +472,7 @@ std::vector<double> MatrixFreeOperator<dim, ExecSpace>::element_matrices(
     const ExecSpace& exec) const {
   if (!impl_->elements)
     throw std::invalid_argument(
-        "MatrixFreeOperator::element_matrices: scalar operators only (not elasticity or Oseen)");
+        "MatrixFreeOperator::element_matrices: not provided by the generic kernel");
   return impl_->elements(*this, exec);
 }
 

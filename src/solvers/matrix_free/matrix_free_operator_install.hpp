@@ -61,7 +61,7 @@ void MatrixFreeOperator<dim, ExecSpace>::Impl::install(const MatrixFreeOperator&
     if constexpr (P::structure != kernels::sumfac::PointStructure::general)
       impl.direction = &Impl::template direction_impl<P, n_p, nq>;
     impl.diagonal = &Impl::template diagonal_impl<P, n_p, nq>;
-    if constexpr (P::n_components == 1) impl.elements = &Impl::template elements_impl<P, n_p, nq>;
+    impl.elements = &Impl::template elements_impl<P, n_p, nq>;
   });
 }
 
