@@ -1,9 +1,11 @@
 // One time step of the Navier-Stokes solver (physics/ins_fem) on the 3D Taylor-Green vortex at
 // Re = 1600, the same scheme and linear system with two kinds of linear algebra, side by side:
-// matrix-free (operator rebuilt, Jacobi-GMRES on the device vectors) and assembled (the
+// matrix-free (operator rebuilt, GMRES on the device vectors preconditioned by point Jacobi or
+// by the coupled geometric multigrid) and assembled (the
 // operator's element matrices into a CSR matrix every step, as the advecting velocity changes,
 // then hypre's BoomerAMG-GMRES). Both to the same relative residual from the same state (two
-// BDF2 steps in). Args: degree, cells per direction; solver 0 = matrix-free, 1 = assembled.
+// BDF2 steps in). Args: degree, cells per direction; solver 0 = matrix-free Jacobi,
+// 1 = assembled, 2 = matrix-free multigrid.
 #include <benchmark/benchmark.h>
 
 #include <vector>
@@ -36,7 +38,7 @@ physics::ins_fem::InsStepReport assembled_solve(const Exec& exec, const Solver::
 
 void InsStep(benchmark::State& state) {
   const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
-  const bool assembled = state.range(2) == 1;
+  const bool assembled = state.range(2) == 1, multigrid = state.range(2) == 2;
   const double pi = kernels::math::pi;
   mesh::hex::StructuredHexMesh<3> m;
   m.cells = {cells, cells, cells};
@@ -46,6 +48,8 @@ void InsStep(benchmark::State& state) {
   physics::ins_fem::InsOptions o;
   o.nu = 1.0 / 1600.0;
   o.tolerance = 1e-8;
+  o.preconditioner = multigrid ? physics::ins_fem::InsPreconditioner::multigrid
+                               : physics::ins_fem::InsPreconditioner::jacobi;
   Solver s(m, k, o);
   s.set_state(s.space().interpolate(
       [](const mesh::hex::Point3& x, int c) {
@@ -64,6 +68,8 @@ void InsStep(benchmark::State& state) {
                             const Solver::Vector& delta) {
       return assembled_solve(exec, A, r, delta, o.tolerance);
     });
+  physics::PhaseTimes times(physics::ins_fem::ins_phase_names());
+  s.set_phase_times(&times);
   int iterations = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -73,12 +79,23 @@ void InsStep(benchmark::State& state) {
     const auto r = s.step(dt);
     iterations = r.linear_iterations;
     if (!r.converged) state.SkipWithError("linear solve did not converge");
+    if (r.fell_back) state.SkipWithError("the multigrid fell back to Jacobi");
   }
   state.counters["dofs"] = 4.0 * s.n_dofs();
   state.counters["iterations"] = iterations;
+  // Shares of the step (setup: operators, multigrid levels, smoother set-up; preconditioner:
+  // the V-cycles or Jacobi; other: GMRES's orthogonalisation and vector updates).
+  double total = 0.0;
+  for (const auto& [name, sec] : times.seconds()) total += sec;
+  for (const auto& [name, sec] : times.seconds()) state.counters[name] = sec / total;
 }
 BENCHMARK(InsStep)
-    ->ArgsProduct({{2}, {8, 12, 16}, {0, 1}})
+    ->ArgsProduct({{2}, {8, 12, 16}, {0, 1, 2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(3);
+BENCHMARK(InsStep)
+    ->ArgsProduct({{3}, {8, 12, 16}, {0, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(3);

@@ -22,6 +22,10 @@ struct ChebyshevOptions {
   /// If positive: a known upper bound of lambda_max(D^-1 A) (jacobi_gershgorin_bound), used as
   /// the interval's upper end instead of 1.2 times an estimate, which is then not made.
   double lambda_max_bound = 0.0;
+  /// Estimate the largest |lambda| of D^-1 A by power iteration instead of Lanczos: for
+  /// non-symmetric A (the stabilised Oseen operator), as deal.II's
+  /// EigenvalueAlgorithm::power_iteration.
+  bool power_iteration = false;
 };
 
 /// `Inner` is the inner product of the eigenvalue estimate (conjugate_gradient's); `start`,
@@ -41,12 +45,15 @@ class ChebyshevSmoother {
     if (options.lambda_max_bound > 0.0) {
       lambda_max_ = upper_ = options.lambda_max_bound;
     } else {
-      lambda_max_ = estimate_lambda_max(exec, inner, start);
+      lambda_max_ = options.power_iteration ? estimate_lambda_max_power(exec, inner, start)
+                                            : estimate_lambda_max(exec, inner, start);
       upper_ = 1.2 * lambda_max_;  // the estimate approaches lambda_max from below
     }
   }
 
   double lambda_max() const { return lambda_max_; }
+  /// The damped interval's upper end (1.2 lambda_max, or the bound given).
+  double upper() const { return upper_; }
 
   /// `degree` Chebyshev steps on A x = b from x (from zero if zero_initial).
   void smooth(const ExecSpace& exec, const Vector& b, const Vector& x, bool zero_initial) const {
@@ -80,6 +87,32 @@ class ChebyshevSmoother {
   }
 
  public:  // (CUDA: extended lambdas may not live in private member functions)
+  /// |lambda|_max of D^-1 A: x <- D^-1 A x / |x|, |D^-1 A x| / |x| after the last step.
+  double estimate_lambda_max_power(const ExecSpace& exec, const Inner& dot,
+                                   const Vector& start) const {
+    const int n = static_cast<int>(inv_diag_.extent(0));
+    Vector x("x", n), y("y", n);
+    const Vector D = inv_diag_;
+    const bool given = start.extent(0) > 0;
+    Kokkos::parallel_for(
+        "amphora::ChebyshevSmoother::start", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+        KOKKOS_LAMBDA(int i) {
+          const double h = static_cast<double>((i * 2654435761u) % 1000003u) / 1000003.0;
+          x(i) = (given ? start(i) : h - 0.5) * (D(i) != 0.0 ? 1.0 : 0.0);
+        });
+    double norm = std::sqrt(dot(exec, x, x)), lambda = 1.0;
+    for (int it = 0; it < options_.eigenvalue_iterations && norm > 0.0; ++it) {
+      kernels::blas1::scale(exec, 1.0 / norm, x);
+      A_->apply(exec, x, y);
+      Kokkos::parallel_for(
+          "amphora::ChebyshevSmoother::power", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+          KOKKOS_LAMBDA(int i) { x(i) = D(i) * y(i); });
+      norm = std::sqrt(dot(exec, x, x));
+      lambda = norm;
+    }
+    return lambda;
+  }
+
   double estimate_lambda_max(const ExecSpace& exec, const Inner& dot, const Vector& start) const {
     // Jacobi-preconditioned CG from a smooth-free start vector; alphas, betas -> Lanczos.
     const int n = static_cast<int>(inv_diag_.extent(0));

@@ -51,6 +51,8 @@ class InsModule final : public Module {
     o.tolerance = p.real("tolerance");
     o.max_iterations = static_cast<int>(p.integer("max_iterations"));
     o.restart = static_cast<int>(p.integer("restart"));
+    o.preconditioner = p.string("preconditioner") == "jacobi" ? InsPreconditioner::jacobi
+                                                              : InsPreconditioner::multigrid;
     o.geometry = p.string("geometry") == "on_the_fly"
                      ? solvers::matrix_free::GeometryMode::on_the_fly
                      : solvers::matrix_free::GeometryMode::stored;
@@ -183,6 +185,7 @@ Diagnostics InsModule<dim>::diagnostics(double t) const {
   d.push_back({"divergence_rms", solver_->divergence_rms()});
   d.push_back({"cfl", steady_ ? 0.0 : solver_->cfl(solver_->previous_dt())});
   d.push_back({"linear_iterations", static_cast<double>(last_.linear_iterations)});
+  d.push_back({"multigrid", solver_->multigrid_active() ? 1.0 : 0.0});
   if (steady_) d.push_back({"picard_iterations", static_cast<double>(picard_)});
   if (has_exact()) {
     const auto e = flow_ == "kovasznay"
@@ -235,7 +238,8 @@ std::vector<StateBlock> InsModule<dim>::state() const {
             {"u_old", std::vector<double>(oh.data(), oh.data() + oh.extent(0))},
             {"history",
              {solver_->previous_dt(), static_cast<double>(solver_->steps()), energy_, decay_rate_,
-              solved_ ? 1.0 : 0.0, static_cast<double>(last_.linear_iterations)}}}}};
+              solved_ ? 1.0 : 0.0, static_cast<double>(last_.linear_iterations),
+              solver_->multigrid_active() ? 1.0 : 0.0}}}}};
 }
 
 template <int dim>
@@ -253,6 +257,7 @@ void InsModule<dim>::restore(const std::vector<StateBlock>& blocks) {
   solver_->set_history(u_old, history[0], static_cast<long>(history[1]));
   energy_ = history[2], decay_rate_ = history[3], solved_ = history[4] != 0.0;
   last_.linear_iterations = static_cast<int>(history[5]);
+  if (history.size() > 6 && history[6] == 0.0) solver_->disable_multigrid();
 }
 
 }  // namespace ins_module_detail
@@ -279,6 +284,11 @@ ParamTable parameter_table() {
                          "relative residual reduction of each step's GMRES solve"),
               int_param("max_iterations", 5000, at_least(1), "GMRES iteration limit per step"),
               int_param("restart", 60, at_least(2) & at_most(500), "GMRES restart length"),
+              string_param("preconditioner", std::string("multigrid"),
+                           "of GMRES: the coupled geometric multigrid (falls back to Jacobi for "
+                           "the rest of the run where it fails to converge in one restart "
+                           "cycle) or point Jacobi",
+                           {"multigrid", "jacobi"}),
           }};
 }
 

@@ -2,9 +2,10 @@
 // Incompressible Navier-Stokes on equal-order continuous Q_k velocity and pressure, stabilised
 // by SUPG/PSPG and grad-div (docs/ins.md): variable-step BDF2 (BDF1 for the first step), one
 // linear Oseen problem per step with the advecting velocity extrapolated from the last two
-// steps, or Picard iterations to a steady state. Each linear problem is solved by GMRES with the
-// coupled point Jacobi preconditioner; every operator is a matrix-free point functor on the
-// device. State: (dim + 1) n_dofs blocked, velocity components then pressure.
+// steps, or Picard iterations to a steady state. Each linear problem is solved by GMRES,
+// preconditioned by a geometric multigrid V-cycle on the coupled operator (OseenMultigrid) or
+// by the coupled point Jacobi; every operator is a matrix-free point functor on the device. State:
+// (dim + 1) n_dofs blocked, velocity components then pressure.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -21,8 +22,11 @@
 #include "physics/phase_times.hpp"
 #include "solvers/gmres.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
+#include "solvers/matrix_free/oseen_multigrid.hpp"
 
 namespace amphora::physics::ins_fem {
+
+enum class InsPreconditioner { multigrid, jacobi };
 
 struct InsOptions {
   double nu = 0.01;       ///< kinematic viscosity
@@ -35,6 +39,8 @@ struct InsOptions {
   double tolerance = 1e-9;  ///< GMRES: relative reduction of each step's residual
   int max_iterations = 5000;
   int restart = 60;
+  InsPreconditioner preconditioner = InsPreconditioner::multigrid;
+  solvers::matrix_free::OseenMultigridOptions multigrid;
   solvers::matrix_free::GeometryMode geometry = solvers::matrix_free::GeometryMode::stored;
 };
 
@@ -43,6 +49,9 @@ struct InsStepReport {
   int linear_iterations = 0;
   bool converged = false;
   double residual = 0.0;  ///< final linear residual
+  /// The multigrid failed to converge within one GMRES cycle and this step (and the run from
+  /// here on) fell back to point Jacobi.
+  bool fell_back = false;
 };
 
 /// The phases a step's time is booked to (PhaseTimes indices).
@@ -72,6 +81,7 @@ class InsSolver {
   using Space = mesh::hex::QkSpace<dim, ExecSpace>;
   using Operator = solvers::matrix_free::MatrixFreeOperator<dim, ExecSpace>;
   using Vector = typename Operator::Vector;
+  using Multigrid = solvers::matrix_free::OseenMultigrid<dim, ExecSpace>;
 
   /// The pressure is fixed up to a constant where no face is Neumann (periodic or walls all
   /// round): its mean is then kept zero and each step's right-hand side made consistent.
@@ -91,6 +101,17 @@ class InsSolver {
     delta_ = Vector("amphora::ins_fem::delta", (dim + 1) * n_);
     diagonal_ = Vector("amphora::ins_fem::diagonal", (dim + 1) * n_);
     make_diagnostic_operators();
+    if (options.preconditioner == InsPreconditioner::multigrid)
+      multigrid_ = std::make_unique<Multigrid>(space_, options.multigrid);
+  }
+
+  /// False once the multigrid has fallen back to Jacobi (or was never chosen); a checkpoint
+  /// keeps this, so a restarted run solves as the uninterrupted one.
+  bool multigrid_active() const { return multigrid_ != nullptr; }
+  void disable_multigrid() { multigrid_.reset(); }
+  /// The multigrid's levels, or "point Jacobi".
+  std::string describe_preconditioner() const {
+    return multigrid_ ? multigrid_->describe() : std::string("point Jacobi");
   }
 
   const Space& space() const { return space_; }
@@ -273,22 +294,43 @@ class InsSolver {
       if (pressure_null_space_) remove_pressure_mean(exec, x_, true);
       return r;
     }
-    A.compute_diagonal(exec, diagonal_);
-    kernels::blas1::reciprocal(exec, diagonal_);
-    const solvers::JacobiPreconditioner<Vector> jacobi{diagonal_};
     solvers::SolverControl control;
     control.relative_tolerance = options_.tolerance;
     control.max_iterations = options_.max_iterations;
     kernels::blas1::fill(exec, delta_, 0.0);
-    if (times_) times_->lap(ins_setup);
     const TimedApply<Operator> timed_a{&A, times_, ins_operator};
-    const TimedApply<solvers::JacobiPreconditioner<Vector>> timed_m{&jacobi, times_,
-                                                                    ins_preconditioner};
-    const auto r = solvers::gmres(exec, timed_a, rhs_, delta_, control, options_.restart, timed_m);
+    solvers::SolverResult r;
+    bool fell_back = false;
+    if (multigrid_) {
+      multigrid_->update(exec, A);
+      if (times_) times_->lap(ins_setup);
+      // Point-Jacobi smoothing fails where viscosity dominates the cells (docs/ins.md): one
+      // restart cycle without convergence hands this step and the rest of the run to Jacobi.
+      solvers::SolverControl first = control;
+      first.max_iterations = std::min(control.max_iterations, options_.restart);
+      const TimedApply<Multigrid> timed_m{multigrid_.get(), times_, ins_preconditioner};
+      r = solvers::gmres(exec, timed_a, rhs_, delta_, first, options_.restart, timed_m);
+      if (!r.converged) {
+        multigrid_.reset();
+        kernels::blas1::fill(exec, delta_, 0.0);
+        fell_back = true;
+      }
+    }
+    if (!multigrid_) {
+      A.compute_diagonal(exec, diagonal_);
+      kernels::blas1::reciprocal(exec, diagonal_);
+      const solvers::JacobiPreconditioner<Vector> jacobi{diagonal_};
+      if (times_) times_->lap(ins_setup);
+      const TimedApply<solvers::JacobiPreconditioner<Vector>> timed_m{&jacobi, times_,
+                                                                      ins_preconditioner};
+      const int spent = r.iterations;
+      r = solvers::gmres(exec, timed_a, rhs_, delta_, control, options_.restart, timed_m);
+      r.iterations += spent;
+    }
     kernels::blas1::axpy(exec, 1.0, delta_, x_);
     if (pressure_null_space_) remove_pressure_mean(exec, x_, true);
     if (times_) times_->lap(ins_other);
-    return {r.iterations, r.converged, r.final_residual};
+    return {r.iterations, r.converged, r.final_residual, fell_back};
   }
 
   /// Zeroes the velocity entries of v at the constrained DoFs.
@@ -365,6 +407,7 @@ class InsSolver {
   long steps_ = 0;
   PhaseTimes* times_ = nullptr;
   LinearSolver linear_solver_;
+  std::unique_ptr<Multigrid> multigrid_;
 };
 
 }  // namespace amphora::physics::ins_fem

@@ -22,8 +22,10 @@ class MatrixFreeTransfer {
 
   /// `fine` has the cells of `coarse` and a higher degree (p), or twice the cells per
   /// direction and both have degree 1 (h). Throws otherwise. Degree pairs compiled: k_f <= 2 k_c
-  /// + 1.
-  MatrixFreeTransfer(const Space& coarse, const Space& fine, int components = 1);
+  /// + 1. `components` blocked copies; the leading `constrained_components` of them (-1: all)
+  /// take the spaces' Dirichlet constraints (Oseen: the velocity, not the pressure).
+  MatrixFreeTransfer(const Space& coarse, const Space& fine, int components = 1,
+                     int constrained_components = -1);
 
   /// fine = P coarse (constrained fine DoFs: 0).
   void prolongate(const ExecSpace& exec, const Vector& coarse, const Vector& fine) const;

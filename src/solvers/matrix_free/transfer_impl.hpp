@@ -19,7 +19,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
   using T = kernels::sumfac::Simd<W>;
   kernels::sumfac::QkLattice<dim> coarse, fine;  // both on the coarse cells
   Kokkos::View<long*, typename ExecSpace::memory_space> coarse_constrained, fine_constrained;
-  int components = 1;
+  int components = 1, constrained_components = 1;
 
   static void zero_constrained(const ExecSpace& exec,
                                const Kokkos::View<long*, typename ExecSpace::memory_space>& c,
@@ -41,30 +41,32 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     using Eval = kernels::sumfac::TensorProductEvaluator<dim, n_pc, n_pf>;
 
     template <bool atomic>
-    KOKKOS_INLINE_FUNCTION void prolongate(const double* xc, double* xf, int b) const {
+    KOKKOS_INLINE_FUNCTION void prolongate(const double* xc, double* xf, int b,
+                                           bool constrained) const {
       T uc[Eval::n_dofs], uf[Eval::n_points], w[Eval::n_points], tmp[Eval::n_scratch];
       typename kernels::sumfac::BatchDofAccess<dim, n_pc, W>::BatchIndex ic;
       typename kernels::sumfac::BatchDofAccess<dim, n_pf, W>::BatchIndex jf;
       c.batch_index(b, ic);
       f.batch_index(b, jf);
-      c.gather(xc, ic, uc);
+      c.gather(xc, ic, uc, constrained);
       Eval::values(shape, uc, uf, tmp);
       f.inverse_multiplicity(b, w);
       for (int i = 0; i < Eval::n_points; ++i) uf[i] *= w[i];
-      f.template scatter_add<atomic>(xf, jf, uf);
+      f.template scatter_add<atomic>(xf, jf, uf, constrained);
     }
     template <bool atomic>
-    KOKKOS_INLINE_FUNCTION void restrict_to_coarse(const double* xf, double* xc, int b) const {
+    KOKKOS_INLINE_FUNCTION void restrict_to_coarse(const double* xf, double* xc, int b,
+                                                   bool constrained) const {
       T uc[Eval::n_dofs], uf[Eval::n_points], w[Eval::n_points], tmp[Eval::n_scratch];
       typename kernels::sumfac::BatchDofAccess<dim, n_pc, W>::BatchIndex ic;
       typename kernels::sumfac::BatchDofAccess<dim, n_pf, W>::BatchIndex jf;
       c.batch_index(b, ic);
       f.batch_index(b, jf);
-      f.gather(xf, jf, uf);
+      f.gather(xf, jf, uf, constrained);
       f.inverse_multiplicity(b, w);
       for (int i = 0; i < Eval::n_points; ++i) uf[i] *= w[i];
       Eval::integrate_values(shape, uf, uc, tmp);
-      c.template scatter_add<atomic>(xc, ic, uc);
+      c.template scatter_add<atomic>(xc, ic, uc, constrained);
     }
   };
 
@@ -87,11 +89,12 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     for (int comp = 0; comp < impl.components; ++comp) {
       const double* src = xc.data() + comp * nc;
       double* dst = xf.data() + comp * nf;
+      const bool cons = comp < impl.constrained_components;
       kernels::sumfac::for_each_batch_coloured(
           exec, impl.fine, "amphora::MatrixFreeTransfer::prolongate",
           kernels::sumfac::FirstTouchZero<dim>{impl.fine, dst, 1},
-          KOKKOS_LAMBDA(int b) { k.template prolongate<atomic>(src, dst, b); });
-      zero_constrained(exec, impl.fine_constrained, dst);
+          KOKKOS_LAMBDA(int b) { k.template prolongate<atomic>(src, dst, b, cons); });
+      if (cons) zero_constrained(exec, impl.fine_constrained, dst);
     }
   }
 
@@ -105,11 +108,12 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
     for (int comp = 0; comp < impl.components; ++comp) {
       const double* src = xf.data() + comp * nf;
       double* dst = xc.data() + comp * nc;
+      const bool cons = comp < impl.constrained_components;
       kernels::sumfac::for_each_batch_coloured(
           exec, impl.coarse, "amphora::MatrixFreeTransfer::restrict",
           kernels::sumfac::FirstTouchZero<dim>{impl.coarse, dst, 1},
-          KOKKOS_LAMBDA(int b) { k.template restrict_to_coarse<atomic>(src, dst, b); });
-      zero_constrained(exec, impl.coarse_constrained, dst);
+          KOKKOS_LAMBDA(int b) { k.template restrict_to_coarse<atomic>(src, dst, b, cons); });
+      if (cons) zero_constrained(exec, impl.coarse_constrained, dst);
     }
   }
 };
@@ -141,9 +145,10 @@ void dispatch_transfer(int coarse_degree, int fine_degree, F&& f) {
 
 template <int dim, class ExecSpace>
 MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, const Space& fine,
-                                                       int components) {
+                                                       int components, int constrained_components) {
   auto impl = std::make_shared<Impl>();
   impl->components = components;
+  impl->constrained_components = constrained_components < 0 ? components : constrained_components;
   impl->coarse = coarse.lattice();
   impl->coarse_constrained = coarse.constrained_dofs();
   impl->fine_constrained = fine.constrained_dofs();

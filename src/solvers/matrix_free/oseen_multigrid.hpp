@@ -1,0 +1,205 @@
+#pragma once
+// Geometric multigrid V-cycle for the coupled, stabilised Oseen operator (velocity and
+// pressure blocked, MatrixFreeOperator with OperatorKind::oseen), as the preconditioner of
+// GMRES: p-multigrid on the same cells (degree halved down to 1), then h-multigrid on Q1
+// (cells halved while even and the level is larger than max_coarse_dofs), the matrix-free
+// transfers on every component (the velocity's Dirichlet DoFs zeroed, the pressure free),
+// Chebyshev around the coupled point Jacobi as the smoother with lambda_max from power
+// iterations (the operator is not symmetric; Lethe's matrix-free solver, Blais et al.,
+// smooths the same way), and a dense least-squares solve of the assembled coarsest operator
+// (singular where the pressure is fixed only up to a constant). Each level's operator is the
+// fine one's, rediscretised with the advecting velocity restricted to it (R f / R 1: a
+// weighted average). One rank; the coarse solve reads the residual back to the host.
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Kokkos_Core.hpp>
+
+#include "kernels/blas1.hpp"
+#include "mesh/hex/qk_space.hpp"
+#include "solvers/chebyshev.hpp"
+#include "solvers/dense_least_squares.hpp"
+#include "solvers/matrix_free/assembly.hpp"
+#include "solvers/matrix_free/matrix_free_operator.hpp"
+#include "solvers/matrix_free/transfer.hpp"
+
+namespace amphora::solvers::matrix_free {
+
+struct OseenMultigridOptions {
+  ChebyshevOptions smoother{4, 5.0, 20, 0.0, true};
+  /// Stop h-coarsening at or below this many DoFs (all components), or at odd cell counts.
+  long max_coarse_dofs = 1000;
+  /// Above this many coarsest DoFs, the coarse "solve" is coarse_smoothing smoother sweeps.
+  long max_dense_dofs = 4000;
+  int coarse_smoothing = 8;
+  /// Each level's lambda_max is estimated on the first update and again every this many (1:
+  /// every update, which a restarted run repeats bit for bit).
+  int estimate_every = 1;
+  /// p-coarsening: degree k to k - 1 (true) or to k / 2.
+  bool degree_by_one = true;
+};
+
+template <int dim, class ExecSpace>
+class OseenMultigrid {
+ public:
+  using Space = mesh::hex::QkSpace<dim, ExecSpace>;
+  using Operator = MatrixFreeOperator<dim, ExecSpace>;
+  using Vector = typename Operator::Vector;
+  using Smoother = ChebyshevSmoother<ExecSpace, Operator, Vector>;
+
+  /// The levels below `fine` (which must outlive this); no operators until update().
+  explicit OseenMultigrid(const Space& fine, const OseenMultigridOptions& options = {})
+      : options_(options) {
+    levels_.emplace_back(std::make_unique<Level>());
+    levels_[0]->space = &fine;
+    for (;;) {
+      const Space& s = *levels_.back()->space;
+      std::unique_ptr<Space> next;
+      if (s.degree() > 1) {
+        next = std::make_unique<Space>(s.mesh(),
+                                       options.degree_by_one ? s.degree() - 1 : s.degree() / 2);
+      } else {
+        bool even = true;
+        for (int d = 0; d < dim; ++d) even = even && s.mesh().cells[d] % 2 == 0;
+        if (!even || (dim + 1) * s.n_dofs() <= options.max_coarse_dofs) break;
+        auto m = s.mesh();
+        for (int d = 0; d < dim; ++d) m.cells[d] /= 2;
+        next = std::make_unique<Space>(m, 1);
+      }
+      auto level = std::make_unique<Level>();
+      level->owned = std::move(next);
+      level->space = level->owned.get();
+      transfers_.emplace_back(*level->space, s, dim + 1, dim);
+      field_transfers_.emplace_back(*level->space, s, dim, 0);
+      levels_.push_back(std::move(level));
+    }
+    const ExecSpace exec;
+    for (std::size_t l = 0; l < levels_.size(); ++l) {
+      Level& L = *levels_[l];
+      const long n = (dim + 1) * L.space->n_dofs();
+      L.b = Vector("amphora::oseen_mg::b", n), L.x = Vector("amphora::oseen_mg::x", n);
+      L.r = Vector("amphora::oseen_mg::r", n), L.d = Vector("amphora::oseen_mg::d", n);
+      if (l == 0) continue;
+      L.field = Vector("amphora::oseen_mg::field", dim * L.space->n_dofs());
+      L.weight = Vector("amphora::oseen_mg::weight", dim * L.space->n_dofs());
+      Vector one("amphora::oseen_mg::one", dim * levels_[l - 1]->space->n_dofs());
+      kernels::blas1::fill(exec, one, 1.0);
+      field_transfers_[l - 1].restrict_to_coarse(exec, one, L.weight);
+    }
+  }
+
+  /// Rediscretises every level for the fine operator `A` (its options: coefficients and
+  /// advecting velocity); sets the smoothers and factors the coarsest operator.
+  void update(const ExecSpace& exec, const Operator& A) {
+    const bool estimate = updates_ % options_.estimate_every == 0;
+    ++updates_;
+    for (std::size_t l = 0; l < levels_.size(); ++l) {
+      Level& L = *levels_[l];
+      if (l == 0) {
+        L.op = &A;
+      } else {
+        restrict_field(exec, l, levels_[l - 1]->op->options().field);
+        auto o = A.options();
+        o.field = L.field;
+        L.owned_op = std::make_unique<Operator>(*L.space, o);
+        L.op = L.owned_op.get();
+      }
+      L.op->compute_diagonal(exec, L.d);
+      kernels::blas1::reciprocal(exec, L.d);
+      if (l + 1 == levels_.size() && dense_coarse()) break;
+      ChebyshevOptions so = options_.smoother;
+      if (!estimate) so.lambda_max_bound = L.upper;
+      L.smoother = std::make_unique<Smoother>(exec, *L.op, L.d, so);
+      L.upper = L.smoother->upper();
+    }
+    if (dense_coarse()) {
+      coarse_ = std::make_unique<DenseLeastSquares>(assemble(exec, *levels_.back()->op));
+      coarse_host_ = HostVector("amphora::oseen_mg::coarse_host", levels_.back()->b.extent(0));
+    }
+  }
+
+  /// z = one V-cycle applied to r.
+  void apply(const ExecSpace& exec, const Vector& r, const Vector& z) const {
+    vcycle(exec, 0, r, z);
+  }
+
+  int n_levels() const { return static_cast<int>(levels_.size()); }
+  /// e.g. "Q3 16^3 -> Q1 16^3 -> Q1 8^3 | dense coarse on 2048 DoFs".
+  std::string describe() const {
+    std::string s;
+    for (std::size_t l = 0; l < levels_.size(); ++l) {
+      const Space& sp = *levels_[l]->space;
+      s += (l ? " -> Q" : "Q") + std::to_string(sp.degree()) + " " +
+           std::to_string(sp.mesh().cells[0]) + "^" + std::to_string(dim);
+    }
+    const long n = (dim + 1) * levels_.back()->space->n_dofs();
+    return s + (dense_coarse() ? " | dense coarse on " : " | smoothed coarse on ") +
+           std::to_string(n) + " DoFs";
+  }
+
+  // (public for CUDA: extended lambdas may not live in private member functions)
+
+  /// Level l's advecting velocity: R f / R 1 (the weighted average of the finer values).
+  void restrict_field(const ExecSpace& exec, std::size_t l, const Vector& finer) const {
+    const Vector f = levels_[l]->field, w = levels_[l]->weight;
+    field_transfers_[l - 1].restrict_to_coarse(exec, finer, f);
+    Kokkos::parallel_for(
+        "amphora::oseen_mg::field", kernels::RangePolicy<ExecSpace>(exec, 0, int(f.extent(0))),
+        KOKKOS_LAMBDA(int i) { f(i) = w(i) != 0.0 ? f(i) / w(i) : 0.0; });
+  }
+
+ private:
+  struct Level {
+    std::unique_ptr<Space> owned;  // null on the finest level
+    const Space* space = nullptr;
+    std::unique_ptr<Operator> owned_op;
+    const Operator* op = nullptr;
+    Vector b, x, r, d, field, weight;  // d: the inverse diagonal
+    std::unique_ptr<Smoother> smoother;
+    double upper = 0.0;
+  };
+
+  bool dense_coarse() const {
+    return (dim + 1) * levels_.back()->space->n_dofs() <= options_.max_dense_dofs;
+  }
+
+  void vcycle(const ExecSpace& exec, std::size_t l, const Vector& b, const Vector& x) const {
+    const Level& L = *levels_[l];
+    if (l + 1 == levels_.size()) return coarse_solve(exec, b, x);
+    L.smoother->smooth(exec, b, x, true);
+    L.op->apply(exec, x, L.r);
+    kernels::blas1::axpby(exec, 1.0, b, -1.0, L.r);  // r = b - A x
+    const Level& C = *levels_[l + 1];
+    transfers_[l].restrict_to_coarse(exec, L.r, C.b);
+    vcycle(exec, l + 1, C.b, C.x);
+    transfers_[l].prolongate(exec, C.x, L.r);
+    kernels::blas1::axpy(exec, 1.0, L.r, x);
+    L.smoother->smooth(exec, b, x, false);
+  }
+
+  void coarse_solve(const ExecSpace& exec, const Vector& b, const Vector& x) const {
+    const Level& L = *levels_.back();
+    if (!coarse_) {
+      L.smoother->smooth(exec, b, x, true);
+      for (int i = 1; i < options_.coarse_smoothing; ++i) L.smoother->smooth(exec, b, x, false);
+      return;
+    }
+    Kokkos::deep_copy(exec, coarse_host_, b);
+    exec.fence();
+    coarse_->solve(coarse_host_.data(), coarse_host_.data());
+    Kokkos::deep_copy(exec, x, coarse_host_);
+  }
+
+  OseenMultigridOptions options_;
+  std::vector<std::unique_ptr<Level>> levels_;                       // 0: finest
+  std::vector<MatrixFreeTransfer<dim, ExecSpace>> transfers_;        // l: levels l+1 and l
+  std::vector<MatrixFreeTransfer<dim, ExecSpace>> field_transfers_;  // dim components, free
+  std::unique_ptr<DenseLeastSquares> coarse_;
+  using HostVector = Kokkos::View<double*, Kokkos::HostSpace>;
+  HostVector coarse_host_;
+  long updates_ = 0;
+};
+
+}  // namespace amphora::solvers::matrix_free
