@@ -23,10 +23,10 @@ from scene_variant import here, run_variant  # noqa: E402
 reference = os.path.join(here, "..", "shared", "reference", "tgv_re1600", "spectral_Re1600_512.dat")
 
 
-def measure(k, cells, end_time, threads, out):
+def measure(k, cells, end_time, threads, out, preconditioner="multigrid"):
     d = os.path.join(out, f"q{k}_{cells}")
     values = {"degree": str(k), "cells": str(cells), "end_time": str(end_time),
-              "checkpoint_every": "0"}
+              "checkpoint_every": "0", "preconditioner": f'"{preconditioner}"'}
     result = run_variant("studies/tgv_re1600.toml", d, values, threads)
     m = re.search(r"\[done\] (\d+) steps to t=\S+ in ([0-9.e+-]+) s stepping", result["stdout"])
     rows = list(csv.DictReader(open(os.path.join(d, "diagnostics.csv"))))
@@ -80,13 +80,14 @@ def main():
     p.add_argument("--end-time", type=float, default=20.0)
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--out", default="tgv_study")
+    p.add_argument("--preconditioner", default="multigrid", choices=["multigrid", "jacobi"])
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     ref = np.loadtxt(reference)
     runs = []
     for pair in a.runs.split(","):
         k, cells = (int(v) for v in pair.split(":"))
-        r = measure(k, cells, a.end_time, a.threads, a.out)
+        r = measure(k, cells, a.end_time, a.threads, a.out, a.preconditioner)
         r["core_hours"] = r["seconds"] * r["threads"] / 3600.0
         r.update(errors(r, ref))
         runs.append(r)

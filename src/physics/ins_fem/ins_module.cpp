@@ -233,22 +233,28 @@ template <int dim>
 std::vector<StateBlock> InsModule<dim>::state() const {
   auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_->state());
   auto oh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_->previous_velocity());
-  return {{"flow",
-           {{"state", std::vector<double>(sh.data(), sh.data() + sh.extent(0))},
-            {"u_old", std::vector<double>(oh.data(), oh.data() + oh.extent(0))},
-            {"history",
-             {solver_->previous_dt(), static_cast<double>(solver_->steps()), energy_, decay_rate_,
-              solved_ ? 1.0 : 0.0, static_cast<double>(last_.linear_iterations),
-              solver_->multigrid_active() ? 1.0 : 0.0}}}}};
+  StateBlock b{"flow",
+               {{"state", std::vector<double>(sh.data(), sh.data() + sh.extent(0))},
+                {"u_old", std::vector<double>(oh.data(), oh.data() + oh.extent(0))},
+                {"history",
+                 {solver_->previous_dt(), static_cast<double>(solver_->steps()), energy_,
+                  decay_rate_, solved_ ? 1.0 : 0.0, static_cast<double>(last_.linear_iterations),
+                  solver_->multigrid_active() ? 1.0 : 0.0}}}};
+  std::vector<double> pc = solver_->preconditioner_state();
+  if (!pc.empty()) b.arrays.push_back({"preconditioner", std::move(pc)});
+  return {b};
 }
 
 template <int dim>
 void InsModule<dim>::restore(const std::vector<StateBlock>& blocks) {
-  std::vector<double> state, u_old, history;
+  std::vector<double> state, u_old, history, preconditioner;
   for (const auto& b : blocks)
     if (b.name == "flow")
       for (const auto& [key, v] : b.arrays)
-        (key == "state" ? state : key == "u_old" ? u_old : history) = v;
+        (key == "state"            ? state
+         : key == "u_old"          ? u_old
+         : key == "preconditioner" ? preconditioner
+                                   : history) = v;
   if (static_cast<long>(state.size()) != (dim + 1) * solver_->n_dofs() || history.size() < 6)
     throw std::runtime_error("ins_fem: the checkpoint's flow block does not fit this scene (" +
                              std::to_string(state.size()) + " state entries, the scene has " +
@@ -258,6 +264,7 @@ void InsModule<dim>::restore(const std::vector<StateBlock>& blocks) {
   energy_ = history[2], decay_rate_ = history[3], solved_ = history[4] != 0.0;
   last_.linear_iterations = static_cast<int>(history[5]);
   if (history.size() > 6 && history[6] == 0.0) solver_->disable_multigrid();
+  solver_->set_preconditioner_state(preconditioner);
 }
 
 }  // namespace ins_module_detail

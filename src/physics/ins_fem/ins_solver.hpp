@@ -109,6 +109,13 @@ class InsSolver {
   /// keeps this, so a restarted run solves as the uninterrupted one.
   bool multigrid_active() const { return multigrid_ != nullptr; }
   void disable_multigrid() { multigrid_.reset(); }
+  /// The multigrid's reused smoother data (OseenMultigrid::state), for checkpoints.
+  std::vector<double> preconditioner_state() const {
+    return multigrid_ ? multigrid_->state() : std::vector<double>();
+  }
+  void set_preconditioner_state(const std::vector<double>& s) {
+    if (multigrid_) multigrid_->set_state(s);
+  }
   /// The multigrid's levels, or "point Jacobi".
   std::string describe_preconditioner() const {
     return multigrid_ ? multigrid_->describe() : std::string("point Jacobi");

@@ -10,6 +10,7 @@
 // (singular where the pressure is fixed only up to a constant). Each level's operator is the
 // fine one's, rediscretised with the advecting velocity restricted to it (R f / R 1: a
 // weighted average). One rank; the coarse solve reads the residual back to the host.
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,7 @@
 #include <Kokkos_Core.hpp>
 
 #include "kernels/blas1.hpp"
+#include "kernels/host_vector.hpp"
 #include "mesh/hex/qk_space.hpp"
 #include "solvers/chebyshev.hpp"
 #include "solvers/dense_least_squares.hpp"
@@ -34,9 +36,11 @@ struct OseenMultigridOptions {
   /// Above this many coarsest DoFs, the coarse "solve" is coarse_smoothing smoother sweeps.
   long max_dense_dofs = 4000;
   int coarse_smoothing = 8;
-  /// Each level's lambda_max is estimated on the first update and again every this many (1:
-  /// every update, which a restarted run repeats bit for bit).
-  int estimate_every = 1;
+  /// Each level's diagonal and lambda_max are computed on the first update and again every
+  /// this many; in between the smoothers keep them (the operator changes little from one step
+  /// to the next, and its diagonal costs a cell application per cell DoF). state() and
+  /// set_state() carry them through checkpoints, so restarts repeat runs bit for bit.
+  int refresh_every = 10;
   /// p-coarsening: degree k to k - 1 (true) or to k / 2.
   bool degree_by_one = true;
 };
@@ -93,8 +97,14 @@ class OseenMultigrid {
   /// Rediscretises every level for the fine operator `A` (its options: coefficients and
   /// advecting velocity); sets the smoothers and factors the coarsest operator.
   void update(const ExecSpace& exec, const Operator& A) {
-    const bool estimate = updates_ % options_.estimate_every == 0;
+    // also where the time step's coefficient moved by more than 5 % (BDF1 -> BDF2: 1.5x; the
+    // reused lambda_max bound has 20 % headroom)
+    const double alpha = A.options().alpha;
+    const bool refresh = !have_state_ || updates_ % options_.refresh_every == 0 ||
+                         std::abs(alpha - alpha_) > 0.05 * std::abs(alpha_);
     ++updates_;
+    have_state_ = true;
+    if (refresh) alpha_ = alpha;
     for (std::size_t l = 0; l < levels_.size(); ++l) {
       Level& L = *levels_[l];
       if (l == 0) {
@@ -106,11 +116,13 @@ class OseenMultigrid {
         L.owned_op = std::make_unique<Operator>(*L.space, o);
         L.op = L.owned_op.get();
       }
-      L.op->compute_diagonal(exec, L.d);
-      kernels::blas1::reciprocal(exec, L.d);
       if (l + 1 == levels_.size() && dense_coarse()) break;
+      if (refresh) {
+        L.op->compute_diagonal(exec, L.d);
+        kernels::blas1::reciprocal(exec, L.d);
+      }
       ChebyshevOptions so = options_.smoother;
-      if (!estimate) so.lambda_max_bound = L.upper;
+      if (!refresh) so.lambda_max_bound = L.upper;
       L.smoother = std::make_unique<Smoother>(exec, *L.op, L.d, so);
       L.upper = L.smoother->upper();
     }
@@ -118,6 +130,40 @@ class OseenMultigrid {
       coarse_ = std::make_unique<DenseLeastSquares>(assemble(exec, *levels_.back()->op));
       coarse_host_ = HostVector("amphora::oseen_mg::coarse_host", levels_.back()->b.extent(0));
     }
+  }
+
+  /// What later updates reuse: the update count, alpha, and each smoothed level's interval end and
+  /// inverse diagonal (empty before the first update).
+  std::vector<double> state() const {
+    if (!have_state_) return {};
+    std::vector<double> out{static_cast<double>(updates_), alpha_};
+    for (const auto& L : levels_) {
+      if (!L->smoother) continue;
+      const auto d = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), L->d);
+      out.push_back(L->upper);
+      out.insert(out.end(), d.data(), d.data() + d.extent(0));
+    }
+    return out;
+  }
+  /// Restores state() (of a multigrid on the same levels); empty: the next update refreshes.
+  void set_state(const std::vector<double>& s) {
+    have_state_ = !s.empty();
+    if (s.empty()) return;
+    std::size_t at = 2;
+    updates_ = static_cast<long>(s[0]), alpha_ = s[1];
+    for (std::size_t l = 0; l < levels_.size(); ++l) {
+      Level& L = *levels_[l];
+      if (l + 1 == levels_.size() && dense_coarse()) break;
+      const std::size_t n = L.d.extent(0);
+      if (at + 1 + n > s.size())
+        throw std::invalid_argument("OseenMultigrid: the saved state does not fit these levels");
+      L.upper = s[at];
+      Kokkos::deep_copy(L.d, kernels::to_view<typename ExecSpace::memory_space>(
+                                 std::vector<double>(s.begin() + at + 1, s.begin() + at + 1 + n)));
+      at += 1 + n;
+    }
+    if (at != s.size())
+      throw std::invalid_argument("OseenMultigrid: the saved state does not fit these levels");
   }
 
   /// z = one V-cycle applied to r.
@@ -200,6 +246,8 @@ class OseenMultigrid {
   using HostVector = Kokkos::View<double*, Kokkos::HostSpace>;
   HostVector coarse_host_;
   long updates_ = 0;
+  bool have_state_ = false;
+  double alpha_ = 0.0;  // the operator's alpha at the last refresh
 };
 
 }  // namespace amphora::solvers::matrix_free
