@@ -51,6 +51,18 @@ std::string fmt(double x) {
   return s.str();
 }
 
+/// "x = 0.5", or "(x, y, z) = (0.1, 0.2, 0.3)" where the module gave a point.
+std::string place(const physics::NonFiniteReport& r) {
+  if (r.point.empty()) return "x = " + fmt(r.x);
+  static const char* names[] = {"x", "y", "z"};
+  std::string n, v;
+  for (size_t d = 0; d < r.point.size() && d < 3; ++d) {
+    n += (d ? ", " : "") + std::string(names[d]);
+    v += (d ? ", " : "") + fmt(r.point[d]);
+  }
+  return "(" + n + ") = (" + v + ")";
+}
+
 struct Checkpoint {
   long long step;
   double time, dt;
@@ -176,7 +188,7 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
     if (auto bad = module->find_nonfinite()) {
       std::ostringstream m;
       m << "run diverged: " << (bad->reason.empty() ? "non-finite value" : bad->reason)
-        << " in field '" << bad->field << "' of block '" << bad->block << "' at x = " << fmt(bad->x)
+        << " in field '" << bad->field << "' of block '" << bad->block << "' at " << place(*bad)
         << " (index " << bad->index << ") at step " << step << ", t = " << fmt(t)
         << " (dt = " << fmt(dt) << "); last good output: "
         << (series.last_file().empty()

@@ -18,7 +18,8 @@ struct NonFiniteReport {
   std::string block;
   long long index = -1;
   double x = 0.0;
-  std::string reason;  ///< empty: "non-finite value"
+  std::vector<double> point;  ///< the place in 2D/3D; empty: `x` alone names it
+  std::string reason;         ///< empty: "non-finite value"
 };
 
 class Module {

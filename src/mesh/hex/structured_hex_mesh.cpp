@@ -1,5 +1,6 @@
 #include "mesh/hex/structured_hex_mesh.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -17,7 +18,38 @@ void StructuredHexMesh<dim>::validate() const {
     if ((faces[2 * d] == FaceCondition::periodic) != (faces[2 * d + 1] == FaceCondition::periodic))
       throw std::invalid_argument("mesh: direction " + std::to_string(d) +
                                   " is periodic on one face only; periodic faces come in pairs");
+    if (periodic(d) && deformation) check_periodic_match(d);
   }
+}
+
+// The deformation must move both faces of a periodic pair by the same translation: the cell
+// corners of the lower face, shifted by the period, must land on those of the upper face.
+template <int dim>
+void StructuredHexMesh<dim>::check_periodic_match(int d) const {
+  const int a = (d + 1) % dim, b = dim == 3 ? (d + 2) % dim : d;
+  const int na = cells[a], nb = dim == 3 ? cells[b] : 0;
+  Point3 shift{0.0, 0.0, 0.0};
+  double size = 0.0;
+  for (int e = 0; e < dim; ++e) size = std::max(size, upper[e] - lower[e]);
+  for (int i = 0; i <= na; ++i)
+    for (int j = 0; j <= nb; ++j) {
+      Point3 x = lower;
+      x[a] = lower[a] + (upper[a] - lower[a]) * i / na;
+      if (dim == 3) x[b] = lower[b] + (upper[b] - lower[b]) * j / nb;
+      Point3 y = x;
+      y[d] = upper[d];
+      const Point3 px = deformation(x), py = deformation(y);
+      for (int e = 0; e < dim; ++e) {
+        const double s = py[e] - px[e];
+        if (i == 0 && j == 0) shift[e] = s;
+        if (std::abs(s - shift[e]) > 1e-10 * size)
+          throw std::invalid_argument(
+              "mesh: the periodic faces of direction " + std::to_string(d) +
+              " do not match under the deformation (the corner at box coordinate " +
+              std::to_string(x[a]) + " along direction " + std::to_string(a) +
+              " is off its image by " + std::to_string(std::abs(s - shift[e])) + ")");
+      }
+    }
 }
 
 template <int dim>

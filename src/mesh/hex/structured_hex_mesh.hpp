@@ -51,12 +51,16 @@ struct StructuredHexMesh {
       if (faces[f] == FaceCondition::dirichlet) m |= 1 << f;
     return m;
   }
-  /// Throws std::invalid_argument naming the offending entry.
+  /// Throws std::invalid_argument naming the offending entry (also periodic faces that a
+  /// deformation moves apart).
   void validate() const;
   /// The same box with every cell split in two along each direction.
   StructuredHexMesh refined() const;
   /// With half the cells per direction; throws if a count is odd.
   StructuredHexMesh coarsened() const;
+
+ private:
+  void check_periodic_match(int d) const;
 };
 
 /// The box [0,1]^dim with `n` cells per direction and the given condition on every face.

@@ -144,7 +144,7 @@ class PoissonFem final : public Module {
   std::optional<NonFiniteReport> find_nonfinite() const override {
     const long i = kernels::reduce::first_nonfinite(Exec(), u_);
     if (i < 0) return std::nullopt;
-    return NonFiniteReport{"u", "solution", i, 0.0, {}};
+    return NonFiniteReport{"u", "solution", i, 0.0, {}, {}};
   }
   // The checkpoint holds the whole solution in global DoF order (the owned parts in rank
   // order are exactly that), written by rank 0: it restarts on any rank count.

@@ -218,6 +218,7 @@ class WaterMac final : public Module {
                            comm_.size() > 1 ? "water_" + std::to_string(first) : "water",
                            static_cast<long long>(found[1]),
                            found[2],
+                           {},
                            {}};
   }
 

@@ -59,12 +59,12 @@ CsrMatrix assemble(const ExecSpace& exec, const MatrixFreeOperator<dim, ExecSpac
     auto& row = rows[i];
     std::sort(row.begin(), row.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
-    for (std::size_t m = 0; m < row.size(); ++m) {
-      if (m > 0 && row[m].first == A.cols.back()) {
-        A.values.back() += row[m].second;
+    for (std::size_t e = 0; e < row.size(); ++e) {
+      if (e > 0 && row[e].first == A.cols.back()) {
+        A.values.back() += row[e].second;
       } else {
-        A.cols.push_back(row[m].first);
-        A.values.push_back(row[m].second);
+        A.cols.push_back(row[e].first);
+        A.values.push_back(row[e].second);
       }
     }
     A.row_ptr[i + 1] = static_cast<long>(A.cols.size());
