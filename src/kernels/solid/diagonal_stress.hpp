@@ -1,0 +1,90 @@
+#pragma once
+// Isotropic hyperelastic models as functions of the diagonalised deformation gradient F^ =
+// diag(s): the diagonal first Piola-Kirchhoff stress P^(s) and its Jacobian dP^_i/ds_j.
+// The invertible-FEM extrapolation (Irving, Teran & Fedkiw, SCA 2004, section 6) evaluates a
+// model at s* = max(s, s_c) entrywise and extends it linearly, P^(s) = P^(s*) + dP^(s*) (s - s*):
+// continuous across s_c, finite for inverted elements (s_2 < 0), and pushing them back.
+#include "kernels/solid/mat3.hpp"
+
+namespace amphora::kernels::solid {
+
+enum class Hyperelastic { neo_hookean, corotated, st_venant_kirchhoff };
+
+struct Material {
+  Hyperelastic model = Hyperelastic::neo_hookean;
+  double mu = 1.0, lambda = 1.0;  ///< Lame parameters [Pa]
+  /// Singular values below this are extrapolated (Irving et al. 2004); <= 0: no extrapolation
+  /// (the standard model, which breaks down under inversion).
+  double s_clamp = 0.25;
+};
+
+struct DiagonalStress {
+  Vec3 P;      ///< P^_i
+  Mat3 dP_ds;  ///< dP^_i / ds_j (symmetric: P^ derives from an energy)
+};
+
+namespace diagonal_stress_detail {
+
+/// Compressible neo-Hookean, psi = mu/2 (sum s^2 - 3) - mu log J + lambda/2 (log J)^2.
+KOKKOS_INLINE_FUNCTION DiagonalStress neo_hookean(const Vec3& s, double mu, double lambda) {
+  DiagonalStress r;
+  const double log_j = math::log(s[0] * s[1] * s[2]);
+  for (int i = 0; i < 3; ++i) {
+    r.P[i] = mu * s[i] - (mu - lambda * log_j) / s[i];
+    for (int j = 0; j < 3; ++j) r.dP_ds(i, j) = lambda / (s[i] * s[j]);
+    r.dP_ds(i, i) += mu + (mu - lambda * log_j) / (s[i] * s[i]);
+  }
+  return r;
+}
+
+/// Corotated linear elasticity, psi = mu sum (s - 1)^2 + lambda/2 (sum (s - 1))^2.
+KOKKOS_INLINE_FUNCTION DiagonalStress corotated(const Vec3& s, double mu, double lambda) {
+  DiagonalStress r;
+  const double tr = s[0] + s[1] + s[2] - 3.0;
+  for (int i = 0; i < 3; ++i) {
+    r.P[i] = 2.0 * mu * (s[i] - 1.0) + lambda * tr;
+    for (int j = 0; j < 3; ++j) r.dP_ds(i, j) = lambda;
+    r.dP_ds(i, i) += 2.0 * mu;
+  }
+  return r;
+}
+
+/// St Venant-Kirchhoff, psi = mu |E|^2 + lambda/2 (tr E)^2 with E^ = (s^2 - 1)/2.
+KOKKOS_INLINE_FUNCTION DiagonalStress st_venant_kirchhoff(const Vec3& s, double mu, double lambda) {
+  DiagonalStress r;
+  const double tr = 0.5 * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - 3.0);
+  for (int i = 0; i < 3; ++i) {
+    r.P[i] = s[i] * (mu * (s[i] * s[i] - 1.0) + lambda * tr);
+    for (int j = 0; j < 3; ++j) r.dP_ds(i, j) = lambda * s[i] * s[j];
+    r.dP_ds(i, i) += mu * (3.0 * s[i] * s[i] - 1.0) + lambda * tr;
+  }
+  return r;
+}
+
+KOKKOS_INLINE_FUNCTION DiagonalStress evaluate(const Material& m, const Vec3& s) {
+  switch (m.model) {
+    case Hyperelastic::corotated: return corotated(s, m.mu, m.lambda);
+    case Hyperelastic::st_venant_kirchhoff: return st_venant_kirchhoff(s, m.mu, m.lambda);
+    default: return neo_hookean(s, m.mu, m.lambda);
+  }
+}
+
+}  // namespace diagonal_stress_detail
+
+/// P^(s) and dP^/ds, extrapolated linearly below m.s_clamp; there dP_ds is the Jacobian at the
+/// clamped point (exact in the clamped entries, first order in the others). St Venant-Kirchhoff
+/// softens under compression (P^ peaks near s = 1/sqrt(3)), so below that its extrapolation
+/// is finite but does not push inverted elements back; neo-Hookean and corotated do.
+KOKKOS_INLINE_FUNCTION DiagonalStress diagonal_stress(const Material& m, const Vec3& s) {
+  Vec3 c = s;
+  bool clamped = false;
+  for (int i = 0; i < 3; ++i)
+    if (m.s_clamp > 0.0 && s[i] < m.s_clamp) c[i] = m.s_clamp, clamped = true;
+  DiagonalStress r = diagonal_stress_detail::evaluate(m, c);
+  if (clamped)
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) r.P[i] += r.dP_ds(i, j) * (s[j] - c[j]);
+  return r;
+}
+
+}  // namespace amphora::kernels::solid

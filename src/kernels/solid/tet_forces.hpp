@@ -1,0 +1,90 @@
+#pragma once
+// Linear-tetrahedron elastic forces (Irving, Teran & Fedkiw, SCA 2004, section 4): per element
+// F = D_s D_m^-1 from the current and rest edge matrices, F = U F^ V^T (svd3), P = U P^(F^) V^T
+// (diagonal_stress), and the nodal forces [f_1 f_2 f_3] = -W P D_m^-T, f_0 = -(f_1 + f_2 + f_3),
+// scattered with atomics. The rest data (D_m^-1, W) are computed once by tet_rest_shapes.
+#include "kernels/solid/diagonal_stress.hpp"
+#include "kernels/solid/svd3.hpp"
+#include "kernels/spaces.hpp"
+
+namespace amphora::kernels::solid {
+
+template <class MemSpace>
+struct TetRestShapes {
+  Kokkos::View<double* [3][3], MemSpace> Dm_inv;  ///< inverse rest edge matrix per element
+  Kokkos::View<double*, MemSpace> volume;         ///< signed rest volume det(D_m)/6
+};
+
+namespace tet_detail {
+
+/// The edge matrix [x_1 - x_0, x_2 - x_0, x_3 - x_0] of element e.
+template <class Nodes, class Tets>
+KOKKOS_INLINE_FUNCTION Mat3 edge_matrix(const Nodes& x, const Tets& tets, int e) {
+  Mat3 D;
+  const int n0 = tets(e, 0);
+  for (int c = 1; c < 4; ++c)
+    for (int i = 0; i < 3; ++i) D(i, c - 1) = x(tets(e, c), i) - x(n0, i);
+  return D;
+}
+
+}  // namespace tet_detail
+
+/// D_m^-1 and the signed rest volumes; elements with volume <= 0 are the caller's to refuse.
+template <class ExecSpace, class MemSpace>
+TetRestShapes<MemSpace> tet_rest_shapes(const ExecSpace& exec,
+                                        const Kokkos::View<double* [3], MemSpace>& X,
+                                        const Kokkos::View<int* [4], MemSpace>& tets) {
+  const int n = static_cast<int>(tets.extent(0));
+  TetRestShapes<MemSpace> r{Kokkos::View<double* [3][3], MemSpace>("solid::Dm_inv", n),
+                            Kokkos::View<double*, MemSpace>("solid::volume", n)};
+  const auto Dm_inv = r.Dm_inv;
+  const auto volume = r.volume;
+  Kokkos::parallel_for(
+      "amphora::solid::tet_rest_shapes", RangePolicy<ExecSpace>(exec, 0, n),
+      KOKKOS_LAMBDA(const int e) {
+        const Mat3 D = tet_detail::edge_matrix(X, tets, e);
+        const double det = determinant(D);
+        volume(e) = det / 6.0;
+        const Mat3 inv = det != 0.0 ? inverse(D) : Mat3();
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) Dm_inv(e, i, j) = inv(i, j);
+      });
+  return r;
+}
+
+/// f += the elastic forces at positions x; J(e) = det F per element. Forces of inverted
+/// elements are finite only with m.s_clamp > 0 (the invertible model).
+template <class ExecSpace, class MemSpace>
+void tet_forces(const ExecSpace& exec, const Material& m, const TetRestShapes<MemSpace>& rest,
+                const Kokkos::View<int* [4], MemSpace>& tets,
+                const Kokkos::View<double* [3], MemSpace>& x,
+                const Kokkos::View<double* [3], MemSpace>& f,
+                const Kokkos::View<double*, MemSpace>& J) {
+  const auto Dm_inv = rest.Dm_inv;
+  const auto volume = rest.volume;
+  Kokkos::parallel_for(
+      "amphora::solid::tet_forces", RangePolicy<ExecSpace>(exec, 0, int(tets.extent(0))),
+      KOKKOS_LAMBDA(const int e) {
+        Mat3 Bm;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) Bm(i, j) = Dm_inv(e, i, j);
+        const Mat3 F = tet_detail::edge_matrix(x, tets, e) * Bm;
+        J(e) = determinant(F);
+        const Svd3 d = svd3(F);
+        const DiagonalStress ps = diagonal_stress(m, d.s);
+        const Mat3 P = d.U * Mat3::diagonal(ps.P) * transpose(d.V);
+        const Mat3 H = P * transpose(Bm);  // f_c = -W H e_c
+        const double W = volume(e);
+        for (int i = 0; i < 3; ++i) {
+          double f0 = 0.0;
+          for (int c = 1; c < 4; ++c) {
+            const double fc = -W * H(i, c - 1);
+            Kokkos::atomic_add(&f(tets(e, c), i), fc);
+            f0 -= fc;
+          }
+          Kokkos::atomic_add(&f(tets(e, 0), i), f0);
+        }
+      });
+}
+
+}  // namespace amphora::kernels::solid
