@@ -61,6 +61,32 @@ KOKKOS_INLINE_FUNCTION DiagonalStress st_venant_kirchhoff(const Vec3& s, double 
   return r;
 }
 
+/// The strain energy density psi(s) of each model above.
+KOKKOS_INLINE_FUNCTION double energy(const Material& m, const Vec3& s) {
+  const double mu = m.mu, lambda = m.lambda;
+  switch (m.model) {
+    case Hyperelastic::corotated: {
+      const double tr = s[0] + s[1] + s[2] - 3.0;
+      double e = 0.5 * lambda * tr * tr;
+      for (int i = 0; i < 3; ++i) e += mu * (s[i] - 1.0) * (s[i] - 1.0);
+      return e;
+    }
+    case Hyperelastic::st_venant_kirchhoff: {
+      double tr = 0.0, e = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        const double Ei = 0.5 * (s[i] * s[i] - 1.0);
+        tr += Ei, e += mu * Ei * Ei;
+      }
+      return e + 0.5 * lambda * tr * tr;
+    }
+    default: {
+      const double log_j = math::log(s[0] * s[1] * s[2]);
+      return 0.5 * mu * (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - 3.0) - mu * log_j +
+             0.5 * lambda * log_j * log_j;
+    }
+  }
+}
+
 KOKKOS_INLINE_FUNCTION DiagonalStress evaluate(const Material& m, const Vec3& s) {
   switch (m.model) {
     case Hyperelastic::corotated: return corotated(s, m.mu, m.lambda);
@@ -85,6 +111,28 @@ KOKKOS_INLINE_FUNCTION DiagonalStress diagonal_stress(const Material& m, const V
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) r.P[i] += r.dP_ds(i, j) * (s[j] - c[j]);
   return r;
+}
+
+}  // namespace amphora::kernels::solid
+
+namespace amphora::kernels::solid {
+
+/// The energy density matching diagonal_stress: below the clamp, the second-order expansion
+/// psi(s*) + P^(s*) (s - s*) + (s - s*) dP^(s*) (s - s*) / 2 about the clamped point.
+KOKKOS_INLINE_FUNCTION double diagonal_energy(const Material& m, const Vec3& s) {
+  Vec3 c = s, d;
+  bool clamped = false;
+  for (int i = 0; i < 3; ++i)
+    if (m.s_clamp > 0.0 && s[i] < m.s_clamp) c[i] = m.s_clamp, clamped = true;
+  double e = diagonal_stress_detail::energy(m, c);
+  if (!clamped) return e;
+  const DiagonalStress r = diagonal_stress_detail::evaluate(m, c);
+  for (int i = 0; i < 3; ++i) d[i] = s[i] - c[i];
+  for (int i = 0; i < 3; ++i) {
+    e += r.P[i] * d[i];
+    for (int j = 0; j < 3; ++j) e += 0.5 * d[i] * r.dP_ds(i, j) * d[j];
+  }
+  return e;
 }
 
 }  // namespace amphora::kernels::solid

@@ -87,4 +87,26 @@ void tet_forces(const ExecSpace& exec, const Material& m, const TetRestShapes<Me
       });
 }
 
+/// The elastic energy sum_e W_e psi(F^_e) at positions x.
+template <class ExecSpace, class MemSpace>
+double tet_elastic_energy(const ExecSpace& exec, const Material& m,
+                          const TetRestShapes<MemSpace>& rest,
+                          const Kokkos::View<int* [4], MemSpace>& tets,
+                          const Kokkos::View<double* [3], MemSpace>& x) {
+  const auto Dm_inv = rest.Dm_inv;
+  const auto volume = rest.volume;
+  double energy = 0.0;
+  Kokkos::parallel_reduce(
+      "amphora::solid::tet_elastic_energy", RangePolicy<ExecSpace>(exec, 0, int(tets.extent(0))),
+      KOKKOS_LAMBDA(const int e, double& sum) {
+        Mat3 Bm;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) Bm(i, j) = Dm_inv(e, i, j);
+        const Svd3 d = svd3(tet_detail::edge_matrix(x, tets, e) * Bm);
+        sum += volume(e) * diagonal_energy(m, d.s);
+      },
+      energy);
+  return energy;
+}
+
 }  // namespace amphora::kernels::solid

@@ -1,0 +1,244 @@
+#pragma once
+// A deformable solid on linear tetrahedra with the invertible hyperelastic models (Irving,
+// Teran & Fedkiw, SCA 2004): lumped masses, the element forces of kernels/solid/tet_forces,
+// and the explicit symplectic step (leapfrog in its velocity-Verlet form, so velocities and
+// positions share a time and an undamped run conserves energy to O(dt^2)) with gravity,
+// mass-proportional damping, pinned nodes and a ground plane.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "kernels/solid/node_update.hpp"
+#include "kernels/solid/tet_forces.hpp"
+#include "mesh/tet/tet_mesh.hpp"
+
+namespace amphora::physics::solid_fem {
+
+using kernels::solid::Hyperelastic;
+using kernels::solid::Material;
+
+struct TetSolidOptions {
+  Material material;
+  double density = 1.0;
+  double gravity[3] = {0.0, 0.0, 0.0};
+  double damping = 0.0;                                     ///< mass-proportional rate alpha [1/s]
+  double floor = -std::numeric_limits<double>::infinity();  ///< ground plane z >= floor
+};
+
+/// Lame parameters from Young's modulus and Poisson's ratio; the compressible models need
+/// nu in (-1, 0.5) (std::invalid_argument otherwise).
+inline Material material_from_young_poisson(Hyperelastic model, double young, double poisson,
+                                            double s_clamp = 0.25) {
+  if (!(young > 0.0)) throw std::invalid_argument("solid_fem: Young's modulus must be > 0");
+  if (!(poisson > -1.0 && poisson < 0.5))
+    throw std::invalid_argument("solid_fem: Poisson's ratio " + std::to_string(poisson) +
+                                " is outside (-1, 0.5), the range of the compressible models");
+  const double mu = young / (2.0 * (1.0 + poisson));
+  const double lambda = young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
+  return Material{model, mu, lambda, s_clamp};
+}
+
+template <class ExecSpace>
+class TetSolid {
+ public:
+  using Mem = typename ExecSpace::memory_space;
+  using Nodes = Kokkos::View<double* [3], Mem>;
+
+  /// Throws std::invalid_argument listing inverted or degenerate rest elements, and for
+  /// non-positive density or mu, or Poisson's ratio >= 0.5.
+  TetSolid(const mesh::tet::TetMesh& rest, const TetSolidOptions& o,
+           const ExecSpace& exec = ExecSpace())
+      : o_(o), exec_(exec) {
+    check_options(o);
+    const auto views = mesh::tet::to_views<Mem>(rest);
+    tets_ = views.tets;
+    X_ = views.nodes;
+    shapes_ = kernels::solid::tet_rest_shapes(exec_, X_, tets_);
+    check_rest_volumes();
+    h_min_ = shortest_edge(rest);
+    x_ = Nodes("amphora::solid::x", rest.n_nodes());
+    Kokkos::deep_copy(exec_, x_, X_);
+    v_ = Nodes("amphora::solid::v", rest.n_nodes());
+    f_ = Nodes("amphora::solid::f", rest.n_nodes());
+    J_ = Kokkos::View<double*, Mem>("amphora::solid::J", rest.n_tets());
+    pinned_ = Kokkos::View<char*, Mem>("amphora::solid::pinned", rest.n_nodes());
+    lump_masses(rest.n_nodes());
+  }
+
+  /// The explicit limit dt <= h_min / c times `safety`, with c = sqrt(K / rho) for the stiffest
+  /// uniaxial modulus K the model reaches: lambda + 2 mu at rest, or dP^_0/ds_0 at s = (s_clamp,
+  /// 1, 1) if larger (neo-Hookean stiffens under compression: about 23x for lambda = 2 mu, so
+  /// squashed runs need a ~5x smaller step than the rest state's).
+  double stable_dt(double safety = 0.5) const {
+    const Material& m = o_.material;
+    double K = m.lambda + 2.0 * m.mu;
+    if (m.s_clamp > 0.0) {
+      const kernels::solid::Vec3 s{{m.s_clamp, 1.0, 1.0}};
+      K = std::max(K, kernels::solid::diagonal_stress(m, s).dP_ds(0, 0));
+    }
+    return safety * h_min_ / std::sqrt(K / o_.density);
+  }
+
+  /// Throws std::invalid_argument naming the limit when dt exceeds stable_dt(1).
+  void check_time_step(double dt) const {
+    if (dt > 0.0 && dt <= stable_dt(1.0)) return;
+    std::ostringstream s;
+    s << "solid_fem: time step " << dt << " is outside (0, " << stable_dt(1.0)
+      << "], the explicit limit h_min / c_p (h_min " << h_min_ << ")";
+    throw std::invalid_argument(s.str());
+  }
+
+  /// One velocity-Verlet step of dt: kick dt/2, drift dt, forces, kick dt/2.
+  void step(double dt) {
+    if (!forces_current_) update_forces();
+    kernels::solid::NodeKick k;
+    k.h = 0.5 * dt;
+    for (int d = 0; d < 3; ++d) k.gravity[d] = o_.gravity[d];
+    k.alpha = o_.damping;
+    kernels::solid::kick(exec_, k, mass_, pinned_, f_, v_);
+    kernels::solid::drift(exec_, dt, 2, o_.floor, pinned_, v_, x_);
+    update_forces();
+    kernels::solid::kick(exec_, k, mass_, pinned_, f_, v_);
+    time_ += dt;
+  }
+  /// The elastic forces and det F at the current positions.
+  void update_forces() {
+    Kokkos::deep_copy(exec_, f_, 0.0);
+    kernels::solid::tet_forces(exec_, o_.material, shapes_, tets_, x_, f_, J_);
+    forces_current_ = true;
+  }
+
+  double kinetic_energy() const {
+    const auto m = mass_;
+    const auto v = v_;
+    double e = 0.0;
+    Kokkos::parallel_reduce(
+        "amphora::solid::kinetic_energy", kernels::RangePolicy<ExecSpace>(exec_, 0, n_nodes()),
+        KOKKOS_LAMBDA(const int i, double& sum) {
+          sum += 0.5 * m(i) * (v(i, 0) * v(i, 0) + v(i, 1) * v(i, 1) + v(i, 2) * v(i, 2));
+        },
+        e);
+    return e;
+  }
+  double elastic_energy() const {
+    return kernels::solid::tet_elastic_energy(exec_, o_.material, shapes_, tets_, x_);
+  }
+  /// The smallest det F over the elements (at the last force evaluation).
+  double min_det_F() {
+    if (!forces_current_) update_forces();
+    double m = 0.0;
+    const auto J = J_;
+    Kokkos::parallel_reduce(
+        "amphora::solid::min_det_F", kernels::RangePolicy<ExecSpace>(exec_, 0, n_tets()),
+        KOKKOS_LAMBDA(const int e, double& acc) { acc = J(e) < acc ? J(e) : acc; },
+        Kokkos::Min<double>(m));
+    return m;
+  }
+
+  /// The first node with a non-finite force, position or velocity; -1 if none.
+  int first_nonfinite_node() const {
+    const auto x = x_, v = v_, f = f_;
+    const int none = n_nodes();
+    int first = none;
+    Kokkos::parallel_reduce(
+        "amphora::solid::first_nonfinite_node",
+        kernels::RangePolicy<ExecSpace>(exec_, 0, n_nodes()),
+        KOKKOS_LAMBDA(const int i, int& acc) {
+          bool ok = true;
+          for (int d = 0; d < 3; ++d)
+            ok = ok && kernels::math::isfinite(x(i, d)) && kernels::math::isfinite(v(i, d)) &&
+                 kernels::math::isfinite(f(i, d));
+          if (!ok && i < acc) acc = i;
+        },
+        Kokkos::Min<int>(first));
+    return first >= none ? -1 : first;  // Min<int> starts from INT_MAX
+  }
+
+  int n_nodes() const { return static_cast<int>(x_.extent(0)); }
+  int n_tets() const { return static_cast<int>(tets_.extent(0)); }
+  double time() const { return time_; }
+  /// Positions and velocities; a caller that changes positions calls update_forces() after.
+  const Nodes& positions() const { return x_; }
+  const Nodes& velocities() const { return v_; }
+  const Nodes& rest_positions() const { return X_; }
+  const Kokkos::View<char*, Mem>& pinned() const { return pinned_; }
+  const Kokkos::View<double*, Mem>& masses() const { return mass_; }
+  const Kokkos::View<int* [4], Mem>& tets() const {
+    return tets_;
+  } const TetSolidOptions& options() const {
+    return o_;
+  }
+
+  /// Row-sum lumped masses (public: CUDA forbids extended lambdas in private members).
+  /// Each element gives rho W / 4 to its nodes.
+  void lump_masses(int n) {
+    mass_ = Kokkos::View<double*, Mem>("amphora::solid::mass", n);
+    const auto m = mass_;
+    const auto vol = shapes_.volume;
+    const auto t = tets_;
+    const double rho = o_.density;
+    Kokkos::parallel_for(
+        "amphora::solid::lump_masses", kernels::RangePolicy<ExecSpace>(exec_, 0, n_tets()),
+        KOKKOS_LAMBDA(const int e) {
+          for (int c = 0; c < 4; ++c) Kokkos::atomic_add(&m(t(e, c)), 0.25 * rho * vol(e));
+        });
+  }
+
+ private:
+  static void check_options(const TetSolidOptions& o) {
+    const Material& m = o.material;
+    auto fail = [](const std::string& what) { throw std::invalid_argument("solid_fem: " + what); };
+    if (!(o.density > 0.0)) fail("density must be > 0");
+    if (!(m.mu > 0.0)) fail("mu must be > 0");
+    const double nu = m.lambda / (2.0 * (m.lambda + m.mu));  // Poisson's ratio
+    if (!(m.lambda >= 0.0) || !(nu < 0.5))
+      fail("Poisson's ratio " + std::to_string(nu) +
+           " is outside [0, 0.5) (the compressible models need lambda finite and >= 0)");
+    if (!(o.damping >= 0.0)) fail("damping must be >= 0");
+  }
+
+  /// Lists the elements of non-positive rest volume (at most ten named).
+  void check_rest_volumes() const {
+    const auto vol = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), shapes_.volume);
+    std::vector<long> bad;
+    for (size_t e = 0; e < vol.extent(0); ++e)
+      if (!(vol(e) > 0.0)) bad.push_back(static_cast<long>(e));
+    if (bad.empty()) return;
+    std::ostringstream s;
+    s << "solid_fem: " << bad.size() << " inverted or degenerate rest element(s):";
+    for (size_t i = 0; i < bad.size() && i < 10; ++i) s << " " << bad[i];
+    if (bad.size() > 10) s << " ...";
+    throw std::invalid_argument(s.str());
+  }
+
+  static double shortest_edge(const mesh::tet::TetMesh& m) {
+    double h = std::numeric_limits<double>::infinity();
+    for (const auto& t : m.tets)
+      for (int a = 0; a < 4; ++a)
+        for (int b = a + 1; b < 4; ++b) {
+          double l2 = 0.0;
+          for (int d = 0; d < 3; ++d) {
+            const double e = m.nodes[t[a]][d] - m.nodes[t[b]][d];
+            l2 += e * e;
+          }
+          h = std::min(h, std::sqrt(l2));
+        }
+    return h;
+  }
+
+  TetSolidOptions o_;
+  ExecSpace exec_;
+  Kokkos::View<int* [4], Mem> tets_;
+  Nodes X_, x_, v_, f_;
+  kernels::solid::TetRestShapes<Mem> shapes_;
+  Kokkos::View<double*, Mem> J_, mass_;
+  Kokkos::View<char*, Mem> pinned_;
+  double h_min_ = 0.0, time_ = 0.0;
+  bool forces_current_ = false;
+};
+
+}  // namespace amphora::physics::solid_fem
