@@ -13,13 +13,16 @@ using NamedArray = std::pair<std::string, std::vector<double>>;
 /// direction, length 1 for an unused direction, fields stored x fastest), a set of points
 /// (`points`: x, y, z hold each point's coordinates, fields one value per point), or a
 /// curvilinear grid (`curvilinear`: nodes[0] x nodes[1] x nodes[2] nodes, x fastest, x, y, z
-/// hold every node's coordinates; curved high-order meshes).
+/// hold every node's coordinates; curved high-order meshes), or a tetrahedral mesh (`tets`: 4
+/// node indices per element, 0-based; x, y, z hold every node's coordinates; fields of one
+/// value per element are cell data).
 struct OutputBlock {
   std::string name;
   std::vector<double> x, y, z;
   std::vector<NamedArray> fields;
   bool points = false;
   bool curvilinear = false;
+  std::vector<double> tets;  ///< connectivity as doubles (the files hold doubles; exact < 2^53)
   long nodes[3] = {1, 1, 1};
 };
 

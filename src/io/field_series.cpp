@@ -39,6 +39,7 @@ std::string FieldSeries::write(long long step, double time,
   for (const auto& b : local_blocks) {
     H5Group g{b.name, {{"x", b.x}, {"y", b.y}, {"z", b.z}}};
     if (b.points) g.datasets.push_back({"topology_points", {1.0}});  // marks a point set
+    if (!b.tets.empty()) g.datasets.push_back({"topology_tets", b.tets});
     if (b.curvilinear)  // marks a curvilinear grid and gives its node counts
       g.datasets.push_back(
           {"topology_nodes", {double(b.nodes[0]), double(b.nodes[1]), double(b.nodes[2])}});
@@ -88,10 +89,13 @@ std::string FieldSeries::write(long long step, double time,
   for (const auto& g : order) {
     const auto& s = sizes[g];
     const bool points = s.count("topology_points") != 0;
+    const bool tets = s.count("topology_tets") != 0;
+    const unsigned long long n_tets = tets ? s.at("topology_tets") / 4 : 0;
     const bool curvilinear = s.count("topology_nodes") != 0;
-    std::string dims = points ? std::to_string(s.at("x"))
-                              : std::to_string(s.at("z")) + " " + std::to_string(s.at("y")) + " " +
-                                    std::to_string(s.at("x"));
+    std::string dims = points || tets
+                           ? std::to_string(s.at("x"))
+                           : std::to_string(s.at("z")) + " " + std::to_string(s.at("y")) + " " +
+                                 std::to_string(s.at("x"));
     if (curvilinear) {
       const auto& nodes = curvilinear_nodes.at(g);
       dims = std::to_string(nodes[2]) + " " + std::to_string(nodes[1]) + " " +
@@ -101,6 +105,12 @@ std::string FieldSeries::write(long long step, double time,
     if (points) {
       x << "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << s.at("x")
         << "\" NodesPerElement=\"1\"/>\n"
+        << "        <Geometry GeometryType=\"X_Y_Z\">\n";
+    } else if (tets) {
+      x << "        <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" << n_tets
+        << "\">\n          <DataItem Dimensions=\"" << n_tets
+        << " 4\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/" << g
+        << "/topology_tets</DataItem>\n        </Topology>\n"
         << "        <Geometry GeometryType=\"X_Y_Z\">\n";
     } else if (curvilinear) {
       x << "        <Topology TopologyType=\"3DSMesh\" Dimensions=\"" << dims << "\"/>\n"
@@ -117,10 +127,12 @@ std::string FieldSeries::write(long long step, double time,
     x << "        </Geometry>\n";
     for (const auto& d : layout) {
       if (d.group != g || d.name == "x" || d.name == "y" || d.name == "z" ||
-          d.name == "topology_points" || d.name == "topology_nodes")
+          d.name == "topology_points" || d.name == "topology_nodes" || d.name == "topology_tets")
         continue;
+      const bool cell = tets && d.size == n_tets && d.size != s.at("x");
       x << "        <Attribute Name=\"" << d.name << "\" AttributeType=\"Scalar\" "
-        << "Center=\"Node\">\n          <DataItem Dimensions=\"" << dims
+        << "Center=\"" << (cell ? "Cell" : "Node") << "\">\n          <DataItem Dimensions=\""
+        << (cell ? std::to_string(n_tets) : dims)
         << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/" << g << "/"
         << d.name << "</DataItem>\n        </Attribute>\n";
     }

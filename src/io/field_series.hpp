@@ -2,8 +2,8 @@
 // Field output as a time series ParaView opens: one HDF5 file per output step
 // (<dir>/fields_<step>.h5, a group per block with x, y, z and the point fields) and one XDMF
 // file for the run (<dir>/<scene>.xmf, a temporal collection of spatial collections of 3D
-// rectilinear grids), rewritten atomically after each step. The series' entries are part of a
-// checkpoint so a restarted run continues the same file.
+// rectilinear, curvilinear, point-set or tetrahedral blocks), rewritten atomically after each
+// step. The series' entries are part of a checkpoint so a restarted run continues the same file.
 #include <string>
 #include <vector>
 

@@ -6,6 +6,7 @@
 #include "physics/dem/dem_module.hpp"
 #include "physics/ins_fem/ins_module.hpp"
 #include "physics/poisson_fem/poisson_fem.hpp"
+#include "physics/solid_fem/solid_module.hpp"
 #include "physics/water_mac/water_mac.hpp"
 
 namespace amphora::io {
@@ -27,6 +28,7 @@ const std::vector<ModuleInfo>& module_registry() {
       {"ins_fem", physics::ins_fem::parameter_table, physics::ins_fem::create},
       {"mpve", coupling::fsi::mpve_parameter_table, coupling::fsi::create_mpve},
       {"poisson_fem", physics::poisson_fem::parameter_table, physics::poisson_fem::create},
+      {"solid_fem", physics::solid_fem::parameter_table, physics::solid_fem::create},
       {"water_mac", physics::water_mac::parameter_table, physics::water_mac::create},
   };
   return modules;

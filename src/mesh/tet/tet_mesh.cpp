@@ -1,5 +1,7 @@
 #include "mesh/tet/tet_mesh.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -51,5 +53,7 @@ TetMesh box_tet_mesh(const std::array<int, 3>& cells, const std::array<double, 3
         }
   return m;
 }
+
+double tet_volume(const TetMesh& m, int e) { return signed_volume6(m, m.tets[e]) / 6.0; }
 
 }  // namespace amphora::mesh::tet

@@ -20,6 +20,9 @@ struct TetMesh {
 TetMesh box_tet_mesh(const std::array<int, 3>& cells, const std::array<double, 3>& lower,
                      const std::array<double, 3>& upper);
 
+/// The signed volume of element e (positive for a positively oriented element).
+double tet_volume(const TetMesh& m, int e);
+
 template <class MemSpace>
 struct TetMeshViews {
   Kokkos::View<double* [3], MemSpace> nodes;

@@ -59,7 +59,8 @@ class TetSolid {
     X_ = views.nodes;
     shapes_ = kernels::solid::tet_rest_shapes(exec_, X_, tets_);
     check_rest_volumes();
-    h_min_ = shortest_edge(rest);
+    for (int e = 0; e < rest.n_tets(); ++e) rest_volume_ += mesh::tet::tet_volume(rest, e);
+    h_min_ = shortest_altitude(rest);
     x_ = Nodes("amphora::solid::x", rest.n_nodes());
     Kokkos::deep_copy(exec_, x_, X_);
     v_ = Nodes("amphora::solid::v", rest.n_nodes());
@@ -139,6 +140,21 @@ class TetSolid {
     return m;
   }
 
+  /// The deformed volume sum_e W_e det F_e (at the last force evaluation).
+  double volume() {
+    if (!forces_current_) update_forces();
+    const auto J = J_;
+    const auto W = shapes_.volume;
+    double v = 0.0;
+    Kokkos::parallel_reduce(
+        "amphora::solid::volume", kernels::RangePolicy<ExecSpace>(exec_, 0, n_tets()),
+        KOKKOS_LAMBDA(const int e, double& sum) { sum += W(e) * J(e); }, v);
+    return v;
+  }
+  double rest_volume() const { return rest_volume_; }
+  /// det F per element (at the last force evaluation).
+  const Kokkos::View<double*, Mem>& det_F() const { return J_; }
+
   /// The first node with a non-finite force, position or velocity; -1 if none.
   int first_nonfinite_node() const {
     const auto x = x_, v = v_, f = f_;
@@ -215,18 +231,25 @@ class TetSolid {
     throw std::invalid_argument(s.str());
   }
 
-  static double shortest_edge(const mesh::tet::TetMesh& m) {
+  /// The smallest element altitude 3 V / (largest face area): the length a wave crosses in a
+  /// step (a sliver's, not its edges').
+  static double shortest_altitude(const mesh::tet::TetMesh& m) {
     double h = std::numeric_limits<double>::infinity();
-    for (const auto& t : m.tets)
-      for (int a = 0; a < 4; ++a)
-        for (int b = a + 1; b < 4; ++b) {
-          double l2 = 0.0;
-          for (int d = 0; d < 3; ++d) {
-            const double e = m.nodes[t[a]][d] - m.nodes[t[b]][d];
-            l2 += e * e;
-          }
-          h = std::min(h, std::sqrt(l2));
-        }
+    for (int e = 0; e < m.n_tets(); ++e) {
+      const auto& t = m.tets[e];
+      double largest = 0.0;
+      for (int skip = 0; skip < 4; ++skip) {
+        const auto& a = m.nodes[t[(skip + 1) % 4]];
+        const auto& b = m.nodes[t[(skip + 2) % 4]];
+        const auto& c = m.nodes[t[(skip + 3) % 4]];
+        const double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+        const double w[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        const double n[3] = {u[1] * w[2] - u[2] * w[1], u[2] * w[0] - u[0] * w[2],
+                             u[0] * w[1] - u[1] * w[0]};
+        largest = std::max(largest, 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+      }
+      h = std::min(h, 3.0 * mesh::tet::tet_volume(m, e) / largest);
+    }
     return h;
   }
 
@@ -237,7 +260,7 @@ class TetSolid {
   kernels::solid::TetRestShapes<Mem> shapes_;
   Kokkos::View<double*, Mem> J_, mass_;
   Kokkos::View<char*, Mem> pinned_;
-  double h_min_ = 0.0, time_ = 0.0;
+  double h_min_ = 0.0, time_ = 0.0, rest_volume_ = 0.0;
   bool forces_current_ = false;
 };
 

@@ -1,0 +1,206 @@
+#include "physics/solid_fem/solid_module.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "physics/solid_fem/tet_solid.hpp"
+
+namespace amphora::physics::solid_fem {
+// A named namespace, not an anonymous one (CUDA extended lambdas; Kokkos issue #1547).
+namespace solid_module_detail {
+
+using Exec = kernels::DefaultExecSpace;
+
+Hyperelastic model_of(const std::string& name) {
+  if (name == "corotated") return Hyperelastic::corotated;
+  if (name == "st_venant_kirchhoff") return Hyperelastic::st_venant_kirchhoff;
+  return Hyperelastic::neo_hookean;
+}
+
+mesh::tet::TetMesh shape_mesh(const Parameters& p) {
+  const int n = static_cast<int>(p.integer("cells"));
+  const double L = p.real("length"), W = p.real("width"), H = p.real("height");
+  // Cells along x, y and z in proportion to the box's sides (at least one each).
+  auto count = [&](double side) {
+    return std::max(1, static_cast<int>(std::lround(n * side / L)));
+  };
+  return mesh::tet::box_tet_mesh({n, count(W), count(H)}, {0.0, -0.5 * W, 0.0}, {L, 0.5 * W, H});
+}
+
+class SolidModule final : public Module {
+ public:
+  SolidModule(const Parameters& p, const Communicator& comm) : mesh_(shape_mesh(p)) {
+    if (comm.size() > 1)
+      throw std::invalid_argument("solid_fem runs on one rank; run without mpirun or with -n 1");
+    TetSolidOptions o;
+    o.material = material_from_young_poisson(model_of(p.string("model")), p.real("young"),
+                                             p.real("poisson"), p.real("s_clamp"));
+    o.density = p.real("density");
+    o.gravity[2] = -p.real("gravity");
+    o.damping = p.real("damping");
+    o.floor = p.real("floor");
+    solid_ = std::make_unique<TetSolid<Exec>>(mesh_, o);
+    squash_and_pin(p.real("squash"), p.boolean("pin_x0"));
+  }
+
+  /// z -> c + s (z - c) about the centre height c; the x = min face pinned where asked.
+  void squash_and_pin(double s, bool pin) {
+    double zmin = 1e300, zmax = -1e300, xmin = 1e300, xmax = -1e300;
+    for (const auto& q : mesh_.nodes) {
+      zmin = std::min(zmin, q[2]), zmax = std::max(zmax, q[2]);
+      xmin = std::min(xmin, q[0]), xmax = std::max(xmax, q[0]);
+    }
+    const double c = 0.5 * (zmin + zmax), tol = 1e-9 * (xmax - xmin);
+    auto x = Kokkos::create_mirror(solid_->positions());
+    auto pinned = Kokkos::create_mirror(solid_->pinned());
+    for (int i = 0; i < mesh_.n_nodes(); ++i) {
+      const auto& q = mesh_.nodes[i];
+      x(i, 0) = q[0], x(i, 1) = q[1], x(i, 2) = c + s * (q[2] - c);
+      pinned(i) = pin && q[0] <= xmin + tol;
+      if (pin && q[0] >= xmax - tol) free_end_.push_back(i);
+    }
+    Kokkos::deep_copy(solid_->positions(), x);
+    Kokkos::deep_copy(solid_->pinned(), pinned);
+    solid_->update_forces();
+  }
+
+  std::string name() const override { return "solid_fem"; }
+  double stable_dt() const override { return solid_->stable_dt(1.0); }
+  void set_time_step(double dt) override { solid_->check_time_step(dt); }
+  void advance(double, double dt) override { solid_->step(dt); }
+  long long work_per_step() const override { return solid_->n_tets(); }
+  std::string work_unit() const override { return "element-steps"; }
+  std::string error_diagnostic() const override { return "volume_error"; }
+
+  std::vector<OutputBlock> output(double) const override;
+  Diagnostics diagnostics(double) const override;
+  std::optional<NonFiniteReport> find_nonfinite() const override {
+    const int i = solid_->first_nonfinite_node();
+    if (i < 0) return std::nullopt;
+    NonFiniteReport r;
+    r.field = "position/velocity/force";
+    r.block = "solid";
+    r.index = i;
+    r.point = {mesh_.nodes[i][0], mesh_.nodes[i][1], mesh_.nodes[i][2]};  // rest position
+    r.reason = solid_->options().material.s_clamp > 0.0
+                   ? ""
+                   : "non-finite value (an element inverted: the standard model has no "
+                     "stress there; set s_clamp > 0 for invertible FEM)";
+    return r;
+  }
+  std::vector<StateBlock> state() const override;
+  void restore(const std::vector<StateBlock>& blocks) override;
+  std::vector<std::string> owned_blocks() const override { return {"solid"}; }
+
+ private:
+  static std::vector<double> flat(const TetSolid<Exec>::Nodes& v) {
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+    std::vector<double> out(3 * h.extent(0));
+    for (size_t i = 0; i < h.extent(0); ++i)
+      for (int d = 0; d < 3; ++d) out[3 * i + d] = h(i, d);
+    return out;
+  }
+
+  mesh::tet::TetMesh mesh_;
+  std::unique_ptr<TetSolid<Exec>> solid_;
+  std::vector<int> free_end_;  ///< the nodes of the x = max face of a pinned body
+};
+
+Diagnostics SolidModule::diagnostics(double) const {
+  const std::vector<double> x = flat(solid_->positions());
+  auto m = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solid_->masses());
+  double mass = 0.0, mz = 0.0, sag = 0.0;
+  for (int i = 0; i < mesh_.n_nodes(); ++i) mass += m(i), mz += m(i) * x[3 * i + 2];
+  for (int i : free_end_) sag += x[3 * i + 2] - mesh_.nodes[i][2];
+  const double g = -solid_->options().gravity[2];
+  const double kinetic = solid_->kinetic_energy(), elastic = solid_->elastic_energy();
+  auto& s = *solid_;
+  Diagnostics d = {{"kinetic_energy", kinetic},
+                   {"elastic_energy", elastic},
+                   {"total_energy", kinetic + elastic + g * mz},
+                   {"min_det_F", s.min_det_F()},
+                   {"volume_error", s.volume() / s.rest_volume() - 1.0},
+                   {"centroid_z", mz / mass}};
+  if (!free_end_.empty()) d.push_back({"free_end_dz", sag / double(free_end_.size())});
+  return d;
+}
+
+std::vector<OutputBlock> SolidModule::output(double) const {
+  const std::vector<double> x = flat(solid_->positions()), v = flat(solid_->velocities());
+  auto J = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solid_->det_F());
+  OutputBlock b;
+  b.name = "solid";
+  const int n = mesh_.n_nodes();
+  std::vector<double> u[3], speed(n);
+  for (int i = 0; i < n; ++i) {
+    b.x.push_back(x[3 * i]), b.y.push_back(x[3 * i + 1]), b.z.push_back(x[3 * i + 2]);
+    for (int d = 0; d < 3; ++d) u[d].push_back(x[3 * i + d] - mesh_.nodes[i][d]);
+    speed[i] =
+        std::sqrt(v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
+  }
+  for (const auto& t : mesh_.tets)
+    for (int c : t) b.tets.push_back(double(c));
+  b.fields = {{"ux", u[0]},
+              {"uy", u[1]},
+              {"uz", u[2]},
+              {"speed", speed},
+              {"det_F", std::vector<double>(J.data(), J.data() + J.extent(0))}};
+  return {b};
+}
+
+std::vector<StateBlock> SolidModule::state() const {
+  return {
+      StateBlock{"solid", {{"x", flat(solid_->positions())}, {"v", flat(solid_->velocities())}}}};
+}
+
+void SolidModule::restore(const std::vector<StateBlock>& blocks) {
+  for (const auto& b : blocks)
+    for (const auto& [key, data] : b.arrays) {
+      if (b.name != "solid" || (key != "x" && key != "v")) continue;
+      if (data.size() != 3 * size_t(mesh_.n_nodes()))
+        throw std::runtime_error("solid_fem: the checkpoint's solid block does not fit this scene");
+      const auto& view = key == "x" ? solid_->positions() : solid_->velocities();
+      auto h = Kokkos::create_mirror(view);
+      for (int i = 0; i < mesh_.n_nodes(); ++i)
+        for (int d = 0; d < 3; ++d) h(i, d) = data[3 * i + d];
+      Kokkos::deep_copy(view, h);
+    }
+  solid_->update_forces();
+}
+
+}  // namespace solid_module_detail
+
+ParamTable parameter_table() {
+  return {"solid_fem",
+          "hyperelastic solid on linear tetrahedra, invertible FEM (Irving, Teran & Fedkiw 2004), "
+          "explicit",
+          {
+              real_param("length", 1.0, "m", above(0.0), "box side along x"),
+              real_param("width", 1.0, "m", above(0.0), "box side along y"),
+              real_param("height", 1.0, "m", above(0.0), "box side along z"),
+              int_param("cells", 6, at_least(2) & at_most(200),
+                        "lattice cubes along x (each split into six tetrahedra)"),
+              string_param("model", std::string("neo_hookean"), "the hyperelastic model",
+                           {"neo_hookean", "corotated", "st_venant_kirchhoff"}),
+              real_param("young", 1e5, "Pa", above(0.0), "Young's modulus"),
+              real_param("poisson", 0.3, "1", above(-1.0) & below(0.5), "Poisson's ratio"),
+              real_param("density", 1000.0, "kg/m^3", above(0.0), "mass density"),
+              real_param("s_clamp", 0.25, "1", at_least(0.0) & below(1.0),
+                         "singular values below it are extrapolated (invertible FEM); 0: the "
+                         "standard model, which fails on inverted elements"),
+              real_param("damping", 0.0, "1/s", at_least(0.0), "mass-proportional damping rate"),
+              real_param("gravity", 0.0, "m/s^2", at_least(0.0), "gravity along -z"),
+              real_param("floor", -1e30, "m", "height of the ground plane"),
+              real_param("squash", 1.0, "1", above(-1.0) & at_most(1.0),
+                         "initial z scale about the centre height (negative: mirrored, inverted)"),
+              bool_param("pin_x0", false, "hold the x = min face fixed (a cantilever)"),
+          }};
+}
+
+std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {
+  return std::make_unique<solid_module_detail::SolidModule>(p, comm);
+}
+
+}  // namespace amphora::physics::solid_fem

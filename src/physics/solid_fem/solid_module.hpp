@@ -1,0 +1,19 @@
+#pragma once
+// The invertible-FEM solid (TetSolid) as a scene: a box of linear tetrahedra, squashed
+// (or mirrored: inverted) along z at t = 0 and released, optionally pinned at its x = min face
+// (a cantilever) under gravity, above a floor. Diagnostics: energies, min det F, the volume
+// error, the centroid height and the free end's sag.
+#include <memory>
+
+#include "base/communicator.hpp"
+#include "base/parameters.hpp"
+#include "physics/module.hpp"
+
+namespace amphora::physics::solid_fem {
+
+/// The scene table `[solid_fem]`.
+ParamTable parameter_table();
+
+std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm);
+
+}  // namespace amphora::physics::solid_fem
