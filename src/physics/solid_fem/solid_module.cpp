@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/tet/gmsh_reader.hpp"
 #include "physics/solid_fem/tet_solid.hpp"
 
 namespace amphora::physics::solid_fem {
@@ -20,6 +21,7 @@ Hyperelastic model_of(const std::string& name) {
 }
 
 mesh::tet::TetMesh shape_mesh(const Parameters& p) {
+  if (!p.string("mesh").empty()) return mesh::tet::read_gmsh(p.string("mesh"));
   const int n = static_cast<int>(p.integer("cells"));
   const double L = p.real("length"), W = p.real("width"), H = p.real("height");
   // Cells along x, y and z in proportion to the box's sides (at least one each).
@@ -177,6 +179,9 @@ ParamTable parameter_table() {
           "hyperelastic solid on linear tetrahedra, invertible FEM (Irving, Teran & Fedkiw 2004), "
           "explicit",
           {
+              string_param("mesh", std::string(""),
+                           "a Gmsh 4.1 ASCII file of linear tetrahedra (path from the working "
+                           "directory); empty: the box below"),
               real_param("length", 1.0, "m", above(0.0), "box side along x"),
               real_param("width", 1.0, "m", above(0.0), "box side along y"),
               real_param("height", 1.0, "m", above(0.0), "box side along z"),
