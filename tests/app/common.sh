@@ -50,3 +50,21 @@ close_csv() {
       } }
     END { exit bad }' || fail "$1 and $2 differ beyond ${3:-1e-12} relative"
 }
+
+# restart_matches SCENE NAME MAX_STEPS [SED_EXPR...]: the scene (edited by the sed expressions)
+# run whole into NAME_full/ and run for MAX_STEPS then restarted from its checkpoint into
+# NAME_split/ ends with the same checkpoint and diagnostics, bit for bit.
+restart_matches() {
+  local scene=$1 name=$2 max=$3 e
+  shift 3
+  local edits=(-e "s|^output_dir = .*|output_dir = \"${name}_full\"|")
+  for e in "$@"; do edits+=(-e "$e"); done
+  sed "${edits[@]}" "$scene" > "${name}_full.toml"
+  sed "s|${name}_full|${name}_split|" "${name}_full.toml" > "${name}_split.toml"
+  "$AMPHORA" run "${name}_full.toml" > "${name}_full.log"
+  "$AMPHORA" run "${name}_split.toml" --max-steps "$max" > "${name}_first.log"
+  "$AMPHORA" run "${name}_split.toml" --restart "${name}_split/checkpoint.h5" > "${name}_second.log"
+  grep -q "(restart)" "${name}_second.log" || fail "$name: restart not announced"
+  same_h5 "${name}_full/checkpoint.h5" "${name}_split/checkpoint.h5"
+  cmp "${name}_full/diagnostics.csv" "${name}_split/diagnostics.csv" || fail "$name: diagnostics differ"
+}

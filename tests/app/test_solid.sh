@@ -29,41 +29,7 @@ expect_error 2 "nu.toml:[0-9]+: key 'solid_fem.poisson' = 0.5 is out of range; a
 sed -e 's/^cfl = .*/dt = 1e-3/' "$AMPHORA_SOURCE_DIR/scenes/solid_squash.toml" > dt.toml
 expect_error 2 "solid_fem: time step 0.001 is outside \(0, [0-9.e-]+\], the explicit limit" "$AMPHORA" run dt.toml
 # A Gmsh mesh with three negatively oriented elements: refused, naming them.
-cat > cube.msh <<'MSH'
-$MeshFormat
-4.1 0 8
-$EndMeshFormat
-$Nodes
-1 8 1 8
-3 1 0 8
-1
-2
-3
-4
-5
-6
-7
-8
-0 0 0
-1 0 0
-0 1 0
-1 1 0
-0 0 1
-1 0 1
-0 1 1
-1 1 1
-$EndNodes
-$Elements
-1 6 1 6
-3 1 4 6
-1 1 2 4 8
-2 1 2 6 8
-3 1 3 4 8
-4 1 3 7 8
-5 1 5 6 8
-6 1 5 7 8
-$EndElements
-MSH
+cp "$AMPHORA_SOURCE_DIR/tests/mesh/kuhn_cube.msh" cube.msh
 sed -e 's/^squash = .*/squash = 1.0\nmesh = "cube.msh"/' "$AMPHORA_SOURCE_DIR/scenes/solid_squash.toml" > msh.toml
 expect_error 2 "solid_fem: 3 inverted or degenerate rest element\(s\): 1 2 5" "$AMPHORA" run msh.toml
 sed -i 's/cube.msh/none.msh/' msh.toml
@@ -71,14 +37,6 @@ expect_error 2 "none.msh: cannot open the mesh file" "$AMPHORA" run msh.toml
 
 # A restart half way ends bit for bit where the uninterrupted run ends (positions and
 # velocities are the state; the forces are recomputed from the positions).
-sed -e 's|^output_dir = .*|output_dir = "full"|' -e 's/^end_time = .*/end_time = 0.004/' \
-  -e 's|^output_every = .*|output_every = 50\ncheckpoint_every = 40|' \
-  "$AMPHORA_SOURCE_DIR/scenes/solid_squash.toml" > full.toml
-sed 's|"full"|"split"|' full.toml > split.toml
-"$AMPHORA" run full.toml > full.log
-"$AMPHORA" run split.toml --max-steps 100 > first.log
-"$AMPHORA" run split.toml --restart split/checkpoint.h5 > second.log
-grep -q "(restart)" second.log || fail "solid_fem: restart not announced"
-same_h5 full/checkpoint.h5 split/checkpoint.h5
-cmp full/diagnostics.csv split/diagnostics.csv || fail "solid_fem: diagnostics differ"
+restart_matches "$AMPHORA_SOURCE_DIR/scenes/solid_squash.toml" solid 100 \
+  's/^end_time = .*/end_time = 0.004/' 's|^output_every = .*|output_every = 50\ncheckpoint_every = 40|'
 echo "solid: ok ($(grep '^\[done\]' run.log | cut -c1-60))"

@@ -1,6 +1,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -12,48 +13,12 @@ namespace {
 
 // The unit cube as Gmsh 4.1 writes it: one node block, a block of two boundary triangles
 // (skipped) and the six Kuhn tetrahedra, as written (three of them negatively oriented).
-const char* cube_msh = R"($MeshFormat
-4.1 0 8
-$EndMeshFormat
-$Entities
-0 0 0 1
-1 0 0 0 1 1 1 0 0
-$EndEntities
-$Nodes
-1 8 1 8
-3 1 0 8
-1
-2
-3
-4
-5
-6
-7
-8
-0 0 0
-1 0 0
-0 1 0
-1 1 0
-0 0 1
-1 0 1
-0 1 1
-1 1 1
-$EndNodes
-$Elements
-2 8 1 8
-2 1 2 2
-1 1 2 4
-2 1 4 3
-3 1 4 6
-3 1 2 4 8
-4 1 2 6 8
-5 1 3 4 8
-6 1 3 7 8
-7 1 5 6 8
-8 1 5 7 8
-$EndElements
-)";
-
+// app.solid reads the same file.
+/// The file's text (tests/mesh/kuhn_cube.msh).
+std::string cube_msh() {
+  std::ifstream in(std::string(AMPHORA_TEST_MESH_DIR) + "/kuhn_cube.msh");
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 std::string write(const std::string& name, const std::string& text) {
   const std::string path = ::testing::TempDir() + name;
   std::ofstream(path) << text;
@@ -70,7 +35,7 @@ std::string error_of(const std::string& path) {
 }
 
 TEST(GmshReader, ReadsTheTetrahedraAndSkipsOtherElements) {
-  const auto m = mesh::tet::read_gmsh(write("cube.msh", cube_msh));
+  const auto m = mesh::tet::read_gmsh(write("cube.msh", cube_msh()));
   ASSERT_EQ(m.n_nodes(), 8);
   ASSERT_EQ(m.n_tets(), 6);
   double total = 0.0;
@@ -87,7 +52,7 @@ TEST(GmshReader, ReadsTheTetrahedraAndSkipsOtherElements) {
 }
 
 TEST(GmshReader, BadFilesAreOneClearLine) {
-  const std::string text = cube_msh;
+  const std::string text = cube_msh();
   EXPECT_EQ(error_of("/nonexistent/x.msh"), "/nonexistent/x.msh: cannot open the mesh file");
   std::string v2 = text;
   v2.replace(v2.find("4.1 0 8"), 7, "2.2 0 8");

@@ -4,6 +4,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <unordered_map>
+#include <utility>
 
 namespace amphora::mesh::tet {
 
@@ -53,15 +54,28 @@ void read_format(MshLines& f) {
   if (binary != 0) f.fail("binary MSH; save the mesh as ASCII (Gmsh -bin 0)");
 }
 
-void read_nodes(MshLines& f, TetMesh& m, std::unordered_map<long, int>& index) {
-  auto s = f.next("the node counts");
+/// The section's block count (its first line: blocks, entries, min tag, max tag).
+long read_block_count(MshLines& f, const std::string& section) {
+  auto s = f.next("the " + section + " counts");
   long blocks = 0, n = 0, lo = 0, hi = 0;
-  f.read(s, "the node section's counts", blocks, n, lo, hi);
+  f.read(s, "the " + section + " section's counts", blocks, n, lo, hi);
+  return blocks;
+}
+
+/// A block header: entity dimension, entity tag, a kind (parametric flag or element type),
+/// entry count; returns {kind, count}.
+std::pair<int, long> read_block_header(MshLines& f, const std::string& section) {
+  auto h = f.next("a block header of the " + section + "s");
+  int dim = 0, tag = 0, kind = 0;
+  long count = 0;
+  f.read(h, "a block header of the " + section + "s", dim, tag, kind, count);
+  return {kind, count};
+}
+
+void read_nodes(MshLines& f, TetMesh& m, std::unordered_map<long, int>& index) {
+  const long blocks = read_block_count(f, "node");
   for (long b = 0; b < blocks; ++b) {
-    auto h = f.next("a node block header");
-    int dim = 0, tag = 0, parametric = 0;
-    long count = 0;
-    f.read(h, "a node block header", dim, tag, parametric, count);
+    const long count = read_block_header(f, "node").second;
     std::vector<long> tags(count);
     for (long i = 0; i < count; ++i) {
       auto t = f.next("a node tag");
@@ -78,14 +92,9 @@ void read_nodes(MshLines& f, TetMesh& m, std::unordered_map<long, int>& index) {
 }
 
 void read_elements(MshLines& f, TetMesh& m, const std::unordered_map<long, int>& index) {
-  auto s = f.next("the element counts");
-  long blocks = 0, n = 0, lo = 0, hi = 0;
-  f.read(s, "the element section's counts", blocks, n, lo, hi);
+  const long blocks = read_block_count(f, "element");
   for (long b = 0; b < blocks; ++b) {
-    auto h = f.next("an element block header");
-    int dim = 0, tag = 0, type = 0;
-    long count = 0;
-    f.read(h, "an element block header", dim, tag, type, count);
+    const auto [type, count] = read_block_header(f, "element");
     for (long i = 0; i < count; ++i) {
       auto e = f.next("an element");
       if (type != 4) continue;  // only linear tetrahedra
