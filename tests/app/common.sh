@@ -35,6 +35,12 @@ expect_error() {
 }
 
 # same_h5 A B: identical datasets and attributes (h5diff without tolerance compares exactly).
+csv_column() {  # NAME FILE: the values of the CSV column NAME, one per line
+  local c
+  c=$(head -1 "$2" | tr ',' '\n' | grep -n "^$1\$" | cut -d: -f1)
+  [ -n "$c" ] || fail "$2 has no column $1"
+  tail -n +2 "$2" | cut -d, -f"$c"
+}
 same_h5() { h5diff -q "$1" "$2" || fail "$1 and $2 differ"; }
 
 # close_csv A B [REL]: same shape, every number equal to REL (default 1e-12) relative.

@@ -1,8 +1,9 @@
 #pragma once
 // The explicit node updates of a lumped-mass solid, as the kick and drift of velocity Verlet
 // (the symplectic leapfrog written with velocities at the positions' times): kick v += h (f/m +
-// g - alpha v), drift x += dt v. Pinned nodes are held; a ground plane x_up >= floor stops the
-// normal velocity of the nodes that reach it (inelastic contact).
+// g - alpha v), drift x += dt v. Pinned nodes are held; a ground plane (tilted: a ramp) and
+// two moving plates hold the nodes on their side and take away the approaching normal
+// velocity (relative to the plane) of the nodes that reach one (inelastic, frictionless).
 #include "kernels/spaces.hpp"
 
 namespace amphora::kernels::solid {
@@ -26,8 +27,18 @@ void kick(const ExecSpace& exec, const NodeKick& k, const Kokkos::View<double*, 
       });
 }
 
+/// The ground n . x >= d (n a unit normal, at rest) and two plates normal to the axis `up`,
+/// x_up >= lo (moving at v_lo along up) and x_up <= hi (moving at v_hi).
+struct BoundingPlanes {
+  double n[3] = {0.0, 0.0, 1.0};
+  double d = -1e300;
+  int up = 2;
+  double lo = -1e300, v_lo = 0.0;
+  double hi = 1e300, v_hi = 0.0;
+};
+
 template <class ExecSpace, class MemSpace>
-void drift(const ExecSpace& exec, double dt, int up, double floor,
+void drift(const ExecSpace& exec, double dt, const BoundingPlanes& p,
            const Kokkos::View<char*, MemSpace>& pinned,
            const Kokkos::View<double* [3], MemSpace>& v,
            const Kokkos::View<double* [3], MemSpace>& x) {
@@ -36,9 +47,21 @@ void drift(const ExecSpace& exec, double dt, int up, double floor,
       KOKKOS_LAMBDA(const int i) {
         if (pinned(i)) return;
         for (int d = 0; d < 3; ++d) x(i, d) += dt * v(i, d);
-        if (x(i, up) < floor) {
-          x(i, up) = floor;
-          if (v(i, up) < 0.0) v(i, up) = 0.0;
+        const double gap = p.n[0] * x(i, 0) + p.n[1] * x(i, 1) + p.n[2] * x(i, 2) - p.d;
+        if (gap < 0.0) {
+          const double vn = p.n[0] * v(i, 0) + p.n[1] * v(i, 1) + p.n[2] * v(i, 2);
+          for (int d = 0; d < 3; ++d) {
+            x(i, d) -= gap * p.n[d];
+            if (vn < 0.0) v(i, d) -= vn * p.n[d];
+          }
+        }
+        if (x(i, p.up) < p.lo) {
+          x(i, p.up) = p.lo;
+          if (v(i, p.up) < p.v_lo) v(i, p.up) = p.v_lo;
+        }
+        if (x(i, p.up) > p.hi) {
+          x(i, p.up) = p.hi;
+          if (v(i, p.up) > p.v_hi) v(i, p.up) = p.v_hi;
         }
       });
 }

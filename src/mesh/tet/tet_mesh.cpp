@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -55,5 +57,52 @@ TetMesh box_tet_mesh(const std::array<int, 3>& cells, const std::array<double, 3
 }
 
 double tet_volume(const TetMesh& m, int e) { return signed_volume6(m, m.tets[e]) / 6.0; }
+double tet_volume(const TetMesh& m, const std::array<int, 4>& t) {
+  return signed_volume6(m, t) / 6.0;
+}
+
+std::vector<std::array<int, 3>> boundary_faces(const TetMesh& m) {
+  // Face c of a positive element, opposite its corner c, ordered with the outward normal.
+  constexpr int kFace[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+  std::map<std::array<int, 3>, std::pair<int, std::array<int, 3>>> seen;  // sorted -> (count, face)
+  for (const auto& t : m.tets)
+    for (const auto& f : kFace) {
+      const std::array<int, 3> face{t[f[0]], t[f[1]], t[f[2]]};
+      auto key = face;
+      std::sort(key.begin(), key.end());
+      auto& entry = seen[key];
+      if (++entry.first > 2)
+        throw std::invalid_argument("non-manifold mesh: the face of nodes " +
+                                    std::to_string(key[0]) + " " + std::to_string(key[1]) + " " +
+                                    std::to_string(key[2]) + " belongs to more than two elements");
+      entry.second = face;
+    }
+  std::vector<std::array<int, 3>> out;
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& [key, entry] : seen) {
+    if (entry.first != 1) continue;
+    out.push_back(entry.second);
+    for (int i = 0; i < 3; ++i) ++edges[std::minmax(entry.second[i], entry.second[(i + 1) % 3])];
+  }
+  for (const auto& [e, count] : edges)
+    if (count != 2)
+      throw std::invalid_argument("non-manifold mesh: the boundary edge of nodes " +
+                                  std::to_string(e.first) + " " + std::to_string(e.second) +
+                                  " is on " + std::to_string(count) +
+                                  " boundary faces (a closed surface has 2)");
+  return out;
+}
+
+int euler_characteristic(const std::vector<std::array<int, 3>>& faces) {
+  std::set<int> vertices;
+  std::set<std::pair<int, int>> edges;
+  for (const auto& f : faces)
+    for (int i = 0; i < 3; ++i) {
+      vertices.insert(f[i]);
+      edges.insert(std::minmax(f[i], f[(i + 1) % 3]));
+    }
+  return static_cast<int>(vertices.size()) - static_cast<int>(edges.size()) +
+         static_cast<int>(faces.size());
+}
 
 }  // namespace amphora::mesh::tet

@@ -22,6 +22,16 @@ TetMesh box_tet_mesh(const std::array<int, 3>& cells, const std::array<double, 3
 
 /// The signed volume of element e (positive for a positively oriented element).
 double tet_volume(const TetMesh& m, int e);
+/// The signed volume of the tetrahedron on the nodes t of m.
+double tet_volume(const TetMesh& m, const std::array<int, 4>& t);
+
+/// The boundary triangles (faces of exactly one element), ordered so that their normals point
+/// out of the mesh. Throws std::invalid_argument naming the first non-manifold place: a face
+/// of more than two elements, or a boundary edge not on exactly two boundary triangles.
+std::vector<std::array<int, 3>> boundary_faces(const TetMesh& m);
+
+/// V - E + F of a closed triangulated surface: 2 for each sphere, 0 for each torus.
+int euler_characteristic(const std::vector<std::array<int, 3>>& faces);
 
 template <class MemSpace>
 struct TetMeshViews {

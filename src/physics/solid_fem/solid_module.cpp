@@ -5,7 +5,10 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Dense>
+
 #include "mesh/tet/gmsh_reader.hpp"
+#include "mesh/tet/shape_meshes.hpp"
 #include "physics/solid_fem/tet_solid.hpp"
 
 namespace amphora::physics::solid_fem {
@@ -20,9 +23,31 @@ Hyperelastic model_of(const std::string& name) {
   return Hyperelastic::neo_hookean;
 }
 
+/// A mesh file, refused (naming the place) when its boundary is not a closed manifold.
+mesh::tet::TetMesh read_mesh(const std::string& path) {
+  mesh::tet::TetMesh m = mesh::tet::read_gmsh(path);
+  try {
+    mesh::tet::boundary_faces(m);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(path + ": " + e.what());
+  }
+  return m;
+}
+
+/// The body: a mesh file, or the box, ball or torus of the scene's sizes (the ball and the
+/// torus resting on z = 0).
 mesh::tet::TetMesh shape_mesh(const Parameters& p) {
-  if (!p.string("mesh").empty()) return mesh::tet::read_gmsh(p.string("mesh"));
+  if (!p.string("mesh").empty()) return read_mesh(p.string("mesh"));
   const int n = static_cast<int>(p.integer("cells"));
+  const double r = p.real("radius");
+  if (p.string("shape") == "ball") return mesh::tet::ball_tet_mesh(r, n, {0.0, 0.0, r});
+  if (p.string("shape") == "torus") {
+    if (!(p.real("ring_radius") > r))
+      throw std::invalid_argument("solid_fem: the torus needs ring_radius > radius (now " +
+                                  std::to_string(p.real("ring_radius")) + " and " +
+                                  std::to_string(r) + ")");
+    return mesh::tet::torus_tet_mesh(p.real("ring_radius"), r, n, {0.0, 0.0, r});
+  }
   const double L = p.real("length"), W = p.real("width"), H = p.real("height");
   // Cells along x, y and z in proportion to the box's sides (at least one each).
   auto count = [&](double side) {
@@ -43,11 +68,14 @@ class SolidModule final : public Module {
     o.gravity[2] = -p.real("gravity");
     o.damping = p.real("damping");
     o.floor = p.real("floor");
+    o.floor_tilt = p.real("floor_tilt") * 3.14159265358979323846 / 180.0;
     solid_ = std::make_unique<TetSolid<Exec>>(mesh_, o);
     squash_and_pin(p.real("squash"), p.boolean("pin_x0"));
+    if (p.real("plate_gap") < 1.0) plates_ = Plates{p.real("plate_gap"), p.real("plate_speed")};
     // Euler-Bernoulli's cantilever under its own weight: q L^4 / (8 E I) = 1.5 rho g L^4 / (E H^2)
     // for the box (small deflections; shear adds (H/L)^2 / 10 of it and less).
-    if (!free_end_.empty() && p.string("mesh").empty() && o.gravity[2] < 0.0)
+    if (!free_end_.empty() && p.string("mesh").empty() && p.string("shape") == "box" &&
+        o.gravity[2] < 0.0)
       beam_sag_ = 1.5 * o.density * p.real("gravity") * std::pow(p.real("length"), 4) /
                   (p.real("young") * p.real("height") * p.real("height"));
   }
@@ -60,6 +88,7 @@ class SolidModule final : public Module {
       xmin = std::min(xmin, q[0]), xmax = std::max(xmax, q[0]);
     }
     const double c = 0.5 * (zmin + zmax), tol = 1e-9 * (xmax - xmin);
+    centre_z_ = c, height_ = zmax - zmin;
     auto x = Kokkos::create_mirror(solid_->positions());
     auto pinned = Kokkos::create_mirror(solid_->pinned());
     for (int i = 0; i < mesh_.n_nodes(); ++i) {
@@ -76,12 +105,16 @@ class SolidModule final : public Module {
   std::string name() const override { return "solid_fem"; }
   double stable_dt() const override { return solid_->stable_dt(1.0); }
   void set_time_step(double dt) override { solid_->check_time_step(dt); }
-  void advance(double, double dt) override { solid_->step(dt); }
+  void advance(double t, double dt) override {
+    if (plates_.gap < 1.0) solid_->set_plates(plates_at(t, dt));
+    solid_->step(dt);
+  }
   long long work_per_step() const override { return solid_->n_tets(); }
   std::string work_unit() const override { return "element-steps"; }
-  /// The cantilever: its sag's relative error against beam theory; otherwise the volume error.
+  /// The cantilever: its sag's relative error against beam theory; squashed between plates:
+  /// the shape error after release; otherwise the volume error.
   std::string error_diagnostic() const override {
-    return beam_sag_ > 0.0 ? "sag_error" : "volume_error";
+    return beam_sag_ > 0.0 ? "sag_error" : plates_.gap < 1.0 ? "shape_error" : "volume_error";
   }
 
   std::vector<OutputBlock> output(double) const override;
@@ -113,8 +146,31 @@ class SolidModule final : public Module {
     return out;
   }
 
+  /// The plates' closest gap (a fraction of the rest height; 1: no plates) and speed.
+  struct Plates {
+    double gap = 1.0, speed = 0.0;
+  };
+  /// The plates about the body's centre height at the end of the step from t: closing at
+  /// `speed` each until the gap is reached, then opening as fast; gone once back apart.
+  kernels::solid::BoundingPlanes plates_at(double t, double dt) const {
+    const double travel = 0.5 * height_ * (1.0 - plates_.gap), t1 = travel / plates_.speed;
+    kernels::solid::BoundingPlanes b;
+    const double end = t + dt;
+    if (end >= 2.0 * t1) return b;
+    const double half = 0.5 * height_ - plates_.speed * (end <= t1 ? end : 2.0 * t1 - end);
+    const double v = t + 0.5 * dt < t1 ? plates_.speed : -plates_.speed;
+    b.lo = centre_z_ - half, b.v_lo = v;
+    b.hi = centre_z_ + half, b.v_hi = -v;
+    return b;
+  }
+  /// The largest distance of a node from the best rigid motion of the rest shape (Kabsch's
+  /// fit about the centre of mass), over half the rest shape's largest extent.
+  double shape_error(const std::vector<double>& x) const;
+
   mesh::tet::TetMesh mesh_;
   std::unique_ptr<TetSolid<Exec>> solid_;
+  Plates plates_;
+  double centre_z_ = 0.0, height_ = 0.0;
   std::vector<int> free_end_;  ///< the nodes of the x = max face of a pinned body
   double beam_sag_ = 0.0;      ///< Euler-Bernoulli's sag of the pinned box; 0: not a cantilever
 };
@@ -133,7 +189,8 @@ Diagnostics SolidModule::diagnostics(double) const {
                    {"total_energy", kinetic + elastic + g * mz},
                    {"min_det_F", s.min_det_F()},
                    {"volume_error", s.volume() / s.rest_volume() - 1.0},
-                   {"centroid_z", mz / mass}};
+                   {"centroid_z", mz / mass},
+                   {"shape_error", shape_error(x)}};
   if (!free_end_.empty()) d.push_back({"free_end_dz", sag / double(free_end_.size())});
   if (beam_sag_ > 0.0) {
     const double ratio = -sag / double(free_end_.size()) / beam_sag_;
@@ -142,6 +199,34 @@ Diagnostics SolidModule::diagnostics(double) const {
     d.push_back({"sag_error", std::abs(ratio - 1.0)});
   }
   return d;
+}
+
+double SolidModule::shape_error(const std::vector<double>& x) const {
+  auto m = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solid_->masses());
+  const int n = mesh_.n_nodes();
+  Eigen::Vector3d C = Eigen::Vector3d::Zero(), c = Eigen::Vector3d::Zero();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  double mass = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d X(mesh_.nodes[i].data());
+    C += m(i) * X, c += m(i) * Eigen::Vector3d(&x[3 * i]), mass += m(i);
+    lo = lo.cwiseMin(X), hi = hi.cwiseMax(X);
+  }
+  C /= mass, c /= mass;
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < n; ++i)
+    H += m(i) * (Eigen::Vector3d(mesh_.nodes[i].data()) - C) *
+         (Eigen::Vector3d(&x[3 * i]) - c).transpose();
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(H, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+  D(2, 2) = (svd.matrixV() * svd.matrixU().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+  const Eigen::Matrix3d R = svd.matrixV() * D * svd.matrixU().transpose();
+  double worst = 0.0;
+  for (int i = 0; i < n; ++i)
+    worst = std::max(
+        worst,
+        (Eigen::Vector3d(&x[3 * i]) - c - R * (Eigen::Vector3d(mesh_.nodes[i].data()) - C)).norm());
+  return worst / (0.5 * (hi - lo).maxCoeff());
 }
 
 std::vector<OutputBlock> SolidModule::output(double) const {
@@ -200,8 +285,16 @@ ParamTable parameter_table() {
               real_param("length", 1.0, "m", above(0.0), "box side along x"),
               real_param("width", 1.0, "m", above(0.0), "box side along y"),
               real_param("height", 1.0, "m", above(0.0), "box side along z"),
+              string_param("shape", std::string("box"),
+                           "the body when no mesh file is given (the ball and the torus rest "
+                           "on z = 0)",
+                           {"box", "ball", "torus"}),
+              real_param("radius", 0.05, "m", above(0.0), "the ball's radius, the torus' tube's"),
+              real_param("ring_radius", 0.15, "m", above(0.0),
+                         "the torus' ring radius (centre line), > radius"),
               int_param("cells", 6, at_least(2) & at_most(200),
-                        "lattice cubes along x (each split into six tetrahedra)"),
+                        "the box: lattice cubes along x (six tetrahedra each); the ball, torus: "
+                        "cells across the (tube's) diameter (24 tetrahedra each)"),
               string_param("model", std::string("neo_hookean"), "the hyperelastic model",
                            {"neo_hookean", "corotated", "st_venant_kirchhoff"}),
               real_param("young", 1e5, "Pa", above(0.0), "Young's modulus"),
@@ -212,10 +305,16 @@ ParamTable parameter_table() {
                          "standard model, which fails on inverted elements"),
               real_param("damping", 0.0, "1/s", at_least(0.0), "mass-proportional damping rate"),
               real_param("gravity", 0.0, "m/s^2", at_least(0.0), "gravity along -z"),
-              real_param("floor", -1e30, "m", "height of the ground plane"),
+              real_param("floor", -1e30, "m", "height of the ground plane at x = y = 0"),
+              real_param("floor_tilt", 0.0, "degrees", above(-90.0) & below(90.0),
+                         "the ground's slope (a frictionless ramp down towards +x)"),
               real_param("squash", 1.0, "1", above(-1.0) & at_most(1.0),
                          "initial z scale about the centre height (negative: mirrored, inverted)"),
               bool_param("pin_x0", false, "hold the x = min face fixed (a cantilever)"),
+              real_param("plate_gap", 1.0, "1", above(0.0) & at_most(1.0),
+                         "plates above and below close to this fraction of the body's height, "
+                         "then open (1: no plates)"),
+              real_param("plate_speed", 1.0, "m/s", above(0.0), "the speed of each plate"),
           }};
 }
 

@@ -3,7 +3,7 @@
 // Teran & Fedkiw, SCA 2004): lumped masses, the element forces of kernels/solid/tet_forces,
 // and the explicit symplectic step (leapfrog in its velocity-Verlet form, so velocities and
 // positions share a time and an undamped run conserves energy to O(dt^2)) with gravity,
-// mass-proportional damping, pinned nodes and a ground plane.
+// mass-proportional damping, pinned nodes, a ground plane and moving plates.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -26,7 +26,8 @@ struct TetSolidOptions {
   double density = 1.0;
   double gravity[3] = {0.0, 0.0, 0.0};
   double damping = 0.0;                                     ///< mass-proportional rate alpha [1/s]
-  double floor = -std::numeric_limits<double>::infinity();  ///< ground plane z >= floor
+  double floor = -std::numeric_limits<double>::infinity();  ///< the ground's height at x = y = 0
+  double floor_tilt = 0.0;  ///< the ground's slope about the y axis [rad] (a ramp down to +x)
 };
 
 /// Lame parameters from Young's modulus and Poisson's ratio; the compressible models need
@@ -101,11 +102,17 @@ class TetSolid {
     for (int d = 0; d < 3; ++d) k.gravity[d] = o_.gravity[d];
     k.alpha = o_.damping;
     kernels::solid::kick(exec_, k, mass_, pinned_, f_, v_);
-    kernels::solid::drift(exec_, dt, 2, o_.floor, pinned_, v_, x_);
+    kernels::solid::BoundingPlanes planes = plates_;
+    planes.n[0] = std::sin(o_.floor_tilt), planes.n[1] = 0.0, planes.n[2] = std::cos(o_.floor_tilt);
+    planes.d = std::isfinite(o_.floor) ? o_.floor * planes.n[2] : -1e300;
+    kernels::solid::drift(exec_, dt, planes, pinned_, v_, x_);
     update_forces();
     kernels::solid::kick(exec_, k, mass_, pinned_, f_, v_);
     time_ += dt;
   }
+  /// Plates normal to z that hold the body between them in the coming steps (their positions
+  /// at the end of the step and their velocities; the ground plane in p is not used).
+  void set_plates(const kernels::solid::BoundingPlanes& p) { plates_ = p; }
   /// The elastic forces and det F at the current positions.
   void update_forces() {
     Kokkos::deep_copy(exec_, f_, 0.0);
@@ -260,6 +267,7 @@ class TetSolid {
   kernels::solid::TetRestShapes<Mem> shapes_;
   Kokkos::View<double*, Mem> J_, mass_;
   Kokkos::View<char*, Mem> pinned_;
+  kernels::solid::BoundingPlanes plates_;
   double h_min_ = 0.0, time_ = 0.0, rest_volume_ = 0.0;
   bool forces_current_ = false;
 };
