@@ -27,6 +27,20 @@ shape=$(csv_column shape_error ball/diagnostics.csv | tail -1)
 bvol=$(csv_column volume_error ball/diagnostics.csv | tail -1)
 awk -v j="$worst_j" -v s="$shape" -v v="$bvol" 'BEGIN { exit !(j < 0 && s < 0.01 && v < 0.01 && v > -0.01) }' \
   || fail "ball: min det F $worst_j (should go below 0), shape error $shape, volume error $bvol"
+# The same squash by backward Euler (Newton-CG) at a step 20 times the explicit limit.
+sed -e 's|^output_dir = .*|output_dir = "ball_be"|' -e 's/^cells = .*/cells = 4/' -e 's/^cfl = .*/dt = 4e-4/' \
+  -e 's/^s_clamp = .*/s_clamp = 0.25\nintegrator = "backward_euler"\nnewton_tolerance = 1e-5/' \
+  "$AMPHORA_SOURCE_DIR/scenes/solid_ball_squash.toml" > ball_be.toml
+"$AMPHORA" run ball_be.toml > ball_be.log
+shape=$(csv_column shape_error ball_be/diagnostics.csv | tail -1)
+newton=$(csv_column newton_iterations ball_be/diagnostics.csv | sort -g | tail -1)
+awk -v s="$shape" -v n="$newton" 'BEGIN { exit !(s < 0.01 && n >= 1 && n <= 50) }' \
+  || fail "implicit ball: shape error $shape, at most $newton Newton iterations"
+# A Newton solve that cannot reach its tolerance stops the run as a divergence.
+sed -i -e 's|^output_dir = .*|output_dir = "ball_nt"|' \
+  -e 's/^newton_tolerance = .*/newton_tolerance = 1e-12\nnewton_max_iterations = 2/' ball_be.toml
+expect_error 3 "run diverged: the Newton solve did not converge \(gradient .* after 2 iterations\) in field 'position/velocity/force' of block 'solid' at \(x, y, z\) = .* at step [0-9]+, t = .*; last good output: ball_nt/fields_000000.h5 \(step 0\)" \
+  "$AMPHORA" run ball_be.toml
 # A torus dropped on a 25-degree ramp: it lands and slides down, its energy never grows (the
 # contact is inelastic) and its elements stay upright.
 sed -e 's|^output_dir = .*|output_dir = "torus"|' -e 's/^cells = .*/cells = 2/' \

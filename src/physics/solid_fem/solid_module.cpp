@@ -1,6 +1,7 @@
 #include "physics/solid_fem/solid_module.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -67,6 +68,9 @@ class SolidModule final : public Module {
     o.density = p.real("density");
     o.gravity[2] = -p.real("gravity");
     o.damping = p.real("damping");
+    o.implicit = p.string("integrator") == "backward_euler";
+    o.newton.tolerance = p.real("newton_tolerance");
+    o.newton.max_iterations = static_cast<int>(p.integer("newton_max_iterations"));
     o.floor = p.real("floor");
     o.floor_tilt = p.real("floor_tilt") * 3.14159265358979323846 / 180.0;
     solid_ = std::make_unique<TetSolid<Exec>>(mesh_, o);
@@ -108,6 +112,13 @@ class SolidModule final : public Module {
   void advance(double t, double dt) override {
     if (plates_.gap < 1.0) solid_->set_plates(plates_at(t, dt));
     solid_->step(dt);
+    const NewtonReport& r = solid_->newton_report();
+    if (solid_->options().implicit && !r.converged && failure_.empty()) {
+      std::ostringstream m;
+      m << "the Newton solve did not converge (gradient " << r.residual << " of "
+        << r.initial_residual << " after " << r.iterations << " iterations)";
+      failure_ = m.str();
+    }
   }
   long long work_per_step() const override { return solid_->n_tets(); }
   std::string work_unit() const override { return "element-steps"; }
@@ -119,18 +130,20 @@ class SolidModule final : public Module {
 
   std::vector<OutputBlock> output(double) const override;
   Diagnostics diagnostics(double) const override;
+  /// Non-finite values, or a failed Newton solve (reported at node 0), stop the run.
   std::optional<NonFiniteReport> find_nonfinite() const override {
-    const int i = solid_->first_nonfinite_node();
-    if (i < 0) return std::nullopt;
+    int i = solid_->first_nonfinite_node();
+    if (i < 0 && failure_.empty()) return std::nullopt;
     NonFiniteReport r;
     r.field = "position/velocity/force";
     r.block = "solid";
-    r.index = i;
-    r.point = {mesh_.nodes[i][0], mesh_.nodes[i][1], mesh_.nodes[i][2]};  // rest position
     r.reason = solid_->options().material.s_clamp > 0.0
                    ? ""
                    : "non-finite value (an element inverted: the standard model has no "
                      "stress there; set s_clamp > 0 for invertible FEM)";
+    if (i < 0) i = 0, r.reason = failure_;
+    r.index = i;
+    r.point = {mesh_.nodes[i][0], mesh_.nodes[i][1], mesh_.nodes[i][2]};  // rest position
     return r;
   }
   std::vector<StateBlock> state() const override;
@@ -170,6 +183,7 @@ class SolidModule final : public Module {
   mesh::tet::TetMesh mesh_;
   std::unique_ptr<TetSolid<Exec>> solid_;
   Plates plates_;
+  std::string failure_;  ///< why the last implicit solve failed; empty: it did not
   double centre_z_ = 0.0, height_ = 0.0;
   std::vector<int> free_end_;  ///< the nodes of the x = max face of a pinned body
   double beam_sag_ = 0.0;      ///< Euler-Bernoulli's sag of the pinned box; 0: not a cantilever
@@ -192,6 +206,10 @@ Diagnostics SolidModule::diagnostics(double) const {
                    {"centroid_z", mz / mass},
                    {"shape_error", shape_error(x)}};
   if (!free_end_.empty()) d.push_back({"free_end_dz", sag / double(free_end_.size())});
+  if (s.options().implicit) {
+    d.push_back({"newton_iterations", double(s.newton_report().iterations)});
+    d.push_back({"cg_iterations", double(s.newton_report().cg_iterations)});
+  }
   if (beam_sag_ > 0.0) {
     const double ratio = -sag / double(free_end_.size()) / beam_sag_;
     d.push_back({"sag_beam_theory", beam_sag_});
@@ -304,6 +322,14 @@ ParamTable parameter_table() {
                          "singular values below it are extrapolated (invertible FEM); 0: the "
                          "standard model, which fails on inverted elements"),
               real_param("damping", 0.0, "1/s", at_least(0.0), "mass-proportional damping rate"),
+              string_param("integrator", std::string("explicit"),
+                           "explicit (velocity Verlet, dt under the explicit limit) or "
+                           "backward_euler (Newton-CG on the definite Hessian, any dt)",
+                           {"explicit", "backward_euler"}),
+              real_param("newton_tolerance", 1e-6, "1", above(0.0) & below(1.0),
+                         "backward Euler: the gradient's reduction that ends Newton's loop"),
+              int_param("newton_max_iterations", 50, at_least(1) & at_most(1000),
+                        "backward Euler: Newton steps before the run stops as failed"),
               real_param("gravity", 0.0, "m/s^2", at_least(0.0), "gravity along -z"),
               real_param("floor", -1e30, "m", "height of the ground plane at x = y = 0"),
               real_param("floor_tilt", 0.0, "degrees", above(-90.0) & below(90.0),

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -15,6 +16,7 @@
 #include "kernels/solid/node_update.hpp"
 #include "kernels/solid/tet_forces.hpp"
 #include "mesh/tet/tet_mesh.hpp"
+#include "physics/solid_fem/backward_euler.hpp"
 
 namespace amphora::physics::solid_fem {
 
@@ -28,6 +30,8 @@ struct TetSolidOptions {
   double damping = 0.0;                                     ///< mass-proportional rate alpha [1/s]
   double floor = -std::numeric_limits<double>::infinity();  ///< the ground's height at x = y = 0
   double floor_tilt = 0.0;  ///< the ground's slope about the y axis [rad] (a ramp down to +x)
+  bool implicit = false;    ///< backward Euler (Newton-CG) instead of the explicit step
+  NewtonOptions newton;
 };
 
 /// Lame parameters from Young's modulus and Poisson's ratio; the compressible models need
@@ -85,34 +89,64 @@ class TetSolid {
     return safety * h_min_ / std::sqrt(K / o_.density);
   }
 
-  /// Throws std::invalid_argument naming the limit when dt exceeds stable_dt(1).
+  /// Throws std::invalid_argument naming the limit when dt exceeds stable_dt(1) (explicit
+  /// stepping only).
   void check_time_step(double dt) const {
-    if (dt > 0.0 && dt <= stable_dt(1.0)) return;
+    if (dt > 0.0 && (o_.implicit || dt <= stable_dt(1.0))) return;
     std::ostringstream s;
     s << "solid_fem: time step " << dt << " is outside (0, " << stable_dt(1.0)
       << "], the explicit limit h_min / c_p (h_min " << h_min_ << ")";
     throw std::invalid_argument(s.str());
   }
 
-  /// One velocity-Verlet step of dt: kick dt/2, drift dt, forces, kick dt/2.
+  /// One step of dt: explicit, or backward Euler where the options ask for it.
   void step(double dt) {
+    if (o_.implicit) return step_implicit(dt);
     if (!forces_current_) update_forces();
     kernels::solid::NodeKick k;
     k.h = 0.5 * dt;
     for (int d = 0; d < 3; ++d) k.gravity[d] = o_.gravity[d];
     k.alpha = o_.damping;
     kernels::solid::kick(exec_, k, mass_, pinned_, f_, v_);
-    kernels::solid::BoundingPlanes planes = plates_;
-    planes.n[0] = std::sin(o_.floor_tilt), planes.n[1] = 0.0, planes.n[2] = std::cos(o_.floor_tilt);
-    planes.d = std::isfinite(o_.floor) ? o_.floor * planes.n[2] : -1e300;
-    kernels::solid::drift(exec_, dt, planes, pinned_, v_, x_);
+    kernels::solid::drift(exec_, dt, planes(), pinned_, v_, x_);
     update_forces();
     kernels::solid::kick(exec_, k, mass_, pinned_, f_, v_);
     time_ += dt;
   }
+  /// One backward-Euler step of dt (backward_euler.hpp); the ground and the plates then act
+  /// on the new positions as in the explicit drift (outside the Newton solve).
+  void step_implicit(double dt) {
+    if (!implicit_) {
+      // Round-off's level of the gradient: 1e-10 of the force a unit strain puts on an
+      // element, summed over the nodes in quadrature.
+      NewtonOptions n = o_.newton;
+      const double h = std::cbrt(rest_volume_ / n_tets()),
+                   K = o_.material.lambda + 2.0 * o_.material.mu;
+      n.absolute = std::max(n.absolute, 1e-10 * K * h * h * std::sqrt(double(n_nodes())));
+      implicit_ = std::make_unique<BackwardEuler<ExecSpace>>(n_nodes(), n_tets(), n, exec_);
+    }
+    ImplicitSystem<Mem> s{o_.material, shapes_, tets_, mass_, pinned_};
+    for (int d = 0; d < 3; ++d) s.gravity[d] = o_.gravity[d];
+    s.damping = o_.damping;
+    newton_ = implicit_->step(s, dt, x_, v_);
+    Kokkos::deep_copy(exec_, x_, implicit_->start());
+    kernels::solid::drift(exec_, dt, planes(), pinned_, v_, x_);
+    update_forces();
+    time_ += dt;
+  }
+  /// The last implicit step's Newton iterations, CG iterations and residuals.
+  const NewtonReport& newton_report() const { return newton_; }
+
   /// Plates normal to z that hold the body between them in the coming steps (their positions
   /// at the end of the step and their velocities; the ground plane in p is not used).
   void set_plates(const kernels::solid::BoundingPlanes& p) { plates_ = p; }
+  /// The ground (options) and the plates (set_plates) for the drift.
+  kernels::solid::BoundingPlanes planes() const {
+    kernels::solid::BoundingPlanes p = plates_;
+    p.n[0] = std::sin(o_.floor_tilt), p.n[1] = 0.0, p.n[2] = std::cos(o_.floor_tilt);
+    p.d = std::isfinite(o_.floor) ? o_.floor * p.n[2] : -1e300;
+    return p;
+  }
   /// The elastic forces and det F at the current positions.
   void update_forces() {
     Kokkos::deep_copy(exec_, f_, 0.0);
@@ -268,6 +302,8 @@ class TetSolid {
   Kokkos::View<double*, Mem> J_, mass_;
   Kokkos::View<char*, Mem> pinned_;
   kernels::solid::BoundingPlanes plates_;
+  std::unique_ptr<BackwardEuler<ExecSpace>> implicit_;
+  NewtonReport newton_;
   double h_min_ = 0.0, time_ = 0.0, rest_volume_ = 0.0;
   bool forces_current_ = false;
 };
