@@ -53,6 +53,21 @@ z1=$(csv_column centroid_z torus/diagnostics.csv | tail -1)
 awk -v a="$e0" -v b="$emax" -v j="$tj" -v z="$z1" 'BEGIN { exit !(b <= a * (1 + 1e-6) && j > 0.5 && z < -0.01) }' \
   || fail "torus: energy $e0 -> at most $emax, min det F $tj, centroid height $z1"
 
+# A muscle-like cylinder squeezed by plates with the per-node volume projection: the body's
+# volume within 1e-6 and every node's within the tolerance (1e-8) at every diagnostic, while
+# the plates flatten it. A projection that cannot reach its tolerance stops the run.
+sed -e 's|^output_dir = .*|output_dir = "muscle"|' -e 's/^end_time = .*/end_time = 0.02/' \
+  "$AMPHORA_SOURCE_DIR/scenes/solid_muscle_squeeze.toml" > muscle.toml
+"$AMPHORA" run muscle.toml > muscle.log
+vmax=$(csv_column volume_error muscle/diagnostics.csv | awk '{ v = $1 < 0 ? -$1 : $1; if (v > m) m = v } END { print m + 0 }')
+nmax=$(csv_column node_volume_error muscle/diagnostics.csv | sort -g | tail -1)
+shape=$(csv_column shape_error muscle/diagnostics.csv | tail -1)
+awk -v v="$vmax" -v n="$nmax" -v s="$shape" 'BEGIN { exit !(v < 1e-6 && n <= 1e-8 && s > 0.1) }' \
+  || fail "muscle: volume error up to $vmax, per node up to $nmax, shape error $shape"
+sed -i -e 's|^output_dir = .*|output_dir = "muscle_nc"|' -e 's/^volume_preserving = true/volume_preserving = true\nvolume_tolerance = 1e-17/' muscle.toml
+expect_error 3 "run diverged: the volume projection did not converge \(per-node volume error .* after 10 corrections, [0-9]+ conjugate-residual iterations\) in field 'position/velocity/force' of block 'solid' at \(x, y, z\) = .* at step 1, t = .*; last good output: muscle_nc/fields_000000.h5 \(step 0\)" \
+  "$AMPHORA" run muscle.toml
+
 # The standard model (no extrapolation) cannot stress an inverted element.
 sed -e 's|^output_dir = .*|output_dir = "std"|' -e 's/^squash = .*/squash = -0.3\ns_clamp = 0.0/' \
   "$AMPHORA_SOURCE_DIR/scenes/solid_squash.toml" > standard.toml

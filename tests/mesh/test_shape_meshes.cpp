@@ -89,6 +89,28 @@ TEST(ShapeMeshes, TorusIsClosedOnItsTubeAndItsVolumeConvergesAtOrderTwo) {
   EXPECT_LT(order, 2.3);
 }
 
+TEST(ShapeMeshes, CylinderIsClosedOnItsSurfaceAndItsVolumeConvergesAtOrderTwo) {
+  const double r = 0.3, L = 1.2, exact = kPi * r * r * L;
+  double err[2];
+  const int cells[2] = {4, 8};
+  for (int i = 0; i < 2; ++i) {
+    const TetMesh m = mesh::tet::cylinder_tet_mesh(r, L, cells[i], {0.5, 0.1, 0.2});
+    expect_closed_surface_on(m, 2, [&](const mesh::tet::Point& p) {
+      // The distance to the closed surface: the side or an end, whichever is nearer.
+      const double side = std::hypot(p[1] - 0.1, p[2] - 0.2) - r;
+      const double end = std::abs(p[0] - 0.5) - 0.5 * L;
+      return std::abs(side) < std::abs(end) ? side : end;
+    });
+    err[i] = std::abs(mesh_volume(m) / exact - 1.0);
+    std::printf("cylinder cells %d: %6d tets, volume error %.3e, worst quality %.3f\n", cells[i],
+                m.n_tets(), err[i], worst_quality(m));
+    EXPECT_GT(worst_quality(m), 0.1);
+  }
+  const double order = std::log2(err[0] / err[1]);
+  EXPECT_GT(order, 1.8);
+  EXPECT_LT(order, 2.3);
+}
+
 std::string boundary_error(const TetMesh& m) {
   try {
     mesh::tet::boundary_faces(m);

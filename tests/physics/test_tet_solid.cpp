@@ -195,6 +195,73 @@ TEST(TetSolid, BackwardEulerIsFirstOrderInTime) {
   }
 }
 
+/// The static manufactured solution u = eps (phi, phi, phi), phi = sin(pi x) sin(pi y)
+/// sin(pi z), on the unit cube (u = 0 on its faces) of n^3 cubes: the body force b = -div
+/// sigma(u) of linear elasticity (mu = 1, lambda = 2, small strain) as nodal loads b(X_i) V_i,
+/// the boundary pinned, one backward-Euler step with dt = 1e8 (static). Returns the discrete
+/// L2 error of the displacement relative to the solution's.
+double manufactured_error(int n) {
+  constexpr double pi = 3.14159265358979323846, eps = 1e-4, mu = 1.0, lambda = 2.0;
+  TetSolidOptions o = implicit_options(0.0);
+  o.newton.tolerance = 1e-10;
+  Solid s(unit_cube(n), o);
+  auto X = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.rest_positions());
+  auto m = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.masses());  // = V_i
+  auto pinned = Kokkos::create_mirror(s.pinned());
+  Solid::Nodes loads("loads", s.n_nodes());
+  auto f = Kokkos::create_mirror(loads);
+  auto u_exact = [&](int i) {
+    return eps * std::sin(pi * X(i, 0)) * std::sin(pi * X(i, 1)) * std::sin(pi * X(i, 2));
+  };
+  for (int i = 0; i < s.n_nodes(); ++i) {
+    bool boundary = false;
+    double sn[3], cs[3];
+    for (int d = 0; d < 3; ++d) {
+      boundary = boundary || X(i, d) < 1e-12 || X(i, d) > 1.0 - 1e-12;
+      sn[d] = std::sin(pi * X(i, d)), cs[d] = std::cos(pi * X(i, d));
+    }
+    pinned(i) = boundary;
+    // div sigma_a = mu lap u_a + (mu + lambda) d_a (div u), with u_b = eps phi for every b.
+    for (int a = 0; a < 3; ++a) {
+      double grad_div = 0.0;  // sum_b d_a d_b phi
+      for (int b = 0; b < 3; ++b) {
+        double term = pi * pi;
+        for (int d = 0; d < 3; ++d)
+          term *= (d == a) == (d == b) ? (d == a ? -sn[d] : sn[d]) : cs[d];
+        grad_div += term;
+      }
+      const double phi = sn[0] * sn[1] * sn[2];
+      f(i, a) = -eps * (mu * (-3.0 * pi * pi * phi) + (mu + lambda) * grad_div) * m(i);
+    }
+  }
+  Kokkos::deep_copy(s.pinned(), pinned);
+  Kokkos::deep_copy(loads, f);
+  s.set_external_forces(loads);
+  s.step(1e8);
+  EXPECT_TRUE(s.newton_report().converged);
+  auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.positions());
+  double err = 0.0, norm = 0.0;
+  for (int i = 0; i < s.n_nodes(); ++i)
+    for (int d = 0; d < 3; ++d) {
+      const double e = x(i, d) - X(i, d) - u_exact(i);
+      err += m(i) * e * e, norm += m(i) * u_exact(i) * u_exact(i);
+    }
+  return std::sqrt(err / norm);
+}
+
+// Linear tetrahedra converge at order 2 in L2 (the elastic operator, static).
+TEST(TetSolid, ManufacturedStaticSolutionConvergesAtOrderTwo) {
+  const double e4 = manufactured_error(4), e8 = manufactured_error(8), e16 = manufactured_error(16);
+  std::printf(
+      "manufactured solution, relative L2 displacement error at 4, 8, 16 cells: %.3e "
+      "%.3e %.3e\n",
+      e4, e8, e16);
+  for (double order : {std::log2(e4 / e8), std::log2(e8 / e16)}) {
+    EXPECT_GT(order, 1.8);
+    EXPECT_LT(order, 2.3);
+  }
+}
+
 std::string error_of(const mesh::tet::TetMesh& m, const TetSolidOptions& o) {
   try {
     Solid s(m, o);

@@ -21,17 +21,20 @@ struct TetStiffness {
 
 namespace stiffness_detail {
 
-constexpr int kPairs[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+/// The off-diagonal pairs (0, 1), (0, 2), (1, 2) (functions: device code cannot read a
+/// namespace-scope array).
+KOKKOS_INLINE_FUNCTION int pair_i(int p) { return p == 2 ? 1 : 0; }
+KOKKOS_INLINE_FUNCTION int pair_j(int p) { return p == 0 ? 1 : 2; }
 
 /// Q diag(max(lambda, 0)) Q^T of a symmetric 3x3 matrix (cyclic Jacobi eigen-iterations).
 KOKKOS_INLINE_FUNCTION Mat3 positive_part(Mat3 A) {
   Mat3 Q = Mat3::identity();
   for (int sweep = 0; sweep < 12; ++sweep) {
     double off = 0.0;
-    for (const auto& pq : kPairs) off += A(pq[0], pq[1]) * A(pq[0], pq[1]);
+    for (int p = 0; p < 3; ++p) off += A(pair_i(p), pair_j(p)) * A(pair_i(p), pair_j(p));
     if (!(off > 1e-30 * (A(0, 0) * A(0, 0) + A(1, 1) * A(1, 1) + A(2, 2) * A(2, 2)))) break;
-    for (const auto& pq : kPairs) {
-      const int p = pq[0], q = pq[1];
+    for (int pq = 0; pq < 3; ++pq) {
+      const int p = pair_i(pq), q = pair_j(pq);
       if (A(p, q) == 0.0) continue;
       const double theta = (A(q, q) - A(p, p)) / (2.0 * A(p, q));
       const double t =
@@ -92,7 +95,7 @@ KOKKOS_INLINE_FUNCTION Mat3 stress_differential(const TetStiffness<MemSpace>& k,
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) dPh(i, i) += A(i, j) * G(j, j);
   for (int p = 0; p < 3; ++p) {
-    const int i = kPairs[p][0], j = kPairs[p][1];
+    const int i = pair_i(p), j = pair_j(p);
     const double sym = 0.5 * (G(i, j) + G(j, i)), skew = 0.5 * (G(i, j) - G(j, i));
     dPh(i, j) = k.pair(e, p, 0) * sym + k.pair(e, p, 1) * skew;
     dPh(j, i) = k.pair(e, p, 0) * sym - k.pair(e, p, 1) * skew;
@@ -134,7 +137,7 @@ void tet_stiffness(const ExecSpace& exec, const Material& m, const TetRestShapes
           for (int j = 0; j < 3; ++j)
             k.U(e, i, j) = d.U(i, j), k.V(e, i, j) = d.V(i, j), k.A(e, i, j) = A(i, j);
         for (int p = 0; p < 3; ++p) {
-          const int i = stiffness_detail::kPairs[p][0], j = stiffness_detail::kPairs[p][1];
+          const int i = stiffness_detail::pair_i(p), j = stiffness_detail::pair_j(p);
           double plus = stiffness_detail::difference_quotient(ps, d.s, i, j);
           double minus = stiffness_detail::sum_quotient(ps, d.s, i, j);
           if (definite) plus = plus > 0.0 ? plus : 0.0, minus = minus > 0.0 ? minus : 0.0;

@@ -130,9 +130,10 @@ TetMesh tets_from_hexes(const std::vector<Hex>& hexes,
                         const std::function<Point(const Point&)>& project) {
   std::vector<Point> corners;
   for (const auto& h : hexes) corners.insert(corners.end(), h.begin(), h.end());
-  auto [id, nodes] = merge_points(corners, 1e-9 * extent_of(hexes));
+  auto merged = merge_points(corners, 1e-9 * extent_of(hexes));
+  const std::vector<int> id = std::move(merged.first);
   TetMesh m;
-  m.nodes = std::move(nodes);
+  m.nodes = std::move(merged.second);
   // Face centres, one node per distinct face (keyed by its sorted corners); boundary faces
   // (in one hexahedron only) projected.
   std::map<std::array<int, 4>, std::pair<int, int>> faces;  // key -> (count, first hex face)
@@ -207,6 +208,30 @@ TetMesh torus_tet_mesh(double ring, double tube, int cells, const Point& centre)
     const Point q = normalised({rho - ring, z, 0.0}, tube);
     return Point{centre[0] + (ring + q[0]) * x / rho, centre[1] + (ring + q[0]) * y / rho,
                  centre[2] + q[1]};
+  });
+}
+
+TetMesh cylinder_tet_mesh(double radius, double length, int cells, const Point& centre) {
+  if (!(radius > 0.0) || !(length > 0.0) || cells < 2)
+    throw std::invalid_argument("cylinder_tet_mesh: needs radius > 0, length > 0 and cells >= 2");
+  const int n = std::max(1, cells / 2), m = std::max(1, (n + 1) / 2);
+  const int layers =
+      std::max(1, static_cast<int>(std::lround(length * (n + 2 * m) / (2 * radius))));
+  const double x0 = centre[0] - 0.5 * length, x1 = centre[0] + 0.5 * length;
+  // The section's disk (x, y) extruded in z by unit steps, then (p, q, k) -> (x0 + k L /
+  // layers, p, q) about the centre.
+  const auto disk = cubed_ball(radius, n, m, true);
+  std::vector<Hex> hexes;
+  for (int k = 0; k < layers; ++k)
+    for (Hex h : disk) {
+      for (auto& p : h) p = {x0 + (k + p[2]) * length / layers, centre[1] + p[0], centre[2] + p[1]};
+      hexes.push_back(h);
+    }
+  const double tol = 1e-9 * length;
+  return tets_from_hexes(hexes, [&](const Point& p) {
+    if (p[0] < x0 + tol || p[0] > x1 - tol) return p;  // on an end: flat already
+    const Point q = normalised({p[1] - centre[1], p[2] - centre[2], 0.0}, radius);
+    return Point{p[0], centre[1] + q[0], centre[2] + q[1]};
   });
 }
 

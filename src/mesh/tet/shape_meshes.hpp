@@ -1,9 +1,9 @@
 #pragma once
 // Tetrahedral meshes of curved shapes from block-structured hexahedra: a ball (an inner cube
-// and six shell blocks mapped onto the sphere, as a cubed sphere) and a torus (the same disk
-// section swept around the ring). Every hexahedron is split into 24 tetrahedra around its
-// centre and its face centres, which conforms across blocks of any orientation; the centres
-// of boundary faces are projected onto the exact surface.
+// and six shell blocks mapped onto the sphere, as a cubed sphere), a torus (the same disk
+// section swept around the ring) and a cylinder (the disk extruded). Every hexahedron is split into
+// 24 tetrahedra around its centre and its face centres, which conforms across blocks of any
+// orientation; the centres of boundary faces are projected onto the exact surface.
 #include <array>
 #include <functional>
 #include <vector>
@@ -28,5 +28,11 @@ TetMesh ball_tet_mesh(double radius, int cells, const Point& centre = {0.0, 0.0,
 /// radius `ring` (> tube), about `cells` cells across the tube's diameter (>= 2), and as many
 /// around the ring as keep the cells about as long as wide.
 TetMesh torus_tet_mesh(double ring, double tube, int cells, const Point& centre = {0.0, 0.0, 0.0});
+
+/// The cylinder of `radius` along the x axis from centre - length/2 to centre + length/2,
+/// about `cells` cells across its diameter (>= 2) and as many along it as keep them about
+/// as long as wide.
+TetMesh cylinder_tet_mesh(double radius, double length, int cells,
+                          const Point& centre = {0.0, 0.0, 0.0});
 
 }  // namespace amphora::mesh::tet

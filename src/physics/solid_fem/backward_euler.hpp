@@ -62,6 +62,7 @@ struct ImplicitSystem {
   Kokkos::View<int* [4], Mem> tets;
   Kokkos::View<double*, Mem> mass;
   Kokkos::View<char*, Mem> pinned;
+  Kokkos::View<double* [3], Mem> external;  ///< nodal loads [N]; empty: none
   double gravity[3] = {0.0, 0.0, 0.0};
   double damping = 0.0;
 };
@@ -106,9 +107,12 @@ class BackwardEuler {
 
   // The pieces of a step (public: CUDA forbids extended lambdas in private members).
 
-  /// g = c M (x - x_n) - M (v_n/dt + gravity) - f(x), zero at pinned nodes.
+  /// g = c M (x - x_n) - M (v_n/dt + gravity) - f(x) - f_ext, zero at pinned nodes.
   void gradient(const ImplicitSystem<Mem>& s, double c, double dt, const Nodes& x, const Nodes& v) {
-    Kokkos::deep_copy(exec_, f_, 0.0);
+    if (s.external.extent(0) > 0)
+      Kokkos::deep_copy(exec_, f_, s.external);
+    else
+      Kokkos::deep_copy(exec_, f_, 0.0);
     kernels::solid::tet_forces(exec_, s.material, s.rest, s.tets, x, f_, J_);
     const auto g = g_, f = f_, x0 = x0_;
     const auto m = s.mass;
@@ -130,6 +134,8 @@ class BackwardEuler {
                             const Nodes& v) {
     const auto x0 = x0_;
     const auto m = s.mass;
+    const auto fe = s.external;
+    const bool loaded = fe.extent(0) > 0;
     const double gx = s.gravity[0], gy = s.gravity[1], gz = s.gravity[2];
     double e = 0.0;
     Kokkos::parallel_reduce(
@@ -138,7 +144,8 @@ class BackwardEuler {
           const double grav[3] = {gx, gy, gz};
           for (int d = 0; d < 3; ++d) {
             const double u = x(i, d) - x0(i, d);
-            acc += m(i) * (0.5 * c * u * u - u * (v(i, d) / dt + grav[d]));
+            acc += m(i) * (0.5 * c * u * u - u * (v(i, d) / dt + grav[d])) -
+                   (loaded ? u * fe(i, d) : 0.0);
           }
         },
         e);

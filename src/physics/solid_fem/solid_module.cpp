@@ -35,8 +35,8 @@ mesh::tet::TetMesh read_mesh(const std::string& path) {
   return m;
 }
 
-/// The body: a mesh file, or the box, ball or torus of the scene's sizes (the ball and the
-/// torus resting on z = 0).
+/// The body: a mesh file, or the box, ball, torus or cylinder of the scene's sizes (the
+/// curved ones resting on z = 0; the cylinder along x from 0 to length).
 mesh::tet::TetMesh shape_mesh(const Parameters& p) {
   if (!p.string("mesh").empty()) return read_mesh(p.string("mesh"));
   const int n = static_cast<int>(p.integer("cells"));
@@ -49,6 +49,8 @@ mesh::tet::TetMesh shape_mesh(const Parameters& p) {
                                   std::to_string(r) + ")");
     return mesh::tet::torus_tet_mesh(p.real("ring_radius"), r, n, {0.0, 0.0, r});
   }
+  if (p.string("shape") == "cylinder")
+    return mesh::tet::cylinder_tet_mesh(r, p.real("length"), n, {0.5 * p.real("length"), 0.0, r});
   const double L = p.real("length"), W = p.real("width"), H = p.real("height");
   // Cells along x, y and z in proportion to the box's sides (at least one each).
   auto count = [&](double side) {
@@ -71,6 +73,9 @@ class SolidModule final : public Module {
     o.implicit = p.string("integrator") == "backward_euler";
     o.newton.tolerance = p.real("newton_tolerance");
     o.newton.max_iterations = static_cast<int>(p.integer("newton_max_iterations"));
+    o.volume_preserving = p.boolean("volume_preserving");
+    o.volume.tolerance = p.real("volume_tolerance");
+    o.volume.recovery_time = p.real("volume_recovery_time");
     o.floor = p.real("floor");
     o.floor_tilt = p.real("floor_tilt") * 3.14159265358979323846 / 180.0;
     solid_ = std::make_unique<TetSolid<Exec>>(mesh_, o);
@@ -119,6 +124,14 @@ class SolidModule final : public Module {
         << r.initial_residual << " after " << r.iterations << " iterations)";
       failure_ = m.str();
     }
+    const VolumeReport& v = solid_->volume_report();
+    if (solid_->options().volume_preserving && !v.converged && failure_.empty()) {
+      std::ostringstream m;
+      m << "the volume projection did not converge (per-node volume error " << v.error << " after "
+        << v.corrections << " corrections, " << v.cr_iterations
+        << " conjugate-residual iterations)";
+      failure_ = m.str();
+    }
   }
   long long work_per_step() const override { return solid_->n_tets(); }
   std::string work_unit() const override { return "element-steps"; }
@@ -130,7 +143,8 @@ class SolidModule final : public Module {
 
   std::vector<OutputBlock> output(double) const override;
   Diagnostics diagnostics(double) const override;
-  /// Non-finite values, or a failed Newton solve (reported at node 0), stop the run.
+  /// Non-finite values, or a failed Newton solve or volume projection (reported at node 0),
+  /// stop the run.
   std::optional<NonFiniteReport> find_nonfinite() const override {
     int i = solid_->first_nonfinite_node();
     if (i < 0 && failure_.empty()) return std::nullopt;
@@ -209,6 +223,10 @@ Diagnostics SolidModule::diagnostics(double) const {
   if (s.options().implicit) {
     d.push_back({"newton_iterations", double(s.newton_report().iterations)});
     d.push_back({"cg_iterations", double(s.newton_report().cg_iterations)});
+  }
+  if (s.options().volume_preserving) {
+    d.push_back({"node_volume_error", s.volume_report().error});
+    d.push_back({"volume_cr_iterations", double(s.volume_report().cr_iterations)});
   }
   if (beam_sag_ > 0.0) {
     const double ratio = -sag / double(free_end_.size()) / beam_sag_;
@@ -293,55 +311,66 @@ void SolidModule::restore(const std::vector<StateBlock>& blocks) {
 }  // namespace solid_module_detail
 
 ParamTable parameter_table() {
-  return {"solid_fem",
-          "hyperelastic solid on linear tetrahedra, invertible FEM (Irving, Teran & Fedkiw 2004), "
-          "explicit",
-          {
-              string_param("mesh", std::string(""),
-                           "a Gmsh 4.1 ASCII file of linear tetrahedra (path from the working "
-                           "directory); empty: the box below"),
-              real_param("length", 1.0, "m", above(0.0), "box side along x"),
-              real_param("width", 1.0, "m", above(0.0), "box side along y"),
-              real_param("height", 1.0, "m", above(0.0), "box side along z"),
-              string_param("shape", std::string("box"),
-                           "the body when no mesh file is given (the ball and the torus rest "
-                           "on z = 0)",
-                           {"box", "ball", "torus"}),
-              real_param("radius", 0.05, "m", above(0.0), "the ball's radius, the torus' tube's"),
-              real_param("ring_radius", 0.15, "m", above(0.0),
-                         "the torus' ring radius (centre line), > radius"),
-              int_param("cells", 6, at_least(2) & at_most(200),
-                        "the box: lattice cubes along x (six tetrahedra each); the ball, torus: "
-                        "cells across the (tube's) diameter (24 tetrahedra each)"),
-              string_param("model", std::string("neo_hookean"), "the hyperelastic model",
-                           {"neo_hookean", "corotated", "st_venant_kirchhoff"}),
-              real_param("young", 1e5, "Pa", above(0.0), "Young's modulus"),
-              real_param("poisson", 0.3, "1", above(-1.0) & below(0.5), "Poisson's ratio"),
-              real_param("density", 1000.0, "kg/m^3", above(0.0), "mass density"),
-              real_param("s_clamp", 0.25, "1", at_least(0.0) & below(1.0),
-                         "singular values below it are extrapolated (invertible FEM); 0: the "
-                         "standard model, which fails on inverted elements"),
-              real_param("damping", 0.0, "1/s", at_least(0.0), "mass-proportional damping rate"),
-              string_param("integrator", std::string("explicit"),
-                           "explicit (velocity Verlet, dt under the explicit limit) or "
-                           "backward_euler (Newton-CG on the definite Hessian, any dt)",
-                           {"explicit", "backward_euler"}),
-              real_param("newton_tolerance", 1e-6, "1", above(0.0) & below(1.0),
-                         "backward Euler: the gradient's reduction that ends Newton's loop"),
-              int_param("newton_max_iterations", 50, at_least(1) & at_most(1000),
-                        "backward Euler: Newton steps before the run stops as failed"),
-              real_param("gravity", 0.0, "m/s^2", at_least(0.0), "gravity along -z"),
-              real_param("floor", -1e30, "m", "height of the ground plane at x = y = 0"),
-              real_param("floor_tilt", 0.0, "degrees", above(-90.0) & below(90.0),
-                         "the ground's slope (a frictionless ramp down towards +x)"),
-              real_param("squash", 1.0, "1", above(-1.0) & at_most(1.0),
-                         "initial z scale about the centre height (negative: mirrored, inverted)"),
-              bool_param("pin_x0", false, "hold the x = min face fixed (a cantilever)"),
-              real_param("plate_gap", 1.0, "1", above(0.0) & at_most(1.0),
-                         "plates above and below close to this fraction of the body's height, "
-                         "then open (1: no plates)"),
-              real_param("plate_speed", 1.0, "m/s", above(0.0), "the speed of each plate"),
-          }};
+  return {
+      "solid_fem",
+      "hyperelastic solid on linear tetrahedra, invertible FEM (Irving, Teran & Fedkiw 2004), "
+      "explicit or backward Euler",
+      {
+          string_param("mesh", std::string(""),
+                       "a Gmsh 4.1 ASCII file of linear tetrahedra (path from the working "
+                       "directory); empty: the box below"),
+          real_param("length", 1.0, "m", above(0.0), "box side (cylinder length) along x"),
+          real_param("width", 1.0, "m", above(0.0), "box side along y"),
+          real_param("height", 1.0, "m", above(0.0), "box side along z"),
+          string_param("shape", std::string("box"),
+                       "the body when no mesh file is given (the ball and the torus rest "
+                       "on z = 0)",
+                       {"box", "ball", "torus", "cylinder"}),
+          real_param("radius", 0.05, "m", above(0.0),
+                     "the ball's radius, the torus' tube's, the cylinder's"),
+          real_param("ring_radius", 0.15, "m", above(0.0),
+                     "the torus' ring radius (centre line), > radius"),
+          int_param(
+              "cells", 6, at_least(2) & at_most(200),
+              "the box: lattice cubes along x (six tetrahedra each); the ball, torus, cylinder: "
+              "cells across the (tube's) diameter (24 tetrahedra each)"),
+          string_param("model", std::string("neo_hookean"), "the hyperelastic model",
+                       {"neo_hookean", "corotated", "st_venant_kirchhoff"}),
+          real_param("young", 1e5, "Pa", above(0.0), "Young's modulus"),
+          real_param("poisson", 0.3, "1", above(-1.0) & below(0.5), "Poisson's ratio"),
+          real_param("density", 1000.0, "kg/m^3", above(0.0), "mass density"),
+          real_param("s_clamp", 0.25, "1", at_least(0.0) & below(1.0),
+                     "singular values below it are extrapolated (invertible FEM); 0: the "
+                     "standard model, which fails on inverted elements"),
+          real_param("damping", 0.0, "1/s", at_least(0.0), "mass-proportional damping rate"),
+          string_param("integrator", std::string("explicit"),
+                       "explicit (velocity Verlet, dt under the explicit limit) or "
+                       "backward_euler (Newton-CG on the definite Hessian, any dt)",
+                       {"explicit", "backward_euler"}),
+          real_param("newton_tolerance", 1e-6, "1", above(0.0) & below(1.0),
+                     "backward Euler: the gradient's reduction that ends Newton's loop"),
+          int_param("newton_max_iterations", 50, at_least(1) & at_most(1000),
+                    "backward Euler: Newton steps before the run stops as failed"),
+          bool_param("volume_preserving", false,
+                     "project positions and velocities onto constant one-ring volumes "
+                     "after each step (Irving, Schroeder & Fedkiw 2007)"),
+          real_param("volume_tolerance", 1e-8, "1", above(0.0) & below(1.0),
+                     "volume_preserving: the per-node relative volume error allowed"),
+          real_param("volume_recovery_time", 0.0, "s", at_least(0.0),
+                     "volume_preserving: recover volume errors over this time by the "
+                     "velocities alone; 0: correct the positions every step"),
+          real_param("gravity", 0.0, "m/s^2", at_least(0.0), "gravity along -z"),
+          real_param("floor", -1e30, "m", "height of the ground plane at x = y = 0"),
+          real_param("floor_tilt", 0.0, "degrees", above(-90.0) & below(90.0),
+                     "the ground's slope (a frictionless ramp down towards +x)"),
+          real_param("squash", 1.0, "1", above(-1.0) & at_most(1.0),
+                     "initial z scale about the centre height (negative: mirrored, inverted)"),
+          bool_param("pin_x0", false, "hold the x = min face fixed (a cantilever)"),
+          real_param("plate_gap", 1.0, "1", above(0.0) & at_most(1.0),
+                     "plates above and below close to this fraction of the body's height, "
+                     "then open (1: no plates)"),
+          real_param("plate_speed", 1.0, "m/s", above(0.0), "the speed of each plate"),
+      }};
 }
 
 std::unique_ptr<Module> create(const Parameters& p, const Communicator& comm) {

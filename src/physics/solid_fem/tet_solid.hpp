@@ -3,7 +3,8 @@
 // Teran & Fedkiw, SCA 2004): lumped masses, the element forces of kernels/solid/tet_forces,
 // and the explicit symplectic step (leapfrog in its velocity-Verlet form, so velocities and
 // positions share a time and an undamped run conserves energy to O(dt^2)) with gravity,
-// mass-proportional damping, pinned nodes, a ground plane and moving plates.
+// mass-proportional damping, pinned nodes, a ground plane and moving plates; optionally the
+// per-node volume projection (volume_projection.hpp) after each step.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -17,6 +18,7 @@
 #include "kernels/solid/tet_forces.hpp"
 #include "mesh/tet/tet_mesh.hpp"
 #include "physics/solid_fem/backward_euler.hpp"
+#include "physics/solid_fem/volume_projection.hpp"
 
 namespace amphora::physics::solid_fem {
 
@@ -32,6 +34,8 @@ struct TetSolidOptions {
   double floor_tilt = 0.0;  ///< the ground's slope about the y axis [rad] (a ramp down to +x)
   bool implicit = false;    ///< backward Euler (Newton-CG) instead of the explicit step
   NewtonOptions newton;
+  bool volume_preserving = false;  ///< the per-node volume projection after each step
+  VolumeOptions volume;
 };
 
 /// Lame parameters from Young's modulus and Poisson's ratio; the compressible models need
@@ -108,7 +112,10 @@ class TetSolid {
     for (int d = 0; d < 3; ++d) k.gravity[d] = o_.gravity[d];
     k.alpha = o_.damping;
     kernels::solid::kick(exec_, k, mass_, pinned_, f_, v_);
+    start_volume_report();
+    project_volumes(false, true, dt);  // the drift's velocities, then the new positions
     kernels::solid::drift(exec_, dt, planes(), pinned_, v_, x_);
+    project_volumes(true, false);
     update_forces();
     kernels::solid::kick(exec_, k, mass_, pinned_, f_, v_);
     time_ += dt;
@@ -125,15 +132,48 @@ class TetSolid {
       n.absolute = std::max(n.absolute, 1e-10 * K * h * h * std::sqrt(double(n_nodes())));
       implicit_ = std::make_unique<BackwardEuler<ExecSpace>>(n_nodes(), n_tets(), n, exec_);
     }
-    ImplicitSystem<Mem> s{o_.material, shapes_, tets_, mass_, pinned_};
+    ImplicitSystem<Mem> s{o_.material, shapes_, tets_, mass_, pinned_, external_};
     for (int d = 0; d < 3; ++d) s.gravity[d] = o_.gravity[d];
     s.damping = o_.damping;
     newton_ = implicit_->step(s, dt, x_, v_);
     Kokkos::deep_copy(exec_, x_, implicit_->start());
     kernels::solid::drift(exec_, dt, planes(), pinned_, v_, x_);
+    start_volume_report();
+    project_volumes(true, true);
     update_forces();
     time_ += dt;
   }
+  /// The per-node volume projection (volume_projection.hpp) where the options ask for it:
+  /// the velocity projection and the position correction, either or both, added to the
+  /// step's report. Velocities alone are projected before a drift of dt.
+  void project_volumes(bool positions, bool velocities, double dt = 0.0) {
+    if (!o_.volume_preserving) return;
+    if (!volume_) {
+      VolumeOptions v = o_.volume;
+      if (v.contact_gap == 0.0) v.contact_gap = 1e-9 * h_min_;
+      volume_ = std::make_unique<VolumeProjection<ExecSpace>>(tets_, X_, v, exec_);
+    }
+    VolumeReport& rep = volume_report_;
+    if (velocities && !positions) {  // before the drift of dt: its contacts held
+      volume_->set_weights(mass_, pinned_, planes(), x_, v_, dt);
+      volume_->project_velocities(x_, v_, rep);
+    }
+    volume_->set_weights(mass_, pinned_, planes(), x_, v_, 0.0);
+    if (positions) {
+      const VolumeReport r = volume_->correct_positions(x_);
+      rep.corrections = r.corrections, rep.error_before = r.error_before, rep.error = r.error;
+      rep.cr_iterations += r.cr_iterations;
+      rep.converged = rep.converged && r.converged;
+    }
+    if (velocities && positions) volume_->project_velocities(x_, v_, rep);  // at the new x
+  }
+  /// A new step's volume report.
+  void start_volume_report() {
+    volume_report_ = VolumeReport{};
+    volume_report_.converged = true;
+  }
+  /// The last step's volume projection (volume_preserving).
+  const VolumeReport& volume_report() const { return volume_report_; }
   /// The last implicit step's Newton iterations, CG iterations and residuals.
   const NewtonReport& newton_report() const { return newton_; }
 
@@ -147,9 +187,17 @@ class TetSolid {
     p.d = std::isfinite(o_.floor) ? o_.floor * p.n[2] : -1e300;
     return p;
   }
-  /// The elastic forces and det F at the current positions.
+  /// Constant nodal loads [N] added to the elastic forces from now on (an empty View: none).
+  void set_external_forces(const Nodes& f) {
+    external_ = f;
+    forces_current_ = false;
+  }
+  /// The elastic forces (plus the nodal loads) and det F at the current positions.
   void update_forces() {
-    Kokkos::deep_copy(exec_, f_, 0.0);
+    if (external_.extent(0) > 0)
+      Kokkos::deep_copy(exec_, f_, external_);
+    else
+      Kokkos::deep_copy(exec_, f_, 0.0);
     kernels::solid::tet_forces(exec_, o_.material, shapes_, tets_, x_, f_, J_);
     forces_current_ = true;
   }
@@ -297,13 +345,15 @@ class TetSolid {
   TetSolidOptions o_;
   ExecSpace exec_;
   Kokkos::View<int* [4], Mem> tets_;
-  Nodes X_, x_, v_, f_;
+  Nodes X_, x_, v_, f_, external_;
   kernels::solid::TetRestShapes<Mem> shapes_;
   Kokkos::View<double*, Mem> J_, mass_;
   Kokkos::View<char*, Mem> pinned_;
   kernels::solid::BoundingPlanes plates_;
   std::unique_ptr<BackwardEuler<ExecSpace>> implicit_;
   NewtonReport newton_;
+  std::unique_ptr<VolumeProjection<ExecSpace>> volume_;
+  VolumeReport volume_report_;
   double h_min_ = 0.0, time_ = 0.0, rest_volume_ = 0.0;
   bool forces_current_ = false;
 };
