@@ -14,6 +14,7 @@
 #include <cmath>
 #include <string>
 
+#include "kernels/blas1.hpp"
 #include "kernels/solid/node_update.hpp"
 #include "kernels/solid/node_volumes.hpp"
 #include "kernels/solid/volume_gradient_matrix.hpp"
@@ -36,28 +37,6 @@ struct VolumeReport {
   double rate = 0.0;  ///< the largest |(B v)_i - r_i| / V_0i after the velocity projection [1/s]
   bool converged = false;
 };
-
-// A named namespace, not an anonymous one (CUDA extended lambdas; Kokkos issue #1547).
-namespace volume_projection_detail {
-
-template <class ExecSpace, class V>
-double dot(const ExecSpace& exec, const V& a, const V& b) {
-  double s = 0.0;
-  Kokkos::parallel_reduce(
-      "amphora::solid::volume::dot", kernels::RangePolicy<ExecSpace>(exec, 0, int(a.extent(0))),
-      KOKKOS_LAMBDA(const int i, double& acc) { acc += a(i) * b(i); }, s);
-  return s;
-}
-
-/// y = a x + b y.
-template <class ExecSpace, class V>
-void axpby(const ExecSpace& exec, double a, const V& x, double b, const V& y) {
-  Kokkos::parallel_for(
-      "amphora::solid::volume::axpby", kernels::RangePolicy<ExecSpace>(exec, 0, int(x.extent(0))),
-      KOKKOS_LAMBDA(const int i) { y(i) = a * x(i) + b * y(i); });
-}
-
-}  // namespace volume_projection_detail
 
 template <class ExecSpace>
 class VolumeProjection {
@@ -90,8 +69,8 @@ class VolumeProjection {
     B_ = kernels::solid::volume_gradient_graph(tets_, n);
     kernels::solid::tet_volume_gradients(exec_, tets_, X, vol_, grad_);
     kernels::solid::node_volumes(exec_, tets_, vol_, V0_);
-    volume_norm_ = std::sqrt(volume_projection_detail::dot(exec_, V0_, V0_));
-    length_ = std::cbrt(sum(V0_) / n);
+    volume_norm_ = std::sqrt(kernels::blas1::dot(exec_, V0_, V0_));
+    length_ = std::cbrt(kernels::blas1::sum(exec_, V0_) / n);
   }
 
   /// Newton iterations x += W B^T q, (B W B^T) q = V_0 - V(x), until the per-node relative
@@ -120,7 +99,7 @@ class VolumeProjection {
   /// v += W B^T p with (B W B^T) p = r - B v: the one-ring volumes' rate B v at x becomes
   /// r = 0, or (V_0 - V) / tau with a recovery time.
   void project_velocities(const Nodes& x, const Nodes& v, VolumeReport& rep) {
-    using volume_projection_detail::axpby;
+    using kernels::blas1::axpby;
     update_volumes(x);
     volume_difference(o_.recovery_time > 0.0 ? 1.0 / o_.recovery_time : 0.0, target_);
     kernels::solid::volume_gradient_matrix_apply(exec_, B_, v, Ar_);
@@ -216,7 +195,8 @@ class VolumeProjection {
   /// (cr_converged_ says whether it got there). Preconditioned CR as in Saad, Iterative
   /// Methods for Sparse Linear Systems (2003), algorithm 9.2 with the M^-1 inner product.
   int solve(double floor, const Scalars& guess) {
-    using namespace volume_projection_detail;
+    using kernels::blas1::axpby;
+    using kernels::blas1::dot;
     diagonal();
     Kokkos::deep_copy(exec_, q_, guess);
     apply_operator(q_, r_);
@@ -324,14 +304,6 @@ class VolumeProjection {
         },
         Kokkos::Max<double>(e));
     return e;
-  }
-
-  double sum(const Scalars& a) {
-    double total = 0.0;
-    Kokkos::parallel_reduce(
-        "amphora::solid::volume::sum", kernels::RangePolicy<ExecSpace>(exec_, 0, int(a.extent(0))),
-        KOKKOS_LAMBDA(const int i, double& acc) { acc += a(i); }, total);
-    return total;
   }
 
   /// max_i |v_i|.
