@@ -53,6 +53,20 @@ z1=$(csv_column centroid_z torus/diagnostics.csv | tail -1)
 awk -v a="$e0" -v b="$emax" -v j="$tj" -v z="$z1" 'BEGIN { exit !(b <= a * (1 + 1e-6) && j > 0.5 && z < -0.01) }' \
   || fail "torus: energy $e0 -> at most $emax, min det F $tj, centroid height $z1"
 
+# A clay-like ball (plastic_yield) squashed to 40 % of its diameter and released keeps its
+# flattened shape (shape error over 0.3 of its radius, against < 0.01 for the elastic ball),
+# its volume within 1 %, and comes to rest.
+sed -e 's|^output_dir = .*|output_dir = "plastic"|' -e 's/^cells = .*/cells = 4/' \
+  "$AMPHORA_SOURCE_DIR/scenes/solid_ball_plastic.toml" > plastic.toml
+"$AMPHORA" run plastic.toml > plastic.log
+shape=$(csv_column shape_error plastic/diagnostics.csv | tail -1)
+pvol=$(csv_column volume_error plastic/diagnostics.csv | tail -1)
+ke=$(csv_column kinetic_energy plastic/diagnostics.csv | tail -1)
+ep=$(csv_column max_plastic_strain plastic/diagnostics.csv | tail -1)
+awk -v s="$shape" -v v="$pvol" -v k="$ke" -v e="$ep" \
+  'BEGIN { exit !(s > 0.3 && v < 0.01 && v > -0.01 && k < 1e-6 && e > 0.5 && e <= log(3) + 1e-9) }' \
+  || fail "plastic ball: shape error $shape, volume error $pvol, kinetic energy $ke, max plastic strain $ep"
+
 # A muscle-like cylinder squeezed by plates with the per-node volume projection: the body's
 # volume within 1e-6 and every node's within the tolerance (1e-8) at every diagnostic, while
 # the plates flatten it. A projection that cannot reach its tolerance stops the run.
@@ -79,6 +93,9 @@ expect_error 2 "nu.toml:[0-9]+: key 'solid_fem.poisson' = 0.5 is out of range; a
   "$AMPHORA" run nu.toml
 sed -e 's/^cfl = .*/dt = 1e-3/' "$AMPHORA_SOURCE_DIR/scenes/solid_squash.toml" > dt.toml
 expect_error 2 "solid_fem: time step 0.001 is outside \(0, [0-9.e-]+\], the explicit limit" "$AMPHORA" run dt.toml
+sed -e 's/^squash = .*/squash = 1.0\nintegrator = "backward_euler"\nviscosity = 1.0/' \
+  "$AMPHORA_SOURCE_DIR/scenes/solid_squash.toml" > kv.toml
+expect_error 2 "solid_fem: viscosity \(Kelvin-Voigt damping\) needs the explicit integrator" "$AMPHORA" run kv.toml
 # A Gmsh mesh with three negatively oriented elements: refused, naming them.
 cp "$AMPHORA_SOURCE_DIR/tests/mesh/kuhn_cube.msh" cube.msh
 sed -e 's/^squash = .*/squash = 1.0\nmesh = "cube.msh"/' "$AMPHORA_SOURCE_DIR/scenes/solid_squash.toml" > msh.toml
@@ -90,4 +107,8 @@ expect_error 2 "none.msh: cannot open the mesh file" "$AMPHORA" run msh.toml
 # velocities are the state; the forces are recomputed from the positions).
 restart_matches "$AMPHORA_SOURCE_DIR/scenes/solid_squash.toml" solid 100 \
   's/^end_time = .*/end_time = 0.004/' 's|^output_every = .*|output_every = 50\ncheckpoint_every = 40|'
+# ... and with plasticity, F_p is state too.
+restart_matches "$AMPHORA_SOURCE_DIR/scenes/solid_squash.toml" plastic_restart 100 \
+  's/^end_time = .*/end_time = 0.004/' 's|^output_every = .*|output_every = 50\ncheckpoint_every = 40|' \
+  's/^squash = .*/squash = 0.5\nplastic_yield = 0.02/'
 echo "solid: ok ($(grep '^\[done\]' run.log | cut -c1-60))"

@@ -178,11 +178,15 @@ struct TetCantilever {
     return 0;
   }
 
+  /// A host copy of a device View of type T (its layout kept: LayoutLeft on CUDA).
+  template <class T>
+  using Host = Kokkos::View<T, typename Kokkos::View<T, Mem>::array_layout, Kokkos::HostSpace>;
+
   mesh::tet::TetMesh mesh;
   std::vector<double> V_t, V_i;
-  Kokkos::View<double* [4][3], Kokkos::HostSpace> g;
-  Kokkos::View<int*, Kokkos::HostSpace> row, col;
-  Kokkos::View<double* [3], Kokkos::HostSpace> value;
+  Host<double* [4][3]> g;
+  Host<int*> row, col;
+  Host<double* [3]> value;
 };
 
 /// The Q2 hexahedron cantilever on (8m, m, m) cells: 2 mu eps : eps by 3 Gauss points per

@@ -1,9 +1,12 @@
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <Eigen/Dense>
 
 #include "kernels/solid/svd3.hpp"
 #include "physics/solid_fem/tet_solid.hpp"
@@ -121,6 +124,249 @@ TEST(TetSolid, InvertibleFemRecoversASquashedInvertedCube) {
   }
   EXPECT_GT(min_j, 0.99);
   EXPECT_LT(largest_strain(s), 0.01) << "the rest shape, up to a rigid motion, within 1 %";
+}
+
+/// The body's stretches up to a rigid motion: the square roots of the eigenvalues of its
+/// nodes' second moment about their mean over those of the rest positions (a cube: equal),
+/// ascending. A uniform deformation F of the cube gives F's singular values.
+std::array<double, 3> stretches(const Solid& s) {
+  auto moments = [](const auto& x) {
+    const double n = double(x.extent(0));
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < x.extent(0); ++i) c += Eigen::Vector3d(x(i, 0), x(i, 1), x(i, 2)) / n;
+    Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+    for (size_t i = 0; i < x.extent(0); ++i) {
+      const Eigen::Vector3d d = Eigen::Vector3d(x(i, 0), x(i, 1), x(i, 2)) - c;
+      C += d * d.transpose() / n;
+    }
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(C).eigenvalues();
+  };
+  const Eigen::Vector3d m =
+      moments(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.positions()));
+  const Eigen::Vector3d m0 =
+      moments(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.rest_positions()));
+  return {std::sqrt(m[0] / m0[0]), std::sqrt(m[1] / m0[1]), std::sqrt(m[2] / m0[2])};
+}
+
+// A cube stretched uniformly by F = diag(a, a^-1/2, a^-1/2) and released: with yield strain
+// y, the first flow leaves F_e on the yield surface and F_p = F^g, g = 1 - y / |dev log F|
+// (kernels/solid/plastic_flow.hpp); the cube then relaxes elastically (damped, within the
+// yield) to its new rest shape F_p: lengths a^g and a^-g/2, stress free, volume kept.
+TEST(TetSolid, PlasticCubeKeepsThePredictedPermanentStretch) {
+  const double a = 1.4, y = 0.1;
+  TetSolidOptions o = options(0.25, 1.0);
+  o.plastic.yield = y;
+  Solid s(unit_cube(3), o);
+  set_state(
+      s,
+      [&](const std::array<double, 3>& p) {
+        return std::array<double, 3>{a * p[0], p[1] / std::sqrt(a), p[2] / std::sqrt(a)};
+      },
+      [](const std::array<double, 3>&) {
+        return std::array<double, 3>{0.0, 0.0, 0.0};
+      });
+  const double e0 = s.elastic_energy();
+  const double dt = s.stable_dt(0.4);
+  for (int n = 0; n * dt < 30.0; ++n) s.step(dt);
+  const double g = 1.0 - y / (std::log(a) * std::sqrt(1.5));
+  const double Lx = std::pow(a, g), Ly = std::pow(a, -0.5 * g);
+  const std::array<double, 3> l = stretches(s);
+  std::printf(
+      "plastic cube: stretches %.6f %.6f %.6f (predicted %.6f %.6f), elastic energy "
+      "%.3g of %.3g, max plastic strain %.6f\n",
+      l[0], l[1], l[2], Ly, Lx, s.elastic_energy(), e0, s.max_plastic_strain());
+  EXPECT_NEAR(l[0], Ly, 2e-3 * Ly);
+  EXPECT_NEAR(l[1], Ly, 2e-3 * Ly);
+  EXPECT_NEAR(l[2], Lx, 2e-3 * Lx);
+  EXPECT_LT(s.elastic_energy(), 1e-4 * e0) << "stress free in its new shape";
+  EXPECT_NEAR(s.volume() / s.rest_volume(), 1.0, 1e-3);
+  EXPECT_NEAR(s.max_plastic_strain(), std::log(a) * std::sqrt(1.5) - y, 2e-3);
+}
+
+/// Positions F X + c and velocities L X + w (a uniform deformation and velocity gradient).
+void set_affine(Solid& s, const double F[3][3], const double L[3][3]) {
+  set_state(
+      s,
+      [&](const std::array<double, 3>& p) {
+        std::array<double, 3> x{0.1, -0.2, 0.3};
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) x[i] += F[i][j] * p[j];
+        return x;
+      },
+      [&](const std::array<double, 3>& p) {
+        std::array<double, 3> v{0.5, 0.2, -0.1};
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) v[i] += L[i][j] * p[j];
+        return v;
+      });
+}
+
+/// The Kelvin-Voigt forces alone (viscosity eta, mu tiny) at the state: f - f_elastic.
+std::vector<double> damping_forces(double eta, const double F[3][3], const double L[3][3],
+                                   double* power) {
+  TetSolidOptions o = options(0.25, 0.0);
+  Solid elastic(unit_cube(2), o);
+  o.viscosity = eta;
+  Solid viscous(unit_cube(2), o);
+  set_affine(elastic, F, L);
+  set_affine(viscous, F, L);
+  viscous.update_forces();
+  elastic.update_forces();
+  auto fe = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), elastic.forces());
+  auto fv = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), viscous.forces());
+  auto v = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), viscous.velocities());
+  std::vector<double> f;
+  *power = 0.0;
+  for (size_t i = 0; i < fv.extent(0); ++i)
+    for (int d = 0; d < 3; ++d) {
+      f.push_back(fv(i, d) - fe(i, d));
+      *power += f.back() * v(i, d);
+    }
+  return f;
+}
+
+// Kelvin-Voigt damping: no force on a rigid motion (L = W F with W skew), and for a uniform
+// velocity gradient the power of the forces is minus the dissipation eta/2 |dC/dt|^2 times
+// the volume (dC/dt = dF^T F + F^T dF, dF = L F... here L is the gradient in the rest frame).
+TEST(TetSolid, KelvinVoigtSparesRigidMotionAndDissipatesItsRate) {
+  const double F[3][3] = {{1.2, 0.1, 0.0}, {-0.05, 0.9, 0.2}, {0.1, 0.0, 1.1}};
+  const double W[3][3] = {{0.0, -0.7, 0.3}, {0.7, 0.0, -0.4}, {-0.3, 0.4, 0.0}};
+  double L[3][3] = {};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) L[i][j] += W[i][k] * F[k][j];  // rigid: dF = W F
+  double power = 0.0;
+  const double eta = 0.3;
+  for (double f : damping_forces(eta, F, L, &power)) EXPECT_NEAR(f, 0.0, 1e-14);
+  const double G[3][3] = {{0.2, -0.1, 0.3}, {0.05, -0.3, 0.1}, {0.2, 0.4, 0.1}};
+  damping_forces(eta, F, G, &power);
+  double Cdot = 0.0;  // |dF^T F + F^T dF|^2 with dF = G
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      double c = 0.0;
+      for (int k = 0; k < 3; ++k) c += G[k][i] * F[k][j] + F[k][i] * G[k][j];
+      Cdot += c * c;
+    }
+  EXPECT_NEAR(power, -0.5 * eta * Cdot, 1e-12 * eta * Cdot) << "unit cube: volume 1";
+}
+
+/// The angular momentum about the centre of mass.
+std::array<double, 3> angular_momentum(const Solid& s) {
+  auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.positions());
+  auto v = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.velocities());
+  auto m = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.masses());
+  std::array<double, 3> c{0, 0, 0}, L{0, 0, 0};
+  double M = 0.0;
+  for (size_t i = 0; i < x.extent(0); ++i) {
+    M += m(i);
+    for (int d = 0; d < 3; ++d) c[d] += m(i) * x(i, d);
+  }
+  for (int d = 0; d < 3; ++d) c[d] /= M;
+  for (size_t i = 0; i < x.extent(0); ++i) {
+    const double r[3] = {x(i, 0) - c[0], x(i, 1) - c[1], x(i, 2) - c[2]};
+    L[0] += m(i) * (r[1] * v(i, 2) - r[2] * v(i, 1));
+    L[1] += m(i) * (r[2] * v(i, 0) - r[0] * v(i, 2));
+    L[2] += m(i) * (r[0] * v(i, 1) - r[1] * v(i, 0));
+  }
+  return L;
+}
+
+// A spinning, vibrating cube: Kelvin-Voigt damps the vibration (the elastic energy settles to
+// the spin's steady stretch: its swing over the last time unit falls below 1 % of its mean,
+// against more than 10 % undamped) and keeps the spin (angular momentum to round-off), where
+// mass damping also stops the spin.
+TEST(TetSolid, KelvinVoigtDampsVibrationNotSpin) {
+  struct Result {
+    double L0, L, swing;
+  };
+  auto run = [](double eta, double alpha) {
+    TetSolidOptions o = options(0.25, alpha);
+    o.viscosity = eta;
+    Solid s(unit_cube(3), o);
+    set_state(
+        s,
+        [](const std::array<double, 3>& p) {
+          return std::array<double, 3>{1.1 * p[0], p[1], 0.95 * p[2]};
+        },
+        [](const std::array<double, 3>& p) {
+          return std::array<double, 3>{-(p[1] - 0.5), p[0] - 0.55, 0.0};
+        });
+    Result r{angular_momentum(s)[2], 0.0, 0.0};
+    const double dt = s.stable_dt(0.4), T = 10.0;
+    double lo = 1e300, hi = 0.0, sum = 0.0;
+    int count = 0;
+    for (int n = 0; n * dt < T; ++n) {
+      s.step(dt);
+      if (n * dt < T - 1.0) continue;
+      const double e = s.elastic_energy();
+      lo = std::min(lo, e), hi = std::max(hi, e), sum += e, ++count;
+    }
+    r.L = angular_momentum(s)[2];
+    r.swing = (hi - lo) / (sum / count);
+    return r;
+  };
+  const Result kv = run(0.2, 0.0), none = run(0.0, 0.0), md = run(0.0, 0.3);
+  std::printf(
+      "spin L_z %.12g; Kelvin-Voigt: L_z %.12g, elastic energy swing %.3g; undamped: "
+      "swing %.3g; mass damping: L_z %.6g\n",
+      kv.L0, kv.L, kv.swing, none.swing, md.L);
+  EXPECT_NEAR(kv.L, kv.L0, 1e-10 * std::abs(kv.L0)) << "spin kept";
+  EXPECT_LT(kv.swing, 0.01) << "vibration damped";
+  EXPECT_GT(none.swing, 0.1) << "undamped, it vibrates";
+  EXPECT_LT(md.L, 0.1 * md.L0) << "mass damping stops the spin too";
+}
+
+/// How far the centroid of a stiff cube set on a ramp of angle theta at rest has slid down
+/// it after T (Coulomb friction mu; Kelvin-Voigt damping settles the landing's vibration).
+double slide(double mu, double theta, double T) {
+  TetSolidOptions o;
+  o.material = Material{Hyperelastic::neo_hookean, 1e4, 2e4, 0.25};
+  o.gravity[2] = -9.81;
+  o.viscosity = 20.0;
+  o.floor = 0.0;
+  o.floor_tilt = theta;
+  o.friction = mu;
+  Solid s(unit_cube(3), o);
+  const double c = std::cos(theta), sn = std::sin(theta);
+  set_state(
+      s,
+      [&](const std::array<double, 3>& p) {  // rotated about y: the bottom face on the ramp
+        return std::array<double, 3>{c * p[0] + sn * p[2], p[1], -sn * p[0] + c * p[2]};
+      },
+      [](const std::array<double, 3>&) {
+        return std::array<double, 3>{0.0, 0.0, 0.0};
+      });
+  auto centroid_along = [&]() {
+    auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), s.positions());
+    double sum = 0.0;
+    for (size_t i = 0; i < x.extent(0); ++i) sum += c * x(i, 0) - sn * x(i, 2);
+    return sum / double(x.extent(0));
+  };
+  const double start = centroid_along();
+  const double dt = s.stable_dt(0.4);
+  for (int n = 0; n * dt < T; ++n) s.step(dt);
+  return centroid_along() - start;
+}
+
+// Coulomb friction on a ramp of 25 degrees (tan = 0.466): a cube slides with acceleration
+// g (sin - mu cos) for mu = 0 and 0.3 (measured as the second difference of the distance at
+// 0.5, 0.75 and 1 s, which leaves out the landing's transient) and stays for mu = 0.6.
+TEST(TetSolid, FrictionOnARampSlidesAsCoulombSays) {
+  const double theta = 25.0 * 3.14159265358979323846 / 180.0, g = 9.81;
+  for (const double mu : {0.0, 0.3, 0.6}) {
+    const double a = std::max(0.0, g * (std::sin(theta) - mu * std::cos(theta)));
+    const double d1 = slide(mu, theta, 0.5), d2 = slide(mu, theta, 0.75),
+                 d3 = slide(mu, theta, 1.0);
+    const double measured = (d3 - 2.0 * d2 + d1) / (0.25 * 0.25);
+    std::printf("mu %.1f: acceleration %.6f m/s^2, Coulomb %.6f; slid %.6f m by t = 1\n", mu,
+                measured, a, d3);
+    if (a > 0.0) {
+      EXPECT_NEAR(measured, a, 0.005 * a) << "mu " << mu;
+    } else {
+      EXPECT_LT(std::abs(d3 - d1), 1e-6) << "stuck";
+      EXPECT_LT(std::abs(d3), 1e-3) << "the elastic shear only";
+    }
+  }
 }
 
 TEST(TetSolid, StandardFemReportsTheInvertedCube) {
@@ -287,6 +533,16 @@ TEST(TetSolid, BadInputIsRefusedWithOneClearLine) {
   Solid s(unit_cube(2), options(0.25, 0.0));
   EXPECT_NO_THROW(s.check_time_step(s.stable_dt(1.0)));
   EXPECT_THROW(s.check_time_step(1.01 * s.stable_dt(1.0)), std::invalid_argument);
+  TetSolidOptions o = options(0.25, 0.0);
+  o.viscosity = 1.0;
+  o.implicit = true;
+  EXPECT_EQ(error_of(unit_cube(2), o),
+            "solid_fem: viscosity (Kelvin-Voigt damping) needs the explicit integrator; use "
+            "damping (mass-proportional) with backward_euler");
+  o.implicit = false;
+  o.plastic.yield = 0.1;
+  o.plastic.clamp = 1.0;
+  EXPECT_EQ(error_of(unit_cube(2), o), "solid_fem: the plastic clamp must be > 1");
 }
 
 }  // namespace test_tet_solid_cases

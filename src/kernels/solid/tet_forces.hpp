@@ -3,6 +3,7 @@
 // F = D_s D_m^-1 from the current and rest edge matrices, F = U F^ V^T (svd3), P = U P^(F^) V^T
 // (diagonal_stress), and the nodal forces [f_1 f_2 f_3] = -W P D_m^-T, f_0 = -(f_1 + f_2 + f_3),
 // scattered with atomics. The rest data (D_m^-1, W) are computed once by tet_rest_shapes.
+// Kelvin-Voigt damping forces (a viscous stress on the rate of C = F^T F) likewise.
 #include "kernels/solid/diagonal_stress.hpp"
 #include "kernels/solid/svd3.hpp"
 #include "kernels/spaces.hpp"
@@ -74,6 +75,44 @@ void tet_forces(const ExecSpace& exec, const Material& m, const TetRestShapes<Me
         const DiagonalStress ps = diagonal_stress(m, d.s);
         const Mat3 P = d.U * Mat3::diagonal(ps.P) * transpose(d.V);
         const Mat3 H = P * transpose(Bm);  // f_c = -W H e_c
+        const double W = volume(e);
+        for (int i = 0; i < 3; ++i) {
+          double f0 = 0.0;
+          for (int c = 1; c < 4; ++c) {
+            const double fc = -W * H(i, c - 1);
+            Kokkos::atomic_add(&f(tets(e, c), i), fc);
+            f0 -= fc;
+          }
+          Kokkos::atomic_add(&f(tets(e, 0), i), f0);
+        }
+      });
+}
+
+/// f += the Kelvin-Voigt damping forces of viscosity eta at positions x and velocities v:
+/// the second Piola-Kirchhoff stress S = eta dC/dt, dC/dt = dF^T F + F^T dF with
+/// dF = V_s D_m^-1 (V_s the velocity edge matrix), P = F S, [f_1 f_2 f_3] = -W P D_m^-T. A rigid
+/// motion has dC/dt = 0 (no force); the dissipation P : dF = eta/2 |dC/dt|^2 >= 0.
+template <class ExecSpace, class MemSpace>
+void tet_damping_forces(const ExecSpace& exec, double eta, const TetRestShapes<MemSpace>& rest,
+                        const Kokkos::View<int* [4], MemSpace>& tets,
+                        const Kokkos::View<double* [3], MemSpace>& x,
+                        const Kokkos::View<double* [3], MemSpace>& v,
+                        const Kokkos::View<double* [3], MemSpace>& f) {
+  const auto Dm_inv = rest.Dm_inv;
+  const auto volume = rest.volume;
+  Kokkos::parallel_for(
+      "amphora::solid::tet_damping_forces", RangePolicy<ExecSpace>(exec, 0, int(tets.extent(0))),
+      KOKKOS_LAMBDA(const int e) {
+        Mat3 Bm;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) Bm(i, j) = Dm_inv(e, i, j);
+        const Mat3 F = tet_detail::edge_matrix(x, tets, e) * Bm;
+        const Mat3 dF = tet_detail::edge_matrix(v, tets, e) * Bm;
+        const Mat3 FtdF = transpose(F) * dF;
+        Mat3 S;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) S(i, j) = eta * (FtdF(i, j) + FtdF(j, i));
+        const Mat3 H = F * S * transpose(Bm);  // f_c = -W H e_c
         const double W = volume(e);
         for (int i = 0; i < 3; ++i) {
           double f0 = 0.0;

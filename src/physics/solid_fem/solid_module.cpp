@@ -70,14 +70,18 @@ class SolidModule final : public Module {
     o.density = p.real("density");
     o.gravity[2] = -p.real("gravity");
     o.damping = p.real("damping");
+    o.viscosity = p.real("viscosity");
     o.implicit = p.string("integrator") == "backward_euler";
     o.newton.tolerance = p.real("newton_tolerance");
     o.newton.max_iterations = static_cast<int>(p.integer("newton_max_iterations"));
     o.volume_preserving = p.boolean("volume_preserving");
     o.volume.tolerance = p.real("volume_tolerance");
     o.volume.recovery_time = p.real("volume_recovery_time");
+    o.plastic.yield = p.real("plastic_yield");
+    o.plastic.clamp = p.real("plastic_clamp");
     o.floor = p.real("floor");
     o.floor_tilt = p.real("floor_tilt") * 3.14159265358979323846 / 180.0;
+    o.friction = p.real("friction");
     solid_ = std::make_unique<TetSolid<Exec>>(mesh_, o);
     squash_and_pin(p.real("squash"), p.boolean("pin_x0"));
     if (p.real("plate_gap") < 1.0) plates_ = Plates{p.real("plate_gap"), p.real("plate_speed")};
@@ -162,6 +166,7 @@ class SolidModule final : public Module {
   }
   std::vector<StateBlock> state() const override;
   void restore(const std::vector<StateBlock>& blocks) override;
+  void restore_plastic(const std::vector<double>& data);
   std::vector<std::string> owned_blocks() const override { return {"solid"}; }
 
  private:
@@ -228,6 +233,7 @@ Diagnostics SolidModule::diagnostics(double) const {
     d.push_back({"node_volume_error", s.volume_report().error});
     d.push_back({"volume_cr_iterations", double(s.volume_report().cr_iterations)});
   }
+  if (s.plastic()) d.push_back({"max_plastic_strain", s.max_plastic_strain()});
   if (beam_sag_ > 0.0) {
     const double ratio = -sag / double(free_end_.size()) / beam_sag_;
     d.push_back({"sag_beam_theory", beam_sag_});
@@ -289,13 +295,36 @@ std::vector<OutputBlock> SolidModule::output(double) const {
 }
 
 std::vector<StateBlock> SolidModule::state() const {
-  return {
-      StateBlock{"solid", {{"x", flat(solid_->positions())}, {"v", flat(solid_->velocities())}}}};
+  StateBlock b{"solid", {{"x", flat(solid_->positions())}, {"v", flat(solid_->velocities())}}};
+  if (solid_->plastic()) {
+    auto h =
+        Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solid_->plastic_deformation());
+    std::vector<double> fp(9 * h.extent(0));
+    for (size_t e = 0; e < h.extent(0); ++e)
+      for (int k = 0; k < 9; ++k) fp[9 * e + k] = h(e, k / 3, k % 3);
+    b.arrays.push_back({"Fp", fp});
+  }
+  return {b};
+}
+
+/// F_p from a checkpoint's "Fp" array (9 entries per element, row by row).
+void SolidModule::restore_plastic(const std::vector<double>& data) {
+  const auto& Fp = solid_->plastic_deformation();
+  if (!solid_->plastic() || data.size() != 9 * Fp.extent(0))
+    throw std::runtime_error(
+        "solid_fem: the checkpoint's plastic deformation does not fit this "
+        "scene (plastic_yield or the mesh differ)");
+  auto h = Kokkos::create_mirror_view(Fp);
+  for (size_t e = 0; e < h.extent(0); ++e)
+    for (int k = 0; k < 9; ++k) h(e, k / 3, k % 3) = data[9 * e + k];
+  Kokkos::deep_copy(Fp, h);
+  solid_->plastic_deformation_changed();
 }
 
 void SolidModule::restore(const std::vector<StateBlock>& blocks) {
   for (const auto& b : blocks)
     for (const auto& [key, data] : b.arrays) {
+      if (b.name == "solid" && key == "Fp") restore_plastic(data);
       if (b.name != "solid" || (key != "x" && key != "v")) continue;
       if (data.size() != 3 * size_t(mesh_.n_nodes()))
         throw std::runtime_error("solid_fem: the checkpoint's solid block does not fit this scene");
@@ -343,6 +372,9 @@ ParamTable parameter_table() {
                      "singular values below it are extrapolated (invertible FEM); 0: the "
                      "standard model, which fails on inverted elements"),
           real_param("damping", 0.0, "1/s", at_least(0.0), "mass-proportional damping rate"),
+          real_param("viscosity", 0.0, "Pa s", at_least(0.0),
+                     "Kelvin-Voigt damping: a viscous stress eta dC/dt that leaves rigid "
+                     "motion alone (explicit integrator only)"),
           string_param("integrator", std::string("explicit"),
                        "explicit (velocity Verlet, dt under the explicit limit) or "
                        "backward_euler (Newton-CG on the definite Hessian, any dt)",
@@ -359,10 +391,18 @@ ParamTable parameter_table() {
           real_param("volume_recovery_time", 0.0, "s", at_least(0.0),
                      "volume_preserving: recover volume errors over this time by the "
                      "velocities alone; 0: correct the positions every step"),
+          real_param("plastic_yield", 0.0, "1", at_least(0.0),
+                     "multiplicative plasticity: the deviatoric Hencky strain (Frobenius "
+                     "norm) beyond which elements flow; 0: elastic"),
+          real_param("plastic_clamp", 3.0, "1", above(1.0),
+                     "plasticity: F_p's stretches stay within [1/clamp, clamp]"),
           real_param("gravity", 0.0, "m/s^2", at_least(0.0), "gravity along -z"),
           real_param("floor", -1e30, "m", "height of the ground plane at x = y = 0"),
           real_param("floor_tilt", 0.0, "degrees", above(-90.0) & below(90.0),
-                     "the ground's slope (a frictionless ramp down towards +x)"),
+                     "the ground's slope (a ramp down towards +x)"),
+          real_param("friction", 0.0, "1", at_least(0.0),
+                     "Coulomb friction coefficient of the ground and the plates (not with "
+                     "volume_preserving)"),
           real_param("squash", 1.0, "1", above(-1.0) & at_most(1.0),
                      "initial z scale about the centre height (negative: mirrored, inverted)"),
           bool_param("pin_x0", false, "hold the x = min face fixed (a cantilever)"),

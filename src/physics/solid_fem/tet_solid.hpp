@@ -4,7 +4,8 @@
 // and the explicit symplectic step (leapfrog in its velocity-Verlet form, so velocities and
 // positions share a time and an undamped run conserves energy to O(dt^2)) with gravity,
 // mass-proportional damping, pinned nodes, a ground plane and moving plates; optionally the
-// per-node volume projection (volume_projection.hpp) after each step.
+// per-node volume projection (volume_projection.hpp) and multiplicative plasticity
+// (kernels/solid/plastic_flow.hpp) after each step.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "kernels/solid/node_update.hpp"
+#include "kernels/solid/plastic_flow.hpp"
 #include "kernels/solid/tet_forces.hpp"
 #include "mesh/tet/tet_mesh.hpp"
 #include "physics/solid_fem/backward_euler.hpp"
@@ -29,13 +31,16 @@ struct TetSolidOptions {
   Material material;
   double density = 1.0;
   double gravity[3] = {0.0, 0.0, 0.0};
-  double damping = 0.0;                                     ///< mass-proportional rate alpha [1/s]
+  double damping = 0.0;    ///< mass-proportional rate alpha [1/s]
+  double viscosity = 0.0;  ///< Kelvin-Voigt eta [Pa s]: S = eta dC/dt (explicit stepping only)
   double floor = -std::numeric_limits<double>::infinity();  ///< the ground's height at x = y = 0
   double floor_tilt = 0.0;  ///< the ground's slope about the y axis [rad] (a ramp down to +x)
+  double friction = 0.0;    ///< Coulomb coefficient of the ground and the plates
   bool implicit = false;    ///< backward Euler (Newton-CG) instead of the explicit step
   NewtonOptions newton;
   bool volume_preserving = false;  ///< the per-node volume projection after each step
   VolumeOptions volume;
+  kernels::solid::PlasticFlow plastic;  ///< yield 0: elastic
 };
 
 /// Lame parameters from Young's modulus and Poisson's ratio; the compressible models need
@@ -77,12 +82,14 @@ class TetSolid {
     J_ = Kokkos::View<double*, Mem>("amphora::solid::J", rest.n_tets());
     pinned_ = Kokkos::View<char*, Mem>("amphora::solid::pinned", rest.n_nodes());
     lump_masses(rest.n_nodes());
+    if (plastic()) start_plasticity();
   }
 
   /// The explicit limit dt <= h_min / c times `safety`, with c = sqrt(K / rho) for the stiffest
   /// uniaxial modulus K the model reaches: lambda + 2 mu at rest, or dP^_0/ds_0 at s = (s_clamp,
   /// 1, 1) if larger (neo-Hookean stiffens under compression: about 23x for lambda = 2 mu, so
-  /// squashed runs need a ~5x smaller step than the rest state's).
+  /// squashed runs need a ~5x smaller step than the rest state's), and with Kelvin-Voigt damping
+  /// at most rho h_min^2 / (8 eta).
   double stable_dt(double safety = 0.5) const {
     const Material& m = o_.material;
     double K = m.lambda + 2.0 * m.mu;
@@ -90,7 +97,11 @@ class TetSolid {
       const kernels::solid::Vec3 s{{m.s_clamp, 1.0, 1.0}};
       K = std::max(K, kernels::solid::diagonal_stress(m, s).dP_ds(0, 0));
     }
-    return safety * h_min_ / std::sqrt(K / o_.density);
+    const double elastic = h_min_ / std::sqrt(K / o_.density);
+    // the viscous stress' diffusion limit rho h^2 / (c eta): c = 8 keeps a factor 2 from the
+    // measured threshold (docs/solid_fem.md)
+    const double viscous = o_.density * h_min_ * h_min_ / (8.0 * o_.viscosity);
+    return safety * (o_.viscosity > 0.0 ? std::min(elastic, viscous) : elastic);
   }
 
   /// Throws std::invalid_argument naming the limit when dt exceeds stable_dt(1) (explicit
@@ -100,6 +111,7 @@ class TetSolid {
     std::ostringstream s;
     s << "solid_fem: time step " << dt << " is outside (0, " << stable_dt(1.0)
       << "], the explicit limit h_min / c_p (h_min " << h_min_ << ")";
+    if (o_.viscosity > 0.0) s << " or the viscous one rho h_min^2 / (8 eta)";
     throw std::invalid_argument(s.str());
   }
 
@@ -116,6 +128,7 @@ class TetSolid {
     project_volumes(false, true, dt);  // the drift's velocities, then the new positions
     kernels::solid::drift(exec_, dt, planes(), pinned_, v_, x_);
     project_volumes(true, false);
+    plastic_flow();
     update_forces();
     kernels::solid::kick(exec_, k, mass_, pinned_, f_, v_);
     time_ += dt;
@@ -140,6 +153,7 @@ class TetSolid {
     kernels::solid::drift(exec_, dt, planes(), pinned_, v_, x_);
     start_volume_report();
     project_volumes(true, true);
+    plastic_flow();
     update_forces();
     time_ += dt;
   }
@@ -167,6 +181,35 @@ class TetSolid {
     }
     if (velocities && positions) volume_->project_velocities(x_, v_, rep);  // at the new x
   }
+  bool plastic() const { return o_.plastic.yield > 0.0; }
+  /// F_p = I and the mesh's own rest shapes kept (plasticity rewrites the forces' copy).
+  void start_plasticity() {
+    Fp_ = Kokkos::View<double* [3][3], Mem>("amphora::solid::Fp", n_tets());
+    Dm0_inv_ = Kokkos::View<double* [3][3], Mem>("amphora::solid::Dm0_inv", n_tets());
+    Kokkos::deep_copy(exec_, Dm0_inv_, shapes_.Dm_inv);
+    auto h = Kokkos::create_mirror_view(Fp_);
+    for (int e = 0; e < n_tets(); ++e)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) h(e, i, j) = i == j ? 1.0 : 0.0;
+    Kokkos::deep_copy(exec_, Fp_, h);
+  }
+  /// The plastic flow at the current positions (plastic models only).
+  void plastic_flow() {
+    if (!plastic()) return;
+    kernels::solid::tet_plastic_flow(exec_, o_.plastic, Dm0_inv_, tets_, x_, Fp_, shapes_.Dm_inv);
+    forces_current_ = false;
+  }
+  /// F_p per element (plastic models; empty otherwise).
+  const Kokkos::View<double* [3][3], Mem>& plastic_deformation() const { return Fp_; }
+  /// After writing plastic_deformation() (a restart): the rest shapes follow it.
+  void plastic_deformation_changed() {
+    kernels::solid::tet_plastic_rest_shapes(exec_, Dm0_inv_, Fp_, shapes_.Dm_inv);
+    forces_current_ = false;
+  }
+  /// The largest Hencky strain norm of F_p over the elements (0 for elastic models).
+  double max_plastic_strain() const {
+    return plastic() ? kernels::solid::max_plastic_strain(exec_, Fp_) : 0.0;
+  }
   /// A new step's volume report.
   void start_volume_report() {
     volume_report_ = VolumeReport{};
@@ -185,6 +228,7 @@ class TetSolid {
     kernels::solid::BoundingPlanes p = plates_;
     p.n[0] = std::sin(o_.floor_tilt), p.n[1] = 0.0, p.n[2] = std::cos(o_.floor_tilt);
     p.d = std::isfinite(o_.floor) ? o_.floor * p.n[2] : -1e300;
+    p.friction = o_.friction;
     return p;
   }
   /// Constant nodal loads [N] added to the elastic forces from now on (an empty View: none).
@@ -199,6 +243,8 @@ class TetSolid {
     else
       Kokkos::deep_copy(exec_, f_, 0.0);
     kernels::solid::tet_forces(exec_, o_.material, shapes_, tets_, x_, f_, J_);
+    if (o_.viscosity > 0.0)
+      kernels::solid::tet_damping_forces(exec_, o_.viscosity, shapes_, tets_, x_, v_, f_);
     forces_current_ = true;
   }
 
@@ -269,6 +315,8 @@ class TetSolid {
   /// Positions and velocities; a caller that changes positions calls update_forces() after.
   const Nodes& positions() const { return x_; }
   const Nodes& velocities() const { return v_; }
+  /// The forces at the last update_forces() (elastic, damping and nodal loads; no gravity).
+  const Nodes& forces() const { return f_; }
   const Nodes& rest_positions() const { return X_; }
   const Kokkos::View<char*, Mem>& pinned() const { return pinned_; }
   const Kokkos::View<double*, Mem>& masses() const { return mass_; }
@@ -304,6 +352,18 @@ class TetSolid {
       fail("Poisson's ratio " + std::to_string(nu) +
            " is outside [0, 0.5) (the compressible models need lambda finite and >= 0)");
     if (!(o.damping >= 0.0)) fail("damping must be >= 0");
+    if (!(o.viscosity >= 0.0)) fail("viscosity must be >= 0");
+    if (!(o.friction >= 0.0)) fail("friction must be >= 0");
+    if (o.friction > 0.0 && o.volume_preserving)
+      fail(
+          "friction is not built for the volume projection's contacts; set friction = 0 or "
+          "volume_preserving = false");
+    if (o.viscosity > 0.0 && o.implicit)
+      fail(
+          "viscosity (Kelvin-Voigt damping) needs the explicit integrator; use damping "
+          "(mass-proportional) with backward_euler");
+    if (!(o.plastic.yield >= 0.0)) fail("the plastic yield strain must be >= 0");
+    if (!(o.plastic.clamp > 1.0)) fail("the plastic clamp must be > 1");
   }
 
   /// Lists the elements of non-positive rest volume (at most ten named).
@@ -347,6 +407,7 @@ class TetSolid {
   Kokkos::View<int* [4], Mem> tets_;
   Nodes X_, x_, v_, f_, external_;
   kernels::solid::TetRestShapes<Mem> shapes_;
+  Kokkos::View<double*[3][3], Mem> Fp_, Dm0_inv_;  ///< plastic models: F_p, the mesh's D_m^-1
   Kokkos::View<double*, Mem> J_, mass_;
   Kokkos::View<char*, Mem> pinned_;
   kernels::solid::BoundingPlanes plates_;

@@ -114,7 +114,7 @@ class VolumeProjection {
   }
 
   const Scalars& rest_volumes() const { return V0_; }
-  /// The one-ring volumes at the last positions apply() saw (after its correction).
+  /// The one-ring volumes at the last positions update_volumes() saw.
   const Scalars& volumes() const { return V_; }
 
   // The pieces (public: CUDA forbids extended lambdas in private members).
