@@ -113,6 +113,57 @@ KOKKOS_INLINE_FUNCTION DiagonalStress diagonal_stress(const Material& m, const V
   return r;
 }
 
+/// P(F) without the SVD where that gives the same stress: neo-Hookean, P = mu (F - F^-T) +
+/// lambda log J F^-T, and St Venant-Kirchhoff, P = F (2 mu E + lambda tr E I), for elements
+/// whose singular values all exceed s_clamp, which J > s_clamp |F|_F^2 guarantees (s_min >=
+/// J / s_max^2 >= J / |F|_F^2). Returns false (P untouched) where the SVD path is needed:
+/// the corotated model (it needs the rotation) and elements near or past inversion.
+KOKKOS_INLINE_FUNCTION bool closed_form_stress(const Material& m, const Mat3& F, double J,
+                                               Mat3& P) {
+  if (m.model == Hyperelastic::corotated || !(J > 0.0)) return false;
+  const double f2 = frobenius(F) * frobenius(F);
+  if (!(J > m.s_clamp * f2)) return false;
+  if (m.model == Hyperelastic::neo_hookean) {
+    const Mat3 Finv_t = transpose(inverse(F));
+    const double c = m.lambda * math::log(J) - m.mu;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) P(i, j) = m.mu * F(i, j) + c * Finv_t(i, j);
+    return true;
+  }
+  Mat3 S = transpose(F) * F;  // C, then 2 mu E + lambda tr E I with E = (C - I)/2
+  const double trE = 0.5 * (S(0, 0) + S(1, 1) + S(2, 2) - 3.0);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) S(i, j) *= m.mu;
+    S(i, i) += -m.mu + m.lambda * trE;
+  }
+  P = F * S;
+  return true;
+}
+
+/// psi(F) in the same closed forms, where closed_form_stress applies (false elsewhere).
+KOKKOS_INLINE_FUNCTION bool closed_form_energy(const Material& m, const Mat3& F, double J,
+                                               double& psi) {
+  if (m.model == Hyperelastic::corotated || !(J > 0.0)) return false;
+  const double f2 = frobenius(F) * frobenius(F);
+  if (!(J > m.s_clamp * f2)) return false;
+  if (m.model == Hyperelastic::neo_hookean) {
+    const double log_j = math::log(J);
+    psi = 0.5 * m.mu * (f2 - 3.0) - m.mu * log_j + 0.5 * m.lambda * log_j * log_j;
+    return true;
+  }
+  const Mat3 C = transpose(F) * F;
+  double tr = 0.0, e2 = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    tr += 0.5 * (C(i, i) - 1.0);
+    for (int j = 0; j < 3; ++j) {
+      const double E = 0.5 * (C(i, j) - (i == j ? 1.0 : 0.0));
+      e2 += E * E;
+    }
+  }
+  psi = m.mu * e2 + 0.5 * m.lambda * tr * tr;
+  return true;
+}
+
 }  // namespace amphora::kernels::solid
 
 namespace amphora::kernels::solid {

@@ -1,7 +1,8 @@
 #pragma once
 // Linear-tetrahedron elastic forces (Irving, Teran & Fedkiw, SCA 2004, section 4): per element
 // F = D_s D_m^-1 from the current and rest edge matrices, F = U F^ V^T (svd3), P = U P^(F^) V^T
-// (diagonal_stress), and the nodal forces [f_1 f_2 f_3] = -W P D_m^-T, f_0 = -(f_1 + f_2 + f_3),
+// (diagonal_stress; in closed form without the SVD where no singular value is near the clamp),
+// and the nodal forces [f_1 f_2 f_3] = -W P D_m^-T, f_0 = -(f_1 + f_2 + f_3),
 // scattered with atomics. The rest data (D_m^-1, W) are computed once by tet_rest_shapes.
 // Kelvin-Voigt damping forces (a viscous stress on the rate of C = F^T F) likewise.
 #include "kernels/solid/diagonal_stress.hpp"
@@ -70,10 +71,14 @@ void tet_forces(const ExecSpace& exec, const Material& m, const TetRestShapes<Me
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) Bm(i, j) = Dm_inv(e, i, j);
         const Mat3 F = tet_detail::edge_matrix(x, tets, e) * Bm;
-        J(e) = determinant(F);
-        const Svd3 d = svd3(F);
-        const DiagonalStress ps = diagonal_stress(m, d.s);
-        const Mat3 P = d.U * Mat3::diagonal(ps.P) * transpose(d.V);
+        const double j = determinant(F);
+        J(e) = j;
+        Mat3 P;
+        if (!closed_form_stress(m, F, j, P)) {
+          const Svd3 d = svd3(F);
+          const DiagonalStress ps = diagonal_stress(m, d.s);
+          P = d.U * Mat3::diagonal(ps.P) * transpose(d.V);
+        }
         const Mat3 H = P * transpose(Bm);  // f_c = -W H e_c
         const double W = volume(e);
         for (int i = 0; i < 3; ++i) {
@@ -141,8 +146,10 @@ double tet_elastic_energy(const ExecSpace& exec, const Material& m,
         Mat3 Bm;
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) Bm(i, j) = Dm_inv(e, i, j);
-        const Svd3 d = svd3(tet_detail::edge_matrix(x, tets, e) * Bm);
-        sum += volume(e) * diagonal_energy(m, d.s);
+        const Mat3 F = tet_detail::edge_matrix(x, tets, e) * Bm;
+        double psi = 0.0;
+        if (!closed_form_energy(m, F, determinant(F), psi)) psi = diagonal_energy(m, svd3(F).s);
+        sum += volume(e) * psi;
       },
       energy);
   return energy;

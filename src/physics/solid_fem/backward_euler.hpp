@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "kernels/blas1.hpp"
 #include "kernels/solid/tet_stiffness.hpp"
 
 namespace amphora::physics::solid_fem {
@@ -85,6 +86,9 @@ class BackwardEuler {
     using namespace backward_euler_detail;
     const double c = (1.0 + s.damping * dt) / (dt * dt);
     Kokkos::deep_copy(exec_, x0_, x);
+    if (unit_strain_energy_ == 0.0)
+      unit_strain_energy_ =
+          kernels::blas1::sum(exec_, s.rest.volume) * (s.material.lambda + 2.0 * s.material.mu);
     NewtonReport rep;
     gradient(s, c, dt, x, v);
     rep.initial_residual = rep.residual = std::sqrt(dot(exec_, g_, g_));
@@ -209,17 +213,21 @@ class BackwardEuler {
   }
 
   /// x += a dx with a = 1, 1/2, ... until E falls by at least 1e-4 a |g . dx| (Armijo); the
-  /// last halving is taken if none does. Returns E at the new x.
+  /// last halving is taken if none does. A full step whose predicted decrease |g . dx| is
+  /// below E's round-off is taken as it is (E cannot tell it from no step): the elastic
+  /// energy cancels terms of the size of a unit strain's, so its round-off is about 1e-16
+  /// V (lambda + 2 mu), and 1e-15 of that is the threshold. Returns E at the new x.
   double line_search(const ImplicitSystem<Mem>& s, double c, double dt, const Nodes& x,
                      const Nodes& v, double energy) {
     using namespace backward_euler_detail;
     const double slope = dot(exec_, g_, dx_);
+    const bool below_round_off = std::abs(slope) < 1e-15 * unit_strain_energy_;
     double a = 1.0, e = energy;
     for (int k = 0; k < 12; ++k, a *= 0.5) {
       Kokkos::deep_copy(exec_, trial_, x);
       axpby(exec_, a, dx_, 1.0, trial_);
       e = incremental_energy(s, c, dt, trial_, v);
-      if (e <= energy + 1e-4 * a * slope) break;
+      if (below_round_off || e <= energy + 1e-4 * a * slope) break;
     }
     Kokkos::deep_copy(exec_, x, trial_);
     return e;
@@ -233,6 +241,7 @@ class BackwardEuler {
   kernels::solid::TetStiffness<Mem> k_;
   Nodes x0_, g_, dx_, r_, z_, p_, q_, diag_, trial_, f_;
   Kokkos::View<double*, Mem> J_;
+  double unit_strain_energy_ = 0.0;  ///< V (lambda + 2 mu): the scale of E's round-off
 };
 
 }  // namespace amphora::physics::solid_fem
