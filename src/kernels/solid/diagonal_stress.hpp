@@ -113,16 +113,20 @@ KOKKOS_INLINE_FUNCTION DiagonalStress diagonal_stress(const Material& m, const V
   return r;
 }
 
+/// Whether the closed forms below apply: not corotated (it needs the rotation), and every
+/// singular value above s_clamp, which J > s_clamp |F|_F^2 guarantees (s_min >= J / s_max^2
+/// >= J / |F|_F^2).
+KOKKOS_INLINE_FUNCTION bool closed_form_applies(const Material& m, const Mat3& F, double J) {
+  const double f = frobenius(F);
+  return m.model != Hyperelastic::corotated && J > 0.0 && J > m.s_clamp * f * f;
+}
+
 /// P(F) without the SVD where that gives the same stress: neo-Hookean, P = mu (F - F^-T) +
-/// lambda log J F^-T, and St Venant-Kirchhoff, P = F (2 mu E + lambda tr E I), for elements
-/// whose singular values all exceed s_clamp, which J > s_clamp |F|_F^2 guarantees (s_min >=
-/// J / s_max^2 >= J / |F|_F^2). Returns false (P untouched) where the SVD path is needed:
-/// the corotated model (it needs the rotation) and elements near or past inversion.
+/// lambda log J F^-T, and St Venant-Kirchhoff, P = F (2 mu E + lambda tr E I). Returns false
+/// (P untouched) where closed_form_applies does not: there the SVD path is needed.
 KOKKOS_INLINE_FUNCTION bool closed_form_stress(const Material& m, const Mat3& F, double J,
                                                Mat3& P) {
-  if (m.model == Hyperelastic::corotated || !(J > 0.0)) return false;
-  const double f2 = frobenius(F) * frobenius(F);
-  if (!(J > m.s_clamp * f2)) return false;
+  if (!closed_form_applies(m, F, J)) return false;
   if (m.model == Hyperelastic::neo_hookean) {
     const Mat3 Finv_t = transpose(inverse(F));
     const double c = m.lambda * math::log(J) - m.mu;
@@ -143,12 +147,11 @@ KOKKOS_INLINE_FUNCTION bool closed_form_stress(const Material& m, const Mat3& F,
 /// psi(F) in the same closed forms, where closed_form_stress applies (false elsewhere).
 KOKKOS_INLINE_FUNCTION bool closed_form_energy(const Material& m, const Mat3& F, double J,
                                                double& psi) {
-  if (m.model == Hyperelastic::corotated || !(J > 0.0)) return false;
-  const double f2 = frobenius(F) * frobenius(F);
-  if (!(J > m.s_clamp * f2)) return false;
+  if (!closed_form_applies(m, F, J)) return false;
   if (m.model == Hyperelastic::neo_hookean) {
     const double log_j = math::log(J);
-    psi = 0.5 * m.mu * (f2 - 3.0) - m.mu * log_j + 0.5 * m.lambda * log_j * log_j;
+    const double f = frobenius(F);
+    psi = 0.5 * m.mu * (f * f - 3.0) - m.mu * log_j + 0.5 * m.lambda * log_j * log_j;
     return true;
   }
   const Mat3 C = transpose(F) * F;

@@ -63,12 +63,8 @@ void tet_plastic_rest_shapes(const ExecSpace& exec,
   Kokkos::parallel_for(
       "amphora::solid::tet_plastic_rest_shapes", RangePolicy<ExecSpace>(exec, 0, int(Fp.extent(0))),
       KOKKOS_LAMBDA(const int e) {
-        Mat3 B0, P;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) B0(i, j) = Dm0_inv(e, i, j), P(i, j) = Fp(e, i, j);
-        const Mat3 B = B0 * inverse(P);
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) Dm_inv(e, i, j) = B(i, j);
+        const Mat3 B = tet_detail::load(Dm0_inv, e) * inverse(tet_detail::load(Fp, e));
+        tet_detail::store(Dm_inv, e, B);
       });
 }
 
@@ -84,13 +80,8 @@ void tet_plastic_flow(const ExecSpace& exec, const PlasticFlow& p,
   Kokkos::parallel_for(
       "amphora::solid::tet_plastic_flow", RangePolicy<ExecSpace>(exec, 0, int(tets.extent(0))),
       KOKKOS_LAMBDA(const int e) {
-        Mat3 P, B;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) P(i, j) = Fp(e, i, j), B(i, j) = Dm_inv(e, i, j);
-        const Mat3 Fe = tet_detail::edge_matrix(x, tets, e) * B;
-        const Mat3 P_new = plastic_update(p, Fe, P);
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) Fp(e, i, j) = P_new(i, j);
+        const Mat3 Fe = tet_detail::edge_matrix(x, tets, e) * tet_detail::load(Dm_inv, e);
+        tet_detail::store(Fp, e, plastic_update(p, Fe, tet_detail::load(Fp, e)));
       });
   // D_m^-1 by its own kernel: a restart (F_p read back) then rebuilds it bit for bit
   tet_plastic_rest_shapes(exec, Dm0_inv, Fp, Dm_inv);
@@ -103,10 +94,7 @@ double max_plastic_strain(const ExecSpace& exec, const Kokkos::View<double* [3][
   Kokkos::parallel_reduce(
       "amphora::solid::max_plastic_strain", RangePolicy<ExecSpace>(exec, 0, int(Fp.extent(0))),
       KOKKOS_LAMBDA(const int e, double& acc) {
-        Mat3 P;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) P(i, j) = Fp(e, i, j);
-        const Svd3 q = svd3(P);
+        const Svd3 q = svd3(tet_detail::load(Fp, e));
         const Vec3 ep{{math::log(q.s[0]), math::log(q.s[1]), math::log(q.s[2])}};
         const double n = norm(ep);
         acc = n > acc ? n : acc;

@@ -29,6 +29,38 @@ KOKKOS_INLINE_FUNCTION Mat3 edge_matrix(const Nodes& x, const Tets& tets, int e)
   return D;
 }
 
+/// Element e's 3x3 block of a per-element View.
+template <class MemSpace>
+KOKKOS_INLINE_FUNCTION Mat3 load(const Kokkos::View<double* [3][3], MemSpace>& v, int e) {
+  Mat3 m;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) m(i, j) = v(e, i, j);
+  return m;
+}
+
+/// v(e) = m.
+template <class MemSpace>
+KOKKOS_INLINE_FUNCTION void store(const Kokkos::View<double* [3][3], MemSpace>& v, int e,
+                                  const Mat3& m) {
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) v(e, i, j) = m(i, j);
+}
+
+/// out += s H e_c at node c = 1, 2, 3 of element e and minus their sum at node 0 (atomics).
+template <class Nodes, class Tets>
+KOKKOS_INLINE_FUNCTION void scatter(const Nodes& out, const Tets& tets, int e, double s,
+                                    const Mat3& H) {
+  for (int i = 0; i < 3; ++i) {
+    double o0 = 0.0;
+    for (int c = 1; c < 4; ++c) {
+      const double v = s * H(i, c - 1);
+      Kokkos::atomic_add(&out(tets(e, c), i), v);
+      o0 -= v;
+    }
+    Kokkos::atomic_add(&out(tets(e, 0), i), o0);
+  }
+}
+
 }  // namespace tet_detail
 
 /// D_m^-1 and the signed rest volumes; elements with volume <= 0 are the caller's to refuse.
@@ -67,9 +99,7 @@ void tet_forces(const ExecSpace& exec, const Material& m, const TetRestShapes<Me
   Kokkos::parallel_for(
       "amphora::solid::tet_forces", RangePolicy<ExecSpace>(exec, 0, int(tets.extent(0))),
       KOKKOS_LAMBDA(const int e) {
-        Mat3 Bm;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) Bm(i, j) = Dm_inv(e, i, j);
+        const Mat3 Bm = tet_detail::load(Dm_inv, e);
         const Mat3 F = tet_detail::edge_matrix(x, tets, e) * Bm;
         const double j = determinant(F);
         J(e) = j;
@@ -80,16 +110,7 @@ void tet_forces(const ExecSpace& exec, const Material& m, const TetRestShapes<Me
           P = d.U * Mat3::diagonal(ps.P) * transpose(d.V);
         }
         const Mat3 H = P * transpose(Bm);  // f_c = -W H e_c
-        const double W = volume(e);
-        for (int i = 0; i < 3; ++i) {
-          double f0 = 0.0;
-          for (int c = 1; c < 4; ++c) {
-            const double fc = -W * H(i, c - 1);
-            Kokkos::atomic_add(&f(tets(e, c), i), fc);
-            f0 -= fc;
-          }
-          Kokkos::atomic_add(&f(tets(e, 0), i), f0);
-        }
+        tet_detail::scatter(f, tets, e, -volume(e), H);
       });
 }
 
@@ -108,9 +129,7 @@ void tet_damping_forces(const ExecSpace& exec, double eta, const TetRestShapes<M
   Kokkos::parallel_for(
       "amphora::solid::tet_damping_forces", RangePolicy<ExecSpace>(exec, 0, int(tets.extent(0))),
       KOKKOS_LAMBDA(const int e) {
-        Mat3 Bm;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) Bm(i, j) = Dm_inv(e, i, j);
+        const Mat3 Bm = tet_detail::load(Dm_inv, e);
         const Mat3 F = tet_detail::edge_matrix(x, tets, e) * Bm;
         const Mat3 dF = tet_detail::edge_matrix(v, tets, e) * Bm;
         const Mat3 FtdF = transpose(F) * dF;
@@ -118,16 +137,7 @@ void tet_damping_forces(const ExecSpace& exec, double eta, const TetRestShapes<M
         for (int i = 0; i < 3; ++i)
           for (int j = 0; j < 3; ++j) S(i, j) = eta * (FtdF(i, j) + FtdF(j, i));
         const Mat3 H = F * S * transpose(Bm);  // f_c = -W H e_c
-        const double W = volume(e);
-        for (int i = 0; i < 3; ++i) {
-          double f0 = 0.0;
-          for (int c = 1; c < 4; ++c) {
-            const double fc = -W * H(i, c - 1);
-            Kokkos::atomic_add(&f(tets(e, c), i), fc);
-            f0 -= fc;
-          }
-          Kokkos::atomic_add(&f(tets(e, 0), i), f0);
-        }
+        tet_detail::scatter(f, tets, e, -volume(e), H);
       });
 }
 
@@ -143,9 +153,7 @@ double tet_elastic_energy(const ExecSpace& exec, const Material& m,
   Kokkos::parallel_reduce(
       "amphora::solid::tet_elastic_energy", RangePolicy<ExecSpace>(exec, 0, int(tets.extent(0))),
       KOKKOS_LAMBDA(const int e, double& sum) {
-        Mat3 Bm;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) Bm(i, j) = Dm_inv(e, i, j);
+        const Mat3 Bm = tet_detail::load(Dm_inv, e);
         const Mat3 F = tet_detail::edge_matrix(x, tets, e) * Bm;
         double psi = 0.0;
         if (!closed_form_energy(m, F, determinant(F), psi)) psi = diagonal_energy(m, svd3(F).s);

@@ -77,19 +77,12 @@ KOKKOS_INLINE_FUNCTION double sum_quotient(const DiagonalStress& d, const Vec3& 
   return (d.P[i] + d.P[j]) / den;
 }
 
-template <class MemSpace>
-KOKKOS_INLINE_FUNCTION Mat3 load(const Kokkos::View<double* [3][3], MemSpace>& v, int e) {
-  Mat3 m;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) m(i, j) = v(e, i, j);
-  return m;
-}
-
 /// dP for dF at element e from the stored factors.
 template <class MemSpace>
 KOKKOS_INLINE_FUNCTION Mat3 stress_differential(const TetStiffness<MemSpace>& k, int e,
                                                 const Mat3& dF) {
-  const Mat3 U = load(k.U, e), V = load(k.V, e), A = load(k.A, e);
+  const Mat3 U = tet_detail::load(k.U, e), V = tet_detail::load(k.V, e),
+             A = tet_detail::load(k.A, e);
   const Mat3 G = transpose(U) * dF * V;  // dF^
   Mat3 dPh;
   for (int i = 0; i < 3; ++i)
@@ -126,7 +119,7 @@ void tet_stiffness(const ExecSpace& exec, const Material& m, const TetRestShapes
   Kokkos::parallel_for(
       "amphora::solid::tet_stiffness", RangePolicy<ExecSpace>(exec, 0, int(tets.extent(0))),
       KOKKOS_LAMBDA(const int e) {
-        const Mat3 Bm = stiffness_detail::load(Dm_inv, e);
+        const Mat3 Bm = tet_detail::load(Dm_inv, e);
         const Svd3 d = svd3(tet_detail::edge_matrix(x, tets, e) * Bm);
         const DiagonalStress ps = diagonal_stress(m, d.s);
         Mat3 A = ps.dP_ds;
@@ -170,18 +163,10 @@ void tet_stiffness_apply(const ExecSpace& exec, const TetRestShapes<MemSpace>& r
   Kokkos::parallel_for(
       "amphora::solid::tet_stiffness_apply", RangePolicy<ExecSpace>(exec, 0, int(tets.extent(0))),
       KOKKOS_LAMBDA(const int e) {
-        const Mat3 Bm = stiffness_detail::load(Dm_inv, e);
+        const Mat3 Bm = tet_detail::load(Dm_inv, e);
         const Mat3 dF = tet_detail::edge_matrix(dx, tets, e) * Bm;
         const Mat3 H = stiffness_detail::stress_differential(k, e, dF) * transpose(Bm);
-        const double W = volume(e);
-        for (int i = 0; i < 3; ++i) {
-          double o0 = 0.0;
-          for (int c = 1; c < 4; ++c) {
-            Kokkos::atomic_add(&out(tets(e, c), i), W * H(i, c - 1));
-            o0 -= W * H(i, c - 1);
-          }
-          Kokkos::atomic_add(&out(tets(e, 0), i), o0);
-        }
+        tet_detail::scatter(out, tets, e, volume(e), H);
       });
 }
 
