@@ -7,7 +7,7 @@ import re
 import subprocess
 
 here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-amphora = os.path.join(here, "build", "release", "apps", "amphora")
+amphora = os.environ.get("AMPHORA", os.path.join(here, "build", "release", "apps", "amphora"))
 
 
 def run_variant(scene_name, out_dir, values, threads=1):

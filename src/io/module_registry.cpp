@@ -25,7 +25,7 @@ const std::vector<ModuleInfo>& module_registry() {
        [](const Parameters& p, const Communicator& c) -> std::unique_ptr<physics::Module> {
          return std::make_unique<physics::dem::DemModule>(p, c);
        }},
-      {"ins_fem", physics::ins_fem::parameter_table, physics::ins_fem::create},
+      {"ins_fem", physics::ins_fem::parameter_table, physics::ins_fem::create, true},
       {"mpve", coupling::fsi::mpve_parameter_table, coupling::fsi::create_mpve},
       {"poisson_fem", physics::poisson_fem::parameter_table, physics::poisson_fem::create},
       {"solid_fem", physics::solid_fem::parameter_table, physics::solid_fem::create},

@@ -16,6 +16,8 @@ struct ModuleInfo {
   std::string name;
   std::function<ParamTable()> parameters;
   std::function<std::unique_ptr<physics::Module>(const Parameters&, const Communicator&)> create;
+  /// Whether the module takes a different step each time ([run] time_step = "adaptive").
+  bool variable_dt = false;
 };
 
 const std::vector<ModuleInfo>& module_registry();

@@ -15,6 +15,8 @@ class Progress {
   /// done since construction (the unit's count: points, particles... times steps).
   void update(long long step, double time, double dt, double work, bool force = false);
   double elapsed() const;
+  /// The step the run now expects to end on (an adaptive run's estimate moves).
+  void set_last_step(long long last) { last_ = last; }
 
  private:
   std::ostream& out_;

@@ -1,5 +1,6 @@
 #include "io/runner.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -63,6 +64,15 @@ std::string place(const physics::NonFiniteReport& r) {
   return "(" + n + ") = (" + v + ")";
 }
 
+/// The next step of an adaptive run: cfl times the module's stable step in its current state,
+/// at most 20 % over the last step (variable-step BDF2 stays zero-stable for ratios below
+/// 1 + sqrt 2), shortened to land on end_time (the rest halved rather than a sliver left).
+double adaptive_dt(const physics::Module& module, double cfl, double last_dt, double remaining) {
+  const double dt = std::min(cfl * module.stable_dt(), 1.2 * last_dt);
+  if (remaining <= dt * (1.0 + 1e-9)) return remaining;
+  return remaining < 2.0 * dt ? 0.5 * remaining : dt;
+}
+
 struct Checkpoint {
   long long step;
   double time, dt;
@@ -91,6 +101,30 @@ void write_checkpoint(const std::string& dir, const Scene& scene, const Communic
   comm.barrier();
 }
 
+/// The checkpoint a run continues from (nullptr: none asked), checked to be an amphora
+/// checkpoint of this scene.
+std::unique_ptr<H5Reader> open_restart(const std::string& file, const Scene& scene,
+                                       const Communicator& comm) {
+  if (file.empty()) return nullptr;
+  if (!fs::exists(file)) throw RunError("restart file '" + file + "' not found");
+  std::unique_ptr<H5Reader> restart;
+  try {
+    restart = std::make_unique<H5Reader>(file, comm);
+  } catch (const std::exception& e) {
+    throw RunError("restart file '" + file + "' is not an amphora checkpoint (" + e.what() + ")");
+  }
+  if (!restart->has("fingerprint") || !restart->has("scene"))
+    throw RunError("restart file '" + file + "' is not an amphora checkpoint");
+  const std::string fp = restart->text("fingerprint");
+  if (fp != scene.fingerprint) {
+    throw RunError("restart file '" + file + "' was written by scene '" + restart->text("scene") +
+                   "' (fingerprint " + fp + "), not by this scene '" + scene.name +
+                   "' (fingerprint " + scene.fingerprint +
+                   "): name, module and module parameters must match");
+  }
+  return restart;
+}
+
 }  // namespace
 
 void check_scene(const Scene& scene, const Communicator& comm) { make_module(scene, comm); }
@@ -106,32 +140,12 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   long long n_steps = std::max(1LL, static_cast<long long>(std::ceil(end_time / dt - 1e-9)));
   dt = end_time / double(n_steps);
   module->set_time_step(dt);  // may refuse a step over the module's stability limit
+  const bool adaptive = run.string("time_step") == "adaptive";
   long long step = 0;
   double t = 0.0;
 
   // Everything that can be wrong with the input is checked before the first byte is written.
-  std::unique_ptr<H5Reader> restart;
-  if (!options.restart.empty()) {
-    if (!fs::exists(options.restart)) {
-      throw RunError("restart file '" + options.restart + "' not found");
-    }
-    try {
-      restart = std::make_unique<H5Reader>(options.restart, comm);
-    } catch (const std::exception& e) {
-      throw RunError("restart file '" + options.restart + "' is not an amphora checkpoint (" +
-                     e.what() + ")");
-    }
-    if (!restart->has("fingerprint") || !restart->has("scene")) {
-      throw RunError("restart file '" + options.restart + "' is not an amphora checkpoint");
-    }
-    const std::string fp = restart->text("fingerprint");
-    if (fp != scene.fingerprint) {
-      throw RunError("restart file '" + options.restart + "' was written by scene '" +
-                     restart->text("scene") + "' (fingerprint " + fp + "), not by this scene '" +
-                     scene.name + "' (fingerprint " + scene.fingerprint +
-                     "): name, module and module parameters must match");
-    }
-  }
+  std::unique_ptr<H5Reader> restart = open_restart(options.restart, scene, comm);
   if (options.write_output) prepare_output_dir(dir, comm);
 
   FieldSeries series(dir, scene.name, comm);
@@ -176,15 +190,25 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   kernels::DeepCopyCounter
       copies;  // host-device traffic of the steps (not of output or checkpoints)
   kernels::DeepCopyCount copied;
-  while (step < n_steps && (options.max_steps < 0 || step - first_step < options.max_steps)) {
+  while ((adaptive ? t < end_time : step < n_steps) &&
+         (options.max_steps < 0 || step - first_step < options.max_steps)) {
     const double t0 = progress.elapsed();
+    if (adaptive) {
+      dt = adaptive_dt(*module, run.real("cfl"), dt, end_time - t);
+      module->set_time_step(dt);
+    }
     work += double(module->work_per_step());
     const kernels::DeepCopyCount before = copies.count();
     module->advance(t, dt);
     copied = copied + (copies.count() - before);
     stepping += progress.elapsed() - t0;
     ++step;
-    t = double(step) * dt;  // not accumulated: lands on end_time and restarts identically
+    // Fixed steps: not accumulated, so the run lands on end_time and restarts identically.
+    // Adaptive: the sum, exactly end_time on the step that was shortened to reach it.
+    t = !adaptive ? double(step) * dt
+                  : (t + dt >= end_time || dt == end_time - t ? end_time : t + dt);
+    if (adaptive) n_steps = step + static_cast<long long>(std::ceil((end_time - t) / dt - 1e-9));
+    progress.set_last_step(n_steps);
     if (auto bad = module->find_nonfinite()) {
       std::ostringstream m;
       m << "run diverged: " << (bad->reason.empty() ? "non-finite value" : bad->reason)
@@ -202,7 +226,7 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
       result.dt = dt;
       return result;
     }
-    const bool last = step == n_steps;
+    const bool last = adaptive ? t >= end_time : step == n_steps;
     // Diagnostics are computed on schedule even when not written: a module may average them
     // (the drum's regime), and a study's result must not depend on whether files are written.
     if (last || step % diag_every == 0) {

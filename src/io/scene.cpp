@@ -24,6 +24,10 @@ ParamTable run_parameter_table() {
           real_param("dt", std::nullopt, "s", above(0.0), "time step (default: cfl * stable step)"),
           real_param("cfl", 0.8, "1", above(0.0) & at_most(1.0),
                      "fraction of the module's stable step"),
+          string_param("time_step", std::string("fixed"),
+                       "fixed: one step, cfl times the stable step at the start (or dt); "
+                       "adaptive: cfl times the stable step of the current state, every step",
+                       {"fixed", "adaptive"}),
           int_param("output_every", 0, at_least(0),
                     "steps between field outputs (0: first and last)"),
           int_param("checkpoint_every", 0, at_least(0),
@@ -40,6 +44,22 @@ std::string where(const std::string& path, const toml::source_region& src) {
   std::ostringstream s;
   s << path << ":" << src.begin.line;
   return s.str();
+}
+
+/// An adaptive step needs a module that takes one and no fixed dt beside it.
+void check_time_step(const toml::table& run_table, const std::string& path, const Parameters& run,
+                     const ModuleInfo& info) {
+  if (run.string("time_step") != "adaptive") return;
+  const std::string loc = where(path, run_table.get("time_step")->source());
+  if (!info.variable_dt)
+    throw SceneError(loc +
+                     ": key 'run.time_step' = \"adaptive\" needs a module that takes a "
+                     "variable step; module '" +
+                     info.name + "' allows only \"fixed\"");
+  if (run.has("dt"))
+    throw SceneError(loc +
+                     ": key 'run.time_step' = \"adaptive\" takes its step from cfl; "
+                     "remove run.dt or set time_step = \"fixed\"");
 }
 
 std::string valid_keys(const ParamTable& t) {
@@ -171,6 +191,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   }
   scene.module = scene.run.string("module");
   const ModuleInfo* info = find_module(scene.module);  // known: checked by the choices
+  check_time_step(*run_node->as_table(), path, scene.run, *info);
   const ParamTable module_table = info->parameters();
   scene.module_parameters = Parameters(module_table);
 

@@ -68,3 +68,12 @@ expect_error 2 "ins_degree.toml:[0-9]+: key 'ins_fem.degree' = 9 is out of range
 ins_scene ins_cfl.toml 's/^dt = .*/dt = 0.2/'
 expect_error 2 "ins_cfl.toml: ins_fem: time step 0.2.* gives a CFL number of 4.8.*, above max_cfl = 2" \
   "$AMPHORA" run ins_cfl.toml; no_output ins_cfl
+
+# An adaptive step: only for a module that takes a variable step, and not beside a fixed dt.
+make_scene adaptive.toml 'time_step = "adaptive"'
+expect_error 2 "adaptive.toml:6: key 'run.time_step' = \"adaptive\" needs a module that takes a variable step; module 'advection_diffusion_1d' allows only \"fixed\"" \
+  "$AMPHORA" run adaptive.toml; no_output adaptive
+ins_scene ins_adaptive.toml 's/^dt = .*/dt = 0.01\ntime_step = "adaptive"/'
+expect_error 2 "ins_adaptive.toml:[0-9]+: key 'run.time_step' = \"adaptive\" takes its step from cfl; remove run.dt" \
+  "$AMPHORA" run ins_adaptive.toml; no_output ins_adaptive
+echo "bad input: flow solver ok"
