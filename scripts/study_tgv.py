@@ -70,12 +70,16 @@ def chart(runs, ref, out):
         label = f"Q{r['k']} {r['cells']}^3"
         ax[0].plot(r["t"], r["e"], label=label)
         ax[1].plot(r["t_mid"], r["rate"], label=label)
-        ax[2].loglog(r["core_hours"], r["ek_linf_rel"], "o")
-        ax[2].annotate(label, (r["core_hours"], r["ek_linf_rel"]))
+        colour = f"C{r['k'] - 1}"
+        ax[2].loglog(r["core_hours"], r["ek_linf_rel"], "o", color=colour)
+        ax[2].annotate(label, (r["core_hours"], r["ek_linf_rel"]), fontsize=7)
+        if "peak_rel" in r:
+            ax[2].loglog(r["core_hours"], max(r["peak_rel"], 1e-4), "s", mfc="none",
+                         color=colour)
     ax[0].set(xlabel="t", ylabel="E_k", title="kinetic energy")
     ax[1].set(xlabel="t", ylabel="-dE_k/dt", title="dissipation rate")
-    ax[2].set(xlabel="core-hours (stepping)", ylabel="max |E_k - E_ref| / E_ref",
-              title=f"work-precision, t in [0, {t_end:g}]")
+    ax[2].set(xlabel="core-hours (stepping)", ylabel="relative error",
+              title=f"work-precision, t in [0, {t_end:g}]: o max E_k, [] peak -dE_k/dt")
     for a in ax[:2]:
         a.legend(fontsize=8)
     fig.tight_layout()

@@ -91,6 +91,20 @@ std::function<Point3(const Point3&)> sinusoidal_deformation(int dim, double ampl
   };
 }
 
+std::function<Point3(const Point3&)> sinusoidal_deformation(int dim, double amplitude,
+                                                            const Point3& lower,
+                                                            const Point3& upper) {
+  const auto unit = sinusoidal_deformation(dim, amplitude);
+  return [dim, unit, lower, upper](const Point3& x) {
+    Point3 s = x;
+    for (int d = 0; d < dim; ++d) s[d] = (x[d] - lower[d]) / (upper[d] - lower[d]);
+    const Point3 y = unit(s);
+    Point3 out = x;
+    for (int d = 0; d < dim; ++d) out[d] = lower[d] + (upper[d] - lower[d]) * y[d];
+    return out;
+  };
+}
+
 template struct StructuredHexMesh<2>;
 template struct StructuredHexMesh<3>;
 template StructuredHexMesh<2> unit_cube<2>(int, FaceCondition);

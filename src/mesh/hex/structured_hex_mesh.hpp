@@ -70,5 +70,10 @@ StructuredHexMesh<dim> unit_cube(int n, FaceCondition all_faces = FaceCondition:
 /// A smooth, non-affine deformation of [0,1]^dim that keeps the box's faces in place
 /// (x_d += a sin(pi x_0) sin(pi x_1) [sin(pi x_2)] per direction with a phase), curving the cells.
 std::function<Point3(const Point3&)> sinusoidal_deformation(int dim, double amplitude);
+/// The same deformation carried to the box [lower, upper] (its faces stay in place, so
+/// periodic faces still match).
+std::function<Point3(const Point3&)> sinusoidal_deformation(int dim, double amplitude,
+                                                            const Point3& lower,
+                                                            const Point3& upper);
 
 }  // namespace amphora::mesh::hex

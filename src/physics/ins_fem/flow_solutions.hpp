@@ -66,6 +66,26 @@ struct Kovasznay {
   }
 };
 
+/// Plane Poiseuille flow in the channel [0, length] x [0, 1] (walls at y = 0, 1, outflow at
+/// x = length where nu du/dn - p n = 0): u = 4 y (1 - y), v = 0, p = 8 nu (length - x).
+/// Quadratic velocity, linear pressure: Q_k with k >= 2 holds it exactly.
+struct Poiseuille {
+  int component = 0;
+  double nu = 0.01;
+  double length = 2.0;
+
+  KOKKOS_INLINE_FUNCTION double value(const double* x) const {
+    if (component == 0) return 4.0 * x[1] * (1.0 - x[1]);
+    if (component == 1) return 0.0;
+    return 8.0 * nu * (length - x[0]);
+  }
+  KOKKOS_INLINE_FUNCTION void gradient(const double* x, double* d) const {
+    d[0] = 0.0, d[1] = 0.0;
+    if (component == 0) d[1] = 4.0 - 8.0 * x[1];
+    if (component == 2) d[0] = -8.0 * nu;
+  }
+};
+
 /// The 3D Taylor-Green vortex's initial state on [-pi, pi]^3 (Brachet et al. 1983; the
 /// Re = 1600 case of the high-order workshops): u = (sin x cos y cos z, -cos x sin y cos z, 0),
 /// p = (cos 2x + cos 2y)(cos 2z + 2) / 16.

@@ -20,7 +20,7 @@ constexpr double pi = kernels::math::pi;
 
 /// The box, its faces and whether the flow is steady, for each case.
 template <int dim>
-mesh::hex::StructuredHexMesh<dim> case_mesh(const std::string& flow, int cells) {
+mesh::hex::StructuredHexMesh<dim> case_mesh(const std::string& flow, int cells, double amplitude) {
   mesh::hex::StructuredHexMesh<dim> m;
   for (int d = 0; d < dim; ++d) m.cells[d] = cells;
   if (flow == "taylor_green_2d" || flow == "taylor_green_3d") {
@@ -30,7 +30,13 @@ mesh::hex::StructuredHexMesh<dim> case_mesh(const std::string& flow, int cells) 
   } else if (flow == "kovasznay") {
     m.lower = {-0.5, 0.0, 0.0};
     m.upper = {1.5, 2.0, 0.0};
+  } else if (flow == "channel") {  // [0, 2] x [0, 1]: inflow at x = 0, outflow at x = 2
+    m.cells[0] = 2 * cells;
+    m.upper = {2.0, 1.0, 0.0};
+    m.faces[1] = mesh::hex::FaceCondition::neumann;
   }  // lid_cavity: the unit square, walls (the default faces)
+  if (amplitude > 0.0)
+    m.deformation = mesh::hex::sinusoidal_deformation(dim, amplitude, m.lower, m.upper);
   return m;
 }
 
@@ -58,16 +64,17 @@ class InsModule final : public Module {
                      ? solvers::matrix_free::GeometryMode::on_the_fly
                      : solvers::matrix_free::GeometryMode::stored;
     max_cfl_ = p.real("max_cfl");
-    steady_ = flow_ == "kovasznay";
-    solver_ = std::make_unique<Solver>(case_mesh<dim>(flow_, static_cast<int>(p.integer("cells"))),
-                                       static_cast<int>(p.integer("degree")), o);
+    steady_ = flow_ == "kovasznay" || flow_ == "channel";
+    solver_ = std::make_unique<Solver>(
+        case_mesh<dim>(flow_, static_cast<int>(p.integer("cells")), p.real("deformation")),
+        static_cast<int>(p.integer("degree")), o);
     solver_->set_state(initial_state());
     solver_->set_phase_times(&times_);
     energy_ = solver_->kinetic_energy();
   }
 
   /// The initial state: the exact flow (Taylor-Green), its boundary values and rest
-  /// (Kovasznay), rest with the lid's velocity on the top wall (cavity).
+  /// (Kovasznay; the channel's inflow), rest with the lid's velocity on the top wall (cavity).
   std::vector<double> initial_state() const {
     const auto& s = solver_->space();
     const double re = 1.0 / solver_->options().nu;
@@ -80,6 +87,7 @@ class InsModule final : public Module {
               x[1] <= s.mesh().lower[1] + 1e-12 || x[1] >= s.mesh().upper[1] - 1e-12;
           if (!boundary || c == dim) return 0.0;
           if (flow_ == "kovasznay") return Kovasznay{c, re}.value(x.data());
+          if (flow_ == "channel") return Poiseuille{c, 1.0 / re, 2.0}.value(x.data());
           // the regularised lid: u = 16 x^2 (1 - x)^2 on y = 1 (no corner singularity)
           const bool lid = x[1] >= s.mesh().upper[1] - 1e-12;
           return lid && c == 0 ? 16.0 * x[0] * x[0] * (1.0 - x[0]) * (1.0 - x[0]) : 0.0;
@@ -173,7 +181,9 @@ class InsModule final : public Module {
   Diagnostics phase_seconds() const override { return times_.seconds(); }
 
   bool periodic() const { return flow_ == "taylor_green_2d" || flow_ == "taylor_green_3d"; }
-  bool has_exact() const { return flow_ == "taylor_green_2d" || flow_ == "kovasznay"; }
+  bool has_exact() const {
+    return flow_ == "taylor_green_2d" || flow_ == "kovasznay" || flow_ == "channel";
+  }
   /// Velocity and pressure (mean-free) L2 errors against the exact flow at time t.
   template <class Exact>
   std::pair<double, double> errors(Exact exact) const {
@@ -219,9 +229,10 @@ Diagnostics InsModule<dim>::diagnostics(double t) const {
   d.push_back({"multigrid", solver_->multigrid_active() ? 1.0 : 0.0});
   if (steady_) d.push_back({"picard_iterations", static_cast<double>(picard_)});
   if (has_exact()) {
-    const auto e = flow_ == "kovasznay"
-                       ? errors(Kovasznay{0, 1.0 / solver_->options().nu})
-                       : errors(TaylorGreen2D{0, std::exp(-2.0 * solver_->options().nu * t)});
+    const double nu = solver_->options().nu;
+    const auto e = flow_ == "kovasznay" ? errors(Kovasznay{0, 1.0 / nu})
+                   : flow_ == "channel" ? errors(Poiseuille{0, nu, 2.0})
+                                        : errors(TaylorGreen2D{0, std::exp(-2.0 * nu * t)});
     d.push_back({"velocity_l2_error", e.first});
     d.push_back({"pressure_l2_error", e.second});
   }
@@ -306,12 +317,17 @@ ParamTable parameter_table() {
           "incompressible Navier-Stokes, equal-order Q_k with SUPG/PSPG and grad-div, BDF2, "
           "matrix-free",
           {
-              string_param("flow", std::string("taylor_green_2d"), "the case",
-                           {"taylor_green_2d", "taylor_green_3d", "kovasznay", "lid_cavity"}),
+              string_param(
+                  "flow", std::string("taylor_green_2d"), "the case",
+                  {"taylor_green_2d", "taylor_green_3d", "kovasznay", "lid_cavity", "channel"}),
               int_param("degree", 2,
-                        at_least(1) & at_most(solvers::matrix_free::max_compiled_degree_general),
+                        at_least(1) & at_most(solvers::matrix_free::max_compiled_degree_flow),
                         "polynomial degree k of velocity and pressure (Q_k; the compiled range)"),
-              int_param("cells", 16, at_least(1) & at_most(512), "cells per direction"),
+              int_param("cells", 16, at_least(1) & at_most(512),
+                        "cells per direction (the channel: twice as many along its length)"),
+              real_param("deformation", 0.0, "1", at_least(0.0) & at_most(0.1),
+                         "amplitude of the sinusoidal deformation that curves the cells, "
+                         "faces kept in place (0: Cartesian cells)"),
               real_param("nu", 0.01, "m^2/s", above(0.0), "kinematic viscosity"),
               real_param("grad_div", 0.0, "1", at_least(0.0), "grad-div stabilisation weight"),
               real_param("max_cfl", 2.0, "1", above(0.0),

@@ -21,6 +21,10 @@ inline constexpr int max_compiled_degree = AMPHORA_SUMFAC_MAX_DEGREE;
 inline constexpr int max_compiled_degree_general =
     max_compiled_degree < 4 ? max_compiled_degree : 4;
 
+/// The flow solver's functors (Oseen, and the divergence through elasticity) go to degree 6,
+/// the range of the incompressible Navier-Stokes module.
+inline constexpr int max_compiled_degree_flow = max_compiled_degree < 6 ? max_compiled_degree : 6;
+
 /// True if the table up to degree `max` holds a kernel for (degree, n_q).
 inline bool compiled_kernel(int degree, int n_q, int max = max_compiled_degree) {
   return degree >= 1 && degree <= max && (n_q == degree + 1 || n_q == degree + 2);

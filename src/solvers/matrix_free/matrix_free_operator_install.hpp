@@ -9,12 +9,22 @@
 
 namespace amphora::solvers::matrix_free {
 
+/// Whether P is one of the flow solver's functors (compiled to max_compiled_degree_flow).
+template <class P>
+inline constexpr bool flow_functor_v = false;
+template <int dim>
+inline constexpr bool flow_functor_v<kernels::sumfac::OseenPoint<dim>> = true;
+template <int dim>
+inline constexpr bool flow_functor_v<kernels::sumfac::ElasticityPoint<dim>> = true;
+
 /// Highest compiled degree of functor P: all of the table for mass and Laplace (the
-/// benchmarks' and solvers' operators), max_compiled_degree_general for the others.
+/// benchmarks' and solvers' operators), the flow solver's range for its functors,
+/// max_compiled_degree_general for the others.
 template <class P>
 inline constexpr int compiled_degree_v =
-    P::structure == kernels::sumfac::PointStructure::general ? max_compiled_degree_general
-                                                             : max_compiled_degree;
+    flow_functor_v<P>                                          ? max_compiled_degree_flow
+    : P::structure == kernels::sumfac::PointStructure::general ? max_compiled_degree_general
+                                                               : max_compiled_degree;
 
 template <int dim, class ExecSpace>
 template <class P>

@@ -119,7 +119,8 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
 };
 
 namespace detail {
-/// Compiled (k_c, k_f) pairs: k_f in k_c + 1 .. 2 k_c + 1 (every step of degree bisection).
+/// Compiled (k_c, k_f) pairs: k_f in k_c + 1 .. 2 k_c + 1 (every step of degree bisection) up to
+/// the compiled degree.
 template <int kc = 1, class F>
 void dispatch_transfer(int coarse_degree, int fine_degree, F&& f) {
   if (coarse_degree == kc) {
@@ -133,12 +134,13 @@ void dispatch_transfer(int coarse_degree, int fine_degree, F&& f) {
       if (fine_degree == 2 * kc + 1)
         return f(std::integral_constant<int, kc + 1>{}, std::integral_constant<int, 2 * kc + 2>{});
   }
-  if constexpr (kc < 4) {
+  if constexpr (kc + 1 < max_compiled_degree) {
     return dispatch_transfer<kc + 1>(coarse_degree, fine_degree, f);
   } else {
     throw std::invalid_argument(
         "MatrixFreeTransfer: no kernel from degree " + std::to_string(coarse_degree) + " to " +
-        std::to_string(fine_degree) + "; compiled: k_c = 1..4 to k_c + 1, 2 k_c, 2 k_c + 1");
+        std::to_string(fine_degree) + "; compiled: k_c + 1, 2 k_c, 2 k_c + 1 up to degree " +
+        std::to_string(max_compiled_degree));
   }
 }
 }  // namespace detail
