@@ -86,6 +86,7 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
   const int n = static_cast<int>(mine.size());
   p_.n_owned = p_.n_ghost = 0;
   resize_owned(n);
+  clear_external_force(0, n);
   HostArrays h = to_host();
   auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
   auto &r = h.radius, &m = h.mass, &in = h.inertia;

@@ -119,6 +119,33 @@ void DemSystem<ExecSpace>::resize_owned(int n) {
   grow(wall_shear_, n);
   grow(rec_shear_, n);
   grow(rec_gid_, n);
+  if (external_.extent(0) > 0) grow(external_, n);
+}
+
+template <class ExecSpace>
+typename DemSystem<ExecSpace>::Vec DemSystem<ExecSpace>::external_force() {
+  if (external_.extent(0) == 0) {
+    external_ = Vec("amphora::dem::external_force", std::max(1, p_.capacity()));
+  }
+  return external_;
+}
+
+template <class ExecSpace>
+void DemSystem<ExecSpace>::clear_external_force(int first, int last) {
+  if (external_.extent(0) == 0 || last <= first) return;
+  Kokkos::deep_copy(exec_, Kokkos::subview(external_, Kokkos::make_pair(first, last), Kokkos::ALL),
+                    0.0);
+}
+
+template <class ExecSpace>
+void DemSystem<ExecSpace>::add_external_force() {
+  if (external_.extent(0) == 0) return;
+  const auto f = p_.force, e = external_;
+  Kokkos::parallel_for(
+      "amphora::dem::external_force", kernels::RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
+      KOKKOS_LAMBDA(int i) {
+        for (int d = 0; d < 3; ++d) f(i, d) += e(i, d);
+      });
 }
 
 template <class ExecSpace>
@@ -146,6 +173,7 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
   p_.n_ghost = 0;
   const int n0 = p_.n_owned, n1 = n0 + static_cast<int>(mine.size());
   resize_owned(n1);
+  clear_external_force(n0, n1);
   HostArrays h = to_host();
   auto &x = h.x, &v = h.v, &om = h.omega, &f = h.force, &tq = h.torque, &xb = h.x_build;
   auto &r = h.radius, &m = h.mass, &in = h.inertia;
@@ -315,6 +343,7 @@ mesh::particles::ParticleFields<ExecSpace> DemSystem<ExecSpace>::migrating_field
   mesh::particles::ParticleFields<ExecSpace> f;
   f.add(p_.x).add(p_.v).add(p_.omega).add(p_.radius).add(p_.mass).add(p_.inertia);
   f.add(p_.material).add(p_.gid).add(wall_shear_).add(rec_gid_).add(rec_shear_).add(x_build_);
+  if (external_.extent(0) > 0) f.add(external_);
   return f;
 }
 
@@ -349,6 +378,7 @@ void DemSystem<ExecSpace>::sort_owned_by_cell() {
   rec_gid_ = permuted(exec_, rec_gid_, perm, n);
   rec_shear_ = permuted(exec_, rec_shear_, perm, n);
   x_build_ = permuted(exec_, x_build_, perm, n);
+  if (external_.extent(0) > 0) external_ = permuted(exec_, external_, perm, n);
 }
 
 template <class ExecSpace>
@@ -574,6 +604,7 @@ void DemSystem<ExecSpace>::compute_forces() {
   } else {
     particles::pair_sums_by_slabs(exec_, schedule_, pairs, spheres, p_.n_owned, row_mask_, law);
   }
+  add_external_force();
 }
 
 template <class ExecSpace>

@@ -122,6 +122,11 @@ class DemSystem {
   void set_forces_by_particle(bool on) { by_particle_ = on; }
   /// Forces a neighbour-list rebuild (and migration) before the next force evaluation.
   void invalidate() { need_rebuild_ = true; }
+  /// Force on each owned particle from outside the DEM (a coupling's fluid force), added to
+  /// every force evaluation until changed; it travels with its particle through sorting and
+  /// migration, and new or loaded particles start with none. The first call allocates it
+  /// (zero). Rows [0, particles().n_owned) are the owned particles in storage order.
+  Vec external_force();
   /// Sets the rigid rotation of wall w (e.g. a drum starting to turn).
   void set_wall_angular_velocity(int w, const double omega[3]);
   /// Contacts (particles and walls) of each owned particle, in storage order (host).
@@ -185,6 +190,8 @@ class DemSystem {
     pending_kick_ = false;
   }
   void resize_owned(int n);
+  void clear_external_force(int first, int last);  // rows [first, last) to zero
+  void add_external_force();                       // force += external force (owned)
   double timer_mark(double& slot, double since) const;
 
  private:
@@ -198,6 +205,7 @@ class DemSystem {
   double ghost_width_ = 0;
 
   ParticleSet<Mem> p_;
+  Vec external_;  // external force per owned particle; empty: none
   // Positions at the last rebuild (owned and ghosts): the lists, the ghosts and the rows' order
   // are those of these positions.
   Vec x_build_;
