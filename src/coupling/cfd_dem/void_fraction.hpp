@@ -1,0 +1,129 @@
+#pragma once
+// The void fraction of unresolved CFD-DEM on the flow's continuous Q_k space, particle-centred
+// and smoothed by an L2 projection (Lethe's PCM with smoothing; Blais et al., J. Comput.
+// Phys. 318 (2016) 201): the solid's volume is the sum of the particles' volumes at their
+// centres, and eps in Q_k solves
+//   (eps, v) + L^2 (grad eps, grad v) = (1, v) - sum_p V_p v(x_p)   for all v in Q_k,
+// no boundary condition (the natural one). With v = 1: the integral of 1 - eps is the
+// particles' volume, exactly; eps is continuous in time as particles cross cells, and L of
+// about two diameters spreads a particle over its neighbourhood. Cartesian cells only.
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+#include <Kokkos_Core.hpp>
+
+#include "kernels/blas1.hpp"
+#include "coupling/cfd_dem/particle_mesh.hpp"
+#include "kernels/sumfac/qk_point_basis.hpp"
+#include "kernels/sumfac/quadrature_1d.hpp"
+#include "mesh/hex/qk_space.hpp"
+#include "solvers/conjugate_gradient.hpp"
+#include "solvers/matrix_free/matrix_free_operator.hpp"
+
+namespace amphora::coupling::cfd_dem {
+
+template <int dim, class ExecSpace>
+class VoidFraction {
+ public:
+  using Space = mesh::hex::QkSpace<dim, ExecSpace>;
+  using Mem = typename ExecSpace::memory_space;
+  using Vector = Kokkos::View<double*, Mem>;
+  using Points = Kokkos::View<double* [3], Kokkos::LayoutRight, Mem>;
+  using Operator = solvers::matrix_free::MatrixFreeOperator<dim, ExecSpace>;
+
+  /// Throws std::invalid_argument for curved cells or a negative length.
+  VoidFraction(const Space& space, double smoothing_length, double tolerance = 1e-13)
+      : space_(space), length_(smoothing_length), tolerance_(tolerance) {
+    if (!space.mesh().cartesian())
+      throw std::invalid_argument("void fraction: curved cells are not supported (Cartesian only)");
+    if (!(smoothing_length >= 0))
+      throw std::invalid_argument("void fraction: smoothing length must be >= 0");
+    make_basis();
+    make_operators();
+  }
+  // The operators point at space_: no copies, no moves.
+  VoidFraction(const VoidFraction&) = delete;
+  VoidFraction& operator=(const VoidFraction&) = delete;
+
+  /// eps of the first n particles (centres x, radii r); returns what CG did.
+  solvers::SolverResult compute(const ExecSpace& exec, const Points& x, const Vector& radius, int n,
+                                const Vector& eps) const {
+    const Vector b("amphora::cfd_dem::void_fraction_rhs", space_.n_dofs());
+    kernels::blas1::copy(exec, mass_one_, b);
+    deposit(exec, x, radius, n, b);
+    solvers::SolverControl control;
+    control.relative_tolerance = tolerance_;
+    control.max_iterations = 2000;
+    return solvers::conjugate_gradient(exec, *this, b, eps, control,
+                                       solvers::JacobiPreconditioner<Vector>{inverse_diagonal_});
+  }
+
+  /// The integral of a Q_k field over the box.
+  double integral(const ExecSpace& exec, const Vector& f) const {
+    return kernels::blas1::dot(exec, mass_one_, f);
+  }
+
+  const kernels::sumfac::QkPointBasis<dim>& basis() const { return basis_; }
+
+  /// y = (M + L^2 K) x (what CG applies).
+  void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {
+    laplace_->apply(exec, x, work_);
+    mass_->apply(exec, x, y);
+    kernels::blas1::axpy(exec, length_ * length_, work_, y);
+  }
+
+  /// b -= V_p phi_j(x_p) for the first n particles (atomic: the sums' order, and so the last
+  /// bits, follow the threads).
+  void deposit(const ExecSpace& exec, const Points& x, const Vector& radius, int n,
+               const Vector& b) const {
+    const Kokkos::View<double* [1], Kokkos::LayoutRight, Mem> volume("amphora::cfd_dem::volume", n);
+    Kokkos::parallel_for(
+        "amphora::cfd_dem::particle_volume", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+        KOKKOS_LAMBDA(int i) {
+          const double r = radius(i);
+          volume(i, 0) = dim == 3 ? -4.0 / 3.0 * M_PI * r * r * r : -M_PI * r * r;
+        });
+    spread(exec, basis_, volume, 1, x, n, b);
+  }
+
+ private:
+  void make_basis() {
+    const auto& mesh = space_.mesh();
+    basis_.lattice = space_.lattice();
+    for (int d = 0; d < dim; ++d) {
+      basis_.lower[d] = mesh.lower[d];
+      basis_.h[d] = (mesh.upper[d] - mesh.lower[d]) / mesh.cells[d];
+    }
+    const auto gl = kernels::sumfac::gauss_lobatto(space_.degree() + 1);
+    for (int a = 0; a <= space_.degree(); ++a) basis_.nodes[a] = gl.points[a];
+  }
+
+  void make_operators() {
+    typename Operator::Options o;
+    o.constrained_components = 0;  // no boundary condition: the natural one
+    o.kind = solvers::matrix_free::OperatorKind::mass;
+    mass_ = std::make_unique<Operator>(space_, o);
+    o.kind = solvers::matrix_free::OperatorKind::laplace;
+    laplace_ = std::make_unique<Operator>(space_, o);
+    const ExecSpace exec;
+    const long n = space_.n_dofs();
+    work_ = Vector("amphora::cfd_dem::void_fraction_work", n);
+    mass_one_ = Vector("amphora::cfd_dem::mass_one", n);
+    inverse_diagonal_ = Vector("amphora::cfd_dem::void_fraction_diagonal", n);
+    kernels::blas1::fill(exec, work_, 1.0);
+    mass_->apply(exec, work_, mass_one_);
+    mass_->compute_diagonal(exec, inverse_diagonal_);
+    laplace_->compute_diagonal(exec, work_);
+    kernels::blas1::axpy(exec, length_ * length_, work_, inverse_diagonal_);
+    kernels::blas1::reciprocal(exec, inverse_diagonal_);
+  }
+
+  Space space_;
+  double length_, tolerance_;
+  kernels::sumfac::QkPointBasis<dim> basis_;
+  std::unique_ptr<Operator> mass_, laplace_;
+  Vector mass_one_, inverse_diagonal_, work_;
+};
+
+}  // namespace amphora::coupling::cfd_dem

@@ -1,0 +1,193 @@
+// The particle-centred void fraction with L2-projection smoothing (coupling/cfd_dem): it holds
+// the particles' volume exactly, is uniform where the particles are, moves continuously with
+// them, and the point basis it deposits with interpolates Q_k fields exactly.
+#include <cmath>
+#include <random>
+
+#include "coupling/cfd_dem/void_fraction.hpp"
+#include "test_backend.hpp"
+
+namespace amphora::coupling::cfd_dem {
+namespace {
+
+using Exec = test::TestExecSpace;
+using Fraction = VoidFraction<3, Exec>;
+using Space = mesh::hex::QkSpace<3, Exec>;
+using mesh::hex::FaceCondition;
+
+mesh::hex::StructuredHexMesh<3> box(int cells, bool periodic_z) {
+  mesh::hex::StructuredHexMesh<3> m;
+  m.cells = {cells, cells, cells};
+  m.upper = {1.0, 1.0, 1.0};
+  for (int f = 0; f < 6; ++f) {
+    m.faces[f] = (f < 4 || periodic_z) ? FaceCondition::periodic : FaceCondition::dirichlet;
+  }
+  return m;
+}
+
+struct Particles {
+  Fraction::Points x;
+  Fraction::Vector radius;
+  double volume = 0.0;
+};
+
+/// n particles of radius r at the given centres (host vector of 3 n coordinates).
+Particles particles(const std::vector<double>& centres, double r) {
+  const int n = int(centres.size() / 3);
+  Particles p{Fraction::Points("x", n), Fraction::Vector("r", n)};
+  auto xh = Kokkos::create_mirror_view(p.x);
+  for (int i = 0; i < n; ++i) {
+    for (int d = 0; d < 3; ++d) xh(i, d) = centres[3 * i + d];
+  }
+  Kokkos::deep_copy(p.x, xh);
+  Kokkos::deep_copy(p.radius, r);
+  p.volume = n * 4.0 / 3.0 * M_PI * r * r * r;
+  return p;
+}
+
+std::vector<double> random_centres(int n, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<double> c(3 * n);
+  for (double& v : c) v = u(gen);
+  return c;
+}
+
+std::vector<double> host(const Fraction::Vector& v) {
+  auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), v);
+  return std::vector<double>(h.data(), h.data() + h.extent(0));
+}
+
+TEST(VoidFraction, HoldsTheParticlesVolume) {
+  for (int degree : {1, 2, 3}) {
+    for (bool periodic_z : {true, false}) {
+      const Space space(box(4, periodic_z), degree);
+      for (double length : {0.0, 0.12}) {
+        const Fraction fraction(space, length);
+        const Particles p = particles(random_centres(60, 7), 0.03);
+        Fraction::Vector eps("eps", space.n_dofs());
+        const auto result = fraction.compute(Exec(), p.x, p.radius, 60, eps);
+        ASSERT_TRUE(result.converged) << result.final_residual;
+        const double solid = 1.0 - fraction.integral(Exec(), eps);  // the box's volume is 1
+        EXPECT_NEAR(solid / p.volume, 1.0, 1e-10)
+            << "k " << degree << " periodic z " << periodic_z << " L " << length;
+      }
+    }
+  }
+}
+
+TEST(VoidFraction, OneParticlePerCellIsUniformOnQ1) {
+  // Q1, periodic: a particle at each cell centre gives every node 1/8 of eight particles, so
+  // the right-hand side is (1 - V_p / V_cell) M 1 and eps = 1 - V_p / V_cell exactly.
+  const int n = 4;
+  const Space space(box(n, true), 1);
+  std::vector<double> c;
+  for (int k = 0; k < n; ++k)
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) c.insert(c.end(), {(i + 0.5) / n, (j + 0.5) / n, (k + 0.5) / n});
+  const Particles p = particles(c, 0.08);
+  const double expected = 1.0 - p.volume;  // V_p / V_cell: the total over the unit box
+  for (double length : {0.0, 0.3}) {
+    const Fraction fraction(space, length);
+    Fraction::Vector eps("eps", space.n_dofs());
+    fraction.compute(Exec(), p.x, p.radius, n * n * n, eps);
+    for (double e : host(eps)) EXPECT_NEAR(e, expected, 1e-11);
+  }
+}
+
+TEST(VoidFraction, MovesContinuouslyWithTheParticles) {
+  // A particle crossing a cell face changes eps by O(displacement): halving the move halves
+  // the change (a cell-wise count would jump by V_p / V_cell).
+  const Space space(box(4, false), 2);
+  const Fraction fraction(space, 0.1);
+  auto change = [&](double delta) {
+    const Particles a = particles({0.5 - 0.5 * delta, 0.4, 0.6}, 0.04);
+    const Particles b = particles({0.5 + 0.5 * delta, 0.4, 0.6}, 0.04);  // x = 0.5: a face
+    Fraction::Vector ea("ea", space.n_dofs()), eb("eb", space.n_dofs());
+    fraction.compute(Exec(), a.x, a.radius, 1, ea);
+    fraction.compute(Exec(), b.x, b.radius, 1, eb);
+    const auto ha = host(ea), hb = host(eb);
+    double m = 0.0;
+    for (std::size_t i = 0; i < ha.size(); ++i) m = std::max(m, std::abs(ha[i] - hb[i]));
+    return m;
+  };
+  const double c1 = change(1e-3), c2 = change(5e-4);
+  EXPECT_LT(c1, 0.05 * 4.0 / 3.0 * M_PI * std::pow(0.04, 3) / std::pow(0.25, 3));
+  EXPECT_NEAR(c1 / c2, 2.0, 0.05);
+}
+
+TEST(ParticleMesh, InterpolatesQkFieldsAndGradientsExactly) {
+  // f = x^2 y - 3 z^2 + x y z lies in Q_2: its nodal interpolant and its gradient evaluated
+  // anywhere are f's.
+  auto m = box(3, false);
+  for (auto& face : m.faces) face = FaceCondition::dirichlet;  // f is not periodic
+  const Space space(m, 2);
+  const Fraction fraction(space, 0.0);
+  auto f = [](const mesh::hex::Point3& x, int) {
+    return x[0] * x[0] * x[1] - 3 * x[2] * x[2] + x[0] * x[1] * x[2];
+  };
+  const std::vector<double> nodal = space.interpolate(f);
+  Fraction::Vector fv("f", space.n_dofs());
+  auto fh = Kokkos::create_mirror_view(fv);
+  for (long i = 0; i < space.n_dofs(); ++i) fh(i) = nodal[i];
+  Kokkos::deep_copy(fv, fh);
+  const std::vector<double> c = random_centres(40, 3);
+  const Particles p = particles(c, 0.01);
+  Fraction::Vector out("out", 40);
+  Fraction::Points grad("grad", 40);
+  const Kokkos::View<double* [1], Kokkos::LayoutRight, Exec::memory_space> value("value", 40);
+  interpolate(Exec(), fraction.basis(), fv, 1, p.x, 40, value);
+  interpolate_gradient(Exec(), fraction.basis(), fv, p.x, 40, grad);
+  auto gh = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), grad);
+  Kokkos::deep_copy(out, Kokkos::subview(value, Kokkos::ALL, 0));
+  const auto h = host(out);
+  for (int i = 0; i < 40; ++i) {
+    const double x = c[3 * i], y = c[3 * i + 1], z = c[3 * i + 2];
+    EXPECT_NEAR(h[i], f({x, y, z}, 0), 1e-13) << i;
+    EXPECT_NEAR(gh(i, 0), 2 * x * y + y * z, 1e-12) << i;
+    EXPECT_NEAR(gh(i, 1), x * x + x * z, 1e-12) << i;
+    EXPECT_NEAR(gh(i, 2), -6 * z + x * y, 1e-12) << i;
+  }
+}
+
+TEST(ParticleMesh, SpreadForcesSumToTheParticlesTotal) {
+  // The fluid's share of the particles' forces, spread by the partition of unity, sums to what
+  // the particles receive, per component, to round-off (Q2 and Q3, with periodic wraps).
+  for (int degree : {2, 3}) {
+    const Space space(box(4, false), degree);
+    const Fraction fraction(space, 0.0);
+    const int n = 50;
+    const Particles p = particles(random_centres(n, 11), 0.01);
+    Fraction::Points F("F", n);
+    auto fh = Kokkos::create_mirror_view(F);
+    std::mt19937 gen(5);
+    std::normal_distribution<double> normal(0.0, 1e-3);
+    double total[3] = {0, 0, 0}, scale = 0.0;
+    for (int i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) {
+        fh(i, c) = normal(gen);
+        total[c] += fh(i, c);
+        scale += std::abs(fh(i, c));
+      }
+    Kokkos::deep_copy(F, fh);
+    const long nd = space.n_dofs();
+    Fraction::Vector b("b", 3 * nd);
+    spread(Exec(), fraction.basis(), F, 3, p.x, n, b);
+    const auto bh = host(b);
+    for (int c = 0; c < 3; ++c) {
+      double s = 0.0;
+      for (long j = 0; j < nd; ++j) s += bh[c * nd + j];
+      EXPECT_NEAR(s, total[c], 1e-14 * scale) << "k " << degree << " component " << c;
+    }
+  }
+}
+
+TEST(VoidFraction, CurvedCellsAreRefused) {
+  auto m = box(2, false);
+  m.deformation = [](const mesh::hex::Point3& x) { return x; };
+  const Space space(m, 1);
+  EXPECT_THROW(Fraction(space, 0.1), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace amphora::coupling::cfd_dem
