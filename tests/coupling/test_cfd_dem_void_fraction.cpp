@@ -58,27 +58,41 @@ std::vector<double> host(const Fraction::Vector& v) {
   return std::vector<double>(h.data(), h.data() + h.extent(0));
 }
 
+VoidFractionOptions pcm(double length) {
+  VoidFractionOptions o;
+  o.smoothing_length = length;
+  return o;
+}
+
+VoidFractionOptions qcm(double length) {
+  VoidFractionOptions o = pcm(length);
+  o.method = VoidFractionMethod::qcm;
+  return o;
+}
+
 TEST(VoidFraction, HoldsTheParticlesVolume) {
   for (int degree : {1, 2, 3}) {
     for (bool periodic_z : {true, false}) {
       const Space space(box(4, periodic_z), degree);
-      for (double length : {0.0, 0.12}) {
-        const Fraction fraction(space, length);
+      for (const auto& options : {pcm(0.0), pcm(0.12), qcm(0.0), qcm(0.12)}) {
+        const Fraction fraction(space, options);
         const Particles p = particles(random_centres(60, 7), 0.03);
         Fraction::Vector eps("eps", space.n_dofs());
         const auto result = fraction.compute(Exec(), p.x, p.radius, 60, eps);
         ASSERT_TRUE(result.converged) << result.final_residual;
         const double solid = 1.0 - fraction.integral(Exec(), eps);  // the box's volume is 1
         EXPECT_NEAR(solid / p.volume, 1.0, 1e-10)
-            << "k " << degree << " periodic z " << periodic_z << " L " << length;
+            << "k " << degree << " periodic z " << periodic_z << " L " << options.smoothing_length
+            << " qcm " << (options.method == VoidFractionMethod::qcm);
       }
     }
   }
 }
 
 TEST(VoidFraction, OneParticlePerCellIsUniformOnQ1) {
-  // Q1, periodic: a particle at each cell centre gives every node 1/8 of eight particles, so
-  // the right-hand side is (1 - V_p / V_cell) M 1 and eps = 1 - V_p / V_cell exactly.
+  // Q1, periodic: a particle at each cell centre gives every node 1/8 of eight particles (PCM),
+  // or every node the same share by symmetry (QCM), so the right-hand side is
+  // (1 - V_p / V_cell) M 1 and eps = 1 - V_p / V_cell exactly.
   const int n = 4;
   const Space space(box(n, true), 1);
   std::vector<double> c;
@@ -87,8 +101,8 @@ TEST(VoidFraction, OneParticlePerCellIsUniformOnQ1) {
       for (int i = 0; i < n; ++i) c.insert(c.end(), {(i + 0.5) / n, (j + 0.5) / n, (k + 0.5) / n});
   const Particles p = particles(c, 0.08);
   const double expected = 1.0 - p.volume;  // V_p / V_cell: the total over the unit box
-  for (double length : {0.0, 0.3}) {
-    const Fraction fraction(space, length);
+  for (const auto& options : {pcm(0.0), pcm(0.3), qcm(0.0), qcm(0.3)}) {
+    const Fraction fraction(space, options);
     Fraction::Vector eps("eps", space.n_dofs());
     fraction.compute(Exec(), p.x, p.radius, n * n * n, eps);
     for (double e : host(eps)) EXPECT_NEAR(e, expected, 1e-11);
@@ -99,21 +113,23 @@ TEST(VoidFraction, MovesContinuouslyWithTheParticles) {
   // A particle crossing a cell face changes eps by O(displacement): halving the move halves
   // the change (a cell-wise count would jump by V_p / V_cell).
   const Space space(box(4, false), 2);
-  const Fraction fraction(space, 0.1);
-  auto change = [&](double delta) {
-    const Particles a = particles({0.5 - 0.5 * delta, 0.4, 0.6}, 0.04);
-    const Particles b = particles({0.5 + 0.5 * delta, 0.4, 0.6}, 0.04);  // x = 0.5: a face
-    Fraction::Vector ea("ea", space.n_dofs()), eb("eb", space.n_dofs());
-    fraction.compute(Exec(), a.x, a.radius, 1, ea);
-    fraction.compute(Exec(), b.x, b.radius, 1, eb);
-    const auto ha = host(ea), hb = host(eb);
-    double m = 0.0;
-    for (std::size_t i = 0; i < ha.size(); ++i) m = std::max(m, std::abs(ha[i] - hb[i]));
-    return m;
-  };
-  const double c1 = change(1e-3), c2 = change(5e-4);
-  EXPECT_LT(c1, 0.05 * 4.0 / 3.0 * M_PI * std::pow(0.04, 3) / std::pow(0.25, 3));
-  EXPECT_NEAR(c1 / c2, 2.0, 0.05);
+  for (const auto& options : {pcm(0.1), qcm(0.0)}) {
+    const Fraction fraction(space, options);
+    auto change = [&](double delta) {
+      const Particles a = particles({0.5 - 0.5 * delta, 0.4, 0.6}, 0.04);
+      const Particles b = particles({0.5 + 0.5 * delta, 0.4, 0.6}, 0.04);  // x = 0.5: a face
+      Fraction::Vector ea("ea", space.n_dofs()), eb("eb", space.n_dofs());
+      fraction.compute(Exec(), a.x, a.radius, 1, ea);
+      fraction.compute(Exec(), b.x, b.radius, 1, eb);
+      const auto ha = host(ea), hb = host(eb);
+      double m = 0.0;
+      for (std::size_t i = 0; i < ha.size(); ++i) m = std::max(m, std::abs(ha[i] - hb[i]));
+      return m;
+    };
+    const double c1 = change(1e-3), c2 = change(5e-4);
+    EXPECT_LT(c1, 0.05 * 4.0 / 3.0 * M_PI * std::pow(0.04, 3) / std::pow(0.25, 3));
+    EXPECT_NEAR(c1 / c2, 2.0, 0.05);
+  }
 }
 
 TEST(ParticleMesh, InterpolatesQkFieldsAndGradientsExactly) {
@@ -122,7 +138,7 @@ TEST(ParticleMesh, InterpolatesQkFieldsAndGradientsExactly) {
   auto m = box(3, false);
   for (auto& face : m.faces) face = FaceCondition::dirichlet;  // f is not periodic
   const Space space(m, 2);
-  const Fraction fraction(space, 0.0);
+  const Fraction fraction(space, pcm(0.0));
   auto f = [](const mesh::hex::Point3& x, int) {
     return x[0] * x[0] * x[1] - 3 * x[2] * x[2] + x[0] * x[1] * x[2];
   };
@@ -155,7 +171,7 @@ TEST(ParticleMesh, SpreadForcesSumToTheParticlesTotal) {
   // the particles receive, per component, to round-off (Q2 and Q3, with periodic wraps).
   for (int degree : {2, 3}) {
     const Space space(box(4, false), degree);
-    const Fraction fraction(space, 0.0);
+    const Fraction fraction(space, pcm(0.0));
     const int n = 50;
     const Particles p = particles(random_centres(n, 11), 0.01);
     Fraction::Points F("F", n);
@@ -182,11 +198,23 @@ TEST(ParticleMesh, SpreadForcesSumToTheParticlesTotal) {
   }
 }
 
+TEST(VoidFraction, QcmSpheresThatMissAParticleAreRefused) {
+  // Reference spheres of radius 0.01 on cells of 0.25 miss a particle between the Gauss
+  // points: its volume would be lost, so the computation stops and says what to change.
+  const Space space(box(4, false), 1);
+  VoidFractionOptions o = qcm(0.0);
+  o.qcm_radius = 0.01;
+  const Fraction fraction(space, o);
+  const Particles p = particles({0.125, 0.125, 0.125}, 0.005);  // a cell centre
+  Fraction::Vector eps("eps", space.n_dofs());
+  EXPECT_THROW(fraction.compute(Exec(), p.x, p.radius, 1, eps), std::runtime_error);
+}
+
 TEST(VoidFraction, CurvedCellsAreRefused) {
   auto m = box(2, false);
   m.deformation = [](const mesh::hex::Point3& x) { return x; };
   const Space space(m, 1);
-  EXPECT_THROW(Fraction(space, 0.1), std::invalid_argument);
+  EXPECT_THROW(Fraction(space, pcm(0.1)), std::invalid_argument);
 }
 
 }  // namespace

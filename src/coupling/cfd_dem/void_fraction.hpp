@@ -6,7 +6,10 @@
 //   (eps, v) + L^2 (grad eps, grad v) = (1, v) - sum_p V_p v(x_p)   for all v in Q_k,
 // no boundary condition (the natural one). With v = 1: the integral of 1 - eps is the
 // particles' volume, exactly; eps is continuous in time as particles cross cells, and L of
-// about two diameters spreads a particle over its neighbourhood. Cartesian cells only.
+// about two diameters spreads a particle over its neighbourhood. Or quadrature-centred (QCM,
+// quadrature_centred.hpp, 3D): the solid's volume is taken at the quadrature points from each
+// particle's overlap with a reference sphere there, and (1, v) - (solid, v) is projected the
+// same way. Cartesian cells only.
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -15,6 +18,7 @@
 
 #include "kernels/blas1.hpp"
 #include "coupling/cfd_dem/particle_mesh.hpp"
+#include "coupling/cfd_dem/quadrature_centred.hpp"
 #include "kernels/sumfac/qk_point_basis.hpp"
 #include "kernels/sumfac/quadrature_1d.hpp"
 #include "mesh/hex/qk_space.hpp"
@@ -22,6 +26,15 @@
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
 namespace amphora::coupling::cfd_dem {
+
+enum class VoidFractionMethod { pcm, qcm };
+
+struct VoidFractionOptions {
+  VoidFractionMethod method = VoidFractionMethod::pcm;
+  double smoothing_length = 0.0;  ///< L of the projection (0: plain L2 projection)
+  double qcm_radius = 0.0;        ///< QCM's reference sphere (0: a cell's volume)
+  double tolerance = 1e-13;       ///< CG, relative
+};
 
 template <int dim, class ExecSpace>
 class VoidFraction {
@@ -32,15 +45,22 @@ class VoidFraction {
   using Points = Kokkos::View<double* [3], Kokkos::LayoutRight, Mem>;
   using Operator = solvers::matrix_free::MatrixFreeOperator<dim, ExecSpace>;
 
-  /// Throws std::invalid_argument for curved cells or a negative length.
-  VoidFraction(const Space& space, double smoothing_length, double tolerance = 1e-13)
-      : space_(space), length_(smoothing_length), tolerance_(tolerance) {
+  /// Throws std::invalid_argument for curved cells, a negative length or QCM in 2D.
+  VoidFraction(const Space& space, const VoidFractionOptions& options)
+      : space_(space), options_(options), length_(options.smoothing_length) {
     if (!space.mesh().cartesian())
       throw std::invalid_argument("void fraction: curved cells are not supported (Cartesian only)");
-    if (!(smoothing_length >= 0))
+    if (!(length_ >= 0))
       throw std::invalid_argument("void fraction: smoothing length must be >= 0");
     make_basis();
     make_operators();
+    if (options.method == VoidFractionMethod::qcm) {
+      if constexpr (dim == 3) {
+        qcm_ = std::make_unique<QuadratureCentred<ExecSpace>>(basis_, options.qcm_radius);
+      } else {
+        throw std::invalid_argument("void fraction: qcm is 3D only");
+      }
+    }
   }
   // The operators point at space_: no copies, no moves.
   VoidFraction(const VoidFraction&) = delete;
@@ -51,9 +71,13 @@ class VoidFraction {
                                 const Vector& eps) const {
     const Vector b("amphora::cfd_dem::void_fraction_rhs", space_.n_dofs());
     kernels::blas1::copy(exec, mass_one_, b);
-    deposit(exec, x, radius, n, b);
+    if (qcm_) {
+      qcm_->load(exec, x, radius, n, b);
+    } else {
+      deposit(exec, x, radius, n, b);
+    }
     solvers::SolverControl control;
-    control.relative_tolerance = tolerance_;
+    control.relative_tolerance = options_.tolerance;
     control.max_iterations = 2000;
     return solvers::conjugate_gradient(exec, *this, b, eps, control,
                                        solvers::JacobiPreconditioner<Vector>{inverse_diagonal_});
@@ -120,7 +144,9 @@ class VoidFraction {
   }
 
   Space space_;
-  double length_, tolerance_;
+  VoidFractionOptions options_;
+  double length_;
+  std::unique_ptr<QuadratureCentred<ExecSpace>> qcm_;
   kernels::sumfac::QkPointBasis<dim> basis_;
   std::unique_ptr<Operator> mass_, laplace_;
   Vector mass_one_, inverse_diagonal_, work_;
