@@ -36,7 +36,9 @@ physics::ins_fem::InsStepReport assembled_solve(const Exec& exec, const Solver::
   return {res.iterations, res.final_relative_residual <= tol, res.final_relative_residual};
 }
 
-void InsStep(benchmark::State& state) {
+/// One step as InsStep's; `smoother_degree` > 0 sets the multigrid's Chebyshev degree and
+/// `by_one` its p-coarsening (k to k - 1, or to k / 2).
+void run_step(benchmark::State& state, int smoother_degree = 0, bool by_one = true) {
   const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
   const bool assembled = state.range(2) == 1, multigrid = state.range(2) == 2;
   const double pi = kernels::math::pi;
@@ -50,6 +52,8 @@ void InsStep(benchmark::State& state) {
   o.tolerance = 1e-8;
   o.preconditioner = multigrid ? physics::ins_fem::InsPreconditioner::multigrid
                                : physics::ins_fem::InsPreconditioner::jacobi;
+  if (smoother_degree > 0) o.multigrid.smoother.degree = smoother_degree;
+  o.multigrid.degree_by_one = by_one;
   Solver s(m, k, o);
   s.set_state(s.space().interpolate(
       [](const mesh::hex::Point3& x, int c) {
@@ -89,6 +93,8 @@ void InsStep(benchmark::State& state) {
   for (const auto& [name, sec] : times.seconds()) total += sec;
   for (const auto& [name, sec] : times.seconds()) state.counters[name] = sec / total;
 }
+
+void InsStep(benchmark::State& state) { run_step(state); }
 BENCHMARK(InsStep)
     ->ArgsProduct({{2}, {8, 12, 16}, {0, 1}})
     ->ArgsProduct({{3}, {8, 12, 16}, {0}})
@@ -98,6 +104,17 @@ BENCHMARK(InsStep)
 // The multigrid refreshes its smoothers' diagonals every 10 steps: 10 steps give the mean.
 BENCHMARK(InsStep)
     ->ArgsProduct({{2, 3}, {8, 12, 16}, {2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(10);
+
+/// The multigrid's V-cycle, cheaper or stronger: Args degree, cells, 2 (multigrid), Chebyshev
+/// degree of every level's smoother, p-coarsening by one degree (1) or by halves (0).
+void InsStepSmoother(benchmark::State& state) {
+  run_step(state, static_cast<int>(state.range(3)), state.range(4) == 1);
+}
+BENCHMARK(InsStepSmoother)
+    ->ArgsProduct({{3}, {12}, {2}, {2, 3, 4, 6}, {1, 0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(10);
