@@ -89,7 +89,11 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
       Eval::values(shape, s.nodal, s.v, s.tmp);
       Eval::gradients(shape, s.v, s.jac + a * dim * n_points);
     }
-    // Field values at the points, into s.grad (free until the operator runs).
+    // Field values at the points, into s.grad (free until the operator runs), then the
+    // reference gradients of those the functor asks for.
+    constexpr int n_fg = gradient_fields_v<Point>;
+    static_assert(Point::n_fields + n_fg * dim <= n_comp * dim,
+                  "a functor's field values and gradients must fit in Scratch::grad");
     const bool has_field = Point::n_fields > 0 && field.extent(0) > 0;
     if (has_field) {
       const long n = lattice.n_dofs();
@@ -97,15 +101,30 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
         gather_unconstrained(field.data() + c * n, b, s.nodal);  // a field is not constrained
         Eval::values(shape, s.nodal, s.grad + c * n_points, s.tmp);
       }
+      if constexpr (n_fg > 0)
+        for (int e = 0; e < n_fg; ++e)
+          Eval::gradients(shape, s.grad + (Point::gradient_field_first + e) * n_points,
+                          s.grad + (Point::n_fields + e * dim) * n_points);
     }
-    for (int q = 0; q < n_points; ++q) {
-      T J[n_jac], f[Point::n_fields > 0 ? Point::n_fields : 1], c[Point::n_coefficients];
-      for (int e = 0; e < n_jac; ++e) J[e] = s.jac[e * n_points + q];
-      if (has_field)
-        for (int e = 0; e < Point::n_fields; ++e) f[e] = s.grad[e * n_points + q];
-      point.coefficients(J, T(Eval::weight(shape, q)), has_field ? f : nullptr, c);
-      for (int e = 0; e < Point::n_coefficients; ++e) s.jac[e * n_points + q] = c[e];
+    for (int q = 0; q < n_points; ++q) point_coefficients_at(q, has_field, s);
+  }
+
+  /// The functor's coefficients at point q from the Jacobian and fields in s, into s.jac.
+  KOKKOS_INLINE_FUNCTION void point_coefficients_at(int q, bool has_field, Scratch& s) const {
+    constexpr int n_fg = gradient_fields_v<Point>;
+    T J[n_jac], f[Point::n_fields > 0 ? Point::n_fields : 1], c[Point::n_coefficients];
+    for (int e = 0; e < n_jac; ++e) J[e] = s.jac[e * n_points + q];
+    for (int e = 0; e < Point::n_fields; ++e) f[e] = has_field ? s.grad[e * n_points + q] : T(0.0);
+    const T w(Eval::weight(shape, q));
+    if constexpr (n_fg > 0) {
+      T fg[n_fg * dim];
+      for (int e = 0; e < n_fg * dim; ++e)
+        fg[e] = has_field ? s.grad[(Point::n_fields + e) * n_points + q] : T(0.0);
+      point.coefficients(J, w, f, fg, c);
+    } else {
+      point.coefficients(J, w, has_field ? f : nullptr, c);
     }
+    for (int e = 0; e < Point::n_coefficients; ++e) s.jac[e * n_points + q] = c[e];
   }
 
   // --- the operator on one batch ----------------------------------------------------------

@@ -21,6 +21,10 @@
 // term of a strong residual) says so with laplacian_components = dim, gives J^-1 at the point
 // through inverse_jacobian(c, b, a) = (J^-1)_ba, and takes at_point(c, u, g, lap, u_out, g_out).
 //
+// A functor that reads the physical gradient of some of its fields (a void fraction's) names
+// them with gradient_field_first and n_gradient_fields and takes coefficients(J, w, f, fg, c),
+// fg[e * dim + b] the reference gradient d/dxi_b of field gradient_field_first + e.
+//
 // All functions are templates on the number type (a SIMD batch of cells or double).
 #include <type_traits>
 
@@ -40,6 +44,15 @@ struct laplacian_components<P, std::void_t<decltype(P::laplacian_components)>>
     : std::integral_constant<int, P::laplacian_components> {};
 template <class P>
 inline constexpr int laplacian_components_v = laplacian_components<P>::value;
+
+/// Fields whose gradients functor P reads at the points (0: none).
+template <class P, class = void>
+struct gradient_fields : std::integral_constant<int, 0> {};
+template <class P>
+struct gradient_fields<P, std::void_t<decltype(P::n_gradient_fields)>>
+    : std::integral_constant<int, P::n_gradient_fields> {};
+template <class P>
+inline constexpr int gradient_fields_v = gradient_fields<P>::value;
 
 /// Fast paths of the cell loop through the 1D matrices (Kronecker sums and products) or the
 /// diagonal's 1D tensors: only for operators of this exact form.

@@ -28,7 +28,12 @@ namespace amphora::physics::ins_fem {
 
 enum class InsPreconditioner { multigrid, jacobi };
 
+/// The equations: incompressible Navier-Stokes, or the volume-averaged ones of unresolved
+/// CFD-DEM (VANS) with a void fraction, model A or B (kernels::sumfac::VansPoint).
+enum class FlowModel { navier_stokes, vans_a, vans_b };
+
 struct InsOptions {
+  FlowModel model = FlowModel::navier_stokes;
   double nu = 0.01;       ///< kinematic viscosity
   double grad_div = 0.0;  ///< grad-div weight gamma
   /// (2 / dt)^2 in the SUPG/PSPG parameter tau. Off by default: with it, tau ~ dt / 2 shrinks
@@ -95,15 +100,55 @@ class InsSolver {
       if (mesh.faces[f] == mesh::hex::FaceCondition::neumann) pressure_null_space_ = false;
     x_ = Vector("amphora::ins_fem::state", (dim + 1) * n_);
     u_old_ = Vector("amphora::ins_fem::u_old", dim * n_);
-    field_ = Vector("amphora::ins_fem::advecting", dim * n_);
+    field_ = Vector("amphora::ins_fem::field", (vans() ? dim + 2 : dim) * n_);
+    advecting_ = Kokkos::subview(field_, Kokkos::make_pair(0L, dim * n_));
+    if (vans()) make_void_fraction_fields();
     history_ = Vector("amphora::ins_fem::history", (dim + 1) * n_);
     rhs_ = Vector("amphora::ins_fem::rhs", (dim + 1) * n_);
     delta_ = Vector("amphora::ins_fem::delta", (dim + 1) * n_);
     diagonal_ = Vector("amphora::ins_fem::diagonal", (dim + 1) * n_);
     make_diagnostic_operators();
-    if (options.preconditioner == InsPreconditioner::multigrid)
-      multigrid_ = std::make_unique<Multigrid>(space_, options.multigrid);
+    if (options.preconditioner == InsPreconditioner::multigrid) {
+      auto mo = options.multigrid;
+      mo.field_components = vans() ? dim + 2 : dim;
+      multigrid_ = std::make_unique<Multigrid>(space_, mo);
+    }
   }
+
+  /// True for the volume-averaged equations (FlowModel vans_a, vans_b).
+  bool vans() const { return options_.model != FlowModel::navier_stokes; }
+
+  /// VANS: the void fraction at the end of the next step (n_dofs nodal values, device). The
+  /// first one set is also the past's (no d eps / dt at the start).
+  void set_void_fraction(const Vector& eps) {
+    require_vans("set_void_fraction");
+    const ExecSpace exec;
+    kernels::blas1::copy(exec, eps, void_fraction());
+    if (!void_fraction_set_) {
+      kernels::blas1::copy(exec, eps, eps_n_);
+      kernels::blas1::copy(exec, eps, eps_nm1_);
+      void_fraction_set_ = true;
+    }
+  }
+  /// VANS: the implicit particle drag beta (n_dofs nodal values, per unit fluid mass: the
+  /// exchange force's u part is -beta u), kept until changed.
+  void set_drag(const Vector& beta) {
+    require_vans("set_drag");
+    kernels::blas1::copy(ExecSpace(), beta, drag());
+  }
+  /// VANS: a load vector (dim n_dofs, already integrated against the basis: the particles'
+  /// spread forces per unit fluid mass) added to every step's right-hand side until changed.
+  void set_particle_load(const Vector& load) {
+    require_vans("set_particle_load");
+    if (static_cast<long>(load.extent(0)) != dim * n_)
+      throw std::invalid_argument("ins_fem: a particle load needs dim x n_dofs entries");
+    if (particle_load_.extent(0) == 0)
+      particle_load_ = Vector("amphora::ins_fem::particle_load", dim * n_);
+    kernels::blas1::copy(ExecSpace(), load, particle_load_);
+  }
+  /// VANS: the void fraction and the implicit drag the next step uses (views into the field).
+  Vector void_fraction() const { return field_block(dim); }
+  Vector drag() const { return field_block(dim + 1); }
 
   /// False once the multigrid has fallen back to Jacobi (or was never chosen); a checkpoint
   /// keeps this, so a restarted run solves as the uninterrupted one.
@@ -174,14 +219,20 @@ class InsSolver {
     const Vector u = velocity();
     extrapolate(exec, u, bdf2 ? w : 0.0);
     form_history(exec, u, -a1 / dt, -a2 / dt, force_amplitude);
+    if (vans()) void_fraction_rate(exec, a0 / dt, a1 / dt, a2 / dt);
     typename Operator::Options o = oseen_options(a0 / dt, 1.0 / dt);
     const Operator A(space_, o);
     o.history = true;
     const Operator H(space_, o);
     H.apply(exec, history_, rhs_);
+    add_particle_load(exec);
     kernels::blas1::copy(exec, u, u_old_);  // u^(n-1) <- u^n; the guess: extrapolated velocity
-    kernels::blas1::copy(exec, field_, u);
+    kernels::blas1::copy(exec, advecting_, u);
     const InsStepReport report = solve(exec, A);
+    if (vans()) {  // eps^(n-1) <- eps^n <- eps^(n+1)
+      kernels::blas1::copy(exec, eps_n_, eps_nm1_);
+      kernels::blas1::copy(exec, void_fraction(), eps_n_);
+    }
     dt_old_ = dt;
     ++steps_;
     return report;
@@ -197,18 +248,19 @@ class InsSolver {
     InsStepReport total;
     const Vector u = velocity();
     for (int it = 0; it < max_picard; ++it) {
-      kernels::blas1::copy(exec, u, field_);
+      kernels::blas1::copy(exec, u, advecting_);
       form_history(exec, u, 0.0, 0.0, force_amplitude);
       typename Operator::Options o = oseen_options(0.0, 0.0);
       const Operator A(space_, o);
       o.history = true;
       const Operator H(space_, o);
       H.apply(exec, history_, rhs_);
+      add_particle_load(exec);
       const InsStepReport r = solve(exec, A);
       total.linear_iterations += r.linear_iterations;
       total.residual = r.residual;
-      kernels::blas1::axpy(exec, -1.0, u, field_);  // field <- u_old - u_new
-      const double change = kernels::blas1::norm2(exec, field_);
+      kernels::blas1::axpy(exec, -1.0, u, advecting_);  // advecting <- u_old - u_new
+      const double change = kernels::blas1::norm2(exec, advecting_);
       const double size = kernels::blas1::norm2(exec, u);
       if (picard) *picard = it + 1;
       if (!r.converged) return total;
@@ -257,10 +309,26 @@ class InsSolver {
 
   // (public for CUDA: extended lambdas may not live in private member functions)
 
-  /// field = (1 + w) u^n - w u^(n-1), the advecting velocity (w = 0: u^n).
+  /// The advecting velocity (1 + w) u^n - w u^(n-1) (w = 0: u^n).
   void extrapolate(const ExecSpace& exec, const Vector& u, double w) {
-    kernels::blas1::copy(exec, u, field_);
-    if (w != 0.0) kernels::blas1::axpby(exec, -w, u_old_, 1.0 + w, field_);
+    kernels::blas1::copy(exec, u, advecting_);
+    if (w != 0.0) kernels::blas1::axpby(exec, -w, u_old_, 1.0 + w, advecting_);
+  }
+  /// VANS: the continuity's source -d eps / dt (BDF: c0 eps^(n+1) + c1 eps^n + c2 eps^(n-1))
+  /// into the pressure slot of the history.
+  void void_fraction_rate(const ExecSpace& exec, double c0, double c1, double c2) {
+    const Vector hp = Kokkos::subview(history_, Kokkos::make_pair(dim * n_, (dim + 1) * n_));
+    const Vector e = void_fraction(), en = eps_n_, enm1 = eps_nm1_;
+    Kokkos::parallel_for(
+        "amphora::ins_fem::void_fraction_rate",
+        kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(n_)),
+        KOKKOS_LAMBDA(int i) { hp(i) = -(c0 * e(i) + c1 * en(i) + c2 * enm1(i)); });
+  }
+  /// rhs += the particles' load (VANS, where one is set).
+  void add_particle_load(const ExecSpace& exec) {
+    if (particle_load_.extent(0) == 0) return;
+    const Vector ru = Kokkos::subview(rhs_, Kokkos::make_pair(0L, dim * n_));
+    kernels::blas1::axpy(exec, 1.0, particle_load_, ru);
   }
   /// history = (c1 u^n + c2 u^(n-1) + s F, 0).
   void form_history(const ExecSpace& exec, const Vector& u, double c1, double c2, double s) {
@@ -278,7 +346,9 @@ class InsSolver {
 
   typename Operator::Options oseen_options(double alpha, double dt_inverse) const {
     typename Operator::Options o;
-    o.kind = solvers::matrix_free::OperatorKind::oseen;
+    o.kind = vans() ? solvers::matrix_free::OperatorKind::vans
+                    : solvers::matrix_free::OperatorKind::oseen;
+    o.model_b = options_.model == FlowModel::vans_b;
     o.geometry = options_.geometry;
     o.components = dim + 1;
     o.nu = options_.nu, o.alpha = alpha, o.grad_div = options_.grad_div;
@@ -383,6 +453,24 @@ class InsSolver {
   }
 
  private:
+  Vector field_block(int c) const {
+    return Kokkos::subview(field_, Kokkos::make_pair(c * n_, (c + 1) * n_));
+  }
+  void require_vans(const char* what) const {
+    if (!vans())
+      throw std::invalid_argument(std::string("ins_fem: ") + what +
+                                  " needs the volume-averaged equations (model vans_a or vans_b)");
+  }
+  /// eps = 1 and beta = 0 (clear fluid) until set, the void fraction's past with them.
+  void make_void_fraction_fields() {
+    const ExecSpace exec;
+    eps_n_ = Vector("amphora::ins_fem::eps_n", n_);
+    eps_nm1_ = Vector("amphora::ins_fem::eps_nm1", n_);
+    kernels::blas1::fill(exec, void_fraction(), 1.0);
+    kernels::blas1::fill(exec, eps_n_, 1.0);
+    kernels::blas1::fill(exec, eps_nm1_, 1.0);
+  }
+
   void make_diagnostic_operators() {
     typename Operator::Options o;
     o.geometry = options_.geometry;
@@ -414,6 +502,9 @@ class InsSolver {
   long n_;
   bool pressure_null_space_ = true;
   Vector x_, u_old_, field_, history_, rhs_, delta_, diagonal_, force_, work_;
+  Vector advecting_;                        // the field's first dim blocks
+  Vector eps_n_, eps_nm1_, particle_load_;  // VANS
+  bool void_fraction_set_ = false;
   std::unique_ptr<Operator> mass_, laplace_, div_, scalar_mass_;
   double volume_ = 0.0, dt_old_ = 0.0;
   long steps_ = 0;

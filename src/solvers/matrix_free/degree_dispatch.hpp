@@ -25,6 +25,9 @@ inline constexpr int max_compiled_degree_general =
 /// the range of the incompressible Navier-Stokes module.
 inline constexpr int max_compiled_degree_flow = max_compiled_degree < 6 ? max_compiled_degree : 6;
 
+/// The volume-averaged flow's functor (VANS, CFD-DEM) goes to degree 3.
+inline constexpr int max_compiled_degree_vans = max_compiled_degree < 3 ? max_compiled_degree : 3;
+
 /// True if the table up to degree `max` holds a kernel for (degree, n_q).
 inline bool compiled_kernel(int degree, int n_q, int max = max_compiled_degree) {
   return degree >= 1 && degree <= max && (n_q == degree + 1 || n_q == degree + 2);

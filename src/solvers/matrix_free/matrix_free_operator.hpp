@@ -19,8 +19,9 @@ namespace amphora::solvers::matrix_free {
 /// The operators built in, one point functor each: mass (MassPoint), Laplace with an optional
 /// coefficient field (LaplacePoint), convection by a velocity field (ConvectionPoint), isotropic
 /// linear elasticity on dim components (ElasticityPoint), the stabilised Oseen operator of an
-/// implicit flow step on dim + 1 components, velocity and pressure (OseenPoint).
-enum class OperatorKind { mass, laplace, convection, elasticity, oseen };
+/// implicit flow step on dim + 1 components, velocity and pressure (OseenPoint), and its
+/// volume-averaged form with a void fraction (VansPoint).
+enum class OperatorKind { mass, laplace, convection, elasticity, oseen, vans };
 using kernels::sumfac::GeometryMode;
 
 template <int dim, class ExecSpace>
@@ -36,7 +37,7 @@ class MatrixFreeOperator {
     kernels::sumfac::QuadratureKind quadrature = kernels::sumfac::QuadratureKind::gauss;
     int n_q = 0;  ///< points per direction; 0: degree + 1
     /// Blocked components: copies of a scalar operator (3 for the vector Laplace/mass of CEED
-    /// BP2/4/6), dim for elasticity, dim + 1 for Oseen.
+    /// BP2/4/6), dim for elasticity, dim + 1 for Oseen and VANS.
     int components = 1;
     double lambda = 1.0, mu = 1.0;  ///< Lame constants (elasticity)
     /// Oseen: viscosity, BDF coefficient over dt (of u), grad-div weight, 1 / dt in the SUPG/PSPG
@@ -47,14 +48,17 @@ class MatrixFreeOperator {
     /// Oseen: -nu lap u in the strong residual of the stabilisation (consistent; off: the
     /// usual simplification, O(h^2) where viscosity dominates a cell).
     bool viscous_residual = true;
+    /// VANS: model B (grad p without the void fraction) instead of model A.
+    bool model_b = false;
     /// Components that take the space's Dirichlet constraints (the leading ones); -1: all, or
-    /// for Oseen the velocity's dim (the pressure is free on every face).
+    /// for Oseen and VANS the velocity's dim (the pressure is free on every face).
     int constrained_components = -1;
     /// Use the run-time-size kernel even where a compiled one exists (it serves the pairs the
     /// table lacks on its own; mass and constant-coefficient Laplace).
     bool generic_kernel = false;
     /// Laplace: coefficient a(x) as a Q_k field (n_dofs); convection and Oseen: the advecting
-    /// velocity (dim blocked).
+    /// velocity (dim blocked); VANS: the advecting velocity, the void fraction and the implicit
+    /// drag (dim + 2 blocked, kernels::sumfac::VansPoint).
     Vector field;
   };
 

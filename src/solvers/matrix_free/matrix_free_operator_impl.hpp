@@ -8,6 +8,7 @@
 #include "kernels/host_vector.hpp"
 #include "kernels/sumfac/quadrature_1d.hpp"
 #include "kernels/sumfac/generic_cell_kernel.hpp"
+#include "kernels/sumfac/vans_point.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
@@ -44,6 +45,13 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       p.viscous_residual = o.viscous_residual;
       p.degree = degree;
     }
+    if constexpr (std::is_same_v<P, kernels::sumfac::VansPoint<dim>>) {
+      p.nu = o.nu, p.alpha = o.alpha, p.gamma = o.grad_div, p.dt_inverse = o.dt_inverse;
+      p.history = o.history;
+      p.viscous_residual = o.viscous_residual;
+      p.model_b = o.model_b;
+      p.degree = degree;
+    }
     return p;
   }
 
@@ -56,6 +64,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       case OperatorKind::convection: return f(kernels::sumfac::ConvectionPoint<dim>{});
       case OperatorKind::elasticity: return f(kernels::sumfac::ElasticityPoint<dim>{});
       case OperatorKind::oseen: return f(kernels::sumfac::OseenPoint<dim>{});
+      case OperatorKind::vans: return f(kernels::sumfac::VansPoint<dim>{});
     }
   }
 
@@ -380,9 +389,11 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
     : space_(&space), options_(options) {
   const int k = space.degree();
   n_q_ = options.n_q > 0 ? options.n_q : k + 1;
-  constrained_components_ = options.constrained_components >= 0   ? options.constrained_components
-                            : options.kind == OperatorKind::oseen ? dim
-                                                                  : options.components;
+  constrained_components_ =
+      options.constrained_components >= 0 ? options.constrained_components
+      : options.kind == OperatorKind::oseen || options.kind == OperatorKind::vans
+          ? dim
+          : options.components;
   const auto& mesh = space.mesh();
   auto fail = [](const std::string& what) {
     throw std::invalid_argument("MatrixFreeOperator: " + what);
@@ -415,15 +426,20 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
     fail("elasticity keeps J^-1 at the points: use geometry 'stored' or 'on_the_fly'");
   if (options.kind == OperatorKind::elasticity && options.field.extent(0) > 0)
     fail("elasticity takes no field (constant Lame constants)");
-  if (options.kind == OperatorKind::oseen) {
+  if (options.kind == OperatorKind::oseen || options.kind == OperatorKind::vans) {
+    const bool vans = options.kind == OperatorKind::vans;
+    const std::string name = vans ? "VANS" : "Oseen";
     if (options.components != dim + 1)
-      fail("Oseen acts on velocity and pressure: set components = " + std::to_string(dim + 1));
-    if (per_cell) fail("Oseen keeps J^-1 at the points: use geometry 'stored' or 'on_the_fly'");
-    if (options.field.extent(0) != static_cast<std::size_t>(dim * space.n_dofs()))
-      fail("Oseen needs an advecting velocity field of dim x n_dofs entries (zero: Stokes)");
-    if (!(options.nu > 0.0)) fail("Oseen needs a positive viscosity nu");
+      fail(name + " acts on velocity and pressure: set components = " + std::to_string(dim + 1));
+    if (per_cell) fail(name + " keeps J^-1 at the points: use geometry 'stored' or 'on_the_fly'");
+    const int n_fields = vans ? dim + 2 : dim;
+    if (options.field.extent(0) != static_cast<std::size_t>(n_fields * space.n_dofs()))
+      fail(vans ? "VANS needs a field of (dim + 2) x n_dofs entries: advecting velocity, void "
+                  "fraction, implicit drag"
+                : "Oseen needs an advecting velocity field of dim x n_dofs entries (zero: Stokes)");
+    if (!(options.nu > 0.0)) fail(name + " needs a positive viscosity nu");
     if (options.alpha < 0.0 || options.grad_div < 0.0 || options.dt_inverse < 0.0)
-      fail("Oseen's alpha, grad_div and dt_inverse must not be negative");
+      fail(name + "'s alpha, grad_div and dt_inverse must not be negative");
   }
 
   auto impl = std::make_shared<Impl>();

@@ -18,11 +18,17 @@ template <int dim>
 inline constexpr bool flow_functor_v<kernels::sumfac::ElasticityPoint<dim>> = true;
 
 /// Highest compiled degree of functor P: all of the table for mass and Laplace (the
-/// benchmarks' and solvers' operators), the flow solver's range for its functors,
+/// benchmarks' and solvers' operators), the flow solver's range for its functors, degree 3 for
+/// the volume-averaged flow (CFD-DEM's cells are a few particles wide: low degrees),
 /// max_compiled_degree_general for the others.
 template <class P>
+inline constexpr bool vans_functor_v = false;
+template <int dim>
+inline constexpr bool vans_functor_v<kernels::sumfac::VansPoint<dim>> = true;
+template <class P>
 inline constexpr int compiled_degree_v =
-    flow_functor_v<P>                                          ? max_compiled_degree_flow
+    vans_functor_v<P>                                          ? max_compiled_degree_vans
+    : flow_functor_v<P>                                        ? max_compiled_degree_flow
     : P::structure == kernels::sumfac::PointStructure::general ? max_compiled_degree_general
                                                                : max_compiled_degree;
 

@@ -43,6 +43,9 @@ struct OseenMultigridOptions {
   int refresh_every = 10;
   /// p-coarsening: degree k to k - 1 (true) or to k / 2.
   bool degree_by_one = true;
+  /// Components of the fine operator's field, restricted to every level: dim (the advecting
+  /// velocity) or, for VANS, dim + 2 (with the void fraction and the implicit drag).
+  int field_components = -1;  ///< -1: dim
 };
 
 template <int dim, class ExecSpace>
@@ -76,7 +79,7 @@ class OseenMultigrid {
       level->owned = std::move(next);
       level->space = level->owned.get();
       transfers_.emplace_back(*level->space, s, dim + 1, dim);
-      field_transfers_.emplace_back(*level->space, s, dim, 0);
+      field_transfers_.emplace_back(*level->space, s, field_components(), 0);
       levels_.push_back(std::move(level));
     }
     const ExecSpace exec;
@@ -86,9 +89,10 @@ class OseenMultigrid {
       L.b = Vector("amphora::oseen_mg::b", n), L.x = Vector("amphora::oseen_mg::x", n);
       L.r = Vector("amphora::oseen_mg::r", n), L.d = Vector("amphora::oseen_mg::d", n);
       if (l == 0) continue;
-      L.field = Vector("amphora::oseen_mg::field", dim * L.space->n_dofs());
-      L.weight = Vector("amphora::oseen_mg::weight", dim * L.space->n_dofs());
-      Vector one("amphora::oseen_mg::one", dim * levels_[l - 1]->space->n_dofs());
+      const int nf = field_components();
+      L.field = Vector("amphora::oseen_mg::field", nf * L.space->n_dofs());
+      L.weight = Vector("amphora::oseen_mg::weight", nf * L.space->n_dofs());
+      Vector one("amphora::oseen_mg::one", nf * levels_[l - 1]->space->n_dofs());
       kernels::blas1::fill(exec, one, 1.0);
       field_transfers_[l - 1].restrict_to_coarse(exec, one, L.weight);
     }
@@ -187,7 +191,8 @@ class OseenMultigrid {
 
   // (public for CUDA: extended lambdas may not live in private member functions)
 
-  /// Level l's advecting velocity: R f / R 1 (the weighted average of the finer values).
+  /// Level l's field (advecting velocity, void fraction, drag): R f / R 1 (the weighted average of
+  /// the finer values).
   void restrict_field(const ExecSpace& exec, std::size_t l, const Vector& finer) const {
     const Vector f = levels_[l]->field, w = levels_[l]->weight;
     field_transfers_[l - 1].restrict_to_coarse(exec, finer, f);
@@ -207,6 +212,9 @@ class OseenMultigrid {
     double upper = 0.0;
   };
 
+  int field_components() const {
+    return options_.field_components < 0 ? dim : options_.field_components;
+  }
   bool dense_coarse() const {
     return (dim + 1) * levels_.back()->space->n_dofs() <= options_.max_dense_dofs;
   }
@@ -241,7 +249,7 @@ class OseenMultigrid {
   OseenMultigridOptions options_;
   std::vector<std::unique_ptr<Level>> levels_;                       // 0: finest
   std::vector<MatrixFreeTransfer<dim, ExecSpace>> transfers_;        // l: levels l+1 and l
-  std::vector<MatrixFreeTransfer<dim, ExecSpace>> field_transfers_;  // dim components, free
+  std::vector<MatrixFreeTransfer<dim, ExecSpace>> field_transfers_;  // the field's, free
   std::unique_ptr<DenseLeastSquares> coarse_;
   using HostVector = Kokkos::View<double*, Kokkos::HostSpace>;
   HostVector coarse_host_;
