@@ -89,6 +89,8 @@ class VoidFraction {
   }
 
   const kernels::sumfac::QkPointBasis<dim>& basis() const { return basis_; }
+  /// The integral of each basis function (the lumped mass; positive at every node).
+  const Vector& basis_integrals() const { return mass_one_; }
 
   /// y = (M + L^2 K) x (what CG applies).
   void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {

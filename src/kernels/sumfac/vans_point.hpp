@@ -18,10 +18,13 @@ namespace amphora::kernels::sumfac {
 ///   r = eps (alpha u + b.grad u + grad p) + beta u - nu (eps lap u + grad eps.grad u),
 /// the pressure term being (v, eps grad p) integrated by parts (eps = 1 gives OseenPoint
 /// exactly, and the do-nothing outflow keeps its meaning). Model B: (div v, p) and grad p in r
-/// without eps. tau as OseenPoint's. With `history` set, only the terms of alpha u (alpha = 1):
+/// without eps. With `history` set, only the terms of alpha u (alpha = 1):
 /// the right-hand side (v + tau b.grad v, eps h) + tau (grad q, eps h) + (q, h_p)
 /// + gamma (div v, h_p), h_p the continuity's source -d eps / dt (grad-div stays consistent
-/// where the void fraction changes in time).
+/// where the void fraction changes in time). tau as OseenPoint's with the drag's rate beta / eps
+/// added as a reaction's ((beta / eps)^2 in tau^-2): a dense bed's drag would otherwise make
+/// tau beta large and the stabilisation dominate (a Q1 packed bed at Re_p 6 lost its pressure
+/// gradient's sign without it).
 /// Coefficients: w det J, J^-1 (row-major), b, eps, grad eps, beta, tau.
 template <int dim>
 struct VansPoint {
@@ -64,8 +67,9 @@ struct VansPoint {
     c[E] = f[dim], c[K] = f[dim + 1];
     const T h2 = detail::h_squared<dim>(det, degree);
     const T viscous = T(12.0 * nu) / h2;
-    c[TAU] =
-        detail::tau_from(T(4.0 * dt_inverse * dt_inverse) + T(4.0) * bb / h2 + viscous * viscous);
+    const T reaction = f[dim + 1] / f[dim];  // the drag's rate beta / eps, as a reaction's
+    c[TAU] = detail::tau_from(T(4.0 * dt_inverse * dt_inverse) + T(4.0) * bb / h2 +
+                              viscous * viscous + reaction * reaction);
   }
 
   template <class T, class C>
