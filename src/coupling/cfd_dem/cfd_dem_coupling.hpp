@@ -6,6 +6,9 @@
 // the fluid step. The fluid's pressure is the hydrostatic-free part: gravity acts on the
 // particles (weight and buoyancy), not in the flow.
 #include <array>
+#include <cmath>
+#include <iostream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -34,7 +37,23 @@ struct CfdDemOptions {
   int dem_substeps = 1;  ///< DEM steps per fluid step: dt_fluid = N dt_dem
   DragCoupling drag_coupling = DragCoupling::semi_implicit;
   bool move_particles = true;  ///< false: a fixed bed (the DEM is not stepped)
+  /// A fluid step whose convective CFL number (InsSolver::cfl) exceeds this stops the run.
+  double max_cfl = 1.0;
 };
+
+/// DEM steps per fluid step, N = dt_fluid / dt_dem; throws std::invalid_argument unless N is a
+/// positive integer (within 1e-9 relative).
+inline int dem_substeps_of(double dt_fluid, double dt_dem) {
+  const double ratio = dt_fluid / dt_dem;
+  const long n = std::lround(ratio);
+  if (!(dt_fluid > 0.0 && dt_dem > 0.0) || n < 1 || std::abs(ratio - n) > 1e-9 * ratio) {
+    std::ostringstream m;
+    m << "cfd_dem: the DEM step " << dt_dem << " s must divide the fluid step " << dt_fluid
+      << " s a whole number of times (ratio " << ratio << ")";
+    throw std::invalid_argument(m.str());
+  }
+  return static_cast<int>(n);
+}
 
 /// The phases a coupled step's time is booked to (PhaseTimes indices).
 enum CfdDemPhase {
@@ -58,7 +77,7 @@ class CfdDemCoupling {
   using Vec = typename Set::Vec;
 
   /// flow and dem must outlive this. Throws std::invalid_argument unless the flow solves VANS
-  /// model A on Cartesian cells and N >= 1.
+  /// model A with the transient tau on Cartesian cells and N >= 1.
   CfdDemCoupling(Flow& flow, Dem& dem, const CfdDemOptions& options)
       : flow_(flow),
         dem_(dem),
@@ -67,9 +86,16 @@ class CfdDemCoupling {
         n_(flow.n_dofs()) {
     if (flow.options().model != physics::ins_fem::FlowModel::vans_a)
       throw std::invalid_argument("cfd_dem: the flow must solve VANS model A (model = vans_a)");
+    // With the steady tau (~h / 2|u|, 0.6 s) over fluid steps of 0.1 s, the clear fluid below
+    // a packed bed oscillated node by node (10x U) and the linear solves stalled.
+    if (!flow.options().transient_tau)
+      throw std::invalid_argument(
+          "cfd_dem: the flow needs transient_tau = true (the SUPG/PSPG tau must shrink with the "
+          "step)");
     if (options.dem_substeps < 1)
       throw std::invalid_argument("cfd_dem: dem_substeps must be at least 1, got " +
                                   std::to_string(options.dem_substeps));
+    warn_unsmoothed_large_particles();
     eps_ = Vector("amphora::cfd_dem::eps", n_);
     drag_ = Vector("amphora::cfd_dem::drag", n_);
     load_ = Vector("amphora::cfd_dem::load", 3 * n_);
@@ -108,7 +134,9 @@ class CfdDemCoupling {
     flow_.set_drag(drag_);
     flow_.set_particle_load(load_);
     lap(cfd_dem_forces);
+    check_cfl();
     const auto r = flow_.step(fluid_dt());
+    ++steps_;
     lap(cfd_dem_fluid);
     return r;
   }
@@ -121,7 +149,33 @@ class CfdDemCoupling {
     const auto r = void_fraction_.compute(exec, p.x, p.radius, p.n_owned, eps_);
     if (!r.converged)
       throw std::runtime_error("cfd_dem: the void fraction's projection did not converge");
+    check_void_fraction(exec);
     flow_.set_void_fraction(eps_);
+  }
+
+  /// Throws std::runtime_error naming the node (and the step) where eps leaves (0, 1].
+  void check_void_fraction(const ExecSpace& exec) const {
+    using Loc = Kokkos::MinLoc<double, int>;
+    using Max = Kokkos::MaxLoc<double, int>;
+    typename Loc::value_type lo;
+    typename Max::value_type hi;
+    const Vector e = eps_;
+    const int n = static_cast<int>(n_);
+    Kokkos::parallel_reduce(
+        "amphora::cfd_dem::eps_min", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+        KOKKOS_LAMBDA(int i, typename Loc::value_type& a) {
+          if (e(i) < a.val) a.val = e(i), a.loc = i;
+        },
+        Loc(lo));
+    Kokkos::parallel_reduce(
+        "amphora::cfd_dem::eps_max", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+        KOKKOS_LAMBDA(int i, typename Max::value_type& a) {
+          if (e(i) > a.val) a.val = e(i), a.loc = i;
+        },
+        Max(hi));
+    if (lo.val > 0.0 && hi.val <= 1.0 + 1e-9) return;
+    const bool low = !(lo.val > 0.0);
+    report_void_fraction(low ? lo.val : hi.val, low ? lo.loc : hi.loc);
   }
 
   /// The fluid's velocity, kinematic pressure gradient and void fraction at the particles.
@@ -209,6 +263,40 @@ class CfdDemCoupling {
   }
 
  private:
+  [[noreturn]] void report_void_fraction(double value, int node) const {
+    const std::vector<double> x =
+        flow_.space().interpolate([](const mesh::hex::Point3& p, int c) { return p[c]; }, 3);
+    std::ostringstream m;
+    m << "cfd_dem: void fraction " << value << " outside (0, 1] at node (" << x[node] << ", "
+      << x[n_ + node] << ", " << x[2 * n_ + node] << ") after fluid step " << steps_
+      << ": particles too large or too dense for the cells; set void_fraction "
+         "smoothing_length (about 2 d) or use larger cells";
+    throw std::runtime_error(m.str());
+  }
+  void check_cfl() const {
+    const double c = flow_.cfl(fluid_dt());
+    if (c <= options_.max_cfl) return;
+    std::ostringstream m;
+    m << "cfd_dem: fluid step " << fluid_dt() << " s gives CFL " << c << " over max_cfl "
+      << options_.max_cfl << " at fluid step " << steps_ << " (t = " << steps_ * fluid_dt()
+      << " s): shorten the step (fewer DEM sub-steps)";
+    throw std::runtime_error(m.str());
+  }
+  /// PCM without smoothing puts a particle's volume into one cell's nodes: particles wider
+  /// than a cell make eps overshoot and go negative. One line on stderr with the ratio.
+  void warn_unsmoothed_large_particles() const {
+    if (options_.void_fraction.method != VoidFractionMethod::pcm ||
+        options_.void_fraction.smoothing_length > 0.0)
+      return;
+    const auto& m = flow_.space().mesh();
+    double h = 1e300;
+    for (int a = 0; a < 3; ++a) h = std::min(h, (m.upper[a] - m.lower[a]) / m.cells[a]);
+    const double d = 2.0 * dem_.config().max_radius;
+    if (d > h)
+      std::cerr << "cfd_dem: warning: particles of d = " << d << " are " << d / h
+                << " times the smallest cell (" << h
+                << ") and PCM has no smoothing; set void_fraction smoothing_length (about 2 d)\n";
+  }
   void lap(int phase) {
     if (times_) times_->lap(phase);
   }
@@ -223,6 +311,7 @@ class CfdDemCoupling {
   Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> eps_at_;
   Vec exchange_;
   bool started_ = false;
+  long steps_ = 0;
   physics::PhaseTimes* times_ = nullptr;
 };
 

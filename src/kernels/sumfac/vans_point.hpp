@@ -23,8 +23,7 @@ namespace amphora::kernels::sumfac {
 /// + gamma (div v, h_p), h_p the continuity's source -d eps / dt (grad-div stays consistent
 /// where the void fraction changes in time). tau as OseenPoint's with the drag's rate beta / eps
 /// added as a reaction's ((beta / eps)^2 in tau^-2): a dense bed's drag would otherwise make
-/// tau beta large and the stabilisation dominate (a Q1 packed bed at Re_p 6 lost its pressure
-/// gradient's sign without it).
+/// tau beta large and the stabilisation dominate (docs/cfd_dem.md).
 /// Coefficients: w det J, J^-1 (row-major), b, eps, grad eps, beta, tau.
 template <int dim>
 struct VansPoint {
