@@ -1,5 +1,6 @@
 #include "io/module_registry.hpp"
 
+#include "coupling/cfd_dem/cfd_dem_module.hpp"
 #include "coupling/fsi/beam_channel_module.hpp"
 #include "coupling/fsi/mpve_module.hpp"
 #include "physics/advection_diffusion_1d/advection_diffusion_1d.hpp"
@@ -21,6 +22,7 @@ const std::vector<ModuleInfo>& module_registry() {
        }},
       {"beam_channel", coupling::fsi::beam_channel_parameter_table,
        coupling::fsi::create_beam_channel},
+      {"cfd_dem", coupling::cfd_dem::cfd_dem_parameter_table, coupling::cfd_dem::create_cfd_dem},
       {"dem", physics::dem::parameter_table,
        [](const Parameters& p, const Communicator& c) -> std::unique_ptr<physics::Module> {
          return std::make_unique<physics::dem::DemModule>(p, c);

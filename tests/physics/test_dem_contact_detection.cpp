@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 #include <set>
 
 #include "physics/dem/dem_system.hpp"
@@ -36,11 +37,10 @@ std::vector<std::pair<std::int64_t, std::int64_t>> brute_force(const System& s) 
 /// 10^4 particles shaken in a walled box (tests/physics/shaken_packing.hpp).
 System shaken_packing() { return test_systems::shaken_packing<test::TestExecSpace>(10000, 0.066); }
 
-TEST(DemContactDetection, VerletContactsEqualAllPairsAtEveryStep) {
-  System s = shaken_packing();
+/// Steps s 60 times; after each step the Verlet list's contacts must be the all-pairs ones.
+void expect_all_pairs_contacts_at_every_step(System& s) {
   long long contacts = 0;
-  const int steps = 60;
-  for (int it = 0; it < steps; ++it) {
+  for (int it = 0; it < 60; ++it) {
     s.step();
     auto seen = s.contact_pairs();
     std::sort(seen.begin(), seen.end());
@@ -50,6 +50,30 @@ TEST(DemContactDetection, VerletContactsEqualAllPairsAtEveryStep) {
   }
   EXPECT_GT(contacts, 1000) << "the packing must have contacts to check";
   EXPECT_GT(s.timers().rebuilds, 3) << "the lists must have been rebuilt along the way";
+}
+
+TEST(DemContactDetection, VerletContactsEqualAllPairsAtEveryStep) {
+  System s = shaken_packing();
+  expect_all_pairs_contacts_at_every_step(s);
+}
+
+// CFD-DEM holds the fluid's force on each particle over N DEM sub-steps (CfdDemCoupling): under
+// held forces of up to three times each particle's weight in random directions, the contacts
+// seen through the Verlet list still equal the all-pairs search at every sub-step.
+TEST(DemContactDetection, HeldForcesOverSubstepsMissNoContact) {
+  System s = shaken_packing();
+  const int n = s.particles().n_owned;
+  auto f = s.external_force();
+  auto h = Kokkos::create_mirror_view(f);
+  auto r = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), s.particles().radius);
+  const double rho = s.config().materials[0].density;
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> u(-3.0, 3.0);
+  for (int i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c)
+      h(i, c) = u(gen) * rho * 4.0 / 3.0 * M_PI * std::pow(r(i), 3) * 9.81;
+  Kokkos::deep_copy(f, h);
+  expect_all_pairs_contacts_at_every_step(s);
 }
 
 // The devices' schedule (one work item per particle, each pair evaluated by both) against the

@@ -102,6 +102,7 @@ class CfdDemCoupling {
   }
 
   double fluid_dt() const { return options_.dem_substeps * dem_.config().dt; }
+  long steps() const { return steps_; }  ///< coupled steps taken
   const Vector& void_fraction() const { return eps_; }
   /// The particles' load on the fluid (3 n_dofs, per unit fluid mass) and the implicit drag
   /// field the last step used.

@@ -19,6 +19,9 @@ ParamTable parameter_table() {
           real_param("box_x", 0.03, "m", above(0.0), "box width"),
           real_param("box_y", 0.03, "m", above(0.0), "box depth"),
           real_param("box_z", 0.06, "m", above(0.0), "box height (particles above it are removed)"),
+          real_param("floor_height", 0.0, "m", at_least(0.0),
+                     "height of the box's floor (below it: room for what a coupling needs, "
+                     "e.g. CFD-DEM's inflow; a distributor the fluid passes)"),
           real_param("drum_radius", 0.04, "m", above(0.0), "drum inner radius"),
           real_param("drum_length", 0.012, "m", above(0.0),
                      "drum length (end caps turn with the drum)"),
@@ -121,7 +124,12 @@ DemModule::DemModule(const Parameters& p, const Communicator& comm) : comm_(comm
     c.gravity = {0, 0, -gravity_};
     c.domain_lo = {0, 0, 0};
     c.domain_hi = {box_[0], box_[1], box_[2]};
-    c.walls = {plane(2, 1, 0), plane(0, 1, 0), plane(0, -1, box_[0]), plane(1, 1, 0),
+    floor_ = p.real("floor_height");
+    if (floor_ >= 0.5 * box_[2])
+      throw std::invalid_argument("dem: floor_height " + std::to_string(floor_) +
+                                  " must lie below half the box's height " +
+                                  std::to_string(box_[2]));
+    c.walls = {plane(2, 1, floor_), plane(0, 1, 0), plane(0, -1, box_[0]), plane(1, 1, 0),
                plane(1, -1, box_[1])};
     impact_speed_ = std::sqrt(2 * gravity_ * box_[2]);
   } else {
@@ -227,6 +235,7 @@ void DemModule::insert_due(double t) {
       for (size_t k = 0; k < all.size(); ++k) all[k].gid = static_cast<std::int64_t>(k);
       batch = std::move(all);
     } else {
+      region.lo[2] = floor_;
       region.hi[0] = box_[0];
       region.hi[1] = box_[1];
       region.hi[2] = box_[2];

@@ -35,6 +35,8 @@ class DemModule final : public Module {
   std::vector<std::string> owned_blocks() const override;
 
   const System& system() const { return *system_; }
+  /// The system itself, for a coupling that steps it (CFD-DEM).
+  System& system() { return *system_; }
   /// The drum's regime now (drum geometry only). Collective.
   DrumClassification drum_regime() const;
 
@@ -48,6 +50,7 @@ class DemModule final : public Module {
   bool drum_ = false;
   double gravity_ = 9.81;
   double box_[3] = {0, 0, 0};
+  double floor_ = 0.0;  ///< the box's floor (z)
   double drum_radius_ = 0, drum_length_ = 0, drum_omega_ = 0, settle_time_ = 0;
   bool drum_turning_ = false;
   RadiusDistribution radii_;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "kernels/reductions.hpp"
+#include "physics/ins_fem/flow_output.hpp"
 #include "physics/ins_fem/flow_solutions.hpp"
 #include "physics/ins_fem/ins_solver.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"
@@ -241,34 +242,7 @@ Diagnostics InsModule<dim>::diagnostics(double t) const {
 
 template <int dim>
 std::vector<OutputBlock> InsModule<dim>::output(double) const {
-  const auto& space = solver_->space();
-  const auto& lat = space.lattice();
-  const long n_nodes = lat.n_nodes(), n = solver_->n_dofs();
-  auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space.coordinates());
-  auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_->state());
-  OutputBlock b;
-  b.name = "flow";
-  b.curvilinear = true;
-  for (int d = 0; d < dim; ++d) b.nodes[d] = lat.nodes[d];
-  b.x.resize(n_nodes);
-  b.y.resize(n_nodes);
-  b.z.assign(n_nodes, 0.0);
-  std::vector<std::vector<double>> f(dim + 1, std::vector<double>(n_nodes));
-  for (long node = 0; node < n_nodes; ++node) {
-    int ijk[3] = {0, 0, 0};
-    long rest = node;
-    for (int d = 0; d < dim; ++d)
-      ijk[d] = static_cast<int>(rest % lat.nodes[d]), rest /= lat.nodes[d];
-    b.x[node] = xh(node);
-    b.y[node] = xh(n_nodes + node);
-    if (dim == 3) b.z[node] = xh(2 * n_nodes + node);
-    const long dof = lat.dof_index(ijk);
-    for (int c = 0; c <= dim; ++c) f[c][node] = sh(c * n + dof);
-  }
-  const char* names[3] = {"u", "v", "w"};
-  for (int c = 0; c < dim; ++c) b.fields.push_back({names[c], f[c]});
-  b.fields.push_back({"p", f[dim]});
-  return {b};
+  return {flow_output_block<dim>(*solver_, "flow")};
 }
 
 template <int dim>

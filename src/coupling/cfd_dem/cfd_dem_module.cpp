@@ -1,0 +1,387 @@
+#include "coupling/cfd_dem/cfd_dem_module.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "coupling/cfd_dem/cfd_dem_coupling.hpp"
+#include "coupling/cfd_dem/richardson_zaki.hpp"
+#include "kernels/reductions.hpp"
+#include "physics/dem/dem_module.hpp"
+#include "physics/ins_fem/flow_output.hpp"
+#include "solvers/matrix_free/degree_dispatch.hpp"
+
+namespace amphora::coupling::cfd_dem {
+
+ParamTable cfd_dem_parameter_table() {
+  return {
+      "cfd_dem",
+      "unresolved CFD-DEM (VANS model A, matrix-free Q_k, coupled to the DEM): a square column "
+      "with inflow at the bottom, a fluidised or a fixed packed bed",
+      {
+          string_param("bed", std::string("fluidised"),
+                       "fluidised (the particles move) or packed (held fixed)",
+                       {"fluidised", "packed"}),
+          real_param("column_width", 0.03, "m", above(0.0), "side of the square column"),
+          real_param("column_height", 0.2, "m", above(0.0),
+                     "column height (particles leaving the top are removed)"),
+          real_param("distributor_height", 0.02, "m", at_least(0.0),
+                     "the particles' floor, a distributor the fluid passes: clear fluid below "
+                     "it, so the inflow meets eps = 1"),
+          string_param("fluid_sides", std::string("periodic"),
+                       "the column's sides for the fluid: periodic (a slice of a wide bed; the "
+                       "particles still meet walls) or no-slip walls (on a column a few cells "
+                       "wide these raise the pressure drop: docs/cfd_dem.md)",
+                       {"walls", "periodic"}),
+          int_param("cells", 8, at_least(2) & at_most(256),
+                    "cells across the column (as many per length along it)"),
+          int_param("degree", 1,
+                    at_least(1) & at_most(solvers::matrix_free::max_compiled_degree_vans),
+                    "polynomial degree of the flow (Q1: CFD-DEM's usual element)"),
+          int_param("particle_count", 2000, at_least(1),
+                    "particles, on a lattice from the bottom up"),
+          real_param("particle_diameter", 3.087e-3, "m", above(0.0), "alumina (Ferreira 2023)"),
+          real_param("particle_density", 3585.9, "kg/m^3", above(0.0), "alumina"),
+          real_param("youngs_modulus", 1e7, "Pa", above(0.0),
+                     "particle and wall Young's modulus (softened, as CFD-DEM does)"),
+          real_param("poisson_ratio", 0.3, "1", above(-1.0) & below(0.5), "Poisson's ratio"),
+          real_param("restitution", 0.9, "1", above(0.0) & at_most(1.0),
+                     "restitution, particles and walls"),
+          real_param("friction", 0.1, "1", at_least(0.0), "sliding friction, particles and walls"),
+          real_param("rolling_friction", 0.1, "1", at_least(0.0), "rolling friction"),
+          real_param("fluid_density", 997.0, "kg/m^3", above(0.0), "water"),
+          real_param("viscosity", 8.379e-7, "m^2/s", above(0.0), "kinematic viscosity (water)"),
+          real_param("inlet_velocity", 0.157, "m/s", at_least(0.0),
+                     "superficial velocity of the uniform inflow at the bottom"),
+          real_param("gravity", 9.81, "m/s^2", at_least(0.0), "gravity, along -z"),
+          string_param("drag", std::string("rong"), "drag closure",
+                       {"di_felice", "rong", "beetstra", "gidaspow"}),
+          string_param("void_fraction", std::string("qcm"),
+                       "particle-centred (smoothed) or quadrature-centred", {"pcm", "qcm"}),
+          real_param("smoothing_length", 1.0, "diameters", at_least(0.0),
+                     "L of the void fraction's L2-projection smoothing, in particle diameters"),
+          string_param("drag_coupling", std::string("semi_implicit"),
+                       "how the fluid takes the drag", {"semi_implicit", "explicit"}),
+          int_param("dem_substeps", 200, at_least(1),
+                    "DEM steps per fluid step (run.dt is the fluid step)"),
+          real_param("max_cfl", 2.0, "1", above(0.0), "a fluid step over this CFL stops the run"),
+          real_param("grad_div", 0.0, "1", at_least(0.0), "grad-div stabilisation weight"),
+          real_param("tolerance", 1e-8, "1", above(0.0) & below(1.0),
+                     "relative residual reduction of each fluid step's GMRES solve"),
+          real_param("verlet_skin", 0.25, "1", above(0.0) & at_most(2.0),
+                     "Verlet skin in diameters"),
+          int_param("seed", 1, at_least(0), "seed of the lattice's jitter"),
+      }};
+}
+
+// A named namespace, not an anonymous one: CUDA does not support extended lambdas in
+// anonymous namespaces.
+namespace cfd_dem_module_detail {
+
+using Exec = kernels::DefaultExecSpace;
+using Flow = physics::ins_fem::InsSolver<3, Exec>;
+
+/// The `[dem]` table of the column's particles: a box of the column's size, lattice insertion.
+Parameters dem_parameters(const Parameters& p) {
+  Parameters d(physics::dem::parameter_table());
+  d.set("geometry", std::string("box"));
+  d.set("box_x", p.real("column_width"));
+  d.set("box_y", p.real("column_width"));
+  d.set("box_z", p.real("column_height"));
+  d.set("floor_height", p.real("distributor_height"));
+  d.set("particle_radius", 0.5 * p.real("particle_diameter"));
+  d.set("density", p.real("particle_density"));
+  for (const char* key : {"youngs_modulus", "poisson_ratio", "restitution", "friction",
+                          "rolling_friction", "gravity", "verlet_skin"})
+    d.set(key, p.real(key));
+  d.set("wall_youngs_modulus", p.real("youngs_modulus"));
+  d.set("wall_restitution", p.real("restitution"));
+  d.set("wall_friction", p.real("friction"));
+  d.set("insertion", std::string("lattice"));
+  d.set("particle_count", p.integer("particle_count"));
+  d.set("seed", p.integer("seed"));
+  return d;
+}
+
+/// The column: no-slip side walls, inflow at z = 0, open top.
+mesh::hex::StructuredHexMesh<3> column_mesh(const Parameters& p) {
+  mesh::hex::StructuredHexMesh<3> m;
+  const int n = static_cast<int>(p.integer("cells"));
+  const double w = p.real("column_width"), h = p.real("column_height");
+  m.cells = {n, n, std::max(1, static_cast<int>(std::lround(n * h / w)))};
+  m.upper = {w, w, h};
+  m.faces[5] = mesh::hex::FaceCondition::neumann;
+  if (p.string("fluid_sides") == "periodic")
+    for (int f = 0; f < 4; ++f) m.faces[f] = mesh::hex::FaceCondition::periodic;
+  return m;
+}
+
+physics::ins_fem::InsOptions flow_options(const Parameters& p) {
+  physics::ins_fem::InsOptions o;
+  o.model = physics::ins_fem::FlowModel::vans_a;
+  o.transient_tau = true;
+  o.nu = p.real("viscosity");
+  o.grad_div = p.real("grad_div");
+  o.tolerance = p.real("tolerance");
+  return o;
+}
+
+CfdDemOptions coupling_options(const Parameters& p) {
+  CfdDemOptions o;
+  o.fluid.density = p.real("fluid_density");
+  o.fluid.viscosity = p.real("viscosity") * o.fluid.density;
+  o.fluid.drag = *drag_model_from_name(p.string("drag"));  // the table allows only these
+  o.void_fraction.method =
+      p.string("void_fraction") == "qcm" ? VoidFractionMethod::qcm : VoidFractionMethod::pcm;
+  o.void_fraction.smoothing_length = p.real("smoothing_length") * p.real("particle_diameter");
+  o.drag_coupling = p.string("drag_coupling") == "explicit" ? DragCoupling::explicit_load
+                                                            : DragCoupling::semi_implicit;
+  o.dem_substeps = static_cast<int>(p.integer("dem_substeps"));
+  o.move_particles = p.string("bed") == "fluidised";
+  o.max_cfl = p.real("max_cfl");
+  return o;
+}
+
+/// Sum over the owned particles of their heights and of their volumes.
+template <class Set>
+std::pair<double, double> height_and_volume_sums(const Exec& exec, const Set& p) {
+  const auto x = p.x;
+  const auto r = p.radius;
+  double z = 0.0, volume = 0.0;
+  Kokkos::parallel_reduce(
+      "amphora::cfd_dem::height_sum", kernels::RangePolicy<Exec>(exec, 0, p.n_owned),
+      KOKKOS_LAMBDA(int i, double& s) { s += x(i, 2); }, z);
+  Kokkos::parallel_reduce(
+      "amphora::cfd_dem::volume_sum", kernels::RangePolicy<Exec>(exec, 0, p.n_owned),
+      KOKKOS_LAMBDA(int i, double& s) { s += 4.0 / 3.0 * M_PI * r(i) * r(i) * r(i); }, volume);
+  return {z, volume};
+}
+
+/// Sum over the owned particles of component c of the fluid's held force on them.
+template <class Forces>
+double force_sum(const Exec& exec, const Forces& f, int n, int c) {
+  double s = 0.0;
+  Kokkos::parallel_reduce(
+      "amphora::cfd_dem::force_sum", kernels::RangePolicy<Exec>(exec, 0, n),
+      KOKKOS_LAMBDA(int i, double& a) { a += f(i, c); }, s);
+  return s;
+}
+
+class CfdDemModule final : public physics::Module {
+ public:
+  CfdDemModule(const Parameters& p, const Communicator& comm)
+      : width_(p.real("column_width")),
+        height_(p.real("column_height")),
+        rho_(p.real("fluid_density")),
+        rho_p_(p.real("particle_density")),
+        g_(p.real("gravity")),
+        u_in_(p.real("inlet_velocity")),
+        floor_(p.real("distributor_height")),
+        periodic_sides_(p.string("fluid_sides") == "periodic") {
+    if (comm.size() > 1)
+      throw std::invalid_argument(
+          "cfd_dem runs on one rank (the flow solver's distributed space is not wired in yet); "
+          "run without mpirun or with -n 1");
+    dem_ = std::make_unique<physics::dem::DemModule>(dem_parameters(p), comm);
+    flow_ = std::make_unique<Flow>(column_mesh(p), static_cast<int>(p.integer("degree")),
+                                   flow_options(p));
+    flow_->set_state(initial_state());
+    const CfdDemOptions o = coupling_options(p);
+    substeps_ = o.dem_substeps;
+    coupling_ = std::make_unique<CfdDemCoupling<Exec>>(*flow_, dem_->system(), o);
+    coupling_->set_phase_times(&times_);
+    const double d = p.real("particle_diameter"), mu = o.fluid.viscosity;
+    terminal_ = terminal_velocity(o.fluid.drag, rho_, mu, d, rho_p_, g_);
+    rz_exponent_ = richardson_zaki_exponent(rho_ * terminal_ * d / mu, d / width_);
+  }
+
+  /// At rest but for the inflow: w = u_in at every node of the bottom face (its edges too, so
+  /// the inflow's flux is u_in times the column's section) and zero on the side walls.
+  std::vector<double> initial_state() const {
+    const auto& s = flow_->space();
+    const double w = width_, tiny = 1e-12 * width_;
+    return s.interpolate(
+        [&](const mesh::hex::Point3& x, int c) {
+          if (c != 2) return 0.0;
+          const bool side = !periodic_sides_ &&
+                            (x[0] < tiny || x[0] > w - tiny || x[1] < tiny || x[1] > w - tiny);
+          return x[2] < tiny || !side ? u_in_ : 0.0;
+        },
+        4);
+  }
+
+  std::string name() const override { return "cfd_dem"; }
+  /// N DEM stable steps, and no more than the fluid's CFL limit.
+  double stable_dt() const override {
+    const double cfl = flow_->cfl(1.0);
+    const double dem = substeps_ * dem_->stable_dt();
+    return cfl > 0.0 ? std::min(dem, 1.0 / cfl) : dem;
+  }
+  void set_time_step(double dt) override {
+    try {
+      dem_->set_time_step(dt / substeps_);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("cfd_dem: the DEM step run.dt / cfd_dem.dem_substeps: " +
+                                  std::string(e.what()));
+    }
+  }
+  void advance(double, double) override {
+    try {
+      last_ = coupling_->step();
+      if (!last_.converged) failure_ = "the fluid's GMRES did not reach its tolerance";
+    } catch (const std::runtime_error& e) {  // eps out of (0, 1], CFL over the limit
+      failure_ = e.what();
+    }
+  }
+  long long work_per_step() const override {
+    return std::max(1LL, dem_->system().global_count()) * substeps_;
+  }
+  std::string work_unit() const override { return "particle-steps"; }
+
+  std::vector<OutputBlock> output(double t) const override {
+    OutputBlock f = physics::ins_fem::flow_output_block<3>(*flow_, "flow", rho_);
+    f.fields.push_back(
+        {"eps", physics::ins_fem::node_values<3>(flow_->space(), coupling_->void_fraction())});
+    std::vector<OutputBlock> out = {f};
+    for (auto& b : dem_->output(t)) out.push_back(std::move(b));
+    return out;
+  }
+
+  Diagnostics diagnostics(double t) const override;
+  std::string error_diagnostic() const override { return "pressure_drop_ratio"; }
+
+  std::optional<physics::NonFiniteReport> find_nonfinite() const override {
+    if (auto bad = dem_->find_nonfinite()) return bad;
+    const long i = kernels::reduce::first_nonfinite(Exec(), flow_->state());
+    if (i < 0 && failure_.empty()) return std::nullopt;
+    physics::NonFiniteReport r;
+    r.field = i < 0 ? "velocity" : (i / flow_->n_dofs() < 3 ? "velocity" : "pressure");
+    r.block = "flow";
+    r.index = i < 0 ? 0 : i % flow_->n_dofs();
+    r.reason = i < 0 ? failure_ : "";
+    return r;
+  }
+
+  std::vector<StateBlock> state() const override {
+    const auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), flow_->state());
+    const auto oh =
+        Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), flow_->previous_velocity());
+    std::vector<StateBlock> blocks = {
+        {"flow",
+         {{"state", std::vector<double>(sh.data(), sh.data() + sh.extent(0))},
+          {"u_old", std::vector<double>(oh.data(), oh.data() + oh.extent(0))},
+          {"history", {flow_->previous_dt(), static_cast<double>(flow_->steps())}}}}};
+    for (auto& b : dem_->state()) blocks.push_back(std::move(b));
+    return blocks;
+  }
+  /// The flow and the particles; the void fraction's history restarts from the particles (a
+  /// continuation is close to, not bit for bit, the uninterrupted run).
+  void restore(const std::vector<StateBlock>& blocks) override {
+    std::vector<StateBlock> dem;
+    for (const auto& b : blocks) {
+      if (b.name != "flow") {
+        dem.push_back(b);
+        continue;
+      }
+      std::vector<double> state, u_old, history;
+      for (const auto& [key, v] : b.arrays)
+        (key == "state" ? state : key == "u_old" ? u_old : history) = v;
+      if (static_cast<long>(state.size()) != 4 * flow_->n_dofs() || history.size() < 2)
+        throw std::runtime_error("cfd_dem: the checkpoint's flow block does not fit this scene");
+      flow_->set_state(state);
+      flow_->set_history(u_old, history[0], static_cast<long>(history[1]));
+    }
+    dem_->restore(dem);
+  }
+  std::vector<std::string> owned_blocks() const override {
+    std::vector<std::string> names = {"flow"};
+    for (const auto& n : dem_->owned_blocks()) names.push_back(n);
+    return names;
+  }
+  Diagnostics phase_seconds() const override { return times_.seconds(); }
+
+  /// The mean of the flow's pressure [Pa] over the plane at height z (midpoint probes, two per
+  /// cell and direction: exact for Q1).
+  double plane_mean_pressure(double z) const {
+    const int m = 2 * flow_->space().mesh().cells[0] * flow_->space().degree();
+    using Points = Kokkos::View<double* [3], Kokkos::LayoutRight, Exec::memory_space>;
+    Points x("amphora::cfd_dem::probes", m * m), out("amphora::cfd_dem::probe_values", m * m);
+    auto h = Kokkos::create_mirror_view(x);
+    for (int j = 0; j < m; ++j)
+      for (int i = 0; i < m; ++i) {
+        h(j * m + i, 0) = (i + 0.5) * width_ / m;
+        h(j * m + i, 1) = (j + 0.5) * width_ / m;
+        h(j * m + i, 2) = z;
+      }
+    Kokkos::deep_copy(x, h);
+    interpolate(Exec(), coupling_->void_fraction_solver().basis(), flow_->pressure(), 1, x, m * m,
+                out);
+    const auto o = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
+    double s = 0.0;
+    for (int i = 0; i < m * m; ++i) s += o(i, 0);
+    return rho_ * s / (m * m);
+  }
+
+ private:
+  double width_, height_, rho_, rho_p_, g_, u_in_, floor_;
+  bool periodic_sides_;
+  double terminal_ = 0.0, rz_exponent_ = 0.0;
+  int substeps_ = 1;
+  std::unique_ptr<physics::dem::DemModule> dem_;
+  std::unique_ptr<Flow> flow_;
+  std::unique_ptr<CfdDemCoupling<Exec>> coupling_;
+  physics::ins_fem::InsStepReport last_;
+  std::string failure_;
+  physics::PhaseTimes times_{cfd_dem_phase_names()};
+};
+
+/// The pressure drop from below the bed to the top against the bed's buoyant weight per section,
+/// M g (1 - rho / rho_p) / A; the bed's height (twice its particles' mean height: exact for a
+/// uniform bed, above the distributor) and void fraction against Richardson-Zaki's; the void
+/// fraction's volume balance.
+Diagnostics CfdDemModule::diagnostics(double t) const {
+  const Exec exec;
+  const auto& particles = dem_->system().particles();
+  const auto [z_sum, volume] = height_and_volume_sums(exec, particles);
+  const long long n = dem_->system().global_count();
+  const double area = width_ * width_;
+  const double weight = volume * (rho_p_ - rho_) * g_ / area;
+  // below the bed at half the distributor's height: clear of the inflow's edges, where the
+  // prescribed inflow meets the no-slip walls and the pressure is singular
+  const double tap = std::max(0.5 * floor_, 1e-9 * height_);
+  const double drop = plane_mean_pressure(tap) - plane_mean_pressure(height_ * (1 - 1e-9));
+  const double bed = n > 0 ? 2.0 * (z_sum / n - floor_) : 0.0;
+  const double solid = volume > 0.0 ? area * height_ - coupling_->void_fraction_solver().integral(
+                                                           exec, coupling_->void_fraction())
+                                    : 0.0;
+  Diagnostics d = {
+      {"pressure_drop", drop},
+      {"weight_pressure", weight},
+      {"pressure_drop_ratio", weight > 0.0 ? drop / weight : 0.0},
+      {"fluid_force_ratio",
+       weight > 0.0
+           ? force_sum(exec, coupling_->held_forces(), particles.n_owned, 2) / (weight * area)
+           : 0.0},
+      {"bed_height", bed},
+      {"bed_void_fraction", bed > 0.0 ? 1.0 - volume / (area * bed) : 1.0},
+      {"richardson_zaki_void_fraction",
+       richardson_zaki_void_fraction(u_in_, terminal_, rz_exponent_)},
+      {"void_fraction_volume_error",
+       volume > 0.0 && coupling_->steps() > 0 ? std::abs(solid - volume) / volume : 0.0},
+      {"particles", static_cast<double>(n)},
+      {"cfl", flow_->cfl(flow_->previous_dt())},
+      {"linear_iterations", static_cast<double>(last_.linear_iterations)}};
+  for (const auto& [key, value] : dem_->diagnostics(t))
+    if (key == "kinetic_energy" || key == "contacts" || key == "max_overlap")
+      d.push_back({"particle_" + key, value});
+  return d;
+}
+
+}  // namespace cfd_dem_module_detail
+
+std::unique_ptr<physics::Module> create_cfd_dem(const Parameters& p, const Communicator& comm) {
+  return std::make_unique<cfd_dem_module_detail::CfdDemModule>(p, comm);
+}
+
+}  // namespace amphora::coupling::cfd_dem

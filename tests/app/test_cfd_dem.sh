@@ -1,0 +1,49 @@
+# Unresolved CFD-DEM through the real binary: the scaled alumina fluidised bed (the shipped
+# scene run to 2 s) once pseudo-steady (t >= 1 s) loses the bed's buoyant weight in pressure,
+# M g (1 - rho / rho_p) / A, within 2 % and expands to Richardson-Zaki's void fraction within
+# 10 % (the issue's tolerances); its void fraction holds the particles' volume to 1e-10; fluid
+# and particles share one XDMF series; bad input stops with one clear line.
+source "$(dirname "$0")/common.sh"
+scene="$AMPHORA_SOURCE_DIR/scenes/cfd_dem_fluidised_bed.toml"
+sed -e 's|^output_dir = .*|output_dir = "bed"|' -e 's|^end_time = .*|end_time = 2.0|' \
+  -e 's|^output_every = .*|output_every = 200|' -e 's|^diagnostics_every = .*|diagnostics_every = 10|' \
+  "$scene" > bed.toml
+OMP_NUM_THREADS=2 "$AMPHORA" run bed.toml > bed.log
+grep -q "^\[done\]" bed.log || fail "the bed did not finish"
+grep "^\[timing\]" bed.log
+mean_after() {  # COLUMN: the mean of the column over rows with time >= 1
+  paste -d, <(csv_column time bed/diagnostics.csv) <(csv_column "$1" bed/diagnostics.csv) |
+    awk -F, '$1 >= 1.0 { s += $2; n += 1 } END { printf "%.6f\n", s / n }'
+}
+dp=$(mean_after pressure_drop_ratio)
+eps=$(mean_after bed_void_fraction)
+rz=$(mean_after richardson_zaki_void_fraction)
+share=$(mean_after fluid_force_ratio)
+echo "pressure drop / buoyant weight $dp; bed void fraction $eps, Richardson-Zaki $rz; fluid force / buoyant weight $share"
+awk -v x="$dp" 'BEGIN { exit !(x > 0.98 && x < 1.02) }' || fail "pressure drop ratio $dp outside 1 +- 2 %"
+awk -v x="$eps" -v r="$rz" 'BEGIN { d = x / r - 1; exit !(d > -0.1 && d < 0.1) }' ||
+  fail "bed void fraction $eps more than 10 % from Richardson-Zaki's $rz"
+worst=$(csv_column void_fraction_volume_error bed/diagnostics.csv | sort -g | tail -1)
+awk -v x="$worst" 'BEGIN { exit !(x < 1e-10) }' || fail "void fraction volume error $worst"
+grep -q 'Name="flow"' bed/*.xmf && grep -q 'Name="particles"' bed/*.xmf ||
+  fail "the XDMF series lacks the flow or the particles"
+
+# Bad input: a drag closure that does not exist, eps out of (0, 1], a fluid step over the CFL
+# limit, a DEM step over its stability limit, more than one rank.
+sed -e 's|^output_dir = .*|output_dir = "bad"|' "$scene" > drag.toml
+echo 'drag = "stokes"' >> drag.toml
+expect_error 2 "drag.toml:[0-9]+: key 'cfd_dem.drag' = \"stokes\" is not an allowed value; allowed: one of: di_felice, rong, beetstra, gidaspow" \
+  "$AMPHORA" run drag.toml
+sed -e 's|^output_dir = .*|output_dir = "eps"|' "$scene" > eps.toml
+printf 'void_fraction = "pcm"\nsmoothing_length = 0.0\ncells = 16\n' >> eps.toml
+expect_error 3 "void fraction -?[0-9.e+-]+ outside \(0, 1\] at node \([0-9.e+-]+, [0-9.e+-]+, [0-9.e+-]+\) after fluid step 0" \
+  "$AMPHORA" run eps.toml
+sed -e 's|^output_dir = .*|output_dir = "cfl"|' -e 's|^dt = .*|dt = 0.05|' -e 's|^end_time = .*|end_time = 0.5|' \
+  "$scene" > cfl.toml
+echo 'dem_substeps = 2000' >> cfl.toml
+expect_error 3 "fluid step 0.05 s gives CFL [0-9.]+ over max_cfl 2 at fluid step [0-9]+" "$AMPHORA" run cfl.toml
+sed -e 's|^output_dir = .*|output_dir = "dem"|' "$scene" > dem.toml
+echo 'dem_substeps = 10' >> dem.toml
+expect_error 2 "cfd_dem: the DEM step run.dt / cfd_dem.dem_substeps: time step 0.0005 s exceeds the DEM stability limit" \
+  "$AMPHORA" run dem.toml
+echo "cfd_dem: ok"
