@@ -29,7 +29,7 @@ grep -q 'Name="flow"' bed/*.xmf && grep -q 'Name="particles"' bed/*.xmf ||
   fail "the XDMF series lacks the flow or the particles"
 
 # Bad input: a drag closure that does not exist, eps out of (0, 1], a fluid step over the CFL
-# limit, a DEM step over its stability limit, more than one rank.
+# limit, a DEM step over its stability limit, a jet wider than the column.
 sed -e 's|^output_dir = .*|output_dir = "bad"|' "$scene" > drag.toml
 echo 'drag = "stokes"' >> drag.toml
 expect_error 2 "drag.toml:[0-9]+: key 'cfd_dem.drag' = \"stokes\" is not an allowed value; allowed: one of: di_felice, rong, beetstra, gidaspow" \
@@ -46,4 +46,8 @@ sed -e 's|^output_dir = .*|output_dir = "dem"|' "$scene" > dem.toml
 echo 'dem_substeps = 10' >> dem.toml
 expect_error 2 "cfd_dem: the DEM step run.dt / cfd_dem.dem_substeps: time step 0.0005 s exceeds the DEM stability limit" \
   "$AMPHORA" run dem.toml
+sed -e 's|^output_dir = .*|output_dir = "jet"|' "$scene" > jet.toml
+printf 'jet_width = 0.05\njet_velocity = 1.0\n' >> jet.toml
+expect_error 2 "cfd_dem: jet_width 0.050000 m must lie in \(0, column_width 0.030000 m\] where jet_velocity is set" \
+  "$AMPHORA" run jet.toml
 echo "cfd_dem: ok"

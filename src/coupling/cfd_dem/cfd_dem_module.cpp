@@ -1,5 +1,6 @@
 #include "coupling/cfd_dem/cfd_dem_module.hpp"
 
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -18,12 +19,15 @@ ParamTable cfd_dem_parameter_table() {
   return {
       "cfd_dem",
       "unresolved CFD-DEM (VANS model A, matrix-free Q_k, coupled to the DEM): a square column "
-      "with inflow at the bottom, a fluidised or a fixed packed bed",
+      "with inflow at the bottom, a fluidised or a fixed packed bed, or a slot with a jet: a "
+      "pseudo-2D spouted bed",
       {
           string_param("bed", std::string("fluidised"),
                        "fluidised (the particles move) or packed (held fixed)",
                        {"fluidised", "packed"}),
-          real_param("column_width", 0.03, "m", above(0.0), "side of the square column"),
+          real_param("column_width", 0.03, "m", above(0.0), "side of the square column (x)"),
+          real_param("column_depth", 0.0, "m", at_least(0.0),
+                     "the column's depth (y); 0: the width (a square section)"),
           real_param("column_height", 0.2, "m", above(0.0),
                      "column height (particles leaving the top are removed)"),
           real_param("distributor_height", 0.02, "m", at_least(0.0),
@@ -31,9 +35,10 @@ ParamTable cfd_dem_parameter_table() {
                      "it, so the inflow meets eps = 1"),
           string_param("fluid_sides", std::string("periodic"),
                        "the column's sides for the fluid: periodic (a slice of a wide bed; the "
-                       "particles still meet walls) or no-slip walls (on a column a few cells "
-                       "wide these raise the pressure drop: docs/cfd_dem.md)",
-                       {"walls", "periodic"}),
+                       "particles still meet walls), no-slip walls (on a column a few cells "
+                       "wide these raise the pressure drop: docs/cfd_dem.md), or slot: walls "
+                       "at x = 0 and the width, periodic across the thin depth (pseudo-2D)",
+                       {"walls", "periodic", "slot"}),
           int_param("cells", 8, at_least(2) & at_most(256),
                     "cells across the column (as many per length along it)"),
           int_param("degree", 1,
@@ -53,7 +58,10 @@ ParamTable cfd_dem_parameter_table() {
           real_param("fluid_density", 997.0, "kg/m^3", above(0.0), "water"),
           real_param("viscosity", 8.379e-7, "m^2/s", above(0.0), "kinematic viscosity (water)"),
           real_param("inlet_velocity", 0.157, "m/s", at_least(0.0),
-                     "superficial velocity of the uniform inflow at the bottom"),
+                     "superficial velocity of the inflow at the bottom (outside the jet)"),
+          real_param("jet_width", 0.0, "m", at_least(0.0),
+                     "width of a central slot jet in the inflow, across the depth (0: none)"),
+          real_param("jet_velocity", 0.0, "m/s", at_least(0.0), "the jet's inflow velocity"),
           real_param("gravity", 9.81, "m/s^2", at_least(0.0), "gravity, along -z"),
           string_param("drag", std::string("rong"), "drag closure",
                        {"di_felice", "rong", "beetstra", "gidaspow"}),
@@ -67,6 +75,11 @@ ParamTable cfd_dem_parameter_table() {
                     "DEM steps per fluid step (run.dt is the fluid step)"),
           real_param("max_cfl", 2.0, "1", above(0.0), "a fluid step over this CFL stops the run"),
           real_param("grad_div", 0.0, "1", at_least(0.0), "grad-div stabilisation weight"),
+          bool_param("void_fraction_time_derivative", true,
+                     "keep -d eps / dt in the fluid's continuity (false: drop it, for a bed "
+                     "that barely moves: docs/cfd_dem.md)"),
+          real_param("backflow", 1.0, "1", at_least(0.0),
+                     "beta of the backflow stabilisation at the open top (0: plain do-nothing)"),
           real_param("tolerance", 1e-8, "1", above(0.0) & below(1.0),
                      "relative residual reduction of each fluid step's GMRES solve"),
           real_param("verlet_skin", 0.25, "1", above(0.0) & at_most(2.0),
@@ -82,12 +95,18 @@ namespace cfd_dem_module_detail {
 using Exec = kernels::DefaultExecSpace;
 using Flow = physics::ins_fem::InsSolver<3, Exec>;
 
+/// The column's depth (y): column_depth, or the width where that is 0.
+double column_depth(const Parameters& p) {
+  const double d = p.real("column_depth");
+  return d > 0.0 ? d : p.real("column_width");
+}
+
 /// The `[dem]` table of the column's particles: a box of the column's size, lattice insertion.
 Parameters dem_parameters(const Parameters& p) {
   Parameters d(physics::dem::parameter_table());
   d.set("geometry", std::string("box"));
   d.set("box_x", p.real("column_width"));
-  d.set("box_y", p.real("column_width"));
+  d.set("box_y", column_depth(p));
   d.set("box_z", p.real("column_height"));
   d.set("floor_height", p.real("distributor_height"));
   d.set("particle_radius", 0.5 * p.real("particle_diameter"));
@@ -104,16 +123,20 @@ Parameters dem_parameters(const Parameters& p) {
   return d;
 }
 
-/// The column: no-slip side walls, inflow at z = 0, open top.
+/// The column: sides as fluid_sides says, inflow at z = 0, open top.
 mesh::hex::StructuredHexMesh<3> column_mesh(const Parameters& p) {
   mesh::hex::StructuredHexMesh<3> m;
   const int n = static_cast<int>(p.integer("cells"));
-  const double w = p.real("column_width"), h = p.real("column_height");
-  m.cells = {n, n, std::max(1, static_cast<int>(std::lround(n * h / w)))};
-  m.upper = {w, w, h};
+  const double w = p.real("column_width"), depth = column_depth(p), h = p.real("column_height");
+  const auto along = [&](double l) {
+    return std::max(1, static_cast<int>(std::lround(n * l / w)));
+  };
+  m.cells = {n, along(depth), along(h)};
+  m.upper = {w, depth, h};
   m.faces[5] = mesh::hex::FaceCondition::neumann;
-  if (p.string("fluid_sides") == "periodic")
-    for (int f = 0; f < 4; ++f) m.faces[f] = mesh::hex::FaceCondition::periodic;
+  const std::string sides = p.string("fluid_sides");
+  for (int f = sides == "slot" ? 2 : 0; f < 4 && sides != "walls"; ++f)
+    m.faces[f] = mesh::hex::FaceCondition::periodic;
   return m;
 }
 
@@ -123,6 +146,8 @@ physics::ins_fem::InsOptions flow_options(const Parameters& p) {
   o.transient_tau = true;
   o.nu = p.real("viscosity");
   o.grad_div = p.real("grad_div");
+  o.backflow = p.real("backflow");
+  o.void_fraction_time_derivative = p.boolean("void_fraction_time_derivative");
   o.tolerance = p.real("tolerance");
   return o;
 }
@@ -158,6 +183,33 @@ std::pair<double, double> height_and_volume_sums(const Exec& exec, const Set& p)
   return {z, volume};
 }
 
+/// The owned particles' mean vertical velocity within `half` of the mid-plane x = c (the
+/// spout) and outside it (the annulus), and the highest particle's centre.
+template <class Set>
+std::array<double, 3> spout_velocities(const Exec& exec, const Set& p, double c, double half) {
+  const auto x = p.x;
+  const auto v = p.v;
+  double w_in = 0.0, n_in = 0.0, w_all = 0.0, top = 0.0;
+  const kernels::RangePolicy<Exec> all(exec, 0, p.n_owned);
+  Kokkos::parallel_reduce(
+      "amphora::cfd_dem::spout_w", all,
+      KOKKOS_LAMBDA(int i, double& s) {
+        s += kernels::math::fabs(x(i, 0) - c) < half ? v(i, 2) : 0.0;
+      },
+      w_in);
+  Kokkos::parallel_reduce(
+      "amphora::cfd_dem::spout_n", all,
+      KOKKOS_LAMBDA(int i, double& s) { s += kernels::math::fabs(x(i, 0) - c) < half ? 1.0 : 0.0; },
+      n_in);
+  Kokkos::parallel_reduce(
+      "amphora::cfd_dem::all_w", all, KOKKOS_LAMBDA(int i, double& s) { s += v(i, 2); }, w_all);
+  Kokkos::parallel_reduce(
+      "amphora::cfd_dem::top", all,
+      KOKKOS_LAMBDA(int i, double& m) { m = x(i, 2) > m ? x(i, 2) : m; }, Kokkos::Max<double>(top));
+  const double n_out = p.n_owned - n_in;
+  return {n_in > 0 ? w_in / n_in : 0.0, n_out > 0 ? (w_all - w_in) / n_out : 0.0, top};
+}
+
 /// Sum over the owned particles of component c of the fluid's held force on them.
 template <class Forces>
 double force_sum(const Exec& exec, const Forces& f, int n, int c) {
@@ -172,17 +224,24 @@ class CfdDemModule final : public physics::Module {
  public:
   CfdDemModule(const Parameters& p, const Communicator& comm)
       : width_(p.real("column_width")),
+        depth_(column_depth(p)),
         height_(p.real("column_height")),
         rho_(p.real("fluid_density")),
         rho_p_(p.real("particle_density")),
         g_(p.real("gravity")),
         u_in_(p.real("inlet_velocity")),
         floor_(p.real("distributor_height")),
-        periodic_sides_(p.string("fluid_sides") == "periodic") {
+        jet_width_(p.real("jet_width")),
+        jet_velocity_(p.real("jet_velocity")),
+        sides_(p.string("fluid_sides")) {
     if (comm.size() > 1)
       throw std::invalid_argument(
           "cfd_dem runs on one rank (the flow solver's distributed space is not wired in yet); "
           "run without mpirun or with -n 1");
+    if (jet_width_ > width_ || (jet_velocity_ > 0.0 && !(jet_width_ > 0.0)))
+      throw std::invalid_argument("cfd_dem: jet_width " + std::to_string(jet_width_) +
+                                  " m must lie in (0, column_width " + std::to_string(width_) +
+                                  " m] where jet_velocity is set");
     dem_ = std::make_unique<physics::dem::DemModule>(dem_parameters(p), comm);
     flow_ = std::make_unique<Flow>(column_mesh(p), static_cast<int>(p.integer("degree")),
                                    flow_options(p));
@@ -197,16 +256,21 @@ class CfdDemModule final : public physics::Module {
   }
 
   /// At rest but for the inflow: w = u_in at every node of the bottom face (its edges too, so
-  /// the inflow's flux is u_in times the column's section) and zero on the side walls.
+  /// the inflow's flux is u_in times the column's section), the jet's velocity at the bottom's
+  /// nodes within jet_width / 2 of the mid-plane x = width / 2 (bounds included), and zero on
+  /// the side walls.
   std::vector<double> initial_state() const {
     const auto& s = flow_->space();
     const double w = width_, tiny = 1e-12 * width_;
     return s.interpolate(
         [&](const mesh::hex::Point3& x, int c) {
           if (c != 2) return 0.0;
-          const bool side = !periodic_sides_ &&
-                            (x[0] < tiny || x[0] > w - tiny || x[1] < tiny || x[1] > w - tiny);
-          return x[2] < tiny || !side ? u_in_ : 0.0;
+          const bool wall_x = sides_ != "periodic" && (x[0] < tiny || x[0] > w - tiny);
+          const bool wall_y = sides_ == "walls" && (x[1] < tiny || x[1] > depth_ - tiny);
+          const bool jet =
+              jet_width_ > 0.0 && std::abs(x[0] - 0.5 * w) <= 0.5 * jet_width_ + 1e-9 * w;
+          if (x[2] < tiny) return jet ? jet_velocity_ : u_in_;
+          return wall_x || wall_y ? 0.0 : u_in_;
         },
         4);
   }
@@ -304,28 +368,29 @@ class CfdDemModule final : public physics::Module {
   /// The mean of the flow's pressure [Pa] over the plane at height z (midpoint probes, two per
   /// cell and direction: exact for Q1).
   double plane_mean_pressure(double z) const {
-    const int m = 2 * flow_->space().mesh().cells[0] * flow_->space().degree();
+    const auto& cells = flow_->space().mesh().cells;
+    const int k = flow_->space().degree(), mx = 2 * cells[0] * k, my = 2 * cells[1] * k;
     using Points = Kokkos::View<double* [3], Kokkos::LayoutRight, Exec::memory_space>;
-    Points x("amphora::cfd_dem::probes", m * m), out("amphora::cfd_dem::probe_values", m * m);
+    Points x("amphora::cfd_dem::probes", mx * my), out("amphora::cfd_dem::probe_values", mx * my);
     auto h = Kokkos::create_mirror_view(x);
-    for (int j = 0; j < m; ++j)
-      for (int i = 0; i < m; ++i) {
-        h(j * m + i, 0) = (i + 0.5) * width_ / m;
-        h(j * m + i, 1) = (j + 0.5) * width_ / m;
-        h(j * m + i, 2) = z;
+    for (int j = 0; j < my; ++j)
+      for (int i = 0; i < mx; ++i) {
+        h(j * mx + i, 0) = (i + 0.5) * width_ / mx;
+        h(j * mx + i, 1) = (j + 0.5) * depth_ / my;
+        h(j * mx + i, 2) = z;
       }
     Kokkos::deep_copy(x, h);
-    interpolate(Exec(), coupling_->void_fraction_solver().basis(), flow_->pressure(), 1, x, m * m,
+    interpolate(Exec(), coupling_->void_fraction_solver().basis(), flow_->pressure(), 1, x, mx * my,
                 out);
     const auto o = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
     double s = 0.0;
-    for (int i = 0; i < m * m; ++i) s += o(i, 0);
-    return rho_ * s / (m * m);
+    for (int i = 0; i < mx * my; ++i) s += o(i, 0);
+    return rho_ * s / (mx * my);
   }
 
  private:
-  double width_, height_, rho_, rho_p_, g_, u_in_, floor_;
-  bool periodic_sides_;
+  double width_, depth_, height_, rho_, rho_p_, g_, u_in_, floor_, jet_width_, jet_velocity_;
+  std::string sides_;
   double terminal_ = 0.0, rz_exponent_ = 0.0;
   int substeps_ = 1;
   std::unique_ptr<physics::dem::DemModule> dem_;
@@ -345,7 +410,7 @@ Diagnostics CfdDemModule::diagnostics(double t) const {
   const auto& particles = dem_->system().particles();
   const auto [z_sum, volume] = height_and_volume_sums(exec, particles);
   const long long n = dem_->system().global_count();
-  const double area = width_ * width_;
+  const double area = width_ * depth_;
   const double weight = volume * (rho_p_ - rho_) * g_ / area;
   // below the bed at half the distributor's height: clear of the inflow's edges, where the
   // prescribed inflow meets the no-slip walls and the pressure is singular
@@ -372,6 +437,12 @@ Diagnostics CfdDemModule::diagnostics(double t) const {
       {"particles", static_cast<double>(n)},
       {"cfl", flow_->cfl(flow_->previous_dt())},
       {"linear_iterations", static_cast<double>(last_.linear_iterations)}};
+  if (jet_width_ > 0.0) {
+    const auto spout = spout_velocities(exec, particles, 0.5 * width_, 0.5 * jet_width_);
+    d.push_back({"spout_particle_velocity", spout[0]});
+    d.push_back({"annulus_particle_velocity", spout[1]});
+    d.push_back({"fountain_height", spout[2] - floor_});
+  }
   for (const auto& [key, value] : dem_->diagnostics(t))
     if (key == "kinetic_energy" || key == "contacts" || key == "max_overlap")
       d.push_back({"particle_" + key, value});

@@ -56,6 +56,7 @@ class InsModule final : public Module {
     InsOptions o;
     o.nu = p.real("nu");
     o.grad_div = p.real("grad_div");
+    o.backflow = p.real("backflow");
     o.tolerance = p.real("tolerance");
     o.max_iterations = static_cast<int>(p.integer("max_iterations"));
     o.restart = static_cast<int>(p.integer("restart"));
@@ -304,6 +305,9 @@ ParamTable parameter_table() {
                          "faces kept in place (0: Cartesian cells)"),
               real_param("nu", 0.01, "m^2/s", above(0.0), "kinematic viscosity"),
               real_param("grad_div", 0.0, "1", at_least(0.0), "grad-div stabilisation weight"),
+              real_param("backflow", 1.0, "1", at_least(0.0),
+                         "beta of the backflow stabilisation on open faces (the channel's "
+                         "outflow; 0: plain do-nothing)"),
               real_param("max_cfl", 2.0, "1", above(0.0),
                          "largest convective CFL number dt max|u| k / h a step may have"),
               string_param("geometry", std::string("stored"),

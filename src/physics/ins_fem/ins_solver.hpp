@@ -19,6 +19,7 @@
 #include "kernels/blas1.hpp"
 #include "kernels/host_vector.hpp"
 #include "mesh/hex/qk_space.hpp"
+#include "physics/ins_fem/backflow_stabilisation.hpp"
 #include "physics/phase_times.hpp"
 #include "solvers/gmres.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
@@ -36,6 +37,12 @@ struct InsOptions {
   FlowModel model = FlowModel::navier_stokes;
   double nu = 0.01;       ///< kinematic viscosity
   double grad_div = 0.0;  ///< grad-div weight gamma
+  /// beta of the backflow stabilisation on open (Neumann) faces (backflow_stabilisation.hpp);
+  /// 0: none, the plain do-nothing condition.
+  double backflow = 0.0;
+  /// VANS: the continuity's -d eps / dt; false drops it (Lethe's "void fraction time
+  /// derivative"), for beds that barely move: docs/cfd_dem.md.
+  bool void_fraction_time_derivative = true;
   /// (2 / dt)^2 in the SUPG/PSPG parameter tau. Off by default: with it, tau ~ dt / 2 shrinks
   /// with the step and the pressure stabilisation with it (Bochev, Gunzburger & Shadid 2004,
   /// CMAME 193); the 2D Taylor-Green vortex then lost up to one order of convergence in space
@@ -80,6 +87,18 @@ struct TimedApply {
   }
 };
 
+/// An operator plus the backflow term of the open faces (nullptr: the operator alone).
+template <class Op, class Backflow>
+struct WithBackflow {
+  const Op* op;
+  const Backflow* backflow;
+  template <class E, class X, class Y>
+  void apply(const E& exec, const X& x, const Y& y) const {
+    op->apply(exec, x, y);
+    if (backflow) backflow->apply_add(exec, x, y);
+  }
+};
+
 template <int dim, class ExecSpace>
 class InsSolver {
  public:
@@ -87,6 +106,7 @@ class InsSolver {
   using Operator = solvers::matrix_free::MatrixFreeOperator<dim, ExecSpace>;
   using Vector = typename Operator::Vector;
   using Multigrid = solvers::matrix_free::OseenMultigrid<dim, ExecSpace>;
+  using Backflow = BackflowStabilisation<dim, ExecSpace>;
 
   /// The pressure is fixed up to a constant where no face is Neumann (periodic or walls all
   /// round): its mean is then kept zero and each step's right-hand side made consistent.
@@ -108,6 +128,10 @@ class InsSolver {
     delta_ = Vector("amphora::ins_fem::delta", (dim + 1) * n_);
     diagonal_ = Vector("amphora::ins_fem::diagonal", (dim + 1) * n_);
     make_diagnostic_operators();
+    if (options.backflow > 0.0) {
+      backflow_ = std::make_unique<Backflow>(space_, options.backflow);
+      if (!backflow_->active()) backflow_.reset();
+    }
     if (options.preconditioner == InsPreconditioner::multigrid) {
       auto mo = options.multigrid;
       mo.field_components = vans() ? dim + 2 : dim;
@@ -218,8 +242,10 @@ class InsSolver {
     const double a1 = bdf2 ? -(1.0 + w) : -1.0, a2 = bdf2 ? w * w / (1.0 + w) : 0.0;
     const Vector u = velocity();
     extrapolate(exec, u, bdf2 ? w : 0.0);
+    update_backflow(exec);
     form_history(exec, u, -a1 / dt, -a2 / dt, force_amplitude);
-    if (vans()) void_fraction_rate(exec, a0 / dt, a1 / dt, a2 / dt);
+    if (vans() && options_.void_fraction_time_derivative)
+      void_fraction_rate(exec, a0 / dt, a1 / dt, a2 / dt);
     typename Operator::Options o = oseen_options(a0 / dt, 1.0 / dt);
     const Operator A(space_, o);
     o.history = true;
@@ -249,6 +275,7 @@ class InsSolver {
     const Vector u = velocity();
     for (int it = 0; it < max_picard; ++it) {
       kernels::blas1::copy(exec, u, advecting_);
+      update_backflow(exec);
       form_history(exec, u, 0.0, 0.0, force_amplitude);
       typename Operator::Options o = oseen_options(0.0, 0.0);
       const Operator A(space_, o);
@@ -309,6 +336,13 @@ class InsSolver {
 
   // (public for CUDA: extended lambdas may not live in private member functions)
 
+  /// The backflow term's coefficients from the advecting velocity (and the void fraction).
+  void update_backflow(const ExecSpace& exec) {
+    if (backflow_) backflow_->update(exec, advecting_, vans() ? void_fraction() : Vector());
+  }
+  /// The backflow term, or nullptr where there is none (no open face, or beta = 0).
+  const Backflow* backflow() const { return backflow_.get(); }
+
   /// The advecting velocity (1 + w) u^n - w u^(n-1) (w = 0: u^n).
   void extrapolate(const ExecSpace& exec, const Vector& u, double w) {
     kernels::blas1::copy(exec, u, advecting_);
@@ -362,6 +396,7 @@ class InsSolver {
     // The correction's residual cannot fall much below the round-off of A x ~ rhs: with a
     // small step the extrapolated guess is so good that tolerance |rhs - A x| lies below it.
     A.apply_unconstrained(exec, x_, delta_);  // with the Dirichlet values x holds
+    if (backflow_) backflow_->apply_add(exec, x_, delta_);
     const double floor =
         1e-12 * std::max(kernels::blas1::norm2(exec, rhs_), kernels::blas1::norm2(exec, delta_));
     kernels::blas1::axpby(exec, 1.0, rhs_, -1.0, delta_);  // delta = rhs - A x
@@ -369,6 +404,8 @@ class InsSolver {
     if (pressure_null_space_) remove_pressure_mean(exec, delta_, false);
     kernels::blas1::copy(exec, delta_, rhs_);
     if (linear_solver_) {
+      if (backflow_)
+        throw std::invalid_argument("ins_fem: an external linear solver has no backflow term");
       kernels::blas1::fill(exec, delta_, 0.0);
       const InsStepReport r = linear_solver_(exec, A, rhs_, delta_);
       kernels::blas1::axpy(exec, 1.0, delta_, x_);
@@ -380,7 +417,8 @@ class InsSolver {
     control.max_iterations = options_.max_iterations;
     control.absolute_tolerance = floor;
     kernels::blas1::fill(exec, delta_, 0.0);
-    const TimedApply<Operator> timed_a{&A, times_, ins_operator};
+    const WithBackflow<Operator, Backflow> full{&A, backflow_.get()};
+    const TimedApply<WithBackflow<Operator, Backflow>> timed_a{&full, times_, ins_operator};
     solvers::SolverResult r;
     bool fell_back = false;
     if (multigrid_) {
@@ -400,6 +438,7 @@ class InsSolver {
     }
     if (!multigrid_) {
       A.compute_diagonal(exec, diagonal_);
+      if (backflow_) backflow_->add_diagonal(exec, diagonal_);
       kernels::blas1::reciprocal(exec, diagonal_);
       const solvers::JacobiPreconditioner<Vector> jacobi{diagonal_};
       if (times_) times_->lap(ins_setup);
@@ -511,6 +550,7 @@ class InsSolver {
   PhaseTimes* times_ = nullptr;
   LinearSolver linear_solver_;
   std::unique_ptr<Multigrid> multigrid_;
+  std::unique_ptr<Backflow> backflow_;
 };
 
 }  // namespace amphora::physics::ins_fem
