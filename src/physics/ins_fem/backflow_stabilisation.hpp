@@ -61,20 +61,12 @@ class BackflowStabilisation {
   /// y += c u on each velocity component of x (blocked, dim or dim + 1 components).
   template <class X, class Y>
   void apply_add(const ExecSpace& exec, const X& x, const Y& y) const {
-    const auto dofs = dofs_;
-    const auto c = c_;
-    const long n = n_;
-    Kokkos::parallel_for(
-        "amphora::ins_fem::backflow_apply",
-        kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(dofs.extent(0))),
-        KOKKOS_LAMBDA(int m) {
-          for (int d = 0; d < dim; ++d) y(d * n + dofs(m)) += c(m) * x(d * n + dofs(m));
-        });
+    add_coefficients(exec, x, y, true);
   }
   /// diag += c on each velocity component (for point Jacobi).
   template <class Y>
   void add_diagonal(const ExecSpace& exec, const Y& diag) const {
-    apply_add_constant(exec, diag);
+    add_coefficients(exec, diag, diag, false);
   }
   /// sum_i c_i: beta int_Gamma eps max(-(a . n), 0) dGamma (tests).
   double coefficient_sum() const {
@@ -89,16 +81,18 @@ class BackflowStabilisation {
 
   // (public for CUDA: extended lambdas may not live in private member functions)
 
-  template <class Y>
-  void apply_add_constant(const ExecSpace& exec, const Y& y) const {
+  /// y += c x (times_x) or y += c on each velocity component.
+  template <class X, class Y>
+  void add_coefficients(const ExecSpace& exec, const X& x, const Y& y, bool times_x) const {
     const auto dofs = dofs_;
     const auto c = c_;
     const long n = n_;
     Kokkos::parallel_for(
-        "amphora::ins_fem::backflow_diagonal",
+        "amphora::ins_fem::backflow_apply",
         kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(dofs.extent(0))),
         KOKKOS_LAMBDA(int m) {
-          for (int d = 0; d < dim; ++d) y(d * n + dofs(m)) += c(m);
+          for (int d = 0; d < dim; ++d)
+            y(d * n + dofs(m)) += c(m) * (times_x ? x(d * n + dofs(m)) : 1.0);
         });
   }
 
