@@ -109,6 +109,8 @@ class CfdDemCoupling {
   const Vector& particle_load() const { return load_; }
   const Vector& drag_field() const { return drag_; }
   const VoidFraction<3, ExecSpace>& void_fraction_solver() const { return void_fraction_; }
+  /// The fluid at the particles as last sampled (velocity, pressure gradient, void fraction).
+  const FluidAtParticles<Mem>& fluid_at_particles() const { return at_; }
   /// The fluid's forces on the particles held over the last DEM window, per particle.
   Vec held_forces() { return dem_.external_force(); }
   void set_phase_times(physics::PhaseTimes* t) { times_ = t; }

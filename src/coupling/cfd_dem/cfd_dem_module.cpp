@@ -78,6 +78,11 @@ ParamTable cfd_dem_parameter_table() {
           bool_param("void_fraction_time_derivative", true,
                      "keep -d eps / dt in the fluid's continuity (false: drop it, for a bed "
                      "that barely moves: docs/cfd_dem.md)"),
+          string_param("void_fraction_rate", std::string("filtered"),
+                       "how d eps / dt is taken: filtered (second order, blind to the "
+                       "period-two-step alternation of a settled bed) or the flow's BDF2 "
+                       "(docs/cfd_dem.md)",
+                       {"filtered", "bdf"}),
           real_param("backflow", 1.0, "1", at_least(0.0),
                      "beta of the backflow stabilisation at the open top (0: plain do-nothing)"),
           real_param("tolerance", 1e-8, "1", above(0.0) & below(1.0),
@@ -148,6 +153,9 @@ physics::ins_fem::InsOptions flow_options(const Parameters& p) {
   o.grad_div = p.real("grad_div");
   o.backflow = p.real("backflow");
   o.void_fraction_time_derivative = p.boolean("void_fraction_time_derivative");
+  o.void_fraction_rate = p.string("void_fraction_rate") == "filtered"
+                             ? physics::ins_fem::VoidFractionRate::filtered
+                             : physics::ins_fem::VoidFractionRate::bdf;
   o.tolerance = p.real("tolerance");
   return o;
 }

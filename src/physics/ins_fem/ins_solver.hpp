@@ -7,6 +7,7 @@
 // by the coupled point Jacobi; every operator is a matrix-free point functor on the device. State:
 // (dim + 1) n_dofs blocked, velocity components then pressure.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -33,6 +34,12 @@ enum class InsPreconditioner { multigrid, jacobi };
 /// CFD-DEM (VANS) with a void fraction, model A or B (kernels::sumfac::VansPoint).
 enum class FlowModel { navier_stokes, vans_a, vans_b };
 
+/// VANS: how the continuity's d eps / dt is taken from the void fraction's history. bdf: the
+/// velocity's BDF2. filtered: the second-order four-level difference that is blind to a
+/// period-two-step alternation, (eps^(n+1) - eps^n / 2 - eps^(n-1) + eps^(n-2) / 2) / dt on
+/// uniform steps (BDF2 while the history is short or the step changes): docs/cfd_dem.md.
+enum class VoidFractionRate { bdf, filtered };
+
 struct InsOptions {
   FlowModel model = FlowModel::navier_stokes;
   double nu = 0.01;       ///< kinematic viscosity
@@ -43,6 +50,7 @@ struct InsOptions {
   /// VANS: the continuity's -d eps / dt; false drops it (Lethe's "void fraction time
   /// derivative"), for beds that barely move: docs/cfd_dem.md.
   bool void_fraction_time_derivative = true;
+  VoidFractionRate void_fraction_rate = VoidFractionRate::bdf;
   /// (2 / dt)^2 in the SUPG/PSPG parameter tau. Off by default: with it, tau ~ dt / 2 shrinks
   /// with the step and the pressure stabilisation with it (Bochev, Gunzburger & Shadid 2004,
   /// CMAME 193); the 2D Taylor-Green vortex then lost up to one order of convergence in space
@@ -151,6 +159,7 @@ class InsSolver {
     if (!void_fraction_set_) {
       kernels::blas1::copy(exec, eps, eps_n_);
       kernels::blas1::copy(exec, eps, eps_nm1_);
+      kernels::blas1::copy(exec, eps, eps_nm2_);
       void_fraction_set_ = true;
     }
   }
@@ -212,7 +221,7 @@ class InsSolver {
   /// Restores the two-step history (checkpoints): state, previous velocity and step.
   void set_history(const std::vector<double>& u_old, double dt_old, long steps) {
     Kokkos::deep_copy(u_old_, kernels::to_view<typename ExecSpace::memory_space>(u_old));
-    dt_old_ = dt_old, steps_ = steps;
+    dt_old_ = dt_old, dt_older_ = dt_old, steps_ = steps;
   }
   const Vector& previous_velocity() const { return u_old_; }
   double previous_dt() const { return dt_old_; }
@@ -245,7 +254,7 @@ class InsSolver {
     update_backflow(exec);
     form_history(exec, u, -a1 / dt, -a2 / dt, force_amplitude);
     if (vans() && options_.void_fraction_time_derivative)
-      void_fraction_rate(exec, a0 / dt, a1 / dt, a2 / dt);
+      void_fraction_rate(exec, rate_coefficients(dt, a0, a1, a2));
     typename Operator::Options o = oseen_options(a0 / dt, 1.0 / dt);
     const Operator A(space_, o);
     o.history = true;
@@ -255,11 +264,12 @@ class InsSolver {
     kernels::blas1::copy(exec, u, u_old_);  // u^(n-1) <- u^n; the guess: extrapolated velocity
     kernels::blas1::copy(exec, advecting_, u);
     const InsStepReport report = solve(exec, A);
-    if (vans()) {  // eps^(n-1) <- eps^n <- eps^(n+1)
+    if (vans()) {  // eps^(n-2) <- eps^(n-1) <- eps^n <- eps^(n+1)
+      kernels::blas1::copy(exec, eps_nm1_, eps_nm2_);
       kernels::blas1::copy(exec, eps_n_, eps_nm1_);
       kernels::blas1::copy(exec, void_fraction(), eps_n_);
     }
-    dt_old_ = dt;
+    dt_older_ = dt_old_, dt_old_ = dt;
     ++steps_;
     return report;
   }
@@ -350,13 +360,23 @@ class InsSolver {
   }
   /// VANS: the continuity's source -d eps / dt (BDF: c0 eps^(n+1) + c1 eps^n + c2 eps^(n-1))
   /// into the pressure slot of the history.
-  void void_fraction_rate(const ExecSpace& exec, double c0, double c1, double c2) {
+  /// d eps / dt ~ c[0] eps^(n+1) + c[1] eps^n + c[2] eps^(n-1) + c[3] eps^(n-2) for a step dt
+  /// whose BDF weights are a0..a2 (VoidFractionRate).
+  std::array<double, 4> rate_coefficients(double dt, double a0, double a1, double a2) const {
+    const bool uniform = steps_ >= 3 && std::abs(dt - dt_old_) <= 1e-12 * dt &&
+                         std::abs(dt - dt_older_) <= 1e-12 * dt;
+    if (options_.void_fraction_rate == VoidFractionRate::filtered && uniform)
+      return {1.0 / dt, -0.5 / dt, -1.0 / dt, 0.5 / dt};
+    return {a0 / dt, a1 / dt, a2 / dt, 0.0};
+  }
+  void void_fraction_rate(const ExecSpace& exec, const std::array<double, 4>& c) {
     const Vector hp = Kokkos::subview(history_, Kokkos::make_pair(dim * n_, (dim + 1) * n_));
-    const Vector e = void_fraction(), en = eps_n_, enm1 = eps_nm1_;
+    const Vector e = void_fraction(), en = eps_n_, enm1 = eps_nm1_, enm2 = eps_nm2_;
+    const double c0 = c[0], c1 = c[1], c2 = c[2], c3 = c[3];
     Kokkos::parallel_for(
         "amphora::ins_fem::void_fraction_rate",
         kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(n_)),
-        KOKKOS_LAMBDA(int i) { hp(i) = -(c0 * e(i) + c1 * en(i) + c2 * enm1(i)); });
+        KOKKOS_LAMBDA(int i) { hp(i) = -(c0 * e(i) + c1 * en(i) + c2 * enm1(i) + c3 * enm2(i)); });
   }
   /// rhs += the particles' load (VANS, where one is set).
   void add_particle_load(const ExecSpace& exec) {
@@ -505,9 +525,11 @@ class InsSolver {
     const ExecSpace exec;
     eps_n_ = Vector("amphora::ins_fem::eps_n", n_);
     eps_nm1_ = Vector("amphora::ins_fem::eps_nm1", n_);
+    eps_nm2_ = Vector("amphora::ins_fem::eps_nm2", n_);
     kernels::blas1::fill(exec, void_fraction(), 1.0);
     kernels::blas1::fill(exec, eps_n_, 1.0);
     kernels::blas1::fill(exec, eps_nm1_, 1.0);
+    kernels::blas1::fill(exec, eps_nm2_, 1.0);
   }
 
   void make_diagnostic_operators() {
@@ -541,11 +563,11 @@ class InsSolver {
   long n_;
   bool pressure_null_space_ = true;
   Vector x_, u_old_, field_, history_, rhs_, delta_, diagonal_, force_, work_;
-  Vector advecting_;                        // the field's first dim blocks
-  Vector eps_n_, eps_nm1_, particle_load_;  // VANS
+  Vector advecting_;                                  // the field's first dim blocks
+  Vector eps_n_, eps_nm1_, eps_nm2_, particle_load_;  // VANS
   bool void_fraction_set_ = false;
   std::unique_ptr<Operator> mass_, laplace_, div_, scalar_mass_;
-  double volume_ = 0.0, dt_old_ = 0.0;
+  double volume_ = 0.0, dt_old_ = 0.0, dt_older_ = 0.0;
   long steps_ = 0;
   PhaseTimes* times_ = nullptr;
   LinearSolver linear_solver_;
