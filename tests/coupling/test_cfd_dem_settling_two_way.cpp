@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "coupling/cfd_dem/cfd_dem_coupling.hpp"
+#include "coupling/settling_sphere.hpp"
 #include "test_backend.hpp"
 
 namespace amphora::coupling::cfd_dem {
@@ -18,15 +19,7 @@ namespace test_cfd_dem_settling_two_way {
 using Exec = test::TestExecSpace;
 using Flow = physics::ins_fem::InsSolver<3, Exec>;
 using Dem = physics::dem::DemSystem<Exec>;
-constexpr double kRhoF = 1000.0, kMu = 1e-3, kRhoP = 2500.0, kG = 9.81;
-
-/// Diameter and terminal speed of a sphere settling at Reynolds number re under Dallavalle's
-/// drag (Di Felice's at eps = 1), as test_cfd_dem_settling.cpp has it.
-std::pair<double, double> terminal(double re) {
-  const double cd = std::pow(0.63 + 4.8 / std::sqrt(re), 2);
-  const double d = std::cbrt(3 * cd * re * re * kMu * kMu / (4 * kRhoF * (kRhoP - kRhoF) * kG));
-  return {d, re * kMu / (kRhoF * d)};
-}
+using namespace settling_sphere;
 
 struct Settling {
   double speed[2] = {0, 0};  ///< the sphere's fall speed after falling 3 and 4 cells
