@@ -7,6 +7,7 @@
 // particles (weight and buoyancy), not in the flow.
 #include <array>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -269,11 +270,13 @@ class CfdDemCoupling {
   [[noreturn]] void report_void_fraction(double value, int node) const {
     const std::vector<double> x =
         flow_.space().interpolate([](const mesh::hex::Point3& p, int c) { return p[c]; }, 3);
-    std::ostringstream m;
-    m << "cfd_dem: void fraction " << value << " outside (0, 1] at node (" << x[node] << ", "
+    std::ostringstream v, m;
+    v << std::setprecision(10) << value;  // an overshoot past 1 shows in the tenth digit
+    m << "cfd_dem: void fraction " << v.str() << " outside (0, 1] at node (" << x[node] << ", "
       << x[n_ + node] << ", " << x[2 * n_ + node] << ") after fluid step " << steps_
       << ": particles too large or too dense for the cells; set void_fraction "
-         "smoothing_length (about 2 d) or use larger cells";
+         "smoothing_length (about 2 d; a lone sphere on a line of nodes needs 1.5 cells) or "
+         "use larger cells";
     throw std::runtime_error(m.str());
   }
   void check_cfl() const {

@@ -23,8 +23,12 @@ ParamTable cfd_dem_parameter_table() {
       "pseudo-2D spouted bed",
       {
           string_param("bed", std::string("fluidised"),
-                       "fluidised (the particles move) or packed (held fixed)",
-                       {"fluidised", "packed"}),
+                       "fluidised (the particles move), packed (held fixed), or single: one "
+                       "sphere released from rest on the column's axis at release_height, "
+                       "settling to its terminal velocity (particle_count is ignored)",
+                       {"fluidised", "packed", "single"}),
+          real_param("release_height", 0.15, "m", above(0.0),
+                     "bed = single: the sphere's centre at release, above the distributor"),
           real_param("column_width", 0.03, "m", above(0.0), "side of the square column (x)"),
           real_param("column_depth", 0.0, "m", at_least(0.0),
                      "the column's depth (y); 0: the width (a square section)"),
@@ -123,7 +127,8 @@ Parameters dem_parameters(const Parameters& p) {
   d.set("wall_restitution", p.real("restitution"));
   d.set("wall_friction", p.real("friction"));
   d.set("insertion", std::string("lattice"));
-  d.set("particle_count", p.integer("particle_count"));
+  d.set("particle_count",
+        p.string("bed") == "single" ? std::int64_t{0} : p.integer("particle_count"));
   d.set("seed", p.integer("seed"));
   return d;
 }
@@ -171,7 +176,7 @@ CfdDemOptions coupling_options(const Parameters& p) {
   o.drag_coupling = p.string("drag_coupling") == "explicit" ? DragCoupling::explicit_load
                                                             : DragCoupling::semi_implicit;
   o.dem_substeps = static_cast<int>(p.integer("dem_substeps"));
-  o.move_particles = p.string("bed") == "fluidised";
+  o.move_particles = p.string("bed") != "packed";
   o.max_cfl = p.real("max_cfl");
   return o;
 }
@@ -218,12 +223,12 @@ std::array<double, 3> spout_velocities(const Exec& exec, const Set& p, double c,
   return {n_in > 0 ? w_in / n_in : 0.0, n_out > 0 ? (w_all - w_in) / n_out : 0.0, top};
 }
 
-/// Sum over the owned particles of component c of the fluid's held force on them.
-template <class Forces>
-double force_sum(const Exec& exec, const Forces& f, int n, int c) {
+/// Sum of column c of an n x 3 particle field (forces, velocities) over its first n rows.
+template <class Field>
+double column_sum(const Exec& exec, const Field& f, int n, int c) {
   double s = 0.0;
   Kokkos::parallel_reduce(
-      "amphora::cfd_dem::force_sum", kernels::RangePolicy<Exec>(exec, 0, n),
+      "amphora::cfd_dem::column_sum", kernels::RangePolicy<Exec>(exec, 0, n),
       KOKKOS_LAMBDA(int i, double& a) { a += f(i, c); }, s);
   return s;
 }
@@ -241,7 +246,8 @@ class CfdDemModule final : public physics::Module {
         floor_(p.real("distributor_height")),
         jet_width_(p.real("jet_width")),
         jet_velocity_(p.real("jet_velocity")),
-        sides_(p.string("fluid_sides")) {
+        sides_(p.string("fluid_sides")),
+        single_(p.string("bed") == "single") {
     if (comm.size() > 1)
       throw std::invalid_argument(
           "cfd_dem runs on one rank (the flow solver's distributed space is not wired in yet); "
@@ -251,6 +257,7 @@ class CfdDemModule final : public physics::Module {
                                   " m must lie in (0, column_width " + std::to_string(width_) +
                                   " m] where jet_velocity is set");
     dem_ = std::make_unique<physics::dem::DemModule>(dem_parameters(p), comm);
+    if (single_) release_sphere(p);
     flow_ = std::make_unique<Flow>(column_mesh(p), static_cast<int>(p.integer("degree")),
                                    flow_options(p));
     flow_->set_state(initial_state());
@@ -261,6 +268,19 @@ class CfdDemModule final : public physics::Module {
     const double d = p.real("particle_diameter"), mu = o.fluid.viscosity;
     terminal_ = terminal_velocity(o.fluid.drag, rho_, mu, d, rho_p_, g_);
     rz_exponent_ = richardson_zaki_exponent(rho_ * terminal_ * d / mu, d / width_);
+  }
+
+  /// bed = single: one sphere at rest on the column's axis, release_height above the floor.
+  void release_sphere(const Parameters& p) {
+    physics::dem::ParticleSpec s;
+    s.radius = 0.5 * p.real("particle_diameter");
+    s.x[0] = 0.5 * width_, s.x[1] = 0.5 * depth_, s.x[2] = floor_ + p.real("release_height");
+    if (s.x[2] + s.radius > height_)
+      throw std::invalid_argument(
+          "cfd_dem: release_height " + std::to_string(p.real("release_height")) +
+          " m puts the sphere above the column's top (column_height " + std::to_string(height_) +
+          " m, distributor_height " + std::to_string(floor_) + " m)");
+    dem_->system().add_particles({s});
   }
 
   /// At rest but for the inflow: w = u_in at every node of the bottom face (its edges too, so
@@ -321,7 +341,9 @@ class CfdDemModule final : public physics::Module {
   }
 
   Diagnostics diagnostics(double t) const override;
-  std::string error_diagnostic() const override { return "pressure_drop_ratio"; }
+  std::string error_diagnostic() const override {
+    return single_ ? "settling_velocity_ratio" : "pressure_drop_ratio";
+  }
 
   std::optional<physics::NonFiniteReport> find_nonfinite() const override {
     if (auto bad = dem_->find_nonfinite()) return bad;
@@ -399,6 +421,7 @@ class CfdDemModule final : public physics::Module {
  private:
   double width_, depth_, height_, rho_, rho_p_, g_, u_in_, floor_, jet_width_, jet_velocity_;
   std::string sides_;
+  bool single_ = false;
   double terminal_ = 0.0, rz_exponent_ = 0.0;
   int substeps_ = 1;
   std::unique_ptr<physics::dem::DemModule> dem_;
@@ -434,7 +457,7 @@ Diagnostics CfdDemModule::diagnostics(double t) const {
       {"pressure_drop_ratio", weight > 0.0 ? drop / weight : 0.0},
       {"fluid_force_ratio",
        weight > 0.0
-           ? force_sum(exec, coupling_->held_forces(), particles.n_owned, 2) / (weight * area)
+           ? column_sum(exec, coupling_->held_forces(), particles.n_owned, 2) / (weight * area)
            : 0.0},
       {"bed_height", bed},
       {"bed_void_fraction", bed > 0.0 ? 1.0 - volume / (area * bed) : 1.0},
@@ -450,6 +473,16 @@ Diagnostics CfdDemModule::diagnostics(double t) const {
     d.push_back({"spout_particle_velocity", spout[0]});
     d.push_back({"annulus_particle_velocity", spout[1]});
     d.push_back({"fountain_height", spout[2] - floor_});
+  }
+  if (single_ && n > 0) {
+    const double w = column_sum(exec, particles.v, particles.n_owned, 2) / n;
+    coupling_->sample(exec);  // the water at the sphere now (each step samples afresh)
+    const double u =
+        column_sum(exec, coupling_->fluid_at_particles().velocity, particles.n_owned, 2) / n;
+    d.push_back({"particle_velocity", w});
+    d.push_back({"terminal_velocity", terminal_});
+    d.push_back({"settling_velocity_ratio", -w / terminal_});
+    d.push_back({"slip_velocity_ratio", (u - w) / terminal_});
   }
   for (const auto& [key, value] : dem_->diagnostics(t))
     if (key == "kinetic_energy" || key == "contacts" || key == "max_overlap")
