@@ -264,7 +264,9 @@ VansErrors drain_errors(bool model_b, VoidFractionRate rate, double dt, int step
   for (int i = 0; i <= steps; ++i) {
     Kokkos::deep_copy(eps, eps_at(i));
     s.set_void_fraction(eps);
-    if (i > 0) EXPECT_TRUE(s.step(dt).converged) << "step " << i;
+    if (i > 0) {
+      EXPECT_TRUE(s.step(dt).converged) << "step " << i;
+    }
   }
   const long n = s.n_dofs();
   VansErrors e;
@@ -296,7 +298,9 @@ TEST(InsFemVans, FallingVoidFractionDrivesTheOutflowContinuityAsks) {
         exact.eps = eps_at(steps);
         const VansErrors e = drain_errors(model_b, rate, dt, steps, eps_at, exact);
         error[r] = e.u;
-        if (r == 0) EXPECT_LT(e.p, 1e-3 * exact.a * exact.a) << "model B " << model_b;
+        if (r == 0) {
+          EXPECT_LT(e.p, 1e-3 * exact.a * exact.a) << "model B " << model_b;
+        }
       }
       const double u_norm = exact.a / std::sqrt(3.0 * 2.0);  // |a x| over [0, 1] x [0, 0.5]
       std::printf("%s, model %c: u error %.3e, %.3e at dt / 2 (of %.3e)\n",

@@ -264,8 +264,9 @@ class InsSolver {
     kernels::blas1::copy(exec, u, u_old_);  // u^(n-1) <- u^n; the guess: extrapolated velocity
     kernels::blas1::copy(exec, advecting_, u);
     const InsStepReport report = solve(exec, A);
-    if (vans()) {  // eps^(n-2) <- eps^(n-1) <- eps^n <- eps^(n+1)
-      kernels::blas1::copy(exec, eps_nm1_, eps_nm2_);
+    if (vans()) {  // eps^(n-2) <- eps^(n-1) <- eps^n <- eps^(n+1); only the filter reads n-2
+      if (options_.void_fraction_rate == VoidFractionRate::filtered)
+        kernels::blas1::copy(exec, eps_nm1_, eps_nm2_);
       kernels::blas1::copy(exec, eps_n_, eps_nm1_);
       kernels::blas1::copy(exec, void_fraction(), eps_n_);
     }
@@ -358,8 +359,6 @@ class InsSolver {
     kernels::blas1::copy(exec, u, advecting_);
     if (w != 0.0) kernels::blas1::axpby(exec, -w, u_old_, 1.0 + w, advecting_);
   }
-  /// VANS: the continuity's source -d eps / dt (BDF: c0 eps^(n+1) + c1 eps^n + c2 eps^(n-1))
-  /// into the pressure slot of the history.
   /// d eps / dt ~ c[0] eps^(n+1) + c[1] eps^n + c[2] eps^(n-1) + c[3] eps^(n-2) for a step dt
   /// whose BDF weights are a0..a2 (VoidFractionRate).
   std::array<double, 4> rate_coefficients(double dt, double a0, double a1, double a2) const {
@@ -369,6 +368,8 @@ class InsSolver {
       return {1.0 / dt, -0.5 / dt, -1.0 / dt, 0.5 / dt};
     return {a0 / dt, a1 / dt, a2 / dt, 0.0};
   }
+  /// VANS: the continuity's source -d eps / dt (the rate_coefficients c) into the pressure
+  /// slot of the history.
   void void_fraction_rate(const ExecSpace& exec, const std::array<double, 4>& c) {
     const Vector hp = Kokkos::subview(history_, Kokkos::make_pair(dim * n_, (dim + 1) * n_));
     const Vector e = void_fraction(), en = eps_n_, enm1 = eps_nm1_, enm2 = eps_nm2_;
