@@ -9,12 +9,8 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 steps=${1:-200}
-bash "$here/scripts/build.sh" release
 source "$here/scripts/bench_dem_common.sh"
-install_liggghts
-cd "$here"
-out=output/bench
-mkdir -p "$out"
+bench_dem_setup
 csv=$out/dem.csv
 echo "code,particles,threads,ranks,particle_steps_per_s" > "$csv"
 

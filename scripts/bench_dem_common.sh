@@ -5,6 +5,14 @@ install_liggghts() {
   [ "$(id -u)" = 0 ] || { echo "install Debian's liggghts (as root) for the anchor" >&2; exit 1; }
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends liggghts >&2
 }
+# The release build, the anchor, and output/bench, from the source root ($here).
+bench_dem_setup() {
+  bash "$here/scripts/build.sh" release
+  install_liggghts
+  cd "$here"
+  out=output/bench
+  mkdir -p "$out"
+}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_PROC_BIND=spread OMP_PLACES=threads
 
 amphora_rate() {  # FILTER threads ranks (rank 0 alone prints, see perf/bench_main.cpp)

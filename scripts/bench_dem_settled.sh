@@ -10,12 +10,8 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 repeats=${1:-5}
-bash "$here/scripts/build.sh" release
 source "$here/scripts/bench_dem_common.sh"
-install_liggghts
-cd "$here"
-out=output/bench
-mkdir -p "$out"
+bench_dem_setup
 bed=$out/settled_bed.data
 if [ ! -s "$bed" ]; then
   sed "s|^output_dir = .*|output_dir = \"$out/settled_bed\"|" scenes/studies/dem_settled_bed.toml \
