@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <ostream>
+#include <string>
 
 namespace amphora::io {
 
@@ -14,7 +15,8 @@ Progress::Progress(std::ostream& out, bool active, long long first_step, long lo
       unit_(std::move(unit)),
       interval_(interval_seconds),
       start_(std::chrono::steady_clock::now()),
-      last_print_(start_) {}
+      last_print_(start_),
+      last_line_step_(first_step) {}
 
 double Progress::elapsed() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -25,14 +27,25 @@ void Progress::update(long long step, double time, double dt, double work, bool 
   const auto now = std::chrono::steady_clock::now();
   if (!force && std::chrono::duration<double>(now - last_print_).count() < interval_) return;
   last_print_ = now;
-  const double t = elapsed();
-  const long long done = step - first_;
-  const double eta = done > 0 ? t / double(done) * double(last_ - step) : 0.0;
-  char line[256];
-  std::snprintf(line, sizeof line,
+  out_ << line(step, time, dt, work, elapsed()) << std::flush;
+}
+
+std::string Progress::line(long long step, double time, double dt, double work, double seconds) {
+  const double span = seconds - last_line_seconds_;
+  const long long steps = step - last_line_step_;
+  const double eta =
+      steps > 0 && span > 0 ? span / double(steps) * double(last_ - step) : last_eta_;
+  last_eta_ = eta;
+  // No step since the line before (the run's closing line): the rate of that line stands.
+  if (steps > 0 && span > 0) last_rate_ = (work - last_line_work_) / span;
+  last_line_step_ = step;
+  last_line_work_ = work;
+  last_line_seconds_ = seconds;
+  char text[256];
+  std::snprintf(text, sizeof text,
                 "[progress] step %lld/%lld t=%.4e dt=%.4e ETA %.1f s %.3e %s/s\n", step, last_,
-                time, dt, eta, t > 0 ? work / t : 0.0, unit_.c_str());
-  out_ << line << std::flush;
+                time, dt, eta, last_rate_, unit_.c_str());
+  return text;
 }
 
 }  // namespace amphora::io
