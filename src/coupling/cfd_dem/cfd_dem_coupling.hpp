@@ -204,6 +204,13 @@ class CfdDemCoupling {
         KOKKOS_LAMBDA(int i) { e(i) = e3(i, 0); });
   }
 
+  /// The fluid's velocity at the owned particles now, into u (n_owned x 3), leaving the last
+  /// sample (which the step's forces used) as it is.
+  void velocity_at_particles(const ExecSpace& exec, const Vec& u) const {
+    const Set& p = dem_.particles();
+    interpolate(exec, void_fraction_.basis(), flow_.velocity(), 3, p.x, p.n_owned, u);
+  }
+
   /// The held forces: drag + pressure gradient + buoyancy; with an explicit load, the drag's
   /// reaction spread to the fluid.
   void particle_forces(const ExecSpace& exec) {

@@ -476,9 +476,9 @@ Diagnostics CfdDemModule::diagnostics(double t) const {
   }
   if (single_ && n > 0) {
     const double w = column_sum(exec, particles.v, particles.n_owned, 2) / n;
-    coupling_->sample(exec);  // the water at the sphere now (each step samples afresh)
-    const double u =
-        column_sum(exec, coupling_->fluid_at_particles().velocity, particles.n_owned, 2) / n;
+    const CfdDemCoupling<Exec>::Vec water("amphora::cfd_dem::u_at_sphere", particles.n_owned);
+    coupling_->velocity_at_particles(exec, water);  // the water at the sphere now
+    const double u = column_sum(exec, water, particles.n_owned, 2) / n;
     d.push_back({"particle_velocity", w});
     d.push_back({"terminal_velocity", terminal_});
     d.push_back({"settling_velocity_ratio", -w / terminal_});
