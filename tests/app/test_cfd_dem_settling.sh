@@ -5,7 +5,8 @@
 source "$(dirname "$0")/common.sh"
 scene="$AMPHORA_SOURCE_DIR/scenes/cfd_dem_settling_sphere.toml"
 sed -e 's|^output_dir = .*|output_dir = "sphere"|' "$scene" > sphere.toml
-OMP_NUM_THREADS=2 "$AMPHORA" run sphere.toml > sphere.log
+OMP_NUM_THREADS=2 "$AMPHORA" run sphere.toml > sphere.log 2> sphere.err
+! grep -q "warning" sphere.err || fail "the shipped scene warns: $(cat sphere.err)"
 grep -q "^\[done\]" sphere.log || fail "the sphere did not finish"
 stats() {  # COLUMN: mean, min and max of the column over rows with time >= 0.2
   paste -d, <(csv_column time sphere/diagnostics.csv) <(csv_column "$1" sphere/diagnostics.csv) |
@@ -24,4 +25,10 @@ sed -e 's|^output_dir = .*|output_dir = "high"|' -e 's|^release_height = .*|rele
   "$scene" > high.toml
 expect_error 2 "cfd_dem: release_height 0.080000 m puts the sphere above the column's top \(column_height 0.080000 m, distributor_height 0.000000 m\)" \
   "$AMPHORA" run high.toml
+# Five cells across cannot be halved: the flow's multigrid keeps 5 x 5 x 20 Q1 cells as its
+# coarsest level and says so in one line.
+sed -e 's|^output_dir = .*|output_dir = "odd"|' -e 's|^cells = .*|cells = 5|' "$scene" > odd.toml
+"$AMPHORA" run odd.toml --max-steps 1 --no-output > odd.log 2> odd.err
+grep -q "^cfd_dem: warning: multigrid: 5 x 5 x 20 cells cannot be halved (odd count), so the coarsest level keeps 2100 DoFs (factored densely at each update)" odd.err ||
+  fail "no warning about the odd cell count: $(cat odd.err)"
 echo "cfd_dem_settling: ok"

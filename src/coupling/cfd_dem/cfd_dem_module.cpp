@@ -1,5 +1,6 @@
 #include "coupling/cfd_dem/cfd_dem_module.hpp"
 
+#include <iostream>
 #include <array>
 #include <cmath>
 #include <sstream>
@@ -261,6 +262,8 @@ class CfdDemModule final : public physics::Module {
     flow_ = std::make_unique<Flow>(column_mesh(p), static_cast<int>(p.integer("degree")),
                                    flow_options(p));
     flow_->set_state(initial_state());
+    if (const std::string w = flow_->coarsening_warning(); !w.empty())
+      std::cerr << "cfd_dem: warning: " << w << "\n";
     const CfdDemOptions o = coupling_options(p);
     substeps_ = o.dem_substeps;
     coupling_ = std::make_unique<CfdDemCoupling<Exec>>(*flow_, dem_->system(), o);

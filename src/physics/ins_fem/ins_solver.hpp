@@ -195,6 +195,10 @@ class InsSolver {
     if (multigrid_) multigrid_->set_state(s);
   }
   /// The multigrid's levels, or "point Jacobi".
+  /// The multigrid's warning about its coarsening (odd cell counts), or empty.
+  std::string coarsening_warning() const {
+    return multigrid_ ? multigrid_->coarsening_warning() : std::string();
+  }
   std::string describe_preconditioner() const {
     return multigrid_ ? multigrid_->describe() : std::string("point Jacobi");
   }

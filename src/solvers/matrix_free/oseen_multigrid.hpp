@@ -70,7 +70,11 @@ class OseenMultigrid {
       } else {
         bool even = true;
         for (int d = 0; d < dim; ++d) even = even && s.mesh().cells[d] % 2 == 0;
-        if (!even || (dim + 1) * s.n_dofs() <= options.max_coarse_dofs) break;
+        if ((dim + 1) * s.n_dofs() <= options.max_coarse_dofs) break;
+        if (!even) {
+          odd_stop_ = true;  // above max_coarse_dofs: the coarsest level is larger than meant
+          break;
+        }
         auto m = s.mesh();
         for (int d = 0; d < dim; ++d) m.cells[d] /= 2;
         next = std::make_unique<Space>(m, 1);
@@ -176,6 +180,22 @@ class OseenMultigrid {
   }
 
   int n_levels() const { return static_cast<int>(levels_.size()); }
+  /// Non-empty when h-coarsening stopped at an odd cell count above max_coarse_dofs: the
+  /// coarsest level then costs each update a dense factorisation (or, above max_dense_dofs,
+  /// is only smoothed). One line for the user, naming the cells.
+  std::string coarsening_warning() const {
+    if (!odd_stop_) return {};
+    const auto& m = levels_.back()->space->mesh();
+    std::string cells = std::to_string(m.cells[0]);
+    for (int d = 1; d < dim; ++d) cells += " x " + std::to_string(m.cells[d]);
+    const long n = (dim + 1) * levels_.back()->space->n_dofs();
+    return "multigrid: " + cells +
+           " cells cannot be halved (odd count), so the coarsest level keeps " + std::to_string(n) +
+           " DoFs (" +
+           (dense_coarse() ? "factored densely at each update" : "smoothed, not solved") +
+           "); cell counts divisible by a power of two coarsen to " +
+           std::to_string(options_.max_coarse_dofs) + " DoFs or fewer";
+  }
   /// e.g. "Q3 16^3 -> Q1 16^3 -> Q1 8^3 | dense coarse on 2048 DoFs".
   std::string describe() const {
     std::string s;
@@ -247,6 +267,7 @@ class OseenMultigrid {
   }
 
   OseenMultigridOptions options_;
+  bool odd_stop_ = false;  // h-coarsening stopped at odd cells above max_coarse_dofs
   std::vector<std::unique_ptr<Level>> levels_;                       // 0: finest
   std::vector<MatrixFreeTransfer<dim, ExecSpace>> transfers_;        // l: levels l+1 and l
   std::vector<MatrixFreeTransfer<dim, ExecSpace>> field_transfers_;  // the field's, free
