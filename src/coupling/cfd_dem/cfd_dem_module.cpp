@@ -1,8 +1,8 @@
 #include "coupling/cfd_dem/cfd_dem_module.hpp"
 
-#include <iostream>
 #include <array>
 #include <cmath>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <string>

@@ -1,7 +1,7 @@
 #include "physics/ins_fem/ins_module.hpp"
 
-#include <iostream>
 #include <cmath>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
