@@ -166,6 +166,41 @@ TEST(ParticleMesh, InterpolatesQkFieldsAndGradientsExactly) {
   }
 }
 
+TEST(ParticleMesh, InterpolatesLaplaciansExactly) {
+  // Q2: f = x^2 y - 3 z^2 + x y z, lap f = 2 y - 6; Q3: g = x^3 - 2 y^2 z^3,
+  // lap g = 6 x - 4 z^3 - 12 y^2 z. Both lie in their spaces, so the Laplacians of their
+  // nodal interpolants anywhere are theirs. Q1: zero (linear along each direction).
+  auto m = box(3, false);
+  for (auto& face : m.faces) face = FaceCondition::dirichlet;
+  const auto f2 = [](const mesh::hex::Point3& x, int) {
+    return x[0] * x[0] * x[1] - 3 * x[2] * x[2] + x[0] * x[1] * x[2];
+  };
+  const auto f3 = [](const mesh::hex::Point3& x, int) {
+    return x[0] * x[0] * x[0] - 2 * x[1] * x[1] * x[2] * x[2] * x[2];
+  };
+  for (int degree : {1, 2, 3}) {
+    const Space space(m, degree);
+    const Fraction fraction(space, pcm(0.0));
+    const std::vector<double> nodal = degree == 3 ? space.interpolate(f3) : space.interpolate(f2);
+    Fraction::Vector fv("f", space.n_dofs());
+    auto fh = Kokkos::create_mirror_view(fv);
+    for (long i = 0; i < space.n_dofs(); ++i) fh(i) = nodal[i];
+    Kokkos::deep_copy(fv, fh);
+    const std::vector<double> c = random_centres(40, 7);
+    const Particles p = particles(c, 0.01);
+    const Kokkos::View<double* [1], Kokkos::LayoutRight, Exec::memory_space> lap("lap", 40);
+    interpolate_laplacian(Exec(), fraction.basis(), fv, 1, p.x, 40, lap);
+    auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), lap);
+    for (int i = 0; i < 40; ++i) {
+      const double x = c[3 * i], y = c[3 * i + 1], z = c[3 * i + 2];
+      const double exact = degree == 1   ? 0.0
+                           : degree == 2 ? 2 * y - 6
+                                         : 6 * x - 4 * z * z * z - 12 * y * y * z;
+      EXPECT_NEAR(h(i, 0), exact, 1e-10) << "Q" << degree << " point " << i;
+    }
+  }
+}
+
 TEST(ParticleMesh, SpreadForcesSumToTheParticlesTotal) {
   // The fluid's share of the particles' forces, spread by the partition of unity, sums to what
   // the particles receive, per component, to round-off (Q2 and Q3, with periodic wraps).

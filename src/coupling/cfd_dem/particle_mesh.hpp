@@ -1,9 +1,9 @@
 #pragma once
-// Particles and the flow's Q_k fields (Cartesian cells): the fluid's values and gradients at
-// the particles, and the particles' forces spread to the nodes as a load, through the basis
-// functions of the cell holding each particle (QkPointBasis). Since the basis is a partition
-// of unity, each component of a spread force sums over the nodes to the particles' total:
-// what the particles receive, the fluid gives back, to round-off.
+// Particles and the flow's Q_k fields (Cartesian cells): the fluid's values, gradients and
+// Laplacians at the particles, and the particles' forces spread to the nodes as a load,
+// through the basis functions of the cell holding each particle (QkPointBasis). Since the
+// basis is a partition of unity, each component of a spread force sums over the nodes to the
+// particles' total: what the particles receive, the fluid gives back, to round-off.
 #include <Kokkos_Core.hpp>
 
 #include "kernels/spaces.hpp"
@@ -42,6 +42,24 @@ void interpolate_gradient(const ExecSpace& exec, const kernels::sumfac::QkPointB
           for (int a = 0; a < dim; ++a) s[a] += f(j) * g[a];
         });
         for (int a = 0; a < dim; ++a) out(i, a) = s[a];
+      });
+}
+
+/// out(i, c) = Laplacian of component c of f at x_i (f blocked by component as in
+/// interpolate) for the first n points and c < components.
+template <int dim, class ExecSpace, class Field, class Points, class Out>
+void interpolate_laplacian(const ExecSpace& exec, const kernels::sumfac::QkPointBasis<dim>& basis,
+                           const Field& f, int components, const Points& x, int n, const Out& out) {
+  const long n_dofs = basis.lattice.n_dofs();
+  Kokkos::parallel_for(
+      "amphora::cfd_dem::interpolate_laplacian", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+      KOKKOS_LAMBDA(int i) {
+        const double p[3] = {x(i, 0), x(i, 1), x(i, 2)};
+        double s[3] = {0, 0, 0};
+        basis.for_each_laplacian(p, [&](long j, double lap) {
+          for (int c = 0; c < components; ++c) s[c] += f(c * n_dofs + j) * lap;
+        });
+        for (int c = 0; c < components; ++c) out(i, c) = s[c];
       });
 }
 

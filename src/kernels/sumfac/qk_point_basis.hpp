@@ -62,6 +62,27 @@ struct QkPointBasis {
     }
   }
 
+  /// The k + 1 Lagrange polynomials' second derivatives d^2/dxi^2 at xi (each ordered pair of
+  /// distinct factors differentiated once).
+  KOKKOS_INLINE_FUNCTION void second_derivatives_1d(double xi, double* v) const {
+    const int k = lattice.degree;
+    for (int a = 0; a <= k; ++a) {
+      double s = 0.0;
+      for (int m = 0; m <= k; ++m) {
+        if (m == a) continue;
+        for (int n = 0; n <= k; ++n) {
+          if (n == a || n == m) continue;
+          double p = 1.0 / ((nodes[a] - nodes[m]) * (nodes[a] - nodes[n]));
+          for (int b = 0; b <= k; ++b) {
+            if (b != a && b != m && b != n) p *= (xi - nodes[b]) / (nodes[a] - nodes[b]);
+          }
+          s += p;
+        }
+      }
+      v[a] = s;
+    }
+  }
+
   /// The DoF of local node (local[0], ..., local[dim - 1]) of cell `cell`.
   KOKKOS_INLINE_FUNCTION long dof(const int* cell, const int* local) const {
     long index = 0, stride = 1;
@@ -126,6 +147,39 @@ struct QkPointBasis {
         grad[a] = g;
       }
       f(dof(cell, local), grad);
+    }
+  }
+
+  /// Calls f(dof, laplacian) for each basis function of x's cell, its physical Laplacian at x
+  /// (zero for Q1: each cell's functions are linear in every direction).
+  template <class F>
+  KOKKOS_INLINE_FUNCTION void for_each_laplacian(const double* x, const F& f) const {
+    int cell[3] = {0, 0, 0};
+    double xi[3] = {0, 0, 0};
+    locate(x, cell, xi);
+    double v[3][max_point_basis_degree + 1], d2v[3][max_point_basis_degree + 1];
+    for (int d = 0; d < dim; ++d) {
+      values_1d(xi[d], v[d]);
+      second_derivatives_1d(xi[d], d2v[d]);
+    }
+    const int k1 = lattice.degree + 1;
+    int n_local = 1;
+    for (int d = 0; d < dim; ++d) n_local *= k1;
+    for (int l = 0; l < n_local; ++l) {
+      int local[3] = {0, 0, 0}, rest = l;
+      for (int d = 0; d < dim; ++d) {
+        local[d] = rest % k1;
+        rest /= k1;
+      }
+      double lap = 0.0;
+      for (int a = 0; a < dim; ++a) {
+        double g = d2v[a][local[a]] / (h[a] * h[a]);
+        for (int d = 0; d < dim; ++d) {
+          if (d != a) g *= v[d][local[d]];
+        }
+        lap += g;
+      }
+      f(dof(cell, local), lap);
     }
   }
 };
