@@ -1,6 +1,6 @@
 # Unresolved CFD-DEM through the real binary: the scaled alumina fluidised bed (the shipped
-# scene run to 2 s) once pseudo-steady (t >= 1 s) loses the bed's buoyant weight in pressure,
-# M g (1 - rho / rho_p) / A, within 2 % and expands to Richardson-Zaki's void fraction within
+# scene run to 2 s, under VANS model A and B) once pseudo-steady (t >= 1 s) loses the bed's
+# buoyant weight in pressure, M g (1 - rho / rho_p) / A, within 2 % and expands to Richardson-Zaki's void fraction within
 # 10 % (the issue's tolerances); its void fraction holds the particles' volume to 1e-10; fluid
 # and particles share one XDMF series; bad input stops with one clear line.
 source "$(dirname "$0")/common.sh"
@@ -8,32 +8,41 @@ scene="$AMPHORA_SOURCE_DIR/scenes/cfd_dem_fluidised_bed.toml"
 sed -e 's|^output_dir = .*|output_dir = "bed"|' -e 's|^end_time = .*|end_time = 2.0|' \
   -e 's|^output_every = .*|output_every = 200|' -e 's|^diagnostics_every = .*|diagnostics_every = 10|' \
   "$scene" > bed.toml
-OMP_NUM_THREADS=2 "$AMPHORA" run bed.toml > bed.log
-grep -q "^\[done\]" bed.log || fail "the bed did not finish"
-grep "^\[timing\]" bed.log
-mean_after() {  # COLUMN: the mean of the column over rows with time >= 1
-  paste -d, <(csv_column time bed/diagnostics.csv) <(csv_column "$1" bed/diagnostics.csv) |
+# The bed under VANS model A (the scene's) and model B: both carry the bed's buoyant weight.
+sed -e 's|^output_dir = .*|output_dir = "bed_b"|' -e 's|^\[cfd_dem\]|[cfd_dem]\nvans_model = "B"|' \
+  bed.toml > bed_b.toml
+mean_after() {  # DIR COLUMN: the mean of the column over rows with time >= 1
+  paste -d, <(csv_column time "$1/diagnostics.csv") <(csv_column "$2" "$1/diagnostics.csv") |
     awk -F, '$1 >= 1.0 { s += $2; n += 1 } END { printf "%.6f\n", s / n }'
 }
-dp=$(mean_after pressure_drop_ratio)
-eps=$(mean_after bed_void_fraction)
-rz=$(mean_after richardson_zaki_void_fraction)
-share=$(mean_after fluid_force_ratio)
-echo "pressure drop / buoyant weight $dp; bed void fraction $eps, Richardson-Zaki $rz; fluid force / buoyant weight $share"
-awk -v x="$dp" 'BEGIN { exit !(x > 0.98 && x < 1.02) }' || fail "pressure drop ratio $dp outside 1 +- 2 %"
-awk -v x="$eps" -v r="$rz" 'BEGIN { d = x / r - 1; exit !(d > -0.1 && d < 0.1) }' ||
-  fail "bed void fraction $eps more than 10 % from Richardson-Zaki's $rz"
-worst=$(csv_column void_fraction_volume_error bed/diagnostics.csv | sort -g | tail -1)
-awk -v x="$worst" 'BEGIN { exit !(x < 1e-10) }' || fail "void fraction volume error $worst"
+for bed in bed bed_b; do
+  OMP_NUM_THREADS=2 "$AMPHORA" run $bed.toml > $bed.log
+  grep -q "^\[done\]" $bed.log || fail "$bed did not finish"
+  grep "^\[timing\]" $bed.log
+  dp=$(mean_after $bed pressure_drop_ratio)
+  eps=$(mean_after $bed bed_void_fraction)
+  rz=$(mean_after $bed richardson_zaki_void_fraction)
+  share=$(mean_after $bed fluid_force_ratio)
+  echo "$bed: pressure drop / buoyant weight $dp; bed void fraction $eps, Richardson-Zaki $rz; fluid force / buoyant weight $share"
+  awk -v x="$dp" 'BEGIN { exit !(x > 0.98 && x < 1.02) }' || fail "$bed: pressure drop ratio $dp outside 1 +- 2 %"
+  awk -v x="$eps" -v r="$rz" 'BEGIN { d = x / r - 1; exit !(d > -0.1 && d < 0.1) }' ||
+    fail "$bed: bed void fraction $eps more than 10 % from Richardson-Zaki's $rz"
+  worst=$(csv_column void_fraction_volume_error $bed/diagnostics.csv | sort -g | tail -1)
+  awk -v x="$worst" 'BEGIN { exit !(x < 1e-10) }' || fail "$bed: void fraction volume error $worst"
+done
 grep -q 'Name="flow"' bed/*.xmf && grep -q 'Name="particles"' bed/*.xmf ||
   fail "the XDMF series lacks the flow or the particles"
 
-# Bad input: a drag closure that does not exist, eps out of (0, 1], a fluid step over the CFL
+# Bad input: a drag closure or a VANS model that does not exist, eps out of (0, 1], a fluid step over the CFL
 # limit, a DEM step over its stability limit, a jet wider than the column.
 sed -e 's|^output_dir = .*|output_dir = "bad"|' "$scene" > drag.toml
 echo 'drag = "stokes"' >> drag.toml
 expect_error 2 "drag.toml:[0-9]+: key 'cfd_dem.drag' = \"stokes\" is not an allowed value; allowed: one of: di_felice, rong, beetstra, gidaspow" \
   "$AMPHORA" run drag.toml
+sed -e 's|^output_dir = .*|output_dir = "bad"|' "$scene" > model.toml
+echo 'vans_model = "C"' >> model.toml
+expect_error 2 "model.toml:[0-9]+: key 'cfd_dem.vans_model' = \"C\" is not an allowed value; allowed: one of: A, B" \
+  "$AMPHORA" run model.toml
 sed -e 's|^output_dir = .*|output_dir = "eps"|' "$scene" > eps.toml
 printf 'void_fraction = "pcm"\nsmoothing_length = 0.0\ncells = 16\n' >> eps.toml
 expect_error 3 "void fraction -?[0-9.e+-]+ outside \(0, 1\] at node \([0-9.e+-]+, [0-9.e+-]+, [0-9.e+-]+\) after fluid step 0" \

@@ -1,10 +1,13 @@
 #pragma once
-// One coupled step of unresolved CFD-DEM (VANS model A; Zhou et al., J. Fluid Mech. 661 (2010)
-// 482; the order of Lethe's coupling): the fluid at the particles (t^n), the fluid's force on
-// each particle (drag from the closure, pressure gradient, buoyancy) held over N DEM sub-steps,
-// the void fraction of the new positions, the particles' drag spread back to the fluid, and
-// the fluid step. The fluid's pressure is the hydrostatic-free part: gravity acts on the
-// particles (weight and buoyancy), not in the flow.
+// One coupled step of unresolved CFD-DEM (VANS model A or B; Zhou et al., J. Fluid Mech. 661
+// (2010) 482; the order of Lethe's coupling): the fluid at the particles (t^n), the fluid's
+// force on each particle (drag from the closure, pressure gradient, viscous stress, buoyancy)
+// held over N DEM sub-steps, the void fraction of the new positions, the particles' forces
+// spread back to the fluid, and the fluid step. The fluid's pressure is the hydrostatic-free
+// part: gravity acts on the particles (weight and buoyancy), not in the flow. Model A's fluid
+// takes the drag alone (its -eps grad p and eps div tau hold the rest); model B's, whose
+// momentum equation has -grad p, takes the pressure and viscous forces too (Lethe's theory
+// guide, "Unresolved CFD-DEM").
 #include <array>
 #include <cmath>
 #include <iomanip>
@@ -40,6 +43,9 @@ struct CfdDemOptions {
   bool move_particles = true;  ///< false: a fixed bed (the DEM is not stepped)
   /// A fluid step whose convective CFL number (InsSolver::cfl) exceeds this stops the run.
   double max_cfl = 1.0;
+  /// The viscous-stress force on each particle, V_p mu lap u (Lethe's "shear force"; zero on
+  /// Q1 cells, where each cell's velocity is linear in every direction).
+  bool viscous_force = true;
 };
 
 /// DEM steps per fluid step, N = dt_fluid / dt_dem; throws std::invalid_argument unless N is a
@@ -78,15 +84,17 @@ class CfdDemCoupling {
   using Vec = typename Set::Vec;
 
   /// flow and dem must outlive this. Throws std::invalid_argument unless the flow solves VANS
-  /// model A with the transient tau on Cartesian cells and N >= 1.
+  /// (model A or B) with the transient tau on Cartesian cells and N >= 1.
   CfdDemCoupling(Flow& flow, Dem& dem, const CfdDemOptions& options)
       : flow_(flow),
         dem_(dem),
         options_(options),
         void_fraction_(flow.space(), options.void_fraction),
-        n_(flow.n_dofs()) {
-    if (flow.options().model != physics::ins_fem::FlowModel::vans_a)
-      throw std::invalid_argument("cfd_dem: the flow must solve VANS model A (model = vans_a)");
+        n_(flow.n_dofs()),
+        model_b_(flow.options().model == physics::ins_fem::FlowModel::vans_b) {
+    if (!flow.vans())
+      throw std::invalid_argument(
+          "cfd_dem: the flow must solve VANS model A or B (model = vans_a or vans_b)");
     // With the steady tau (~h / 2|u|, 0.6 s) over fluid steps of 0.1 s, the clear fluid below
     // a packed bed oscillated node by node (10x U) and the linear solves stalled.
     if (!flow.options().transient_tau)
@@ -190,12 +198,15 @@ class CfdDemCoupling {
       at_.velocity = Vec("amphora::cfd_dem::u_at", n);
       at_.pressure_gradient = Vec("amphora::cfd_dem::grad_p_at", n);
       at_.void_fraction = Vector("amphora::cfd_dem::eps_at", n);
+      at_.velocity_laplacian = Vec("amphora::cfd_dem::lap_u_at", n);  // zeros
       eps_at_ = Kokkos::View<double* [3], Kokkos::LayoutRight, Mem>("amphora::cfd_dem::eps_at3", n);
       exchange_ = Vec("amphora::cfd_dem::exchange", n);
     }
     const auto& basis = void_fraction_.basis();
     interpolate(exec, basis, flow_.velocity(), 3, p.x, n, at_.velocity);
     interpolate_gradient(exec, basis, flow_.pressure(), p.x, n, at_.pressure_gradient);
+    if (options_.viscous_force && basis.lattice.degree > 1)
+      interpolate_laplacian(exec, basis, flow_.velocity(), 3, p.x, n, at_.velocity_laplacian);
     interpolate(exec, basis, eps_, 1, p.x, n, eps_at_);
     const auto e3 = eps_at_;
     const auto e = at_.void_fraction;
@@ -211,16 +222,18 @@ class CfdDemCoupling {
     interpolate(exec, void_fraction_.basis(), flow_.velocity(), 3, p.x, p.n_owned, u);
   }
 
-  /// The held forces: drag + pressure gradient + buoyancy; with an explicit load, the drag's
-  /// reaction spread to the fluid.
+  /// The held forces: drag + pressure gradient + viscous stress + buoyancy; with an explicit
+  /// load, their reaction less buoyancy's spread to the fluid (model A: the drag's alone).
   void particle_forces(const ExecSpace& exec) {
     const Set& p = dem_.particles();
     const int n = p.n_owned;
     const Vec F = dem_.external_force(), drag = exchange_;
     const auto v = p.v, u = at_.velocity, gp = at_.pressure_gradient;
+    const auto lap = at_.velocity_laplacian;
     const auto r = p.radius;
     const Vector eps = at_.void_fraction;
     const FluidProperties fl = options_.fluid;
+    const double nu = fl.viscosity / fl.density, b = model_b_ ? 1.0 : 0.0;
     const auto& gc = dem_.config().gravity;
     const double g[3] = {gc[0], gc[1], gc[2]};
     Kokkos::parallel_for(
@@ -232,8 +245,10 @@ class CfdDemCoupling {
           const double beta = drag_coefficient(fl.drag, fl.density, fl.viscosity, d, eps(i),
                                                kernels::math::sqrt(s2));
           for (int c = 0; c < 3; ++c) {
-            drag(i, c) = -beta * slip[c] / fl.density;  // the fluid's share, per unit mass
-            F(i, c) = beta * slip[c] - volume * fl.density * (gp(i, c) + g[c]);
+            const double undisturbed = volume * (nu * lap(i, c) - gp(i, c));  // per unit mass
+            // the fluid's share, per unit mass
+            drag(i, c) = -beta * slip[c] / fl.density - b * undisturbed;
+            F(i, c) = beta * slip[c] + fl.density * (undisturbed - volume * g[c]);
           }
         });
     if (options_.drag_coupling != DragCoupling::explicit_load) return;
@@ -242,16 +257,19 @@ class CfdDemCoupling {
   }
 
   /// The semi-implicit exchange at the new positions: beta_p / rho to the drag field (over
-  /// each node's basis integral) and beta_p v_p / rho to the load.
+  /// each node's basis integral) and beta_p v_p / rho to the load; model B adds the pressure
+  /// and viscous forces' reaction, V_p (grad p - nu lap u), to the load.
   void implicit_exchange(const ExecSpace& exec) {
     const Set& p = dem_.particles();
     const int n = p.n_owned;
     const Vec bv = exchange_;
     const auto b1 = eps_at_;  // reused: beta_p / rho in column 0
-    const auto v = p.v, u = at_.velocity;
+    const auto v = p.v, u = at_.velocity, gp = at_.pressure_gradient;
+    const auto lap = at_.velocity_laplacian;
     const auto r = p.radius;
     const Vector eps = at_.void_fraction;
     const FluidProperties fl = options_.fluid;
+    const double nu = fl.viscosity / fl.density, b = model_b_ ? 1.0 : 0.0;
     Kokkos::parallel_for(
         "amphora::cfd_dem::implicit_drag", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) {
@@ -260,8 +278,10 @@ class CfdDemCoupling {
           const double beta = drag_coefficient(fl.drag, fl.density, fl.viscosity, 2.0 * r(i),
                                                eps(i), kernels::math::sqrt(s2)) /
                               fl.density;
+          const double d = 2.0 * r(i), volume = M_PI * d * d * d / 6.0;
           b1(i, 0) = beta;
-          for (int c = 0; c < 3; ++c) bv(i, c) = beta * v(i, c);
+          for (int c = 0; c < 3; ++c)
+            bv(i, c) = beta * v(i, c) + b * volume * (gp(i, c) - nu * lap(i, c));
         });
     kernels::blas1::fill(exec, load_, 0.0);
     kernels::blas1::fill(exec, drag_, 0.0);
@@ -319,6 +339,7 @@ class CfdDemCoupling {
   CfdDemOptions options_;
   VoidFraction<3, ExecSpace> void_fraction_;
   long n_;
+  bool model_b_;
   Vector eps_, drag_, load_;
   FluidAtParticles<Mem> at_;
   Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> eps_at_;

@@ -19,7 +19,8 @@ namespace amphora::coupling::cfd_dem {
 ParamTable cfd_dem_parameter_table() {
   return {
       "cfd_dem",
-      "unresolved CFD-DEM (VANS model A, matrix-free Q_k, coupled to the DEM): a square column "
+      "unresolved CFD-DEM (VANS model A or B, matrix-free Q_k, coupled to the DEM): a square "
+      "column "
       "with inflow at the bottom, a fluidised or a fixed packed bed, or a slot with a jet: a "
       "pseudo-2D spouted bed",
       {
@@ -74,6 +75,14 @@ ParamTable cfd_dem_parameter_table() {
                        "particle-centred (smoothed) or quadrature-centred", {"pcm", "qcm"}),
           real_param("smoothing_length", 1.0, "diameters", at_least(0.0),
                      "L of the void fraction's L2-projection smoothing, in particle diameters"),
+          string_param("vans_model", std::string("A"),
+                       "A: the pressure shared by the phases, -eps grad p in the fluid; B: the "
+                       "fluid's alone, -grad p, and the particles' pressure and viscous forces "
+                       "returned to the fluid (Zhou et al. 2010)",
+                       {"A", "B"}),
+          bool_param("viscous_force", true,
+                     "the viscous-stress force V_p mu lap u on each particle (zero with degree "
+                     "1)"),
           string_param("drag_coupling", std::string("semi_implicit"),
                        "how the fluid takes the drag", {"semi_implicit", "explicit"}),
           int_param("dem_substeps", 200, at_least(1),
@@ -153,7 +162,8 @@ mesh::hex::StructuredHexMesh<3> column_mesh(const Parameters& p) {
 
 physics::ins_fem::InsOptions flow_options(const Parameters& p) {
   physics::ins_fem::InsOptions o;
-  o.model = physics::ins_fem::FlowModel::vans_a;
+  o.model = p.string("vans_model") == "B" ? physics::ins_fem::FlowModel::vans_b
+                                          : physics::ins_fem::FlowModel::vans_a;
   o.transient_tau = true;
   o.nu = p.real("viscosity");
   o.grad_div = p.real("grad_div");
@@ -179,6 +189,7 @@ CfdDemOptions coupling_options(const Parameters& p) {
   o.dem_substeps = static_cast<int>(p.integer("dem_substeps"));
   o.move_particles = p.string("bed") != "packed";
   o.max_cfl = p.real("max_cfl");
+  o.viscous_force = p.boolean("viscous_force");
   return o;
 }
 

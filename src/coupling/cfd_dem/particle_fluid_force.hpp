@@ -13,6 +13,8 @@ namespace amphora::coupling::cfd_dem {
 template <class MemSpace>
 struct FluidAtParticles {
   typename mesh::particles::ParticleSet<MemSpace>::Vec velocity, pressure_gradient;
+  /// The velocity's Laplacian (the viscous-stress force's; zero on Q1 cells).
+  typename mesh::particles::ParticleSet<MemSpace>::Vec velocity_laplacian;
   typename mesh::particles::ParticleSet<MemSpace>::Scalar void_fraction;
 };
 

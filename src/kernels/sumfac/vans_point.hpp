@@ -23,7 +23,9 @@ namespace amphora::kernels::sumfac {
 /// + gamma (div v, h_p), h_p the continuity's source -d eps / dt (grad-div stays consistent
 /// where the void fraction changes in time). tau as OseenPoint's with the drag's rate beta / eps
 /// added as a reaction's ((beta / eps)^2 in tau^-2): a dense bed's drag would otherwise make
-/// tau beta large and the stabilisation dominate (docs/cfd_dem.md).
+/// tau beta large and the stabilisation dominate (docs/cfd_dem.md). With `load_only` as well,
+/// only the stabilisation's share of a load density f (the particles' forces, whose Galerkin
+/// part (v, f) is given integrated): tau (b.grad v + grad q, f), so that r's balance holds.
 /// Coefficients: w det J, J^-1 (row-major), b, eps, grad eps, beta, tau.
 template <int dim>
 struct VansPoint {
@@ -42,6 +44,7 @@ struct VansPoint {
   bool history = false;
   bool viscous_residual = true;
   bool model_b = false;
+  bool load_only = false;
 
   KOKKOS_INLINE_FUNCTION bool needs_laplacian() const { return viscous_residual && !history; }
   template <class C>
@@ -84,13 +87,15 @@ struct VansPoint {
     const T eps = c[E], tau = c[TAU];
     T flux[(dim + 1) * dim];  // physical gradient integrands, mapped back below
     if (history) {
+      const T w = load_only ? T(1.0) : eps;  // a load density f enters as f, h as eps h
       for (int i = 0; i < dim; ++i) {
-        u_out[i] = c[0] * eps * u[i];
-        for (int a = 0; a < dim; ++a) flux[i * dim + a] = tau * c[B + a] * eps * u[i];
-        flux[i * dim + i] += T(gamma) * u[dim];  // grad-div of div(eps u) = -d eps / dt
-        flux[dim * dim + i] = tau * eps * u[i];
+        u_out[i] = load_only ? T(0.0) : c[0] * eps * u[i];
+        for (int a = 0; a < dim; ++a) flux[i * dim + a] = tau * c[B + a] * w * u[i];
+        // grad-div of div(eps u) = -d eps / dt
+        if (!load_only) flux[i * dim + i] += T(gamma) * u[dim];
+        flux[dim * dim + i] = tau * w * u[i];
       }
-      u_out[dim] = c[0] * u[dim];
+      u_out[dim] = load_only ? T(0.0) : c[0] * u[dim];
     } else {
       residual_terms(c, u, grad, lap, u_out, flux);
     }

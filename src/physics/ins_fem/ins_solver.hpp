@@ -171,13 +171,28 @@ class InsSolver {
   }
   /// VANS: a load vector (dim n_dofs, already integrated against the basis: the particles'
   /// spread forces per unit fluid mass) added to every step's right-hand side until changed.
+  /// Its density, load_j / (integral of phi_j), enters the SUPG/PSPG residual (as in Lethe):
+  /// without it the stabilisation takes the load's balance for a residual, a mass source where
+  /// the load changes (model B's packed bed lost a third of its pressure gradient).
   void set_particle_load(const Vector& load) {
     require_vans("set_particle_load");
     if (static_cast<long>(load.extent(0)) != dim * n_)
       throw std::invalid_argument("ins_fem: a particle load needs dim x n_dofs entries");
-    if (particle_load_.extent(0) == 0)
+    const ExecSpace exec;
+    if (particle_load_.extent(0) == 0) {
       particle_load_ = Vector("amphora::ins_fem::particle_load", dim * n_);
-    kernels::blas1::copy(ExecSpace(), load, particle_load_);
+      load_density_ = Vector("amphora::ins_fem::load_density", (dim + 1) * n_);  // p: 0
+      basis_integrals_ = Vector("amphora::ins_fem::basis_integrals", n_);
+      const Vector one = Kokkos::subview(load_density_, Kokkos::make_pair(0L, n_));
+      kernels::blas1::fill(exec, one, 1.0);
+      scalar_mass_->apply(exec, one, basis_integrals_);
+    }
+    kernels::blas1::copy(exec, load, particle_load_);
+    const Vector f = load_density_, m = basis_integrals_;
+    const long n = n_;
+    Kokkos::parallel_for(
+        "amphora::ins_fem::load_density", kernels::RangePolicy<ExecSpace>(exec, 0, int(dim * n_)),
+        KOKKOS_LAMBDA(int i) { f(i) = load(i) / m(i % n); });
   }
   /// VANS: the void fraction and the implicit drag the next step uses (views into the field).
   Vector void_fraction() const { return field_block(dim); }
@@ -264,7 +279,7 @@ class InsSolver {
     o.history = true;
     const Operator H(space_, o);
     H.apply(exec, history_, rhs_);
-    add_particle_load(exec);
+    add_particle_load(exec, o);
     kernels::blas1::copy(exec, u, u_old_);  // u^(n-1) <- u^n; the guess: extrapolated velocity
     kernels::blas1::copy(exec, advecting_, u);
     const InsStepReport report = solve(exec, A);
@@ -297,7 +312,7 @@ class InsSolver {
       o.history = true;
       const Operator H(space_, o);
       H.apply(exec, history_, rhs_);
-      add_particle_load(exec);
+      add_particle_load(exec, o);
       const InsStepReport r = solve(exec, A);
       total.linear_iterations += r.linear_iterations;
       total.residual = r.residual;
@@ -383,11 +398,16 @@ class InsSolver {
         kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(n_)),
         KOKKOS_LAMBDA(int i) { hp(i) = -(c0 * e(i) + c1 * en(i) + c2 * enm1(i) + c3 * enm2(i)); });
   }
-  /// rhs += the particles' load (VANS, where one is set).
-  void add_particle_load(const ExecSpace& exec) {
+  /// rhs += the particles' load and its density's stabilisation terms (VANS, where one is
+  /// set); o: the step's history options.
+  void add_particle_load(const ExecSpace& exec, typename Operator::Options o) {
     if (particle_load_.extent(0) == 0) return;
     const Vector ru = Kokkos::subview(rhs_, Kokkos::make_pair(0L, dim * n_));
     kernels::blas1::axpy(exec, 1.0, particle_load_, ru);
+    o.load_only = true;
+    const Operator S(space_, o);
+    S.apply(exec, load_density_, work_);
+    kernels::blas1::axpy(exec, 1.0, work_, rhs_);
   }
   /// history = (c1 u^n + c2 u^(n-1) + s F, 0).
   void form_history(const ExecSpace& exec, const Vector& u, double c1, double c2, double s) {
@@ -568,8 +588,8 @@ class InsSolver {
   long n_;
   bool pressure_null_space_ = true;
   Vector x_, u_old_, field_, history_, rhs_, delta_, diagonal_, force_, work_;
-  Vector advecting_;                                  // the field's first dim blocks
-  Vector eps_n_, eps_nm1_, eps_nm2_, particle_load_;  // VANS
+  Vector advecting_;  // the field's first dim blocks
+  Vector eps_n_, eps_nm1_, eps_nm2_, particle_load_, load_density_, basis_integrals_;  // VANS
   bool void_fraction_set_ = false;
   std::unique_ptr<Operator> mass_, laplace_, div_, scalar_mass_;
   double volume_ = 0.0, dt_old_ = 0.0, dt_older_ = 0.0;

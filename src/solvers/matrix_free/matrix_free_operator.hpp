@@ -50,6 +50,9 @@ class MatrixFreeOperator {
     bool viscous_residual = true;
     /// VANS: model B (grad p without the void fraction) instead of model A.
     bool model_b = false;
+    /// VANS with `history`: only the SUPG/PSPG terms of a load density
+    /// (kernels::sumfac::VansPoint).
+    bool load_only = false;
     /// Components that take the space's Dirichlet constraints (the leading ones); -1: all, or
     /// for Oseen and VANS the velocity's dim (the pressure is free on every face).
     int constrained_components = -1;

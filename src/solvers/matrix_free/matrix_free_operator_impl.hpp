@@ -50,6 +50,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
       p.history = o.history;
       p.viscous_residual = o.viscous_residual;
       p.model_b = o.model_b;
+      p.load_only = o.load_only;
       p.degree = degree;
     }
     return p;
