@@ -4,6 +4,7 @@
 // `apply(exec, r, z)` (z = M^-1 r). The inner product is a parameter so a distributed vector
 // sums over ranks; vectors are rank-local 1D Views.
 #include <cmath>
+#include <cstddef>
 #include <type_traits>
 #include <utility>
 
@@ -93,23 +94,37 @@ struct JacobiPreconditioner {
   }
 };
 
-/// Solves A x = b from the initial guess in x. A and M must be symmetric positive definite.
-template <class ExecSpace, class Operator, class View,
-          class Preconditioner = IdentityPreconditioner, class Inner = LocalInnerProduct>
+/// CG's four work vectors, kept by a caller that solves every time step so that no solve
+/// allocates (on a GPU each allocation is a device malloc and free inside the step).
+template <class View>
+struct CgWorkspace {
+  View r, z, p, q;
+  /// Views of n entries, reallocated only when n changes; z is r when unpreconditioned.
+  void reserve(std::size_t n, bool preconditioned) {
+    if (r.extent(0) != n) {
+      r = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::r"), n);
+      p = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::p"), n);
+      q = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::q"), n);
+    }
+    if (!preconditioned) {
+      z = r;
+    } else if (z.extent(0) != n || z.data() == r.data()) {
+      z = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::z"), n);
+    }
+  }
+};
+
+/// Solves A x = b from the initial guess in x, with the work vectors in w (reserved here). A
+/// and M must be symmetric positive definite.
+template <class ExecSpace, class Operator, class View, class Preconditioner, class Inner>
 SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const View& b,
                                 const View& x, const SolverControl& control,
-                                const Preconditioner& M = Preconditioner(),
-                                const Inner& dot = Inner()) {
-  const auto n = x.extent(0);
+                                const Preconditioner& M, const Inner& dot, CgWorkspace<View>& w) {
   // Unpreconditioned: z is r, so neither the copy z = r nor the product r.z (it is r.r) is
   // formed: 32 of 136 bytes per unknown and iteration (the CEED BPs' CG).
   constexpr bool unpreconditioned = std::is_same_v<Preconditioner, IdentityPreconditioner>;
-  View r(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::r"), n);
-  View z = unpreconditioned
-               ? r
-               : View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::z"), n);
-  View p(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::p"), n);
-  View q(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::cg::q"), n);
+  w.reserve(x.extent(0), !unpreconditioned);
+  const View r = w.r, z = w.z, p = w.p, q = w.q;
 
   SolverResult result;
   result.rhs_norm = std::sqrt(dot(exec, b, b));
@@ -155,6 +170,17 @@ SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const 
     rz = rz_new;
   }
   return result;
+}
+
+/// Solves A x = b from the initial guess in x (work vectors allocated for this solve).
+template <class ExecSpace, class Operator, class View,
+          class Preconditioner = IdentityPreconditioner, class Inner = LocalInnerProduct>
+SolverResult conjugate_gradient(const ExecSpace& exec, const Operator& A, const View& b,
+                                const View& x, const SolverControl& control,
+                                const Preconditioner& M = Preconditioner(),
+                                const Inner& dot = Inner()) {
+  CgWorkspace<View> w;
+  return conjugate_gradient(exec, A, b, x, control, M, dot, w);
 }
 
 }  // namespace amphora::solvers

@@ -13,17 +13,36 @@
 
 namespace amphora::solvers {
 
-namespace gmres_detail {
-
-/// The Krylov basis and the host side of one cycle: Hessenberg columns, rotations, g.
+/// GMRES's device vectors (the Krylov basis, w and z), kept by a caller that solves every
+/// time step so that no solve allocates (on a GPU, restart + 3 device mallocs and frees).
 template <class View>
-struct Cycle {
+struct GmresWorkspace {
   std::vector<View> v;
-  std::vector<double> h, cs, sn, g;
-  int m;
-  Cycle(long n, int restart) : v(restart + 1), h((restart + 1) * restart), m(restart) {
+  View w, z;
+  /// restart + 1 basis vectors and w, z of n entries, reallocated only when either changes.
+  void reserve(long n, int restart) {
+    const bool fits =
+        static_cast<int>(v.size()) == restart + 1 && static_cast<long>(w.extent(0)) == n;
+    if (fits) return;
+    v.assign(restart + 1, View());
     for (auto& e : v)
       e = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::gmres::v"), n);
+    w = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::gmres::w"), n);
+    z = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::gmres::z"), n);
+  }
+};
+
+namespace gmres_detail {
+
+/// The Krylov basis (the workspace's) and the host side of one cycle: Hessenberg columns,
+/// rotations, g.
+template <class View>
+struct Cycle {
+  const std::vector<View>& v;
+  std::vector<double> h, cs, sn, g;
+  int m;
+  Cycle(const std::vector<View>& basis, int restart)
+      : v(basis), h((restart + 1) * restart), m(restart) {
     cs.resize(restart), sn.resize(restart), g.resize(restart + 1);
   }
   double& H(int i, int j) { return h[j * (m + 1) + i]; }
@@ -60,17 +79,16 @@ struct Cycle {
 
 }  // namespace gmres_detail
 
-/// Solves A x = b from the initial guess in x; stops when |b - A x| <= max(rel |b|, abs) or
-/// after control.max_iterations inner iterations in all, restarting every `restart`.
-template <class ExecSpace, class Operator, class View,
-          class Preconditioner = IdentityPreconditioner, class Inner = LocalInnerProduct>
+/// Solves A x = b from the initial guess in x, with the device vectors in ws (reserved here);
+/// stops when |b - A x| <= max(rel |b|, abs) or after control.max_iterations inner iterations
+/// in all, restarting every `restart`.
+template <class ExecSpace, class Operator, class View, class Preconditioner, class Inner>
 SolverResult gmres(const ExecSpace& exec, const Operator& A, const View& b, const View& x,
-                   const SolverControl& control, int restart = 30,
-                   const Preconditioner& M = Preconditioner(), const Inner& dot = Inner()) {
-  const long n = static_cast<long>(x.extent(0));
-  gmres_detail::Cycle<View> c(n, restart);
-  View w(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::gmres::w"), n);
-  View z(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::gmres::z"), n);
+                   const SolverControl& control, int restart, const Preconditioner& M,
+                   const Inner& dot, GmresWorkspace<View>& ws) {
+  ws.reserve(static_cast<long>(x.extent(0)), restart);
+  gmres_detail::Cycle<View> c(ws.v, restart);
+  const View w = ws.w, z = ws.z;
   SolverResult result;
   result.rhs_norm = std::sqrt(dot(exec, b, b));
   const double target =
@@ -114,6 +132,16 @@ SolverResult gmres(const ExecSpace& exec, const Operator& A, const View& b, cons
     M.apply(exec, w, z);
     kernels::blas1::axpy(exec, 1.0, z, x);
   }
+}
+
+/// Solves A x = b from the initial guess in x (work vectors allocated for this solve).
+template <class ExecSpace, class Operator, class View,
+          class Preconditioner = IdentityPreconditioner, class Inner = LocalInnerProduct>
+SolverResult gmres(const ExecSpace& exec, const Operator& A, const View& b, const View& x,
+                   const SolverControl& control, int restart = 30,
+                   const Preconditioner& M = Preconditioner(), const Inner& dot = Inner()) {
+  GmresWorkspace<View> ws;
+  return gmres(exec, A, b, x, control, restart, M, dot, ws);
 }
 
 }  // namespace amphora::solvers

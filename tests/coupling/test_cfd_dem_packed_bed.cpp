@@ -4,7 +4,9 @@
 // must hand the fluid exactly the particles' forces, the viscous-stress force must be the
 // stress divergence at the particle, and bad input stops with one clear line.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <map>
 #include <random>
 #include <stdexcept>
 #include <string>
@@ -272,6 +274,48 @@ void explicit_exchange_balances(physics::ins_fem::FlowModel vans, int steps) {
 TEST(CfdDemPackedBed, ExplicitExchangeBalancesToRoundOff) {
   for (const auto vans : {physics::ins_fem::FlowModel::vans_a, physics::ins_fem::FlowModel::vans_b})
     explicit_exchange_balances(vans, vans == physics::ins_fem::FlowModel::vans_a ? 1 : 2);
+}
+
+/// Device allocations by label while counting (Kokkos Tools' allocation callback).
+std::map<std::string, int> allocations;
+void count_allocation(Kokkos::Profiling::SpaceHandle, const char* label, const void*, uint64_t) {
+  ++allocations[label];
+}
+
+/// Once the first step has sized them, the solvers' work vectors (CG's of the void fraction,
+/// GMRES's of the flow) and the void fraction's right-hand side are kept: no later step
+/// allocates them (on a GPU each would be a device malloc and free inside the step).
+TEST(CfdDemPackedBed, StepsAfterTheFirstAllocateNoSolverVectors) {
+  physics::ins_fem::InsOptions fo;
+  fo.model = physics::ins_fem::FlowModel::vans_a;
+  fo.nu = kMu / kRho;
+  fo.transient_tau = true;
+  Flow flow(column(), 1, fo);
+  Dem dem(dem_config(), Communicator());
+  dem.add_particles(lattice_bed());
+  CfdDemOptions o;
+  o.fluid = {kRho, kMu, DragModel::di_felice};
+  o.void_fraction.smoothing_length = 2.0 * kD;
+  o.dem_substeps = 10;
+  CfdDemCoupling<Exec> coupling(flow, dem, o);
+  coupling.step();
+  allocations.clear();
+  Kokkos::Tools::Experimental::set_allocate_data_callback(count_allocation);
+  for (int s = 0; s < 2; ++s) coupling.step();
+  { const Kokkos::View<double*, Mem> probe("amphora::test::probe", 1); }  // the count works
+  Kokkos::Tools::Experimental::set_allocate_data_callback(nullptr);
+  EXPECT_EQ(allocations["amphora::test::probe"], 1);
+  int total = 0, solvers = 0;
+  for (const auto& [label, count] : allocations) {
+    std::printf("  %-48s %d\n", label.c_str(), count);
+    total += count;
+    const bool solver_vector = label.rfind("amphora::cg::", 0) == 0 ||
+                               label.rfind("amphora::gmres::", 0) == 0 ||
+                               label == "amphora::cfd_dem::void_fraction_rhs";
+    if (solver_vector) solvers += count;
+  }
+  std::printf("two coupled steps: %d allocations, %d of them solver vectors\n", total, solvers);
+  EXPECT_EQ(solvers, 0);
 }
 
 /// True if calling f throws E whose message contains `part`.

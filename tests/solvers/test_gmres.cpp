@@ -85,6 +85,37 @@ TEST(Gmres, MatchesTheDirectSolutionWithAndWithoutJacobi) {
   EXPECT_LT(max_error(y, ref), 1e-7);
 }
 
+/// A kept workspace: the same bits as a solve that allocates, and a second solve of the same
+/// size reuses its vectors (no allocation inside a time step).
+TEST(Gmres, AKeptWorkspaceGivesTheSameBitsWithoutReallocating) {
+  const TestExecSpace exec;
+  const int n = 300;
+  ConvectionDiffusion1D A;
+  A.s = 0.01;
+  std::vector<double> rhs(n);
+  for (int i = 0; i < n; ++i) rhs[i] = std::cos(0.07 * i);
+  const View b = kernels::to_view<test::TestMemSpace>(rhs);
+  SolverControl control;
+  control.relative_tolerance = 1e-10;
+  control.max_iterations = 5000;
+  View d("d", n), x("x", n), y("y", n);
+  Kokkos::deep_copy(d, 1.0 / (2.0 + A.s));
+  const JacobiPreconditioner<View> M{d};
+  const SolverResult fresh = gmres(exec, A, b, x, control, 20, M);
+  GmresWorkspace<View> ws;
+  const SolverResult kept = gmres(exec, A, b, y, control, 20, M, LocalInnerProduct(), ws);
+  EXPECT_TRUE(kept.converged);
+  EXPECT_EQ(kept.iterations, fresh.iterations);
+  EXPECT_EQ(kernels::to_std_vector(x), kernels::to_std_vector(y));
+  const double* basis = ws.v[20].data();
+  const double* w = ws.w.data();
+  Kokkos::deep_copy(y, 0.0);
+  gmres(exec, A, b, y, control, 20, M, LocalInnerProduct(), ws);
+  EXPECT_EQ(ws.v[20].data(), basis);
+  EXPECT_EQ(ws.w.data(), w);
+  EXPECT_EQ(kernels::to_std_vector(x), kernels::to_std_vector(y));
+}
+
 TEST(Gmres, WithoutRestartEndsWithinNIterations) {
   const TestExecSpace exec;
   const int n = 40;

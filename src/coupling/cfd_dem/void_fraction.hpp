@@ -69,7 +69,7 @@ class VoidFraction {
   /// eps of the first n particles (centres x, radii r); returns what CG did.
   solvers::SolverResult compute(const ExecSpace& exec, const Points& x, const Vector& radius, int n,
                                 const Vector& eps) const {
-    const Vector b("amphora::cfd_dem::void_fraction_rhs", space_.n_dofs());
+    const Vector b = rhs_;  // kept, like CG's work vectors: no allocation in a time step
     kernels::blas1::copy(exec, mass_one_, b);
     if (qcm_) {
       qcm_->load(exec, x, radius, n, b);
@@ -80,7 +80,8 @@ class VoidFraction {
     control.relative_tolerance = options_.tolerance;
     control.max_iterations = 2000;
     return solvers::conjugate_gradient(exec, *this, b, eps, control,
-                                       solvers::JacobiPreconditioner<Vector>{inverse_diagonal_});
+                                       solvers::JacobiPreconditioner<Vector>{inverse_diagonal_},
+                                       solvers::LocalInnerProduct(), cg_work_);
   }
 
   /// The integral of a Q_k field over the box.
@@ -136,6 +137,7 @@ class VoidFraction {
     const long n = space_.n_dofs();
     work_ = Vector("amphora::cfd_dem::void_fraction_work", n);
     mass_one_ = Vector("amphora::cfd_dem::mass_one", n);
+    rhs_ = Vector("amphora::cfd_dem::void_fraction_rhs", n);
     inverse_diagonal_ = Vector("amphora::cfd_dem::void_fraction_diagonal", n);
     kernels::blas1::fill(exec, work_, 1.0);
     mass_->apply(exec, work_, mass_one_);
@@ -151,7 +153,8 @@ class VoidFraction {
   std::unique_ptr<QuadratureCentred<ExecSpace>> qcm_;
   kernels::sumfac::QkPointBasis<dim> basis_;
   std::unique_ptr<Operator> mass_, laplace_;
-  Vector mass_one_, inverse_diagonal_, work_;
+  Vector mass_one_, inverse_diagonal_, work_, rhs_;
+  mutable solvers::CgWorkspace<Vector> cg_work_;
 };
 
 }  // namespace amphora::coupling::cfd_dem

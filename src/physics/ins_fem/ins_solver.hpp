@@ -474,7 +474,8 @@ class InsSolver {
       solvers::SolverControl first = control;
       first.max_iterations = std::min(control.max_iterations, options_.restart);
       const TimedApply<Multigrid> timed_m{multigrid_.get(), times_, ins_preconditioner};
-      r = solvers::gmres(exec, timed_a, rhs_, delta_, first, options_.restart, timed_m);
+      r = solvers::gmres(exec, timed_a, rhs_, delta_, first, options_.restart, timed_m,
+                         solvers::LocalInnerProduct(), gmres_work_);
       if (!r.converged) {
         multigrid_.reset();
         kernels::blas1::fill(exec, delta_, 0.0);
@@ -490,7 +491,8 @@ class InsSolver {
       const TimedApply<solvers::JacobiPreconditioner<Vector>> timed_m{&jacobi, times_,
                                                                       ins_preconditioner};
       const int spent = r.iterations;
-      r = solvers::gmres(exec, timed_a, rhs_, delta_, control, options_.restart, timed_m);
+      r = solvers::gmres(exec, timed_a, rhs_, delta_, control, options_.restart, timed_m,
+                         solvers::LocalInnerProduct(), gmres_work_);
       r.iterations += spent;
     }
     kernels::blas1::axpy(exec, 1.0, delta_, x_);
@@ -592,6 +594,7 @@ class InsSolver {
   Vector eps_n_, eps_nm1_, eps_nm2_, particle_load_, load_density_, basis_integrals_;  // VANS
   bool void_fraction_set_ = false;
   std::unique_ptr<Operator> mass_, laplace_, div_, scalar_mass_;
+  solvers::GmresWorkspace<Vector> gmres_work_;  // kept: no allocation inside a step
   double volume_ = 0.0, dt_old_ = 0.0, dt_older_ = 0.0;
   long steps_ = 0;
   PhaseTimes* times_ = nullptr;
