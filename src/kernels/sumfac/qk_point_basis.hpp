@@ -121,65 +121,66 @@ struct QkPointBasis {
   /// Calls f(dof, grad) for each basis function of x's cell, grad its physical gradient at x.
   template <class F>
   KOKKOS_INLINE_FUNCTION void for_each_gradient(const double* x, const F& f) const {
-    int cell[3] = {0, 0, 0};
-    double xi[3] = {0, 0, 0};
-    locate(x, cell, xi);
-    double v[3][max_point_basis_degree + 1], dv[3][max_point_basis_degree + 1];
-    for (int d = 0; d < dim; ++d) {
-      values_1d(xi[d], v[d]);
-      derivatives_1d(xi[d], dv[d]);
-    }
-    const int k1 = lattice.degree + 1;
-    int n_local = 1;
-    for (int d = 0; d < dim; ++d) n_local *= k1;
-    for (int l = 0; l < n_local; ++l) {
-      int local[3] = {0, 0, 0}, rest = l;
-      for (int d = 0; d < dim; ++d) {
-        local[d] = rest % k1;
-        rest /= k1;
-      }
+    for_each_with_derivatives<1>(x, [&](long j, const int* local, const Table& v, const Table& dv) {
       double grad[3] = {0, 0, 0};
-      for (int a = 0; a < dim; ++a) {
-        double g = dv[a][local[a]] / h[a];
-        for (int d = 0; d < dim; ++d) {
-          if (d != a) g *= v[d][local[d]];
-        }
-        grad[a] = g;
-      }
-      f(dof(cell, local), grad);
-    }
+      for (int a = 0; a < dim; ++a) grad[a] = along(a, local, v, dv, h[a]);
+      f(j, grad);
+    });
   }
 
   /// Calls f(dof, laplacian) for each basis function of x's cell, its physical Laplacian at x
   /// (zero for Q1: each cell's functions are linear in every direction).
   template <class F>
   KOKKOS_INLINE_FUNCTION void for_each_laplacian(const double* x, const F& f) const {
+    for_each_with_derivatives<2>(x,
+                                 [&](long j, const int* local, const Table& v, const Table& d2v) {
+                                   double lap = 0.0;
+                                   for (int a = 0; a < dim; ++a)
+                                     lap += along(a, local, v, d2v, h[a] * h[a]);
+                                   f(j, lap);
+                                 });
+  }
+
+ private:
+  using Table = double[3][max_point_basis_degree + 1];  ///< 1D tables per direction
+
+  /// The tensor-product function `local` differentiated along a only, over `scale` (the
+  /// cell's size to the derivative's order): d[a] / scale times the others' values.
+  KOKKOS_INLINE_FUNCTION double along(int a, const int* local, const Table& v, const Table& d,
+                                      double scale) const {
+    double g = d[a][local[a]] / scale;
+    for (int e = 0; e < dim; ++e) {
+      if (e != a) g *= v[e][local[e]];
+    }
+    return g;
+  }
+
+  /// Calls f(dof, local, values, derivatives) for each basis function of x's cell, with the
+  /// 1D values and the 1D derivatives of the given order (1 or 2) at x.
+  template <int order, class F>
+  KOKKOS_INLINE_FUNCTION void for_each_with_derivatives(const double* x, const F& f) const {
     int cell[3] = {0, 0, 0};
     double xi[3] = {0, 0, 0};
     locate(x, cell, xi);
-    double v[3][max_point_basis_degree + 1], d2v[3][max_point_basis_degree + 1];
-    for (int d = 0; d < dim; ++d) {
-      values_1d(xi[d], v[d]);
-      second_derivatives_1d(xi[d], d2v[d]);
+    Table v, d;
+    for (int e = 0; e < dim; ++e) {
+      values_1d(xi[e], v[e]);
+      if constexpr (order == 1) {
+        derivatives_1d(xi[e], d[e]);
+      } else {
+        second_derivatives_1d(xi[e], d[e]);
+      }
     }
     const int k1 = lattice.degree + 1;
     int n_local = 1;
-    for (int d = 0; d < dim; ++d) n_local *= k1;
+    for (int e = 0; e < dim; ++e) n_local *= k1;
     for (int l = 0; l < n_local; ++l) {
       int local[3] = {0, 0, 0}, rest = l;
-      for (int d = 0; d < dim; ++d) {
-        local[d] = rest % k1;
+      for (int e = 0; e < dim; ++e) {
+        local[e] = rest % k1;
         rest /= k1;
       }
-      double lap = 0.0;
-      for (int a = 0; a < dim; ++a) {
-        double g = d2v[a][local[a]] / (h[a] * h[a]);
-        for (int d = 0; d < dim; ++d) {
-          if (d != a) g *= v[d][local[d]];
-        }
-        lap += g;
-      }
-      f(dof(cell, local), lap);
+      f(dof(cell, local), local, v, d);
     }
   }
 };
