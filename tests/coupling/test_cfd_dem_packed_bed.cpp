@@ -285,7 +285,9 @@ void count_allocation(Kokkos::Profiling::SpaceHandle, const char* label, const v
 /// Once the first step has sized them, the solvers' work vectors (CG's of the void fraction,
 /// GMRES's of the flow) and the void fraction's right-hand side are kept: no later step
 /// allocates them (on a GPU each would be a device malloc and free inside the step).
-TEST(CfdDemPackedBed, StepsAfterTheFirstAllocateNoSolverVectors) {
+/// Device allocations by label in two coupled steps after a first (the DEM's list rebuilds
+/// among them: their number into `rebuilds`).
+std::map<std::string, int> allocations_of_two_steps(long long& rebuilds) {
   physics::ins_fem::InsOptions fo;
   fo.model = physics::ins_fem::FlowModel::vans_a;
   fo.nu = kMu / kRho;
@@ -299,23 +301,57 @@ TEST(CfdDemPackedBed, StepsAfterTheFirstAllocateNoSolverVectors) {
   o.dem_substeps = 10;
   CfdDemCoupling<Exec> coupling(flow, dem, o);
   coupling.step();
+  const long long before = dem.timers().rebuilds;
   allocations.clear();
   Kokkos::Tools::Experimental::set_allocate_data_callback(count_allocation);
   for (int s = 0; s < 2; ++s) coupling.step();
   { const Kokkos::View<double*, Mem> probe("amphora::test::probe", 1); }  // the count works
   Kokkos::Tools::Experimental::set_allocate_data_callback(nullptr);
-  EXPECT_EQ(allocations["amphora::test::probe"], 1);
-  int total = 0, solvers = 0;
+  rebuilds = dem.timers().rebuilds - before;
+  int total = 0;
   for (const auto& [label, count] : allocations) {
     std::printf("  %-48s %d\n", label.c_str(), count);
     total += count;
+  }
+  std::printf("two coupled steps, %lld list rebuilds: %d allocations\n", rebuilds, total);
+  return allocations;
+}
+
+TEST(CfdDemPackedBed, StepsAfterTheFirstAllocateNoSolverVectors) {
+  long long rebuilds = 0;
+  const auto counted = allocations_of_two_steps(rebuilds);
+  EXPECT_EQ(counted.at("amphora::test::probe"), 1);
+  int solvers = 0;
+  for (const auto& [label, count] : counted) {
     const bool solver_vector = label.rfind("amphora::cg::", 0) == 0 ||
                                label.rfind("amphora::gmres::", 0) == 0 ||
                                label == "amphora::cfd_dem::void_fraction_rhs";
     if (solver_vector) solvers += count;
   }
-  std::printf("two coupled steps: %d allocations, %d of them solver vectors\n", total, solvers);
   EXPECT_EQ(solvers, 0);
+}
+
+/// A list rebuild keeps the particles' arrays (sorted in place), the bins, the row schedule and
+/// the masks: it allocates the Verlet list and its springs alone.
+TEST(CfdDemPackedBed, ListRebuildsAllocateOnlyTheVerletList) {
+  long long rebuilds = 0;
+  const auto counted = allocations_of_two_steps(rebuilds);
+  ASSERT_GT(rebuilds, 0);
+  const std::map<std::string, int> allowed = {{"amphora::build_verlet_list::offsets", 1},
+                                              {"amphora::build_verlet_list::neighbors", 1},
+                                              {"amphora::dem::shear", 1}};
+  for (const auto& [label, count] : counted) {
+    const bool particles = label.rfind("amphora::ParticleSet::", 0) == 0 ||
+                           label.rfind("amphora::bin_points::", 0) == 0 ||
+                           label.rfind("amphora::particles::", 0) == 0 ||
+                           label.rfind("amphora::dem::", 0) == 0;
+    if (!particles || label.rfind("amphora::particles::migration", 0) == 0 ||
+        label == "amphora::dem::destination")
+      continue;  // the flow's, or a migration (a particle left the column)
+    const auto a = allowed.find(label);
+    EXPECT_TRUE(a != allowed.end() && count <= a->second * rebuilds)
+        << label << ": " << count << " allocations in " << rebuilds << " rebuilds";
+  }
 }
 
 /// True if calling f throws E whose message contains `part`.

@@ -3,6 +3,8 @@
 // counts, an exclusive scan into cell offsets, a fill, and a sort of each cell's short list by
 // point index, so the result does not depend on thread timing. Generic: it serves contact
 // detection, and later void fractions and particle-cell maps.
+#include <string>
+
 #include "kernels/spaces.hpp"
 
 namespace amphora::kernels::particles {
@@ -46,33 +48,41 @@ struct CellGrid {
 
 /// Points sorted by cell: the points of cell c are permutation[offsets(c) .. offsets(c+1)),
 /// in increasing key (the point index, unless bin_points is given keys).
+/// Kept and passed back to bin_points, a Bins is a workspace: its arrays only grow, so binning
+/// the same points again allocates nothing (their extents may exceed the points and cells).
 template <class MemSpace>
 struct Bins {
   Kokkos::View<int*, MemSpace> offsets;
   Kokkos::View<int*, MemSpace> permutation;
   Kokkos::View<int*, MemSpace> cell;  ///< cell of each point
+  Kokkos::View<int*, MemSpace> fill;  ///< scratch: points placed per cell
 };
+
+/// Reallocates v (uninitialised, under `label`) unless it holds n entries already.
+template <class View>
+void grow_uninitialized(View& v, size_t n, const char* label) {
+  if (v.extent(0) < n)
+    v = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), n);
+}
 
 /// The point index as the key of bin_points' order within a cell.
 struct PointIndex {
   KOKKOS_INLINE_FUNCTION int operator()(int i) const { return i; }
 };
 
-/// Bins points x(0 .. n) (x is any View indexable as x(i, d)); within a cell, points are in
-/// increasing key(i) (distinct keys: a global id, say).
-template <class ExecSpace, class Positions, class Keys = PointIndex>
-Bins<typename ExecSpace::memory_space> bin_points(const ExecSpace& exec, const CellGrid& grid,
-                                                  const Positions& x, int n,
-                                                  const Keys& key = Keys()) {
-  using Mem = typename ExecSpace::memory_space;
-  Bins<Mem> b;
+/// Bins points x(0 .. n) (x is any View indexable as x(i, d)) into b (a workspace, above);
+/// within a cell, points are in increasing key(i) (distinct keys: a global id, say).
+template <class ExecSpace, class Positions, class Keys>
+void bin_points(const ExecSpace& exec, const CellGrid& grid, const Positions& x, int n,
+                const Keys& key, Bins<typename ExecSpace::memory_space>& b) {
   const int nc = grid.num_cells();
-  b.offsets = Kokkos::View<int*, Mem>("amphora::bin_points::offsets", nc + 1);
-  b.permutation = Kokkos::View<int*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::bin_points::permutation"), n);
-  b.cell = Kokkos::View<int*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::bin_points::cell"), n);
-  Kokkos::View<int*, Mem> fill("amphora::bin_points::fill", nc);
+  grow_uninitialized(b.offsets, nc + 1, "amphora::bin_points::offsets");
+  grow_uninitialized(b.permutation, n, "amphora::bin_points::permutation");
+  grow_uninitialized(b.cell, n, "amphora::bin_points::cell");
+  grow_uninitialized(b.fill, nc, "amphora::bin_points::fill");
+  Kokkos::deep_copy(exec, Kokkos::subview(b.offsets, Kokkos::make_pair(0, nc + 1)), 0);
+  Kokkos::deep_copy(exec, Kokkos::subview(b.fill, Kokkos::make_pair(0, nc)), 0);
+  const auto fill = b.fill;
   const auto offsets = b.offsets;
   const auto perm = b.permutation;
   const auto cell = b.cell;
@@ -109,6 +119,16 @@ Bins<typename ExecSpace::memory_space> bin_points(const ExecSpace& exec, const C
         }
       });
   exec.fence();
+}
+
+/// Bins points x(0 .. n) (x is any View indexable as x(i, d)) into new arrays; within a cell,
+/// points are in increasing key(i) (distinct keys: a global id, say).
+template <class ExecSpace, class Positions, class Keys = PointIndex>
+Bins<typename ExecSpace::memory_space> bin_points(const ExecSpace& exec, const CellGrid& grid,
+                                                  const Positions& x, int n,
+                                                  const Keys& key = Keys()) {
+  Bins<typename ExecSpace::memory_space> b;
+  bin_points(exec, grid, x, n, key, b);
   return b;
 }
 

@@ -8,11 +8,13 @@
 namespace amphora::kernels::particles {
 
 /// Slab u holds rows order(start(u)) .. order(start(u + 1) - 1); the slabs of colour c are
-/// colour_slabs[c] .. colour_slabs[c + 1] - 1.
+/// colour_slabs[c] .. colour_slabs[c + 1] - 1. Passed back to slab_schedule, a schedule is
+/// rebuilt in its own arrays, which only grow (bins is its binning workspace).
 template <class Mem>
 struct SlabSchedule {
   Kokkos::View<int*, Mem> order, start;
   int colour_slabs[3] = {0, 0, 0};
+  Bins<Mem> bins;
 };
 
 /// Whether row a of the ordered rows starts a slab: its slab, cell(order(a)) / layer / 2,
@@ -32,17 +34,14 @@ struct SlabStarts {
 /// i), key): binning gives (cell, key), as cell indices run k slowest; a stable partition by
 /// colour follows.
 template <class ExecSpace, class Positions, class Keys>
-SlabSchedule<typename ExecSpace::memory_space> slab_schedule(const ExecSpace& exec,
-                                                             const CellGrid& cells,
-                                                             const Positions& x, int total,
-                                                             const Keys& key) {
+void slab_schedule(const ExecSpace& exec, const CellGrid& cells, const Positions& x, int total,
+                   const Keys& key, SlabSchedule<typename ExecSpace::memory_space>& s) {
   using Mem = typename ExecSpace::memory_space;
-  SlabSchedule<Mem> s;
   const int layer = cells.n[0] * cells.n[1];
-  const auto bins = bin_points(exec, cells, x, total, key);
-  const auto perm = bins.permutation;
-  const auto cell = bins.cell;
-  s.order = Kokkos::View<int*, Mem>("amphora::particles::row_order", total);
+  bin_points(exec, cells, x, total, key, s.bins);
+  const auto perm = s.bins.permutation;
+  const auto cell = s.bins.cell;
+  grow_uninitialized(s.order, total, "amphora::particles::row_order");
   const auto order = s.order;
   int first_odd = 0;  // rows of colour 0
   Kokkos::parallel_reduce(
@@ -65,7 +64,7 @@ SlabSchedule<typename ExecSpace::memory_space> slab_schedule(const ExecSpace& ex
       "amphora::particles::slab_schedule::count_even_slabs",
       RangePolicy<ExecSpace>(exec, 0, first_odd),
       KOKKOS_LAMBDA(int a, int& even) { even += starts(a); }, even_slabs);
-  s.start = Kokkos::View<int*, Mem>("amphora::particles::slab_start", slabs + 1);
+  grow_uninitialized(s.start, slabs + 1, "amphora::particles::slab_start");
   const auto start = s.start;
   Kokkos::parallel_scan(
       "amphora::particles::slab_schedule::slab_starts", RangePolicy<ExecSpace>(exec, 0, total + 1),
@@ -77,6 +76,16 @@ SlabSchedule<typename ExecSpace::memory_space> slab_schedule(const ExecSpace& ex
   s.colour_slabs[0] = 0;
   s.colour_slabs[1] = even_slabs;
   s.colour_slabs[2] = slabs;
+}
+
+/// As above, into a new schedule.
+template <class ExecSpace, class Positions, class Keys>
+SlabSchedule<typename ExecSpace::memory_space> slab_schedule(const ExecSpace& exec,
+                                                             const CellGrid& cells,
+                                                             const Positions& x, int total,
+                                                             const Keys& key) {
+  SlabSchedule<typename ExecSpace::memory_space> s;
+  slab_schedule(exec, cells, x, total, key, s);
   return s;
 }
 

@@ -103,13 +103,14 @@ NeighborList<typename ExecSpace::memory_space> build_verlet_list(
 }
 
 /// Where each row's partners of larger key start (the list's rows are sorted by key): the
-/// entries from half(i) on are the pairs row i evaluates in a half-pair schedule.
+/// entries from half(i) on are the pairs row i evaluates in a half-pair schedule. half is kept:
+/// it is reallocated only when it holds fewer than the list's rows.
 template <class ExecSpace, class Ids>
-Kokkos::View<int*, typename ExecSpace::memory_space> half_starts(
-    const ExecSpace& exec, const NeighborList<typename ExecSpace::memory_space>& list,
-    const Ids& key) {
+void half_starts(const ExecSpace& exec, const NeighborList<typename ExecSpace::memory_space>& list,
+                 const Ids& key, Kokkos::View<int*, typename ExecSpace::memory_space>& half) {
   const int rows = list.rows();
-  Kokkos::View<int*, typename ExecSpace::memory_space> half("amphora::particles::half_start", rows);
+  grow_uninitialized(half, rows, "amphora::particles::half_start");
+  const auto h = half;
   const auto off = list.offsets;
   const auto nbr = list.neighbors;
   Kokkos::parallel_for(
@@ -117,8 +118,17 @@ Kokkos::View<int*, typename ExecSpace::memory_space> half_starts(
       KOKKOS_LAMBDA(int i) {
         int k = off(i);
         while (k < off(i + 1) && key(nbr(k)) < key(i)) ++k;
-        half(i) = k;
+        h(i) = k;
       });
+}
+
+/// As above, into a new View.
+template <class ExecSpace, class Ids>
+Kokkos::View<int*, typename ExecSpace::memory_space> half_starts(
+    const ExecSpace& exec, const NeighborList<typename ExecSpace::memory_space>& list,
+    const Ids& key) {
+  Kokkos::View<int*, typename ExecSpace::memory_space> half;
+  half_starts(exec, list, key, half);
   return half;
 }
 

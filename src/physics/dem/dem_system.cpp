@@ -25,32 +25,27 @@ double now() {
 
 /// dst(i, ...) = src(perm(i), ...) for i < n, for LayoutRight Views of any rank: the inner
 /// extents of a row are contiguous.
-/// A View like `src` (same type and inner extents) with n rows.
-template <class View>
-View with_rows(const View& src, int n) {
-  auto alloc = Kokkos::view_alloc(Kokkos::WithoutInitializing, src.label());
-  if constexpr (View::rank_dynamic == 1) {
-    return View(alloc, n);
-  } else {
-    return View(alloc, n, src.extent(1));
-  }
-}
-
-/// dst(i, ...) = src(perm(i), ...) for i < n, for LayoutRight Views of any rank: the inner
-/// extents of a row are contiguous.
-template <class ExecSpace, class View, class Perm>
-View permuted(const ExecSpace& exec, const View& src, const Perm& perm, int n) {
-  View dst = with_rows(src, n);
+/// v(i, ...) = v(perm(i), ...) for i < n, through `scratch` (grown as needed), for LayoutRight
+/// Views of any rank: the inner extents of a row are contiguous. v keeps its storage.
+template <class ExecSpace, class View, class Perm, class Scratch>
+void permute_rows(const ExecSpace& exec, const View& v, const Perm& perm, int n, Scratch& scratch) {
+  using T = typename View::value_type;
   size_t inner = 1;
-  for (unsigned r = 1; r < View::rank; ++r) inner *= src.extent(r);
-  auto* s = src.data();
-  auto* d = dst.data();
+  for (unsigned r = 1; r < View::rank; ++r) inner *= v.extent(r);
+  kernels::particles::grow_uninitialized(scratch, size_t(n) * inner * sizeof(T),
+                                         "amphora::dem::permute_scratch");
+  T* tmp = reinterpret_cast<T*>(scratch.data());
+  T* d = v.data();
   Kokkos::parallel_for(
       "amphora::dem::permute", kernels::RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
         const size_t from = size_t(perm(i)) * inner, to = size_t(i) * inner;
-        for (size_t k = 0; k < inner; ++k) d[to + k] = s[from + k];
+        for (size_t k = 0; k < inner; ++k) tmp[to + k] = d[from + k];
       });
-  return dst;
+  Kokkos::parallel_for(
+      "amphora::dem::permute_back", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+      KOKKOS_LAMBDA(int i) {
+        for (size_t k = size_t(i) * inner; k < size_t(i + 1) * inner; ++k) d[k] = tmp[k];
+      });
 }
 
 template <class View>
@@ -362,23 +357,24 @@ void DemSystem<ExecSpace>::sort_owned_by_cell() {
     grid.lo[d] = global.lo[d] + first * global.h;
     grid.n[d] = last - first + 1;
   }
-  const auto bins = bin_points(exec_, grid, x_build_, n, p_.gid);
-  const auto& perm = bins.permutation;
-  p_.x = permuted(exec_, p_.x, perm, n);
-  p_.v = permuted(exec_, p_.v, perm, n);
-  p_.omega = permuted(exec_, p_.omega, perm, n);
-  p_.force = permuted(exec_, p_.force, perm, n);
-  p_.torque = permuted(exec_, p_.torque, perm, n);
-  p_.radius = permuted(exec_, p_.radius, perm, n);
-  p_.mass = permuted(exec_, p_.mass, perm, n);
-  p_.inertia = permuted(exec_, p_.inertia, perm, n);
-  p_.material = permuted(exec_, p_.material, perm, n);
-  p_.gid = permuted(exec_, p_.gid, perm, n);
-  wall_shear_ = permuted(exec_, wall_shear_, perm, n);
-  rec_gid_ = permuted(exec_, rec_gid_, perm, n);
-  rec_shear_ = permuted(exec_, rec_shear_, perm, n);
-  x_build_ = permuted(exec_, x_build_, perm, n);
-  if (external_.extent(0) > 0) external_ = permuted(exec_, external_, perm, n);
+  bin_points(exec_, grid, x_build_, n, p_.gid, bins_);
+  const auto perm = bins_.permutation;
+  auto& s = permute_scratch_;
+  permute_rows(exec_, p_.x, perm, n, s);
+  permute_rows(exec_, p_.v, perm, n, s);
+  permute_rows(exec_, p_.omega, perm, n, s);
+  permute_rows(exec_, p_.force, perm, n, s);
+  permute_rows(exec_, p_.torque, perm, n, s);
+  permute_rows(exec_, p_.radius, perm, n, s);
+  permute_rows(exec_, p_.mass, perm, n, s);
+  permute_rows(exec_, p_.inertia, perm, n, s);
+  permute_rows(exec_, p_.material, perm, n, s);
+  permute_rows(exec_, p_.gid, perm, n, s);
+  permute_rows(exec_, wall_shear_, perm, n, s);
+  permute_rows(exec_, rec_gid_, perm, n, s);
+  permute_rows(exec_, rec_shear_, perm, n, s);
+  permute_rows(exec_, x_build_, perm, n, s);
+  if (external_.extent(0) > 0) permute_rows(exec_, external_, perm, n, s);
 }
 
 template <class ExecSpace>
@@ -434,16 +430,17 @@ void DemSystem<ExecSpace>::rebuild() {
     ghi[d] = std::min(hi[d] + ghost_width_, config_.domain_hi[d]);
   }
   const CellGrid grid = CellGrid::covering(glo, ghi, ghost_width_);
-  const auto bins = bin_points(exec_, grid, x_build_, total);
+  bin_points(exec_, grid, x_build_, total, kernels::particles::PointIndex(), bins_);
   t = timer_mark(timers_.binning, t);
-  list_ = build_verlet_list(exec_, grid, bins, x_build_, p_.radius, p_.gid, total, config_.skin);
-  half_start_ = kernels::particles::half_starts(exec_, list_, p_.gid);
+  list_ = build_verlet_list(exec_, grid, bins_, x_build_, p_.radius, p_.gid, total, config_.skin);
+  kernels::particles::half_starts(exec_, list_, p_.gid, half_start_);
   records_to_history();
   order_rows();
   {
-    wall_mask_ = Kokkos::View<unsigned*, Mem>("amphora::dem::wall_mask", n);
-    wall_near_ = Kokkos::View<unsigned*, Mem>("amphora::dem::wall_near", n);
-    row_mask_ = Kokkos::View<unsigned*, Mem>("amphora::dem::row_mask", total);
+    using kernels::particles::grow_uninitialized;
+    grow_uninitialized(wall_mask_, n, "amphora::dem::wall_mask");
+    grow_uninitialized(wall_near_, n, "amphora::dem::wall_near");
+    grow_uninitialized(row_mask_, total, "amphora::dem::row_mask");
     const auto mask = wall_mask_;
     const auto near = wall_near_;
     const auto rmask = row_mask_;
@@ -497,7 +494,7 @@ void DemSystem<ExecSpace>::order_rows() {
   // Slabs of 2 cell layers, at least 2 ghost widths thick: rows of slabs two apart are more
   // than 4 r_max + skin apart at the build positions, so the particles they touch (within
   // 2 r_max, each centre within skin / 2 of its build position) are disjoint.
-  schedule_ = kernels::particles::slab_schedule(exec_, row_cells(), x_build_, p_.size(), p_.gid);
+  kernels::particles::slab_schedule(exec_, row_cells(), x_build_, p_.size(), p_.gid, schedule_);
 }
 
 template <class ExecSpace>

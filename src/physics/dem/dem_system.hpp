@@ -235,6 +235,9 @@ class DemSystem {
   // Rows in the order they run: slab by slab (slabs of one colour, even or odd, run in
   // parallel).
   kernels::particles::SlabSchedule<Mem> schedule_;
+  // Kept across rebuilds so that a rebuild allocates only what the Verlet list needs.
+  kernels::particles::Bins<Mem> bins_;
+  Kokkos::View<unsigned char*, Mem> permute_scratch_;
 
   mesh::particles::ParticleHalo<ExecSpace> halo_;  // the ghosts' plan, refreshed each step
 
