@@ -275,9 +275,9 @@ class InsSolver {
     if (vans() && options_.void_fraction_time_derivative)
       void_fraction_rate(exec, rate_coefficients(dt, a0, a1, a2));
     typename Operator::Options o = oseen_options(a0 / dt, 1.0 / dt);
-    const Operator A(space_, o);
+    const Operator& A = renew(a_, o);
     o.history = true;
-    const Operator H(space_, o);
+    const Operator& H = renew(h_, o);
     H.apply(exec, history_, rhs_);
     add_particle_load(exec, o);
     kernels::blas1::copy(exec, u, u_old_);  // u^(n-1) <- u^n; the guess: extrapolated velocity
@@ -308,9 +308,9 @@ class InsSolver {
       update_backflow(exec);
       form_history(exec, u, 0.0, 0.0, force_amplitude);
       typename Operator::Options o = oseen_options(0.0, 0.0);
-      const Operator A(space_, o);
+      const Operator& A = renew(a_, o);
       o.history = true;
-      const Operator H(space_, o);
+      const Operator& H = renew(h_, o);
       H.apply(exec, history_, rhs_);
       add_particle_load(exec, o);
       const InsStepReport r = solve(exec, A);
@@ -405,7 +405,7 @@ class InsSolver {
     const Vector ru = Kokkos::subview(rhs_, Kokkos::make_pair(0L, dim * n_));
     kernels::blas1::axpy(exec, 1.0, particle_load_, ru);
     o.load_only = true;
-    const Operator S(space_, o);
+    const Operator& S = renew(s_, o);
     S.apply(exec, load_density_, work_);
     kernels::blas1::axpy(exec, 1.0, work_, rhs_);
   }
@@ -421,6 +421,14 @@ class InsSolver {
           h(i) =
               i < nu ? c1 * u(i) + (c2 != 0.0 ? c2 * uo(i) : 0.0) + (force ? s * f(i) : 0.0) : 0.0;
         });
+  }
+
+  /// The step operator in `slot` rebuilt for options o in the device arrays of the one it
+  /// replaces (the flow's operators change coefficients each step, not size).
+  const Operator& renew(std::unique_ptr<Operator>& slot, const typename Operator::Options& o) {
+    slot = slot ? std::make_unique<Operator>(space_, o, std::move(*slot))
+                : std::make_unique<Operator>(space_, o);
+    return *slot;
   }
 
   typename Operator::Options oseen_options(double alpha, double dt_inverse) const {
@@ -594,6 +602,7 @@ class InsSolver {
   Vector eps_n_, eps_nm1_, eps_nm2_, particle_load_, load_density_, basis_integrals_;  // VANS
   bool void_fraction_set_ = false;
   std::unique_ptr<Operator> mass_, laplace_, div_, scalar_mass_;
+  std::unique_ptr<Operator> a_, h_, s_;         // the step's operator, history and load terms
   solvers::GmresWorkspace<Vector> gmres_work_;  // kept: no allocation inside a step
   double volume_ = 0.0, dt_old_ = 0.0, dt_older_ = 0.0;
   long steps_ = 0;

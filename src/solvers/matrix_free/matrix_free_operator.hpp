@@ -65,7 +65,13 @@ class MatrixFreeOperator {
     Vector field;
   };
 
-  MatrixFreeOperator(const Space& space, const Options& options);
+  MatrixFreeOperator(const Space& space, const Options& options)
+      : MatrixFreeOperator(space, options, nullptr) {}
+  /// As above, reusing the stored coefficients' arrays of `recycled` (left empty) where it has
+  /// the same kind, geometry, quadrature and components and nothing else shares its data: an
+  /// operator rebuilt each step with new coefficients then allocates nothing on the device.
+  MatrixFreeOperator(const Space& space, const Options& options, MatrixFreeOperator&& recycled)
+      : MatrixFreeOperator(space, options, &recycled) {}
 
   /// y = A x (constrained rows: y_i = x_i).
   void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const;
@@ -105,6 +111,10 @@ class MatrixFreeOperator {
   struct Impl;
 
  private:
+  MatrixFreeOperator(const Space& space, const Options& options, MatrixFreeOperator* recycled);
+  /// Whether this operator's coefficients may be computed into other's arrays.
+  bool may_recycle(const MatrixFreeOperator& other) const;
+
   const Space* space_;
   Options options_;
   int n_q_;

@@ -295,8 +295,13 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
                           op.options_.geometry == GeometryMode::affine;
     const ExecSpace exec;
     if (!per_cell) {
-      Kokkos::View<T*, memory_space> pc("amphora::MatrixFreeOperator::point_coef",
-                                        static_cast<std::size_t>(nb) * n_all * K::n_points);
+      const std::size_t size = static_cast<std::size_t>(nb) * n_all * K::n_points;
+      if (impl.point_coef.extent(0) != size)  // else a recycled operator's arrays
+        impl.point_coef = Kokkos::View<T*, memory_space>(
+            Kokkos::view_alloc(Kokkos::WithoutInitializing,
+                               std::string("amphora::MatrixFreeOperator::point_coef")),
+            size);
+      const auto pc = impl.point_coef;
       Kokkos::parallel_for(
           "amphora::MatrixFreeOperator::setup_geometry",
           kernels::RangePolicy<ExecSpace>(exec, 0, nb), KOKKOS_LAMBDA(int b) {
@@ -305,7 +310,6 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
             T* dst = pc.data() + static_cast<long>(b) * n_all * K::n_points;
             for (int i = 0; i < n_all * K::n_points; ++i) dst[i] = s.jac[i];
           });
-      impl.point_coef = pc;
     } else {
       Kokkos::View<T*, memory_space> bc("amphora::MatrixFreeOperator::batch_coef",
                                         static_cast<std::size_t>(nb) * n_keep);
@@ -386,7 +390,8 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
 };
 
 template <int dim, class ExecSpace>
-MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const Options& options)
+MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const Options& options,
+                                                       MatrixFreeOperator* recycled)
     : space_(&space), options_(options) {
   const int k = space.degree();
   n_q_ = options.n_q > 0 ? options.n_q : k + 1;
@@ -443,7 +448,14 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
       fail(name + "'s alpha, grad_div and dt_inverse must not be negative");
   }
 
-  auto impl = std::make_shared<Impl>();
+  std::shared_ptr<Impl> impl;
+  if (recycled && may_recycle(*recycled)) {  // its arrays: setup_geometry writes into them
+    impl = std::const_pointer_cast<Impl>(recycled->impl_);
+    recycled->impl_.reset();
+    impl->generic.reset();
+  } else {
+    impl = std::make_shared<Impl>();
+  }
   Impl::with_point(options.kind, [&](auto point) { Impl::install(*this, point, *impl); });
   impl_ = impl;
   if (impl->generic && constrained_components_ != options.components)
@@ -451,6 +463,15 @@ MatrixFreeOperator<dim, ExecSpace>::MatrixFreeOperator(const Space& space, const
   if (options.geometry == GeometryMode::on_the_fly || impl->generic) return;
   Impl::with_point(options.kind,
                    [&](auto point) { Impl::template setup<decltype(point)>(*this, *impl); });
+}
+
+template <int dim, class ExecSpace>
+bool MatrixFreeOperator<dim, ExecSpace>::may_recycle(const MatrixFreeOperator& other) const {
+  const Options& a = options_;
+  const Options& b = other.options_;
+  return other.impl_ && other.impl_.use_count() == 1 && space_ == other.space_ &&
+         a.kind == b.kind && a.geometry == b.geometry && a.quadrature == b.quadrature &&
+         n_q_ == other.n_q_ && a.components == b.components;
 }
 
 template <int dim, class ExecSpace>

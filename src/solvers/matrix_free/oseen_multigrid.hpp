@@ -121,7 +121,8 @@ class OseenMultigrid {
         restrict_field(exec, l, levels_[l - 1]->op->options().field);
         auto o = A.options();
         o.field = L.field;
-        L.owned_op = std::make_unique<Operator>(*L.space, o);
+        L.owned_op = L.owned_op ? std::make_unique<Operator>(*L.space, o, std::move(*L.owned_op))
+                                : std::make_unique<Operator>(*L.space, o);
         L.op = L.owned_op.get();
       }
       if (l + 1 == levels_.size() && dense_coarse()) break;
