@@ -51,6 +51,14 @@ class ChebyshevSmoother {
     }
   }
 
+  /// Smooths A from now on over the interval that options.lambda_max_bound = lambda_max_bound
+  /// gives, in the vectors it has: as a new smoother with that bound, allocating nothing (an
+  /// operator rebuilt with new coefficients; A must outlive this).
+  void reuse(const Operator& A, double lambda_max_bound) {
+    A_ = &A;
+    lambda_max_ = upper_ = lambda_max_bound;
+  }
+
   double lambda_max() const { return lambda_max_; }
   /// The damped interval's upper end (1.2 lambda_max, or the bound given).
   double upper() const { return upper_; }

@@ -36,6 +36,16 @@ struct VoidFractionOptions {
   double tolerance = 1e-13;       ///< CG, relative
 };
 
+/// -V_p of particle i as spread reads a force, (i, 0): a sphere's (dim 3) or disc's volume.
+template <int dim, class Radii>
+struct NegativeVolume {
+  Radii radius;
+  KOKKOS_INLINE_FUNCTION double operator()(int i, int) const {
+    const double r = radius(i);
+    return dim == 3 ? -4.0 / 3.0 * M_PI * r * r * r : -M_PI * r * r;
+  }
+};
+
 template <int dim, class ExecSpace>
 class VoidFraction {
  public:
@@ -104,14 +114,7 @@ class VoidFraction {
   /// bits, follow the threads).
   void deposit(const ExecSpace& exec, const Points& x, const Vector& radius, int n,
                const Vector& b) const {
-    const Kokkos::View<double* [1], Kokkos::LayoutRight, Mem> volume("amphora::cfd_dem::volume", n);
-    Kokkos::parallel_for(
-        "amphora::cfd_dem::particle_volume", kernels::RangePolicy<ExecSpace>(exec, 0, n),
-        KOKKOS_LAMBDA(int i) {
-          const double r = radius(i);
-          volume(i, 0) = dim == 3 ? -4.0 / 3.0 * M_PI * r * r * r : -M_PI * r * r;
-        });
-    spread(exec, basis_, volume, 1, x, n, b);
+    spread(exec, basis_, NegativeVolume<dim, Vector>{radius}, 1, x, n, b);
   }
 
  private:

@@ -130,6 +130,10 @@ class OseenMultigrid {
         L.op->compute_diagonal(exec, L.d);
         kernels::blas1::reciprocal(exec, L.d);
       }
+      if (!refresh && L.smoother) {  // the kept interval and diagonal, in its vectors
+        L.smoother->reuse(*L.op, L.upper);
+        continue;
+      }
       ChebyshevOptions so = options_.smoother;
       if (!refresh) so.lambda_max_bound = L.upper;
       L.smoother = std::make_unique<Smoother>(exec, *L.op, L.d, so);
