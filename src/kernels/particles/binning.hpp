@@ -80,12 +80,15 @@ void bin_points(const ExecSpace& exec, const CellGrid& grid, const Positions& x,
   grow_uninitialized(b.permutation, n, "amphora::bin_points::permutation");
   grow_uninitialized(b.cell, n, "amphora::bin_points::cell");
   grow_uninitialized(b.fill, nc, "amphora::bin_points::fill");
-  Kokkos::deep_copy(exec, Kokkos::subview(b.offsets, Kokkos::make_pair(0, nc + 1)), 0);
-  Kokkos::deep_copy(exec, Kokkos::subview(b.fill, Kokkos::make_pair(0, nc)), 0);
   const auto fill = b.fill;
   const auto offsets = b.offsets;
   const auto perm = b.permutation;
   const auto cell = b.cell;
+  Kokkos::parallel_for(
+      "amphora::bin_points::zero", RangePolicy<ExecSpace>(exec, 0, nc + 1), KOKKOS_LAMBDA(int c) {
+        offsets(c) = 0;
+        if (c < nc) fill(c) = 0;
+      });
 
   Kokkos::parallel_for(
       "amphora::bin_points::count", RangePolicy<ExecSpace>(exec, 0, n), KOKKOS_LAMBDA(int i) {
