@@ -23,8 +23,6 @@ double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-/// dst(i, ...) = src(perm(i), ...) for i < n, for LayoutRight Views of any rank: the inner
-/// extents of a row are contiguous.
 /// v(i, ...) = v(perm(i), ...) for i < n, through `scratch` (grown as needed), for LayoutRight
 /// Views of any rank: the inner extents of a row are contiguous. v keeps its storage.
 template <class ExecSpace, class View, class Perm, class Scratch>
