@@ -333,15 +333,16 @@ TEST(CfdDemPackedBed, StepsAfterTheFirstAllocateNoSolverVectors) {
   EXPECT_EQ(counted.count("amphora::MatrixFreeOperator::point_coef"), 0u);
 }
 
-/// A list rebuild keeps the particles' arrays (sorted in place), the bins, the row schedule and
-/// the masks: it allocates the Verlet list and its springs alone.
-TEST(CfdDemPackedBed, ListRebuildsAllocateOnlyTheVerletList) {
+/// A list rebuild keeps the particles' arrays (sorted in place), the bins, the row schedule,
+/// the masks, and the Verlet list and its springs (grown with room to spare): in a window of
+/// several rebuilds the list may outgrow its arrays once.
+TEST(CfdDemPackedBed, ListRebuildsAllocateNothing) {
   long long rebuilds = 0;
   const auto counted = allocations_of_two_steps(rebuilds);
-  ASSERT_GT(rebuilds, 0);
-  const std::map<std::string, int> allowed = {{"amphora::build_verlet_list::offsets", 1},
-                                              {"amphora::build_verlet_list::neighbors", 1},
-                                              {"amphora::dem::shear", 1}};
+  ASSERT_GT(rebuilds, 1);
+  const std::map<std::string, int> allowed = {{"amphora::build_verlet_list::neighbors", 1},
+                                              {"amphora::dem::shear", 1},
+                                              {"amphora::dem::shear_next", 1}};
   for (const auto& [label, count] : counted) {
     const bool particles = label.rfind("amphora::ParticleSet::", 0) == 0 ||
                            label.rfind("amphora::bin_points::", 0) == 0 ||
@@ -351,7 +352,7 @@ TEST(CfdDemPackedBed, ListRebuildsAllocateOnlyTheVerletList) {
         label == "amphora::dem::destination")
       continue;  // the flow's, or a migration (a particle left the column)
     const auto a = allowed.find(label);
-    EXPECT_TRUE(a != allowed.end() && count <= a->second * rebuilds)
+    EXPECT_TRUE(a != allowed.end() && count <= a->second)
         << label << ": " << count << " allocations in " << rebuilds << " rebuilds";
   }
 }

@@ -73,5 +73,40 @@ TEST(ParticleVerletList, RowsEqualAllPairsSortedAndSplit) {
   EXPECT_GT(entries, 4 * s.n) << "the test needs neighbours";
 }
 
+/// Rows 0 .. n of a list, as host vectors.
+std::vector<std::vector<int>> rows_of(const NeighborList<Mem>& list) {
+  auto off = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), list.offsets);
+  auto nbr = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), list.neighbors);
+  std::vector<std::vector<int>> rows(list.rows());
+  for (int i = 0; i < list.rows(); ++i)
+    rows[i].assign(nbr.data() + off(i), nbr.data() + off(i + 1));
+  EXPECT_EQ(list.rows() > 0 ? off(list.rows()) : 0, list.entries());
+  return rows;
+}
+
+/// A list kept across rebuilds (rebuilt in its own arrays, as the DEM does) holds what a new
+/// list holds, whether the points grow or shrink, and keeps its arrays while they suffice.
+TEST(ParticleVerletList, AKeptListRebuildsToWhatANewListHolds) {
+  const double skin = 0.01, lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+  NeighborList<Mem> kept;
+  const int* kept_neighbors = nullptr;
+  for (const int n : {1500, 2500, 800, 2400}) {
+    const test::RandomSpheres s(n, 0.03, 5 + n);
+    const Device dev(s);
+    const CellGrid grid = CellGrid::covering(lo, hi, 2 * s.r_max + skin);
+    const auto bins = bin_points(Exec(), grid, dev.x, s.n);
+    const auto fresh = build_verlet_list(Exec(), grid, bins, dev.x, dev.r, dev.gid, s.n, skin);
+    const bool fits = kept.neighbors.extent(0) >= size_t(fresh.entries());
+    build_verlet_list(Exec(), grid, bins, dev.x, dev.r, dev.gid, s.n, skin, kept);
+    ASSERT_EQ(kept.rows(), n);
+    ASSERT_EQ(kept.entries(), fresh.entries());
+    EXPECT_EQ(rows_of(kept), rows_of(fresh)) << n << " points";
+    if (fits) {
+      EXPECT_EQ(kept.neighbors.data(), kept_neighbors) << n << " points: reallocated";
+    }
+    kept_neighbors = kept.neighbors.data();
+  }
+}
+
 }  // namespace
 }  // namespace amphora::kernels::particles

@@ -4,6 +4,7 @@
 // row does so in an order independent of threads, ranks and storage order. Full lists (each
 // pair in both rows): a row's owner accumulates its own sum with no atomics.
 #include <cstdint>
+#include <string>
 
 #include "kernels/particles/binning.hpp"
 
@@ -42,22 +43,29 @@ struct CellNeighborSearch {
   }
 };
 
+/// A list kept across rebuilds keeps its arrays while they are large enough: offsets holds at
+/// least rows() + 1 entries and neighbors at least entries(); only those are the list.
 template <class MemSpace>
 struct NeighborList {
-  Kokkos::View<int*, MemSpace> offsets;    ///< rows + 1
-  Kokkos::View<int*, MemSpace> neighbors;  ///< point indices
-  int rows() const { return offsets.extent(0) > 0 ? int(offsets.extent(0)) - 1 : 0; }
+  Kokkos::View<int*, MemSpace> offsets;    ///< row starts, rows() + 1 of them
+  Kokkos::View<int*, MemSpace> neighbors;  ///< point indices, entries() of them
+  int n_rows = 0;
+  int n_entries = 0;
+  int rows() const { return n_rows; }
+  int entries() const { return n_entries; }
 };
 
 /// Rows for points 0 .. n_rows (owned), columns among all n_points (owned and ghosts), binned
-/// in `bins` over `grid` (cells at least max(r_i + r_j) + skin wide).
+/// in `bins` over `grid` (cells at least max(r_i + r_j) + skin wide), into `list`: its arrays
+/// are kept while large enough; the neighbours grow with an eighth to spare, so that a list
+/// whose contacts grow slowly does not reallocate at every rebuild.
 template <class ExecSpace, class Positions, class Radii, class Ids>
-NeighborList<typename ExecSpace::memory_space> build_verlet_list(
-    const ExecSpace& exec, const CellGrid& grid, const Bins<typename ExecSpace::memory_space>& bins,
-    const Positions& x, const Radii& radius, const Ids& gid, int n_rows, double skin) {
+void build_verlet_list(const ExecSpace& exec, const CellGrid& grid,
+                       const Bins<typename ExecSpace::memory_space>& bins, const Positions& x,
+                       const Radii& radius, const Ids& gid, int n_rows, double skin,
+                       NeighborList<typename ExecSpace::memory_space>& list) {
   using Mem = typename ExecSpace::memory_space;
-  NeighborList<Mem> list;
-  list.offsets = Kokkos::View<int*, Mem>("amphora::build_verlet_list::offsets", n_rows + 1);
+  grow_uninitialized(list.offsets, n_rows + 1, "amphora::build_verlet_list::offsets");
   const auto offsets = list.offsets;
 
   const CellNeighborSearch<Mem, Positions, Radii> search{
@@ -73,13 +81,17 @@ NeighborList<typename ExecSpace::memory_space> build_verlet_list(
   Kokkos::parallel_scan(
       "amphora::build_verlet_list::scan", RangePolicy<ExecSpace>(exec, 0, n_rows + 1),
       KOKKOS_LAMBDA(int r, int& partial, bool final) {
-        partial += offsets(r);
+        partial += r > 0 ? offsets(r) : 0;  // a kept offsets(0) is not initialised
         if (final) offsets(r) = partial;
       },
       total);
-  list.neighbors = Kokkos::View<int*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::build_verlet_list::neighbors"),
-      total);
+  if (list.neighbors.extent(0) < size_t(total))
+    list.neighbors = Kokkos::View<int*, Mem>(
+        Kokkos::view_alloc(Kokkos::WithoutInitializing,
+                           std::string("amphora::build_verlet_list::neighbors")),
+        size_t(total) + size_t(total) / 8);
+  list.n_rows = n_rows;
+  list.n_entries = total;
   const auto nbr = list.neighbors;
   Kokkos::parallel_for(
       "amphora::build_verlet_list::fill", RangePolicy<ExecSpace>(exec, 0, n_rows),
@@ -99,6 +111,15 @@ NeighborList<typename ExecSpace::memory_space> build_verlet_list(
         }
       });
   exec.fence();
+}
+
+/// As above, into a new list.
+template <class ExecSpace, class Positions, class Radii, class Ids>
+NeighborList<typename ExecSpace::memory_space> build_verlet_list(
+    const ExecSpace& exec, const CellGrid& grid, const Bins<typename ExecSpace::memory_space>& bins,
+    const Positions& x, const Radii& radius, const Ids& gid, int n_rows, double skin) {
+  NeighborList<typename ExecSpace::memory_space> list;
+  build_verlet_list(exec, grid, bins, x, radius, gid, n_rows, skin, list);
   return list;
 }
 

@@ -120,8 +120,7 @@ void DemSystem<ExecSpace>::load(const HostState& s) {
   }
   from_host(h);
   p_.n_owned = n;
-  list_.offsets = Kokkos::View<int*, Mem>("amphora::dem::list_offsets", 1);
-  list_.neighbors = Kokkos::View<int*, Mem>("amphora::dem::list_neighbors", 0);
+  list_.n_rows = list_.n_entries = 0;  // no lists until the next rebuild (arrays kept)
   // Forces of the saved state are restored as they were. The next step rebuilds after its
   // first half kick, at the saved build positions unless a rebuild is due anyway: the lists,
   // ghosts and rows' order (so the order of every sum) are those of the run it continues, on

@@ -194,8 +194,7 @@ void DemSystem<ExecSpace>::add_particles(const std::vector<ParticleSpec>& specs)
     for (size_t c = 0; c < rg.extent(1); ++c) rg(i, c) = -1;
   }
   from_host(h);
-  list_.offsets = Kokkos::View<int*, Mem>("amphora::dem::list_offsets", 1);
-  list_.neighbors = Kokkos::View<int*, Mem>("amphora::dem::list_neighbors", 0);
+  list_.n_rows = list_.n_entries = 0;  // no lists until the next rebuild (arrays kept)
   p_.n_owned = n1;
   need_rebuild_ = true;
   keep_build_positions_ = false;
@@ -257,12 +256,32 @@ void DemSystem<ExecSpace>::history_to_records() {
 }
 
 template <class ExecSpace>
+void DemSystem<ExecSpace>::clear_springs() {
+  // The springs share the list's capacity (kept across rebuilds); its entries start at zero.
+  const size_t capacity = list_.neighbors.extent(0);
+  const auto label = [](const char* name) {
+    return Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(name));
+  };
+  if (shear_.extent(0) < capacity)
+    shear_ = decltype(shear_)(label("amphora::dem::shear"), capacity);
+  if (by_particle_ && shear_next_.extent(0) != shear_.extent(0))
+    shear_next_ = decltype(shear_)(label("amphora::dem::shear_next"), shear_.extent(0));
+  const auto a = shear_;
+  const auto b = by_particle_ ? shear_next_ : shear_;
+  Kokkos::parallel_for(
+      "amphora::dem::clear_springs", kernels::RangePolicy<ExecSpace>(exec_, 0, list_.entries()),
+      KOKKOS_LAMBDA(int k) {
+        for (int d = 0; d < 3; ++d) a(k, d) = b(k, d) = 0.0;
+      });
+}
+
+template <class ExecSpace>
 void DemSystem<ExecSpace>::records_to_history() {
   const int n = p_.n_owned;
   const int K = config_.max_contacts;
   const auto off = list_.offsets;
   const auto nbr = list_.neighbors;
-  shear_ = decltype(shear_)("amphora::dem::shear", list_.neighbors.extent(0));
+  clear_springs();
   const auto shear = shear_;
   const auto gid = p_.gid;
   const auto rg = rec_gid_;
@@ -430,7 +449,7 @@ void DemSystem<ExecSpace>::rebuild() {
   const CellGrid grid = CellGrid::covering(glo, ghi, ghost_width_);
   bin_points(exec_, grid, x_build_, total, kernels::particles::PointIndex(), bins_);
   t = timer_mark(timers_.binning, t);
-  list_ = build_verlet_list(exec_, grid, bins_, x_build_, p_.radius, p_.gid, total, config_.skin);
+  build_verlet_list(exec_, grid, bins_, x_build_, p_.radius, p_.gid, total, config_.skin, list_);
   kernels::particles::half_starts(exec_, list_, p_.gid, half_start_);
   records_to_history();
   order_rows();

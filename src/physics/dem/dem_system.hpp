@@ -166,6 +166,8 @@ class DemSystem {
   bool has_lists() const { return list_.rows() == p_.size(); }
   void history_to_records();
   void records_to_history();
+  /// The springs grown to the Verlet list's capacity and zeroed on its entries.
+  void clear_springs();
   void remove_and_migrate();
   /// Every per-particle array a particle carries to another rank.
   mesh::particles::ParticleFields<ExecSpace> migrating_fields() const;
