@@ -42,13 +42,16 @@ class ChebyshevSmoother {
         options_(options),
         r_("amphora::chebyshev::r", inverse_diagonal.extent(0)),
         d_("amphora::chebyshev::d", inverse_diagonal.extent(0)) {
-    if (options.lambda_max_bound > 0.0) {
-      lambda_max_ = upper_ = options.lambda_max_bound;
-    } else {
-      lambda_max_ = options.power_iteration ? estimate_lambda_max_power(exec, inner, start)
-                                            : estimate_lambda_max(exec, inner, start);
-      upper_ = 1.2 * lambda_max_;  // the estimate approaches lambda_max from below
-    }
+    set_interval(exec, inner, start);
+  }
+
+  /// As a new smoother of A with `options` over the inverse diagonal it has (whose values may
+  /// have changed), in the vectors it has: a power-iteration estimate allocates nothing.
+  void refresh(const ExecSpace& exec, const Operator& A, const ChebyshevOptions& options,
+               const Inner& inner = Inner(), const Vector& start = Vector()) {
+    A_ = &A;
+    options_ = options;
+    set_interval(exec, inner, start);
   }
 
   /// Smooths A from now on over the interval that options.lambda_max_bound = lambda_max_bound
@@ -95,11 +98,23 @@ class ChebyshevSmoother {
   }
 
  public:  // (CUDA: extended lambdas may not live in private member functions)
-  /// |lambda|_max of D^-1 A: x <- D^-1 A x / |x|, |D^-1 A x| / |x| after the last step.
+  /// The damped interval: the options' bound, else 1.2 x the estimated lambda_max.
+  void set_interval(const ExecSpace& exec, const Inner& inner, const Vector& start) {
+    if (options_.lambda_max_bound > 0.0) {
+      lambda_max_ = upper_ = options_.lambda_max_bound;
+    } else {
+      lambda_max_ = options_.power_iteration ? estimate_lambda_max_power(exec, inner, start)
+                                             : estimate_lambda_max(exec, inner, start);
+      upper_ = 1.2 * lambda_max_;  // the estimate approaches lambda_max from below
+    }
+  }
+
+  /// |lambda|_max of D^-1 A: x <- D^-1 A x / |x|, |D^-1 A x| / |x| after the last step (x and
+  /// A x in the smoother's own vectors).
   double estimate_lambda_max_power(const ExecSpace& exec, const Inner& dot,
                                    const Vector& start) const {
     const int n = static_cast<int>(inv_diag_.extent(0));
-    Vector x("x", n), y("y", n);
+    const Vector x = r_, y = d_;
     const Vector D = inv_diag_;
     const bool given = start.extent(0) > 0;
     Kokkos::parallel_for(

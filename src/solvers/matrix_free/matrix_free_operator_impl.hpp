@@ -18,6 +18,8 @@ template <int dim, class ExecSpace>
 struct MatrixFreeOperator<dim, ExecSpace>::Impl {
   using T = kernels::sumfac::Simd<kernels::sumfac::simd_width_v<ExecSpace>>;
   Kokkos::View<T*, memory_space> batch_coef, point_coef;
+  // elements_impl's element matrices, kept for the next call (a recycled coarse operator's)
+  mutable Kokkos::View<T*, memory_space> element_scratch;
   long batch_coef_stride = 0;
   std::shared_ptr<void> shape;    // ShapeData<n_p, n_q>
   std::shared_ptr<void> generic;  // GenericCellKernel<dim, ExecSpace, P>, where no compiled fits
@@ -259,8 +261,11 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     using K = Kernel<P, n_p, n_q>;
     constexpr int nd = K::n_comp * K::n_dofs;
     const int nb = k.lattice.n_batches();
-    Kokkos::View<T*, memory_space> out("amphora::MatrixFreeOperator::elements",
-                                       static_cast<std::size_t>(nb) * nd * nd);
+    auto& kept = op.impl_->element_scratch;
+    if (kept.extent(0) != static_cast<std::size_t>(nb) * nd * nd)
+      kept = Kokkos::View<T*, memory_space>("amphora::MatrixFreeOperator::elements",
+                                            static_cast<std::size_t>(nb) * nd * nd);
+    const auto out = kept;
     Kokkos::parallel_for(
         "amphora::MatrixFreeOperator::element_matrices",
         kernels::RangePolicy<ExecSpace>(exec, 0, nb),

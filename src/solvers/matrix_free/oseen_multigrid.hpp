@@ -136,12 +136,16 @@ class OseenMultigrid {
       }
       ChebyshevOptions so = options_.smoother;
       if (!refresh) so.lambda_max_bound = L.upper;
-      L.smoother = std::make_unique<Smoother>(exec, *L.op, L.d, so);
+      if (L.smoother)
+        L.smoother->refresh(exec, *L.op, so);
+      else
+        L.smoother = std::make_unique<Smoother>(exec, *L.op, L.d, so);
       L.upper = L.smoother->upper();
     }
     if (dense_coarse()) {
       coarse_ = std::make_unique<DenseLeastSquares>(assemble(exec, *levels_.back()->op));
-      coarse_host_ = HostVector("amphora::oseen_mg::coarse_host", levels_.back()->b.extent(0));
+      if (coarse_host_.extent(0) != levels_.back()->b.extent(0))
+        coarse_host_ = HostVector("amphora::oseen_mg::coarse_host", levels_.back()->b.extent(0));
     }
   }
 
