@@ -4,7 +4,9 @@
 // on the uniform grid makes two (the multigrid's coarsest grid, set up again each sub-step: its
 // cell list to the device, its rows to the host); the tall-cell water step, which still rebuilds
 // its grid on the host, is held at what it copies now, so a new copy in a step fails here.
+#include <algorithm>
 #include <cstdio>
+#include <vector>
 #include <type_traits>
 
 #include "kernels/deep_copy_counter.hpp"
@@ -37,6 +39,71 @@ TEST(StepTransfers, DemStepsStayOnTheDevice) {
   }
   ASSERT_GT(quiet_steps, 10);
   ASSERT_GT(rebuild_steps, 2);
+}
+
+/// Rows of spheres in free flight along +x, each row at its own speed (so no contacts), through
+/// a domain open at x = L: a rebuild removes those that left, on the device (one rank: the plan
+/// is a scan; no host copy), and keeps the others' states.
+TEST(StepTransfers, DemRemovalsStayOnTheDevice) {
+  const double r = 5e-4, L = 1e-2, dt = 1e-5;
+  physics::dem::Material m;
+  m.youngs_modulus = 1e7;
+  physics::dem::DemConfig c;
+  c.materials = {m};
+  c.domain_lo = {0, 0, 0};
+  c.domain_hi = {L, L, L};
+  c.gravity = {0, 0, 0};
+  c.max_radius = r;
+  c.skin = 0.3 * r;
+  c.dt = dt;
+  System s(c, Communicator());
+  std::vector<physics::dem::ParticleSpec> ps;
+  for (int k = 0; k < 5; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 5; ++i) {
+        physics::dem::ParticleSpec p;
+        p.x[0] = (2 * i + 1) * 1e-3, p.x[1] = (2 * j + 1) * 1e-3, p.x[2] = (2 * k + 1) * 1e-3;
+        p.v[0] = 1.0 + 0.9 * ((j + 5 * k) % 5);  // 1 .. 4.6 m/s
+        p.radius = r;
+        p.gid = ps.size();
+        ps.push_back(p);
+      }
+  s.add_particles(ps);
+  s.step();
+  kernels::DeepCopyCounter counter;
+  const int steps = 150;  // 1.5 ms: rows travel 1.5 .. 6.9 mm
+  int removals = 0;
+  for (int it = 1; it < steps; ++it) {
+    const long long rebuilds = s.timers().rebuilds, held = s.global_count();
+    counter.reset();
+    s.step();
+    const kernels::DeepCopyCount cc = counter.count();
+    // a rebuild: the build positions; a removal: also the force and torque zeroed (fills)
+    const bool removed = s.global_count() < held;
+    removals += removed ? 1 : 0;
+    EXPECT_EQ(cc.copies, removed ? 3 : s.timers().rebuilds != rebuilds ? 1 : 0) << "step " << it;
+    EXPECT_EQ(cc.host_device(), 0) << "step " << it;
+    EXPECT_EQ(cc.scalar_reads, 0) << "step " << it;
+  }
+  EXPECT_GT(removals, 3);
+  // A centre past x = L is 0.5 mm or more past it, more than the skin a rebuild may lag behind.
+  std::vector<std::int64_t> inside;
+  for (const auto& p : ps)
+    if (p.x[0] + p.v[0] * steps * dt < L) inside.push_back(p.gid);
+  ASSERT_GT(inside.size(), 25u);
+  ASSERT_LT(inside.size(), 100u);
+  const auto& set = s.particles();
+  auto gid = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), set.gid);
+  auto x = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), set.x);
+  std::vector<std::int64_t> held;
+  for (int i = 0; i < set.n_owned; ++i) {
+    held.push_back(gid(i));
+    const auto& p = ps[gid(i)];
+    EXPECT_NEAR(x(i, 0), p.x[0] + p.v[0] * steps * dt, 1e-12) << "gid " << gid(i);
+    EXPECT_EQ(x(i, 1), p.x[1]) << "gid " << gid(i);
+  }
+  std::sort(held.begin(), held.end());
+  EXPECT_EQ(held, inside);
 }
 
 kernels::DeepCopyCount water_step_copies(int optical_depth) {

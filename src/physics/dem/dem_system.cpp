@@ -334,7 +334,8 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
   // Force and torque are not carried: the force evaluation under way zeroes them again.
   forces_zeroed_ = false;
   const mesh::particles::OwnerMap owner = decomposition_.owner_map();
-  Kokkos::View<int*, Mem> dest("amphora::dem::destination", n);
+  kernels::particles::grow_uninitialized(destination_, n, "amphora::dem::destination");
+  const auto dest = destination_;
   Kokkos::parallel_for(
       "amphora::dem::destination", kernels::RangePolicy<ExecSpace>(exec_, 0, n),
       KOKKOS_LAMBDA(int i) {
@@ -342,7 +343,8 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
         const bool in_domain = a >= d0 && a <= e0 && b >= d1 && b <= e1 && z >= d2 && z <= e2;
         dest(i) = in_domain ? owner(a, b, z) : -1;  // -1: removed, it left the domain
       });
-  mesh::particles::ParticleMigration<ExecSpace> migration(decomposition_, dest, n);
+  mesh::particles::ParticleMigration<ExecSpace> migration(exec_, decomposition_, dest, n,
+                                                          migration_buffers_);
   const int m = migration.send(exec_, migrating_fields());
   p_.n_owned = 0;
   resize_owned(m);

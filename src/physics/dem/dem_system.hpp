@@ -29,6 +29,7 @@
 #include "kernels/particles/verlet_list.hpp"
 #include "mesh/particles/particle_fields.hpp"
 #include "mesh/particles/particle_halo.hpp"
+#include "mesh/particles/particle_migration.hpp"
 #include "mesh/particles/particle_set.hpp"
 #include "mesh/particles/spatial_decomposition.hpp"
 #include "physics/dem/contact_model.hpp"
@@ -240,6 +241,8 @@ class DemSystem {
   // Kept across rebuilds so that a rebuild allocates only what the Verlet list needs.
   kernels::particles::Bins<Mem> bins_;
   Kokkos::View<unsigned char*, Mem> permute_scratch_;
+  Kokkos::View<int*, Mem> destination_;  // a migration's destination ranks (-1: removed)
+  mesh::particles::MigrationBuffers<Mem> migration_buffers_;
 
   mesh::particles::ParticleHalo<ExecSpace> halo_;  // the ghosts' plan, refreshed each step
 
