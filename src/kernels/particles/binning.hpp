@@ -5,6 +5,7 @@
 // detection, and later void fractions and particle-cell maps.
 #include <string>
 
+#include "kernels/grow_view.hpp"
 #include "kernels/spaces.hpp"
 
 namespace amphora::kernels::particles {
@@ -57,13 +58,6 @@ struct Bins {
   Kokkos::View<int*, MemSpace> cell;  ///< cell of each point
   Kokkos::View<int*, MemSpace> fill;  ///< scratch: points placed per cell
 };
-
-/// Reallocates v (uninitialised, under `label`) unless it holds n entries already.
-template <class View>
-void grow_uninitialized(View& v, size_t n, const char* label) {
-  if (v.extent(0) < n)
-    v = View(Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string(label)), n);
-}
 
 /// The point index as the key of bin_points' order within a cell.
 struct PointIndex {

@@ -5,7 +5,7 @@
 // the plan (who goes where, from dest) and the MPI messages do.
 #include <vector>
 
-#include "kernels/particles/binning.hpp"
+#include "kernels/grow_view.hpp"
 #include "mesh/particles/particle_fields.hpp"
 #include "mesh/particles/spatial_decomposition.hpp"
 
@@ -28,8 +28,7 @@ class ParticleMigration {
   ParticleMigration(const ExecSpace& exec, const SpatialDecomposition& dec,
                     const Kokkos::View<int*, Mem>& dest, int n, MigrationBuffers<Mem>& buffers)
       : dec_(dec), buffers_(buffers) {
-    kernels::particles::grow_uninitialized(buffers_.order, n,
-                                           "amphora::particles::migration_order");
+    kernels::grow_uninitialized(buffers_.order, n, "amphora::particles::migration_order");
     if (dec.comm().size() == 1)
       plan_on_device(exec, dest, n);
     else
@@ -40,8 +39,8 @@ class ParticleMigration {
   /// the latter, and returns how many particles this rank will hold. Collective.
   int send(const ExecSpace& exec, const ParticleFields<ExecSpace>& from) {
     const int w = from.width();
-    kernels::particles::grow_uninitialized(buffers_.records, size_t(moving_) * w,
-                                           "amphora::particles::migration_records");
+    kernels::grow_uninitialized(buffers_.records, size_t(moving_) * w,
+                                "amphora::particles::migration_records");
     from.pack(exec, buffers_.order, moving_, buffers_.records);
     exec.fence();
     if (dec_.comm().size() == 1) return held_ = staying_;  // the records are in place
@@ -58,8 +57,8 @@ class ParticleMigration {
     held_ = staying_ + static_cast<int>(in.size()) / w;
     std::vector<double> held(h.data(), h.data() + size_t(staying_) * w);
     held.insert(held.end(), in.begin(), in.end());
-    kernels::particles::grow_uninitialized(buffers_.records, held.size(),
-                                           "amphora::particles::migration_records");
+    kernels::grow_uninitialized(buffers_.records, held.size(),
+                                "amphora::particles::migration_records");
     Kokkos::deep_copy(Kokkos::subview(buffers_.records, Kokkos::make_pair(size_t(0), held.size())),
                       Kokkos::View<const double*, kernels::HostMemSpace, Kokkos::MemoryUnmanaged>(
                           held.data(), held.size()));

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "kernels/grow_view.hpp"
 #include "kernels/particles/binning.hpp"
 #include "kernels/particles/pair_loop.hpp"
 #include "mesh/particles/particle_migration.hpp"
@@ -30,8 +31,8 @@ void permute_rows(const ExecSpace& exec, const View& v, const Perm& perm, int n,
   using T = typename View::value_type;
   size_t inner = 1;
   for (unsigned r = 1; r < View::rank; ++r) inner *= v.extent(r);
-  kernels::particles::grow_uninitialized(scratch, size_t(n) * inner * sizeof(T),
-                                         "amphora::dem::permute_scratch");
+  kernels::grow_uninitialized(scratch, size_t(n) * inner * sizeof(T),
+                              "amphora::dem::permute_scratch");
   T* tmp = reinterpret_cast<T*>(scratch.data());
   T* d = v.data();
   Kokkos::parallel_for(
@@ -334,7 +335,7 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
   // Force and torque are not carried: the force evaluation under way zeroes them again.
   forces_zeroed_ = false;
   const mesh::particles::OwnerMap owner = decomposition_.owner_map();
-  kernels::particles::grow_uninitialized(destination_, n, "amphora::dem::destination");
+  kernels::grow_uninitialized(destination_, n, "amphora::dem::destination");
   const auto dest = destination_;
   Kokkos::parallel_for(
       "amphora::dem::destination", kernels::RangePolicy<ExecSpace>(exec_, 0, n),
@@ -456,7 +457,7 @@ void DemSystem<ExecSpace>::rebuild() {
   records_to_history();
   order_rows();
   {
-    using kernels::particles::grow_uninitialized;
+    using kernels::grow_uninitialized;
     grow_uninitialized(wall_mask_, n, "amphora::dem::wall_mask");
     grow_uninitialized(wall_near_, n, "amphora::dem::wall_near");
     grow_uninitialized(row_mask_, total, "amphora::dem::row_mask");
