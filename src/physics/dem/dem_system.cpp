@@ -455,7 +455,8 @@ void DemSystem<ExecSpace>::rebuild() {
   build_verlet_list(exec_, grid, bins_, x_build_, p_.radius, p_.gid, total, config_.skin, list_);
   kernels::particles::half_starts(exec_, list_, p_.gid, half_start_);
   records_to_history();
-  order_rows();
+  schedule_current_ = false;
+  if (!by_particle_) order_rows();  // a device's force loop runs by particle: no schedule
   {
     using kernels::grow_uninitialized;
     grow_uninitialized(wall_mask_, n, "amphora::dem::wall_mask");
@@ -515,6 +516,7 @@ void DemSystem<ExecSpace>::order_rows() {
   // than 4 r_max + skin apart at the build positions, so the particles they touch (within
   // 2 r_max, each centre within skin / 2 of its build position) are disjoint.
   kernels::particles::slab_schedule(exec_, row_cells(), x_build_, p_.size(), p_.gid, schedule_);
+  schedule_current_ = true;
 }
 
 template <class ExecSpace>
@@ -619,6 +621,7 @@ void DemSystem<ExecSpace>::compute_forces() {
     particles::pair_sums_by_particle(exec_, pairs, spheres, p_.gid, p_.n_owned, p_.size(), law);
     std::swap(shear_, shear_next_);
   } else {
+    if (!schedule_current_) order_rows();  // switched from by-particle since the last rebuild
     particles::pair_sums_by_slabs(exec_, schedule_, pairs, spheres, p_.n_owned, row_mask_, law);
   }
   add_external_force();

@@ -238,6 +238,7 @@ class DemSystem {
   // Rows in the order they run: slab by slab (slabs of one colour, even or odd, run in
   // parallel).
   kernels::particles::SlabSchedule<Mem> schedule_;
+  bool schedule_current_ = false;  // schedule_ is that of the last rebuild's positions
   // Kept across rebuilds so that a rebuild allocates only what the Verlet list needs.
   kernels::particles::Bins<Mem> bins_;
   Kokkos::View<unsigned char*, Mem> permute_scratch_;
