@@ -2,6 +2,7 @@
 // contacts the force kernel sees through the Verlet list are exactly those of a brute-force
 // all-pairs search; and tangential history survives list rebuilds.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <random>
@@ -76,6 +77,15 @@ TEST(DemContactDetection, HeldForcesOverSubstepsMissNoContact) {
   expect_all_pairs_contacts_at_every_step(s);
 }
 
+/// The owned particles' positions by global id.
+std::map<std::int64_t, std::array<double, 3>> positions_by_gid(const System& s) {
+  const auto x = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), s.particles().x);
+  const auto g = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), s.particles().gid);
+  std::map<std::int64_t, std::array<double, 3>> out;
+  for (int i = 0; i < s.particles().n_owned; ++i) out[g(i)] = {x(i, 0), x(i, 1), x(i, 2)};
+  return out;
+}
+
 // The devices' schedule (one work item per particle, each pair evaluated by both) against the
 // host's (slabs of rows): the same contacts at every step and the same trajectories to
 // round-off (the force sums run in another order), springs and rebuilds included.
@@ -97,27 +107,14 @@ TEST(DemContactDetection, ParticleScheduleEqualsSlabScheduleToRoundOff) {
     ASSERT_EQ(a, b) << "step " << it;
     ASSERT_EQ(a, c) << "step " << it;
   }
-  const auto xa = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), slabs.particles().x);
-  const auto xb =
-      Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), particles.particles().x);
-  const auto ga =
-      Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), slabs.particles().gid);
-  const auto gb =
-      Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), particles.particles().gid);
-  ASSERT_EQ(slabs.particles().n_owned, particles.particles().n_owned);
-  std::map<std::int64_t, int> where;
-  for (int i = 0; i < particles.particles().n_owned; ++i) where[gb(i)] = i;
-  const auto xc =
-      Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), switched.particles().x);
-  const auto gc =
-      Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), switched.particles().gid);
-  ASSERT_EQ(switched.particles().n_owned, particles.particles().n_owned);
-  std::map<std::int64_t, int> where_switched;
-  for (int i = 0; i < switched.particles().n_owned; ++i) where_switched[gc(i)] = i;
-  for (int i = 0; i < slabs.particles().n_owned; ++i)
+  const auto xa = positions_by_gid(slabs), xb = positions_by_gid(particles),
+             xc = positions_by_gid(switched);
+  ASSERT_EQ(xa.size(), xb.size());
+  ASSERT_EQ(xa.size(), xc.size());
+  for (const auto& [gid, x] : xa)
     for (int d = 0; d < 3; ++d) {
-      worst = std::max(worst, std::abs(xa(i, d) - xb(where.at(ga(i)), d)));
-      worst = std::max(worst, std::abs(xa(i, d) - xc(where_switched.at(ga(i)), d)));
+      worst = std::max(worst, std::abs(x[d] - xb.at(gid)[d]));
+      worst = std::max(worst, std::abs(x[d] - xc.at(gid)[d]));
     }
   // positions of order 1e-2 m: 60 steps of round-off stay far below 1e-12 m; a wrong sign or a
   // missing pair in either schedule moves a particle by ~1e-7 m or more within these steps
