@@ -265,14 +265,31 @@ void DemSystem<ExecSpace>::clear_springs() {
   };
   if (shear_.extent(0) < capacity)
     shear_ = decltype(shear_)(label("amphora::dem::shear"), capacity);
-  if (by_particle_ && shear_next_.extent(0) != shear_.extent(0))
-    shear_next_ = decltype(shear_)(label("amphora::dem::shear_next"), shear_.extent(0));
+  size_next_springs();
   const auto a = shear_;
   const auto b = by_particle_ ? shear_next_ : shear_;
   Kokkos::parallel_for(
       "amphora::dem::clear_springs", kernels::RangePolicy<ExecSpace>(exec_, 0, list_.entries()),
       KOKKOS_LAMBDA(int k) {
         for (int d = 0; d < 3; ++d) a(k, d) = b(k, d) = 0.0;
+      });
+}
+
+template <class ExecSpace>
+void DemSystem<ExecSpace>::size_next_springs() {
+  // Entries no row owns are never written by the by-particle loop, so a new array starts at 0.
+  if (by_particle_ && shear_next_.extent(0) != shear_.extent(0))
+    shear_next_ = decltype(shear_)("amphora::dem::shear_next", shear_.extent(0));
+}
+
+template <class ExecSpace>
+void DemSystem<ExecSpace>::zero_forces() {
+  const auto f = p_.force;
+  const auto tq = p_.torque;
+  Kokkos::parallel_for(
+      "amphora::dem::zero_forces", kernels::RangePolicy<ExecSpace>(exec_, 0, int(f.extent(0))),
+      KOKKOS_LAMBDA(int i) {
+        for (int d = 0; d < 3; ++d) f(i, d) = tq(i, d) = 0.0;
       });
 }
 
@@ -580,13 +597,9 @@ void DemSystem<ExecSpace>::compute_forces() {
   // Force and torque start at zero (kick_drift left them so, having used them): the slab
   // schedule's rows add to them (a row its particle's gravity, walls and share of its pairs
   // with larger-gid partners in one go, and the partners' shares to theirs).
-  if (!forces_zeroed_) {
-    Kokkos::deep_copy(exec_, p_.force, 0.0);
-    Kokkos::deep_copy(exec_, p_.torque, 0.0);
-  }
+  if (!forces_zeroed_) zero_forces();
   forces_zeroed_ = false;
-  if (by_particle_ && shear_next_.extent(0) != shear_.extent(0))  // entries no row owns stay 0
-    shear_next_ = decltype(shear_)("amphora::dem::shear_next", shear_.extent(0));
+  size_next_springs();
   // Restrict-qualified Views: no store through one may alias another, so the compiler keeps
   // loads in registers across the contact loop.
   const Rows3<const double> x(p_.x), v(p_.v), om(p_.omega);

@@ -169,6 +169,9 @@ class DemSystem {
   void records_to_history();
   /// The springs grown to the Verlet list's capacity and zeroed on its entries.
   void clear_springs();
+  /// shear_next_ (the by-particle loop's output springs) sized as shear_, zero where new.
+  void size_next_springs();
+  void zero_forces();  // force and torque to zero, in one kernel
   void remove_and_migrate();
   /// Every per-particle array a particle carries to another rank.
   mesh::particles::ParticleFields<ExecSpace> migrating_fields() const;
