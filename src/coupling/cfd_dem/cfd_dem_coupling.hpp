@@ -124,6 +124,15 @@ class CfdDemCoupling {
   Vec held_forces() { return dem_.external_force(); }
   void set_phase_times(physics::PhaseTimes* t) { times_ = t; }
 
+  /// A restart after `steps` coupled steps, the flow's state and void fraction history and
+  /// the particles restored: the void fraction now is the flow's eps^n, not computed anew (the
+  /// projection's CG starts from the last one, so a new one would differ in round-off).
+  void resume(long steps) {
+    Kokkos::deep_copy(eps_, flow_.void_fraction());
+    started_ = true;
+    steps_ = steps;
+  }
+
   /// One fluid step of N DEM sub-steps.
   physics::ins_fem::InsStepReport step() {
     const ExecSpace exec;

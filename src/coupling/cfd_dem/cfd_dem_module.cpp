@@ -375,16 +375,22 @@ class CfdDemModule final : public physics::Module {
     const auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), flow_->state());
     const auto oh =
         Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), flow_->previous_velocity());
-    std::vector<StateBlock> blocks = {
-        {"flow",
-         {{"state", std::vector<double>(sh.data(), sh.data() + sh.extent(0))},
-          {"u_old", std::vector<double>(oh.data(), oh.data() + oh.extent(0))},
-          {"history", {flow_->previous_dt(), static_cast<double>(flow_->steps())}}}}};
+    StateBlock flow{"flow",
+                    {{"state", std::vector<double>(sh.data(), sh.data() + sh.extent(0))},
+                     {"u_old", std::vector<double>(oh.data(), oh.data() + oh.extent(0))},
+                     {"eps", flow_->void_fraction_history()},
+                     {"history",
+                      {flow_->previous_dt(), static_cast<double>(flow_->steps()),
+                       static_cast<double>(coupling_->steps()),
+                       static_cast<double>(last_.linear_iterations)}}}};
+    std::vector<double> pc = flow_->preconditioner_state();
+    if (!pc.empty()) flow.arrays.push_back({"preconditioner", std::move(pc)});
+    std::vector<StateBlock> blocks = {flow};
     for (auto& b : dem_->state()) blocks.push_back(std::move(b));
     return blocks;
   }
-  /// The flow and the particles; the void fraction's history restarts from the particles (a
-  /// continuation is close to, not bit for bit, the uninterrupted run).
+  /// The flow (with its void fraction's history and multigrid), the coupling's step count and
+  /// the particles: a continuation is the uninterrupted run bit for bit.
   void restore(const std::vector<StateBlock>& blocks) override {
     std::vector<StateBlock> dem;
     for (const auto& b : blocks) {
@@ -392,13 +398,22 @@ class CfdDemModule final : public physics::Module {
         dem.push_back(b);
         continue;
       }
-      std::vector<double> state, u_old, history;
+      std::vector<double> state, u_old, eps, history, preconditioner;
       for (const auto& [key, v] : b.arrays)
-        (key == "state" ? state : key == "u_old" ? u_old : history) = v;
-      if (static_cast<long>(state.size()) != 4 * flow_->n_dofs() || history.size() < 2)
+        (key == "state"            ? state
+         : key == "u_old"          ? u_old
+         : key == "eps"            ? eps
+         : key == "preconditioner" ? preconditioner
+                                   : history) = v;
+      if (static_cast<long>(state.size()) != 4 * flow_->n_dofs() || history.size() < 4 ||
+          static_cast<long>(eps.size()) != 3 * flow_->n_dofs() + 1)
         throw std::runtime_error("cfd_dem: the checkpoint's flow block does not fit this scene");
       flow_->set_state(state);
       flow_->set_history(u_old, history[0], static_cast<long>(history[1]));
+      flow_->set_void_fraction_history(eps);
+      flow_->set_preconditioner_state(preconditioner);
+      coupling_->resume(static_cast<long>(history[2]));
+      last_.linear_iterations = static_cast<int>(history[3]);
     }
     dem_->restore(dem);
   }

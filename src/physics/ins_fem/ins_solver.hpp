@@ -245,6 +245,33 @@ class InsSolver {
   const Vector& previous_velocity() const { return u_old_; }
   double previous_dt() const { return dt_old_; }
 
+  /// VANS checkpoints: eps^n, eps^(n-1), eps^(n-2) (n_dofs each) and the step before the
+  /// previous one, which the filtered rate's test for a uniform step reads.
+  std::vector<double> void_fraction_history() const {
+    std::vector<double> h;
+    for (const Vector& e : {eps_n_, eps_nm1_, eps_nm2_}) {
+      const auto eh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), e);
+      h.insert(h.end(), eh.data(), eh.data() + eh.extent(0));
+    }
+    h.push_back(dt_older_);
+    return h;
+  }
+  /// Restores void_fraction_history() after set_history; eps^n is also the void fraction now.
+  void set_void_fraction_history(const std::vector<double>& h) {
+    require_vans("set_void_fraction_history");
+    if (h.size() != static_cast<size_t>(3 * n_ + 1))
+      throw std::invalid_argument(
+          "ins_fem: the void fraction's history needs 3 n_dofs + 1 entries");
+    const Vector e[3] = {eps_n_, eps_nm1_, eps_nm2_};
+    for (int l = 0; l < 3; ++l)
+      Kokkos::deep_copy(e[l],
+                        kernels::to_view<typename ExecSpace::memory_space>(
+                            std::vector<double>(h.begin() + l * n_, h.begin() + (l + 1) * n_)));
+    Kokkos::deep_copy(void_fraction(), eps_n_);
+    void_fraction_set_ = true;
+    dt_older_ = h.back();
+  }
+
   /// A body force amplitude(t) F(x), F with dim n_dofs entries (host); set once.
   void set_force(const std::vector<double>& force) {
     force_ = kernels::to_view<typename ExecSpace::memory_space>(force);
