@@ -121,5 +121,18 @@ TEST(CfdDemSettlingTwoWay, TerminalVelocityWithTheSelfInducedVelocityShrinkingWi
   }
 }
 
+/// Re_p 0.1, the lowest, against its 2 % target: disabled because it fails (the
+/// self-induced velocity is not corrected; docs/cfd_dem.md) and takes about 4 minutes. Run it
+/// with --gtest_also_run_disabled_tests --gtest_filter=*ReynoldsTenth*.
+TEST(CfdDemSettlingTwoWay, DISABLED_ReynoldsTenthAgainstTheTarget) {
+  for (const double cells : {5.0, 10.0}) {
+    const Settling r = settle(0.1, cells, cells);
+    for (int k = 0; k < 2; ++k)
+      std::printf("Re 0.1, h = %g d, %d cells down: fall / drag law - 1 %+.3f %%, water %.3e\n",
+                  cells, 3 + k, 100 * (r.speed[k] / r.terminal - 1), r.fluid[k]);
+    EXPECT_LT(r.speed[1] / r.terminal - 1.0, 0.02) << "h " << cells << " d";
+  }
+}
+
 }  // namespace test_cfd_dem_settling_two_way
 }  // namespace amphora::coupling::cfd_dem

@@ -46,7 +46,9 @@ ParamTable cfd_dem_parameter_table() {
                        "at x = 0 and the width, periodic across the thin depth (pseudo-2D)",
                        {"walls", "periodic", "slot"}),
           int_param("cells", 8, at_least(2) & at_most(256),
-                    "cells across the column (as many per length along it)"),
+                    "cells across the column (about as many per length along it: the "
+                    "nearest multiple of the largest power of two dividing cells, so that the "
+                    "multigrid halves the column as often as its width)"),
           int_param("degree", 1,
                     at_least(1) & at_most(solvers::matrix_free::max_compiled_degree_vans),
                     "polynomial degree of the flow (Q1: CFD-DEM's usual element)"),
@@ -143,13 +145,18 @@ Parameters dem_parameters(const Parameters& p) {
   return d;
 }
 
-/// The column: sides as fluid_sides says, inflow at z = 0, open top.
+/// The column: sides as fluid_sides says, inflow at z = 0, open top. Along y and z the cells
+/// are as near cubic as a count that is a multiple of q, the largest power of two dividing the
+/// cells across, allows (a side shorter than q cells keeps its count): an odd count would stop the
+/// multigrid's halving at the first level (docs/cfd_dem.md).
 mesh::hex::StructuredHexMesh<3> column_mesh(const Parameters& p) {
   mesh::hex::StructuredHexMesh<3> m;
-  const int n = static_cast<int>(p.integer("cells"));
+  const int n = static_cast<int>(p.integer("cells")), q = n & -n;
   const double w = p.real("column_width"), depth = column_depth(p), h = p.real("column_height");
-  const auto along = [&](double l) {
-    return std::max(1, static_cast<int>(std::lround(n * l / w)));
+  const auto along = [&](double l) {  // a thin side (a slot's depth) keeps its count
+    const double cubic = n * l / w;
+    return cubic < q ? std::max(1, static_cast<int>(std::lround(cubic)))
+                     : q * static_cast<int>(std::lround(cubic / q));
   };
   m.cells = {n, along(depth), along(h)};
   m.upper = {w, depth, h};
