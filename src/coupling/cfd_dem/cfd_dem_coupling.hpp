@@ -15,6 +15,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Kokkos_Core.hpp>
@@ -34,6 +35,16 @@ namespace amphora::coupling::cfd_dem {
 /// default: the particles' relaxation time is no step limit for the fluid) or as the explicit
 /// load of the forces the particles were given (the exchange then balances to round-off).
 enum class DragCoupling { semi_implicit, explicit_load };
+
+/// A coupled step that cannot go on: eps out of (0, 1] at a node, or a fluid step over the CFL
+/// limit. `node` is the flow DoF where it failed (-1: not one node; the report then names the
+/// fastest velocity).
+struct StepFailure : std::runtime_error {
+  StepFailure(const std::string& what, std::string field_, long node_)
+      : std::runtime_error(what), field(std::move(field_)), node(node_) {}
+  std::string field;
+  long node;
+};
 
 struct CfdDemOptions {
   FluidProperties fluid;
@@ -313,7 +324,7 @@ class CfdDemCoupling {
       << ": particles too large or too dense for the cells; set void_fraction "
          "smoothing_length (about 2 d; a lone sphere on a line of nodes needs 1.5 cells) or "
          "use larger cells";
-    throw std::runtime_error(m.str());
+    throw StepFailure(m.str(), "eps", node);
   }
   void check_cfl() const {
     const double c = flow_.cfl(fluid_dt());
@@ -322,7 +333,7 @@ class CfdDemCoupling {
     m << "cfd_dem: fluid step " << fluid_dt() << " s gives CFL " << c << " over max_cfl "
       << options_.max_cfl << " at fluid step " << steps_ << " (t = " << steps_ * fluid_dt()
       << " s): shorten the step (fewer DEM sub-steps)";
-    throw std::runtime_error(m.str());
+    throw StepFailure(m.str(), "velocity", -1);
   }
   /// PCM without smoothing puts a particle's volume into one cell's nodes: particles wider
   /// than a cell make eps overshoot and go negative. One line on stderr with the ratio.

@@ -11,6 +11,7 @@
 #include "coupling/cfd_dem/richardson_zaki.hpp"
 #include "kernels/reductions.hpp"
 #include "physics/dem/dem_module.hpp"
+#include "physics/ins_fem/flow_failure.hpp"
 #include "physics/ins_fem/flow_output.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"
 
@@ -343,7 +344,11 @@ class CfdDemModule final : public physics::Module {
     try {
       last_ = coupling_->step();
       if (!last_.converged) failure_ = "the fluid's GMRES did not reach its tolerance";
-    } catch (const std::runtime_error& e) {  // eps out of (0, 1], CFL over the limit
+    } catch (const StepFailure& e) {  // eps out of (0, 1], CFL over the limit
+      failure_ = e.what();
+      failure_field_ = e.field;
+      failure_node_ = e.node;
+    } catch (const std::runtime_error& e) {
       failure_ = e.what();
     }
   }
@@ -369,12 +374,16 @@ class CfdDemModule final : public physics::Module {
   std::optional<physics::NonFiniteReport> find_nonfinite() const override {
     if (auto bad = dem_->find_nonfinite()) return bad;
     const long i = kernels::reduce::first_nonfinite(Exec(), flow_->state());
-    if (i < 0 && failure_.empty()) return std::nullopt;
-    physics::NonFiniteReport r;
-    r.field = i < 0 ? "velocity" : (i / flow_->n_dofs() < 3 ? "velocity" : "pressure");
-    r.block = "flow";
-    r.index = i < 0 ? 0 : i % flow_->n_dofs();
-    r.reason = i < 0 ? failure_ : "";
+    if (i >= 0) return physics::ins_fem::flow_report_at<3>(*flow_, i, "");
+    if (failure_.empty()) return std::nullopt;
+    // eps out of range names its node; a step over the CFL limit or a failed solve, the
+    // place the flow is fastest.
+    if (failure_node_ < 0)
+      return physics::ins_fem::flow_report_at<3>(
+          *flow_, physics::ins_fem::largest_free_velocity<3>(*flow_), failure_);
+    physics::NonFiniteReport r =
+        physics::ins_fem::flow_report_at<3>(*flow_, failure_node_, failure_);
+    r.field = failure_field_;
     return r;
   }
 
@@ -464,7 +473,8 @@ class CfdDemModule final : public physics::Module {
   std::unique_ptr<Flow> flow_;
   std::unique_ptr<CfdDemCoupling<Exec>> coupling_;
   physics::ins_fem::InsStepReport last_;
-  std::string failure_;
+  std::string failure_, failure_field_ = "velocity";
+  long failure_node_ = -1;
   physics::PhaseTimes times_{cfd_dem_phase_names()};
 };
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "kernels/reductions.hpp"
+#include "physics/ins_fem/flow_failure.hpp"
 #include "physics/ins_fem/flow_output.hpp"
 #include "physics/ins_fem/flow_solutions.hpp"
 #include "physics/ins_fem/ins_solver.hpp"
@@ -149,36 +150,9 @@ class InsModule final : public Module {
   }
   std::optional<NonFiniteReport> find_nonfinite() const override {
     const long i = kernels::reduce::first_nonfinite(Exec(), solver_->state());
-    if (i >= 0) return report_at(i, "");
+    if (i >= 0) return flow_report_at<dim>(*solver_, i, "");
     if (failure_.empty()) return std::nullopt;
-    return report_at(largest_velocity(), failure_);
-  }
-  /// The field and the DoF point of state entry i.
-  NonFiniteReport report_at(long i, const std::string& reason) const {
-    const long n = solver_->n_dofs();
-    NonFiniteReport r;
-    r.field = i / n < dim ? "velocity" : "pressure";
-    r.block = "flow";
-    r.index = i % n;
-    const std::vector<double> p = solver_->space().dof_points();
-    for (int d = 0; d < dim; ++d) r.point.push_back(p[d * n + r.index]);
-    r.reason = reason;
-    return r;
-  }
-  /// The free velocity entry of largest magnitude (where a failed solve left the flow
-  /// wildest; Dirichlet values are the data, not the failure).
-  long largest_velocity() const {
-    const auto u = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_->state());
-    const auto cons = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(),
-                                                          solver_->space().constrained_dofs());
-    const long n = solver_->n_dofs();
-    std::vector<char> fixed(n, 0);
-    for (size_t i = 0; i < cons.extent(0); ++i) fixed[cons(i)] = 1;
-    long at = 0;
-    double largest = -1.0;
-    for (long i = 0; i < dim * n; ++i)
-      if (!fixed[i % n] && !(std::abs(u(i)) <= largest)) largest = std::abs(u(i)), at = i;
-    return at;
+    return flow_report_at<dim>(*solver_, largest_free_velocity<dim>(*solver_), failure_);
   }
   std::vector<StateBlock> state() const override;
   void restore(const std::vector<StateBlock>& blocks) override;
