@@ -253,22 +253,20 @@ class CfdDemCoupling {
     const auto r = p.radius;
     const Vector eps = at_.void_fraction;
     const FluidProperties fl = options_.fluid;
-    const double nu = fl.viscosity / fl.density, b = model_b_ ? 1.0 : 0.0;
+    const double b = model_b_ ? 1.0 : 0.0;
     const auto& gc = dem_.config().gravity;
     const double g[3] = {gc[0], gc[1], gc[2]};
     Kokkos::parallel_for(
         "amphora::cfd_dem::held_forces", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) {
-          double slip[3], s2 = 0.0;
-          for (int c = 0; c < 3; ++c) slip[c] = u(i, c) - v(i, c), s2 += slip[c] * slip[c];
-          const double d = 2.0 * r(i), volume = M_PI * d * d * d / 6.0;
-          const double beta = drag_coefficient(fl.drag, fl.density, fl.viscosity, d, eps(i),
-                                               kernels::math::sqrt(s2));
-          for (int c = 0; c < 3; ++c) {
-            const double undisturbed = volume * (nu * lap(i, c) - gp(i, c));  // per unit mass
-            // the fluid's share, per unit mass
-            drag(i, c) = -beta * slip[c] / fl.density - b * undisturbed;
-            F(i, c) = beta * slip[c] + fl.density * (undisturbed - volume * g[c]);
+          double slip[3], gpi[3], lapi[3], Fi[3], undisturbed[3];
+          for (int c = 0; c < 3; ++c)
+            slip[c] = u(i, c) - v(i, c), gpi[c] = gp(i, c), lapi[c] = lap(i, c);
+          const double beta =
+              held_force(fl, 2.0 * r(i), eps(i), slip, gpi, lapi, g, Fi, undisturbed);
+          for (int c = 0; c < 3; ++c) {  // the fluid's share, per unit mass
+            drag(i, c) = -beta * slip[c] / fl.density - b * undisturbed[c];
+            F(i, c) = Fi[c];
           }
         });
     if (options_.drag_coupling != DragCoupling::explicit_load) return;
@@ -289,19 +287,18 @@ class CfdDemCoupling {
     const auto r = p.radius;
     const Vector eps = at_.void_fraction;
     const FluidProperties fl = options_.fluid;
-    const double nu = fl.viscosity / fl.density, b = model_b_ ? 1.0 : 0.0;
+    const double b = model_b_ ? 1.0 : 0.0;
+    const double g[3] = {0.0, 0.0, 0.0};  // the held force itself is not used here
     Kokkos::parallel_for(
         "amphora::cfd_dem::implicit_drag", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) {
-          double s2 = 0.0;
-          for (int c = 0; c < 3; ++c) s2 += (u(i, c) - v(i, c)) * (u(i, c) - v(i, c));
-          const double beta = drag_coefficient(fl.drag, fl.density, fl.viscosity, 2.0 * r(i),
-                                               eps(i), kernels::math::sqrt(s2)) /
-                              fl.density;
-          const double d = 2.0 * r(i), volume = M_PI * d * d * d / 6.0;
-          b1(i, 0) = beta;
+          double slip[3], gpi[3], lapi[3], F[3], undisturbed[3];
           for (int c = 0; c < 3; ++c)
-            bv(i, c) = beta * v(i, c) + b * volume * (gp(i, c) - nu * lap(i, c));
+            slip[c] = u(i, c) - v(i, c), gpi[c] = gp(i, c), lapi[c] = lap(i, c);
+          const double beta =
+              held_force(fl, 2.0 * r(i), eps(i), slip, gpi, lapi, g, F, undisturbed) / fl.density;
+          b1(i, 0) = beta;
+          for (int c = 0; c < 3; ++c) bv(i, c) = beta * v(i, c) - b * undisturbed[c];
         });
     kernels::blas1::fill(exec, load_, 0.0);
     kernels::blas1::fill(exec, drag_, 0.0);

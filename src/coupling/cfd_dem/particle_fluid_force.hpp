@@ -1,8 +1,9 @@
 #pragma once
-// The fluid's force on each particle of unresolved CFD-DEM: drag from the closure plus the
-// pressure-gradient force, F = beta (u_f - u_p) - V_p grad p (buoyancy where the pressure is
-// hydrostatic; Zhou et al., J. Fluid Mech. 661 (2010) 482, model A). The fluid at each
-// particle (velocity, void fraction, pressure gradient) is sampled by the coupling first.
+// The fluid's force on each particle of unresolved CFD-DEM (Zhou et al., J. Fluid Mech. 661
+// (2010) 482): drag from the closure, the undisturbed flow's force rho V_p (nu lap u - grad p)
+// with p the flow solver's kinematic pressure (no hydrostatic part), and buoyancy -rho V_p g.
+// One point law (held_force) for the coupling and for one-way use; the fluid at each particle
+// (velocity, void fraction, pressure gradient, the velocity's Laplacian) is sampled first.
 #include "coupling/cfd_dem/drag_models.hpp"
 #include "kernels/spaces.hpp"
 #include "mesh/particles/particle_set.hpp"
@@ -24,27 +25,45 @@ struct FluidProperties {
   DragModel drag = DragModel::di_felice;
 };
 
-/// force(i) = the fluid's force on owned particle i (drag and pressure gradient).
+/// The held force F on a particle of diameter d at void fraction eps, slip u - v, kinematic
+/// pressure gradient gp and velocity Laplacian lap, under gravity g; also the undisturbed
+/// flow's force per unit fluid density, V_p (nu lap - gp), which model B returns to the fluid.
+/// Returns the drag coefficient beta (F_drag = beta slip).
+KOKKOS_INLINE_FUNCTION double held_force(const FluidProperties& fl, double d, double eps,
+                                         const double slip[3], const double gp[3],
+                                         const double lap[3], const double g[3], double F[3],
+                                         double undisturbed[3]) {
+  const double s2 = slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2];
+  const double volume = M_PI * d * d * d / 6.0, nu = fl.viscosity / fl.density;
+  const double beta =
+      drag_coefficient(fl.drag, fl.density, fl.viscosity, d, eps, kernels::math::sqrt(s2));
+  for (int c = 0; c < 3; ++c) {
+    undisturbed[c] = volume * (nu * lap[c] - gp[c]);
+    F[c] = beta * slip[c] + fl.density * (undisturbed[c] - volume * g[c]);
+  }
+  return beta;
+}
+
+/// force(i) = the fluid's held force on owned particle i under gravity g.
 template <class ExecSpace, class MemSpace>
 void particle_fluid_force(const ExecSpace& exec, const FluidProperties& fluid,
+                          const double (&gravity)[3],
                           const mesh::particles::ParticleSet<MemSpace>& p,
                           const FluidAtParticles<MemSpace>& at,
                           const typename mesh::particles::ParticleSet<MemSpace>::Vec& force) {
-  const auto v = p.v, u = at.velocity, gp = at.pressure_gradient;
+  const auto v = p.v, u = at.velocity, gp = at.pressure_gradient, lap = at.velocity_laplacian;
   const auto r = p.radius;
   const auto eps = at.void_fraction;
-  const double rho = fluid.density, mu = fluid.viscosity;
-  const DragModel model = fluid.drag;
+  const FluidProperties fl = fluid;
+  const double g[3] = {gravity[0], gravity[1], gravity[2]};
   Kokkos::parallel_for(
       "amphora::cfd_dem::particle_fluid_force", kernels::RangePolicy<ExecSpace>(exec, 0, p.n_owned),
       KOKKOS_LAMBDA(int i) {
-        const double slip[3] = {u(i, 0) - v(i, 0), u(i, 1) - v(i, 1), u(i, 2) - v(i, 2)};
-        const double speed =
-            kernels::math::sqrt(slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]);
-        const double d = 2.0 * r(i);
-        const double beta = drag_coefficient(model, rho, mu, d, eps(i), speed);
-        const double volume = M_PI * d * d * d / 6.0;
-        for (int c = 0; c < 3; ++c) force(i, c) = beta * slip[c] - volume * gp(i, c);
+        double slip[3], gpi[3], lapi[3], F[3], undisturbed[3];
+        for (int c = 0; c < 3; ++c)
+          slip[c] = u(i, c) - v(i, c), gpi[c] = gp(i, c), lapi[c] = lap(i, c);
+        held_force(fl, 2.0 * r(i), eps(i), slip, gpi, lapi, g, F, undisturbed);
+        for (int c = 0; c < 3; ++c) force(i, c) = F[c];
       });
 }
 
