@@ -11,6 +11,7 @@
 #include "coupling/cfd_dem/richardson_zaki.hpp"
 #include "kernels/reductions.hpp"
 #include "physics/dem/dem_module.hpp"
+#include "physics/ins_fem/flow_checkpoint.hpp"
 #include "physics/ins_fem/flow_failure.hpp"
 #include "physics/ins_fem/flow_output.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"
@@ -388,19 +389,9 @@ class CfdDemModule final : public physics::Module {
   }
 
   std::vector<StateBlock> state() const override {
-    const auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), flow_->state());
-    const auto oh =
-        Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), flow_->previous_velocity());
-    StateBlock flow{"flow",
-                    {{"state", std::vector<double>(sh.data(), sh.data() + sh.extent(0))},
-                     {"u_old", std::vector<double>(oh.data(), oh.data() + oh.extent(0))},
-                     {"eps", flow_->void_fraction_history()},
-                     {"history",
-                      {flow_->previous_dt(), static_cast<double>(flow_->steps()),
-                       static_cast<double>(coupling_->steps()),
-                       static_cast<double>(last_.linear_iterations)}}}};
-    std::vector<double> pc = flow_->preconditioner_state();
-    if (!pc.empty()) flow.arrays.push_back({"preconditioner", std::move(pc)});
+    const StateBlock flow = physics::ins_fem::flow_state_block(
+        *flow_,
+        {static_cast<double>(coupling_->steps()), static_cast<double>(last_.linear_iterations)});
     std::vector<StateBlock> blocks = {flow};
     for (auto& b : dem_->state()) blocks.push_back(std::move(b));
     return blocks;
@@ -414,22 +405,10 @@ class CfdDemModule final : public physics::Module {
         dem.push_back(b);
         continue;
       }
-      std::vector<double> state, u_old, eps, history, preconditioner;
-      for (const auto& [key, v] : b.arrays)
-        (key == "state"            ? state
-         : key == "u_old"          ? u_old
-         : key == "eps"            ? eps
-         : key == "preconditioner" ? preconditioner
-                                   : history) = v;
-      if (static_cast<long>(state.size()) != 4 * flow_->n_dofs() || history.size() < 4 ||
-          static_cast<long>(eps.size()) != 3 * flow_->n_dofs() + 1)
-        throw std::runtime_error("cfd_dem: the checkpoint's flow block does not fit this scene");
-      flow_->set_state(state);
-      flow_->set_history(u_old, history[0], static_cast<long>(history[1]));
-      flow_->set_void_fraction_history(eps);
-      flow_->set_preconditioner_state(preconditioner);
-      coupling_->resume(static_cast<long>(history[2]));
-      last_.linear_iterations = static_cast<int>(history[3]);
+      const std::vector<double> h =
+          physics::ins_fem::restore_flow_block<3>(*flow_, b, "cfd_dem", 2);
+      coupling_->resume(static_cast<long>(h[0]));
+      last_.linear_iterations = static_cast<int>(h[1]);
     }
     dem_->restore(dem);
   }

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "kernels/reductions.hpp"
+#include "physics/ins_fem/flow_checkpoint.hpp"
 #include "physics/ins_fem/flow_failure.hpp"
 #include "physics/ins_fem/flow_output.hpp"
 #include "physics/ins_fem/flow_solutions.hpp"
@@ -225,40 +226,21 @@ std::vector<OutputBlock> InsModule<dim>::output(double) const {
 
 template <int dim>
 std::vector<StateBlock> InsModule<dim>::state() const {
-  auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_->state());
-  auto oh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver_->previous_velocity());
-  StateBlock b{"flow",
-               {{"state", std::vector<double>(sh.data(), sh.data() + sh.extent(0))},
-                {"u_old", std::vector<double>(oh.data(), oh.data() + oh.extent(0))},
-                {"history",
-                 {solver_->previous_dt(), static_cast<double>(solver_->steps()), energy_,
-                  decay_rate_, solved_ ? 1.0 : 0.0, static_cast<double>(last_.linear_iterations),
-                  solver_->multigrid_active() ? 1.0 : 0.0}}}};
-  std::vector<double> pc = solver_->preconditioner_state();
-  if (!pc.empty()) b.arrays.push_back({"preconditioner", std::move(pc)});
-  return {b};
+  return {flow_state_block(*solver_, {energy_, decay_rate_, solved_ ? 1.0 : 0.0,
+                                      static_cast<double>(last_.linear_iterations),
+                                      solver_->multigrid_active() ? 1.0 : 0.0})};
 }
 
 template <int dim>
 void InsModule<dim>::restore(const std::vector<StateBlock>& blocks) {
-  std::vector<double> state, u_old, history, preconditioner;
+  const StateBlock* flow = nullptr;
   for (const auto& b : blocks)
-    if (b.name == "flow")
-      for (const auto& [key, v] : b.arrays)
-        (key == "state"            ? state
-         : key == "u_old"          ? u_old
-         : key == "preconditioner" ? preconditioner
-                                   : history) = v;
-  if (static_cast<long>(state.size()) != (dim + 1) * solver_->n_dofs() || history.size() < 6)
-    throw std::runtime_error("ins_fem: the checkpoint's flow block does not fit this scene (" +
-                             std::to_string(state.size()) + " state entries, the scene has " +
-                             std::to_string((dim + 1) * solver_->n_dofs()) + ")");
-  solver_->set_state(state);
-  solver_->set_history(u_old, history[0], static_cast<long>(history[1]));
-  energy_ = history[2], decay_rate_ = history[3], solved_ = history[4] != 0.0;
-  last_.linear_iterations = static_cast<int>(history[5]);
-  if (history.size() > 6 && history[6] == 0.0) solver_->disable_multigrid();
-  solver_->set_preconditioner_state(preconditioner);
+    if (b.name == "flow") flow = &b;
+  const std::vector<double> h =
+      restore_flow_block<dim>(*solver_, flow ? *flow : StateBlock{"flow", {}}, "ins_fem", 4);
+  energy_ = h[0], decay_rate_ = h[1], solved_ = h[2] != 0.0;
+  last_.linear_iterations = static_cast<int>(h[3]);
+  if (h.size() > 4 && h[4] == 0.0) solver_->disable_multigrid();
 }
 
 }  // namespace ins_module_detail
