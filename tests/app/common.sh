@@ -41,7 +41,13 @@ csv_column() {  # NAME FILE: the values of the CSV column NAME, one per line
   [ -n "$c" ] || fail "$2 has no column $1"
   tail -n +2 "$2" | cut -d, -f"$c"
 }
-same_h5() { h5diff -q "$1" "$2" || fail "$1 and $2 differ"; }
+# same_h5 A B [OBJECT]: the same objects, shapes and values (h5diff's exit status alone
+# passes datasets of different shapes as "not comparable").
+same_h5() {
+  local o=${3:-}
+  h5diff -q "$1" "$2" ${o:+"$o" "$o"} || fail "$1 and $2 differ${o:+ in $o}"
+  [ "$(h5ls -r "$1$o")" = "$(h5ls -r "$2$o")" ] || fail "$1 and $2 differ in shape${o:+ in $o}"
+}
 
 # close_csv A B [REL]: same shape, every number equal to REL (default 1e-12) relative.
 close_csv() {

@@ -56,3 +56,14 @@ restart_matches "$AMPHORA_SOURCE_DIR/scenes/cfd_dem_fluidised_bed.toml" cfd 8 \
   's|^end_time = .*|end_time = 0.1|' 's|^output_every = .*|output_every = 10\ncheckpoint_every = 7|'
 for f in cfd_full/fields_*.h5; do same_h5 "$f" "cfd_split/$(basename "$f")"; done
 echo "restart: cfd_dem bit for bit over 20 fluid steps"
+
+# A restart at the run's end makes no step yet rewrites the checkpoint: its flow block (with
+# the multigrid's state, which has no smoothers until an update) is the one it read, and it
+# restarts a longer run (before, the rewritten block lacked the levels and was refused).
+cp cfd_full/checkpoint.h5 cfd_end.h5
+"$AMPHORA" run cfd_full.toml --restart cfd_end.h5 > cfd_again.log
+same_h5 cfd_end.h5 cfd_full/checkpoint.h5 /flow
+sed 's|^end_time = .*|end_time = 0.11|' cfd_full.toml > cfd_more.toml
+"$AMPHORA" run cfd_more.toml --restart cfd_full/checkpoint.h5 > cfd_more.log ||
+  fail "cfd_dem: the checkpoint rewritten at the end did not restart"
+echo "restart: cfd_dem from a checkpoint rewritten at the run's end"

@@ -154,10 +154,14 @@ class OseenMultigrid {
   std::vector<double> state() const {
     if (!have_state_) return {};
     std::vector<double> out{static_cast<double>(updates_), alpha_};
-    for (const auto& L : levels_) {
-      if (!L->smoother) continue;
-      const auto d = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), L->d);
-      out.push_back(L->upper);
+    // The levels set_state fills: every one but a dense coarse level. (Not "those with a
+    // smoother": a restored multigrid has none until its next update, and its checkpoint must
+    // still fit.)
+    for (std::size_t l = 0; l < levels_.size(); ++l) {
+      if (l + 1 == levels_.size() && dense_coarse()) break;
+      const Level& L = *levels_[l];
+      const auto d = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), L.d);
+      out.push_back(L.upper);
       out.insert(out.end(), d.data(), d.data() + d.extent(0));
     }
     return out;
