@@ -39,7 +39,17 @@ if(Kokkos_DEVICES MATCHES "CUDA")
   # Each object keeps its own KOKKOS_LAMBDA wrappers (nvcc's per-file function pointers behind
   # weak, merged members make the host jump to address 0): see cmake/nvcc_lambda_wrappers.sh.
   find_program(AMPHORA_OBJCOPY objcopy REQUIRED)
-  set(CMAKE_CXX_COMPILER_LAUNCHER ${CMAKE_CURRENT_LIST_DIR}/nvcc_lambda_wrappers.sh ${CCACHE_PROGRAM})
+  # A compile check (the cuda-check preset, CI's): nvcc's fastest device mode (-Ofc max) runs
+  # every kernel through cudafe++, cicc and ptxas with few optimisations, about 9x faster with
+  # host -O0; the define keeps its objects apart from optimised ones in ccache.
+  option(AMPHORA_CUDA_FAST_COMPILE "CUDA: device code at nvcc -Ofc max (a compile check)" OFF)
+  set(_amphora_fast "")
+  if(AMPHORA_CUDA_FAST_COMPILE)
+    set(_amphora_fast --fast-compile)
+    add_compile_definitions(AMPHORA_CUDA_FAST_COMPILE)
+  endif()
+  set(CMAKE_CXX_COMPILER_LAUNCHER
+      ${CMAKE_CURRENT_LIST_DIR}/nvcc_lambda_wrappers.sh ${_amphora_fast} ${CCACHE_PROGRAM})
 endif()
 
 find_package(MPI REQUIRED COMPONENTS C CXX)

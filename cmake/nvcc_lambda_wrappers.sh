@@ -8,7 +8,13 @@
 # compiled in two .cpp files (MatrixFreeOperator's, DEM's, the MAC kernels') then links one
 # file's members against the other file's never-set pointers, and the host jumps to address 0
 # (a known nvcc bug: see docs/gpu.md). With the suffix, each object keeps its own, consistent
-# copy. Usage (CMake sets it): nvcc_lambda_wrappers.sh COMPILER ARGS... -o OBJECT ...
+# copy. Usage (CMake sets it): nvcc_lambda_wrappers.sh [--fast-compile] COMPILER ARGS... -o OBJECT
+# --fast-compile: nvcc compiles device code at -Ofc max (NVCC_APPEND_FLAGS: nvcc_wrapper would
+# hand an unknown flag to the host compiler), for the cuda-check preset.
+if [ "${1:-}" = --fast-compile ]; then
+  shift
+  export NVCC_APPEND_FLAGS="${NVCC_APPEND_FLAGS:+$NVCC_APPEND_FLAGS }-Ofc max"
+fi
 "$@" || exit $?
 out=
 prev=

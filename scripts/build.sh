@@ -1,21 +1,25 @@
 #!/usr/bin/env bash
 # Set up (scripts/setup.sh) and build one CMake preset (default: release).
-#   scripts/build.sh [release|debug|asan|cuda] [cmake --build arguments, e.g. -- -k 0]
+#   scripts/build.sh [release|debug|asan|cuda|cuda-check] [cmake --build arguments, e.g. -- -k 0]
 # cuda: Kokkos with Serial + Cuda (Kokkos_ROOT, or built once from ../shared/kokkos: see
 # scripts/setup_kokkos_cuda.sh), compiled with that Kokkos' nvcc_wrapper (or $CXX when set);
-# it needs nvcc but no GPU.
+# it needs nvcc but no GPU. cuda-check: the same targets with nvcc's fastest device mode and
+# host -O0 (build/cuda-check, what CI compiles: every kernel through nvcc, not fast to run).
+# ccache (when installed) rewrites paths below the checkout as relative ones, so another clone
+# of the same commit on this machine reuses its objects.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 preset=${1:-release}
 shift || true
 case "$preset" in
   release | debug | asan) target=cpu ;;
-  cuda) target=cuda ;;
-  *) echo "build.sh: unknown preset '$preset' (allowed: release, debug, asan, cuda)" >&2; exit 2 ;;
+  cuda | cuda-check) target=cuda ;;
+  *) echo "build.sh: unknown preset '$preset' (allowed: release, debug, asan, cuda, cuda-check)" >&2; exit 2 ;;
 esac
 kokkos=$(bash "$here/scripts/setup.sh" "$target" | sed -n 's/^KOKKOS_PREFIX=//p')
 [ -n "$kokkos" ] || exit 1
 cd "$here"
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$here}
 mkdir -p build
 extra=()
 if [ "$target" = cuda ]; then

@@ -16,7 +16,12 @@ std::vector<std::pair<std::string, std::string>> build_info() {
   std::vector<std::pair<std::string, std::string>> rows;
   rows.emplace_back("amphora", AMPHORA_VERSION);
   rows.emplace_back("git revision", AMPHORA_GIT_REVISION);
+#ifdef AMPHORA_CUDA_FAST_COMPILE
+  rows.emplace_back("build type", std::string(AMPHORA_BUILD_TYPE) +
+                                      " (cuda-check: device -Ofc max, host -O0; not for timing)");
+#else
   rows.emplace_back("build type", AMPHORA_BUILD_TYPE);
+#endif
   rows.emplace_back("compiler", AMPHORA_CXX_COMPILER);
   const int kv = KOKKOS_VERSION;
   rows.emplace_back("Kokkos", std::to_string(kv / 10000) + "." + std::to_string(kv / 100 % 100) +

@@ -35,7 +35,7 @@ void StructuredHexMesh<dim>::check_periodic_match(int d) const {
     for (int j = 0; j <= nb; ++j) {
       Point3 x = lower;
       x[a] = lower[a] + (upper[a] - lower[a]) * i / na;
-      if (dim == 3) x[b] = lower[b] + (upper[b] - lower[b]) * j / nb;
+      if constexpr (dim == 3) x[b] = lower[b] + (upper[b] - lower[b]) * j / nb;
       Point3 y = x;
       y[d] = upper[d];
       const Point3 px = deformation(x), py = deformation(y);
