@@ -9,8 +9,11 @@
 #include <algorithm>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
+#include "physics/ins_fem/flow_checkpoint.hpp"
 #include "physics/ins_fem/ins_solver.hpp"
 #include "solvers/matrix_free/error_norms.hpp"
 #include "test_backend.hpp"
@@ -363,6 +366,47 @@ TEST(InsFemVans, FilteredVoidFractionRateIgnoresAPeriodTwoAlternation) {
       EXPECT_LT(u, 1e-8 * u_norm);
     }
   }
+}
+
+/// A checkpoint's flow block restores the solver and returns the owner's history entries; a
+/// block that does not fit is refused with what does not fit (a VANS block without the void
+/// fraction's history, as written before the flow kept it; a history too short; no block).
+TEST(InsFemVans, AFlowBlockThatDoesNotFitIsRefusedSayingWhy) {
+  mesh::hex::StructuredHexMesh<3> m;
+  m.cells = {2, 2, 2};
+  InsOptions fo;
+  fo.model = FlowModel::vans_a;
+  fo.nu = 0.1;
+  fo.transient_tau = true;
+  InsSolver<3, TestExecSpace> flow(m, 1, fo);
+  const StateBlock b = flow_state_block(flow, {7.0});
+  EXPECT_EQ(restore_flow_block<3>(flow, b, "test", 1), std::vector<double>{7.0});
+  const auto refusal = [&](const StateBlock& block) {
+    try {
+      restore_flow_block<3>(flow, block, "test", 1);
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("(restored)");
+  };
+  const auto without = [&](const std::string& key) {
+    StateBlock c = b;
+    c.arrays.erase(std::remove_if(c.arrays.begin(), c.arrays.end(),
+                                  [&](const auto& a) { return a.first == key; }),
+                   c.arrays.end());
+    return c;
+  };
+  const std::string eps =
+      "0 void fraction history entries, the scene has " + std::to_string(3 * flow.n_dofs() + 1);
+  EXPECT_NE(refusal(without("eps")).find(eps), std::string::npos) << refusal(without("eps"));
+  StateBlock short_history = b;
+  for (auto& [key, v] : short_history.arrays)
+    if (key == "history") v.resize(2);
+  EXPECT_NE(refusal(short_history).find("2 history entries, this module needs 3"),
+            std::string::npos)
+      << refusal(short_history);
+  EXPECT_NE(refusal(StateBlock{"flow", {}}).find("test: the checkpoint has no flow block"),
+            std::string::npos);
 }
 
 }  // namespace test_ins_fem_vans

@@ -46,11 +46,23 @@ std::vector<double> restore_flow_block(Solver& solver, const StateBlock& b,
      : key == "preconditioner" ? preconditioner
                                : history) = v;
   const long n = solver.n_dofs(), entries = (dim + 1) * n;
-  if (static_cast<long>(state.size()) != entries || history.size() < 2 + extra ||
-      (solver.vans() && static_cast<long>(eps.size()) != 3 * n + 1))
+  const auto refuse = [&](const std::string& why) {
     throw std::runtime_error(owner + ": the checkpoint's flow block does not fit this scene (" +
-                             std::to_string(state.size()) + " state entries, the scene has " +
-                             std::to_string(entries) + ")");
+                             why + ")");
+  };
+  if (b.arrays.empty())
+    throw std::runtime_error(owner +
+                             ": the checkpoint has no flow block (written by another "
+                             "module?)");
+  if (static_cast<long>(state.size()) != entries)
+    refuse(std::to_string(state.size()) + " state entries, the scene has " +
+           std::to_string(entries));
+  if (history.size() < 2 + extra)
+    refuse(std::to_string(history.size()) + " history entries, this module needs " +
+           std::to_string(2 + extra));
+  if (solver.vans() && static_cast<long>(eps.size()) != 3 * n + 1)
+    refuse(std::to_string(eps.size()) + " void fraction history entries, the scene has " +
+           std::to_string(3 * n + 1));
   solver.set_state(state);
   solver.set_history(u_old, history[0], static_cast<long>(history[1]));
   if (solver.vans()) solver.set_void_fraction_history(eps);
