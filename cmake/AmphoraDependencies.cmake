@@ -40,8 +40,8 @@ if(Kokkos_DEVICES MATCHES "CUDA")
   # weak, merged members make the host jump to address 0): see cmake/nvcc_lambda_wrappers.sh.
   find_program(AMPHORA_OBJCOPY objcopy REQUIRED)
   # A compile check (the cuda-check preset, CI's): nvcc's fastest device mode (-Ofc max) runs
-  # every kernel through cudafe++, cicc and ptxas with few optimisations, about 9x faster with
-  # host -O0; the define keeps its objects apart from optimised ones in ccache.
+  # every kernel through cudafe++, cicc and ptxas with few optimisations (times: docs/gpu.md);
+  # the define keeps its objects apart from optimised ones in ccache.
   option(AMPHORA_CUDA_FAST_COMPILE "CUDA: device code at nvcc -Ofc max (a compile check)" OFF)
   set(_amphora_fast "")
   if(AMPHORA_CUDA_FAST_COMPILE)
