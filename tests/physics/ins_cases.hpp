@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "physics/ins_fem/flow_error_norms.hpp"
 #include "physics/ins_fem/flow_solutions.hpp"
 #include "physics/ins_fem/ins_solver.hpp"
 #include "solvers/matrix_free/error_norms.hpp"
@@ -67,7 +68,7 @@ void start_from_boundary_values(Solver& s, Exact exact) {
   s.set_state(start);
 }
 
-FlowErrors kovasznay(int k, int cells) {
+inline FlowErrors kovasznay(int k, int cells) {
   mesh::hex::StructuredHexMesh<2> m;
   m.cells = {cells, cells, 1};
   m.lower = {-0.5, 0.0, 0.0};
@@ -88,9 +89,9 @@ FlowErrors kovasznay(int k, int cells) {
 /// The Taylor-Green vortex on [0, 2 pi]^2 (periodic), k and cells, from its state at g = 1;
 /// with `forced`, amplitude g(t) = cos 2t driven by the force (g' + 2 nu g) u(0), else free
 /// decay. Errors at t_end after `steps` BDF2 steps.
-FlowErrors taylor_green(int k, int cells, double nu, double t_end, int steps, bool forced,
-                        InsPreconditioner pc = InsPreconditioner::multigrid,
-                        std::vector<int>* iterations = nullptr, double deformation = 0.0) {
+inline FlowErrors taylor_green(int k, int cells, double nu, double t_end, int steps, bool forced,
+                               InsPreconditioner pc = InsPreconditioner::multigrid,
+                               std::vector<int>* iterations = nullptr, double deformation = 0.0) {
   const double two_pi = 2.0 * kernels::math::pi;
   mesh::hex::StructuredHexMesh<2> m;
   m.cells = {cells, cells, 1};
@@ -120,7 +121,7 @@ FlowErrors taylor_green(int k, int cells, double nu, double t_end, int steps, bo
 
 /// Plane Poiseuille flow in [0, 2] x [0, 1] (2 cells x 1 cells), inflow and walls Dirichlet,
 /// do-nothing outflow at x = 2, steady; curved cells with `deformation` > 0.
-FlowErrors channel(int k, int cells, double deformation) {
+inline FlowErrors channel(int k, int cells, double deformation) {
   mesh::hex::StructuredHexMesh<2> m;
   m.cells = {2 * cells, cells, 1};
   m.upper = {2.0, 1.0, 0.0};
@@ -144,7 +145,7 @@ FlowErrors channel(int k, int cells, double deformation) {
 }
 
 /// Observed order between the last two of a sequence of errors at cell counts `cells`.
-double order(double e0, double e1, int n0, int n1) {
+inline double order(double e0, double e1, int n0, int n1) {
   return std::log(e0 / e1) / std::log(static_cast<double>(n1) / n0);
 }
 

@@ -6,6 +6,7 @@
 
 #include "kernels/blas1.hpp"
 #include "kernels/host_vector.hpp"
+#include "physics/poisson_fem/sine_error_norms.hpp"
 #include "physics/poisson_fem/sine_solution.hpp"
 #include "solvers/conjugate_gradient.hpp"
 #include "solvers/matrix_free/load_vector.hpp"

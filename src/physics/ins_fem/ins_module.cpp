@@ -10,6 +10,7 @@
 #include "physics/ins_fem/flow_checkpoint.hpp"
 #include "physics/ins_fem/flow_failure.hpp"
 #include "physics/ins_fem/flow_output.hpp"
+#include "physics/ins_fem/flow_error_norms.hpp"
 #include "physics/ins_fem/flow_solutions.hpp"
 #include "physics/ins_fem/ins_solver.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"

@@ -10,6 +10,7 @@
 #include "mesh/box_decomposition.hpp"
 #include "solvers/conjugate_gradient.hpp"
 #include "kernels/host_vector.hpp"
+#include "physics/poisson_fem/sine_error_norms.hpp"
 #include "physics/poisson_fem/sine_solution.hpp"
 #include "solvers/matrix_free/error_norms.hpp"
 #include "solvers/matrix_free/load_vector.hpp"
