@@ -12,7 +12,7 @@
 
 #include "physics/channel_flow/channel_stokes.hpp"
 
-namespace {
+namespace test_channel_stokes {
 
 using amphora::physics::channel_flow::ChannelGrid;
 using amphora::physics::channel_flow::ChannelStokes;
@@ -180,4 +180,4 @@ TEST(ChannelStokes, RefusesBadParameters) {
   EXPECT_THROW(ChannelStokes(g, 1.0, 0.1, 1e-3, TopImpedance{-1.0, 1.0}), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace test_channel_stokes

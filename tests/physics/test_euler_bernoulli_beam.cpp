@@ -9,7 +9,7 @@
 
 #include "physics/beam/euler_bernoulli_beam.hpp"
 
-namespace {
+namespace test_euler_bernoulli_beam {
 
 using amphora::physics::beam::BeamParameters;
 using amphora::physics::beam::EulerBernoulliBeam;
@@ -113,4 +113,4 @@ TEST(EulerBernoulliBeam, RefusesBadParameters) {
   EXPECT_THROW(EulerBernoulliBeam(beam(32), 0.0), std::invalid_argument);
 }
 
-}  // namespace
+}  // namespace test_euler_bernoulli_beam
