@@ -33,12 +33,11 @@ function(_amphora_set_test_env test threads)
     "${AMPHORA_TEST_ENVIRONMENT};OMP_NUM_THREADS=${threads};KOKKOS_NUM_THREADS=${threads};AMPHORA_TEST_THREADS=${threads}")
 endfunction()
 
-# AMPHORA_TEST_UNITY (the cuda-check preset): instead of one executable per test, the sources of
-# each kind of test (backend, host, MPI; slow ones apart) go into one executable, compiled
-# AMPHORA_TEST_UNITY_BATCH files to a translation unit (CMake's unity build). nvcc's fixed cost
-# per file (about 15 s) is most of a test object's compile time; the code compiled is the same.
-option(AMPHORA_TEST_UNITY "Bundle the unit tests into a few unity-built executables" OFF)
-set(AMPHORA_TEST_UNITY_BATCH 8 CACHE STRING "Test sources per translation unit when AMPHORA_TEST_UNITY is on")
+# A unity build (CMAKE_UNITY_BUILD, the cuda-check preset's) bundles the unit tests: instead of
+# one executable per test, the sources of each kind (backend, host, MPI; slow ones apart) make
+# one executable, CMAKE_UNITY_BUILD_BATCH_SIZE files to a translation unit. nvcc's fixed cost per
+# file (about 15 s) is most of a test object's compile time; the code compiled is the same.
+set(AMPHORA_TEST_UNITY ${CMAKE_UNITY_BUILD})
 
 function(_amphora_register_backend_tests name exe backend labels)
   string(TOLOWER ${backend} lower)
@@ -145,7 +144,6 @@ function(amphora_test_bundles)
         string(TOLOWER ${backend} lower)
         set(exe tests_unity_${kind}_${lower})
         _amphora_test_executable(${exe} Kokkos::${backend} ${sources})
-        set_target_properties(${exe} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${AMPHORA_TEST_UNITY_BATCH})
         _amphora_register_backend_tests(unity_${kind} ${exe} ${backend} "${labels}")
       endforeach()
     else()
@@ -157,7 +155,6 @@ function(amphora_test_bundles)
         _amphora_test_executable(${exe} Kokkos::DefaultExecutionSpace ${sources})
         _amphora_register_mpi_tests(unity_${kind} ${exe})
       endif()
-      set_target_properties(${exe} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE ${AMPHORA_TEST_UNITY_BATCH})
     endif()
   endforeach()
 endfunction()

@@ -99,3 +99,11 @@ ErrorNorms error_norms(const ExecSpace& exec, const mesh::hex::QkSpace<dim, Exec
 }
 
 }  // namespace amphora::solvers::matrix_free
+
+// PREFIX template error_norms<DIM, E, EXACT>, at file scope: with PREFIX extern, the
+// declaration of an instance that one .cpp compiles (with PREFIX empty) for every includer.
+#define AMPHORA_ERROR_NORMS_INSTANCE(PREFIX, DIM, E, EXACT)  \
+  PREFIX template amphora::solvers::matrix_free::ErrorNorms  \
+  amphora::solvers::matrix_free::error_norms<DIM, E, EXACT>( \
+      const E&, const amphora::mesh::hex::QkSpace<DIM, E>&,  \
+      const Kokkos::View<double*, typename E::memory_space>&, const EXACT&);
