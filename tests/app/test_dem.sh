@@ -1,7 +1,7 @@
 # DEM through the real binary: a settling bed gives the same bits on 1 and 2 threads and on 1
 # and 2 ranks (a particle receives its pair forces in an order set by the particles alone: see
 # dem_system.hpp), continues bit for bit from a checkpoint (contact history, insertion state and
-# build positions included), and bad input is refused.
+# build positions included), so does a bed with periodic sides, and bad input is refused.
 source "$(dirname "$0")/common.sh"
 bed() {  # file output_dir [extra [dem] lines...]
   local file=$1 out=$2; shift 2
@@ -58,6 +58,24 @@ bed split2.toml s2
 "$MPIEXEC" -n 2 "$AMPHORA" run split2.toml --restart s2/checkpoint.h5 > /dev/null
 same_h5 "$final" "s2/$(basename "$final")"
 echo "dem: restart bit for bit"
+
+# Periodic sides (a bed longer along x, so that two ranks split it there and exchange images
+# across the periodic faces): the same bits on 1/2 threads and 1/2 ranks, and a 2-rank
+# continuation of a 1-rank checkpoint.
+periodic=('box_sides = "periodic"' 'box_x = 0.05' 'box_z = 0.03')
+for run in p1 p2 pr ps; do
+  bed $run.toml $run "${periodic[@]}"
+  sed -i 's/^end_time = 0.12/end_time = 0.06/' $run.toml
+done
+OMP_NUM_THREADS=1 KOKKOS_NUM_THREADS=1 "$AMPHORA" run p1.toml > /dev/null
+OMP_NUM_THREADS=2 KOKKOS_NUM_THREADS=2 "$AMPHORA" run p2.toml > /dev/null
+"$MPIEXEC" -n 2 "$AMPHORA" run pr.toml > /dev/null
+"$AMPHORA" run ps.toml --max-steps 1700 > /dev/null
+"$MPIEXEC" -n 2 "$AMPHORA" run ps.toml --restart ps/checkpoint.h5 > /dev/null
+pfinal=$(ls p1/fields_*.h5 | tail -1)
+for dir in p2 pr ps; do same_h5 "$pfinal" "$dir/$(basename "$pfinal")"; done
+same_h5 p1/checkpoint.h5 pr/checkpoint.h5
+echo "dem: periodic sides, identical bits on 1/2 threads and ranks and across a restart"
 
 # Bad input: nothing written, one clear line.
 bed bad_dt.toml bad 'youngs_modulus = 6e10'

@@ -1,9 +1,10 @@
 // Host-device traffic of a time step, counted with the Kokkos Tools deep-copy hook
 // (kernels/deep_copy_counter.hpp: host_device() counts what crosses on this build, or would on a
-// device). On one rank a DEM step makes no host-device copy, list rebuilds included; a water step
-// on the uniform grid makes two (the multigrid's coarsest grid, set up again each sub-step: its
-// cell list to the device, its rows to the host); the tall-cell water step, which still rebuilds
-// its grid on the host, is held at what it copies now, so a new copy in a step fails here.
+// device). On one rank a DEM step makes no host-device copy, list rebuilds included (periodic
+// boxes' images too); a water step on the uniform grid makes two (the multigrid's coarsest
+// grid, set up again each sub-step: its cell list to the device, its rows to the host); the
+// tall-cell water step, which still rebuilds its grid on the host, is held at what it copies
+// now, so a new copy in a step fails here.
 #include <algorithm>
 #include <cstdio>
 #include <vector>
@@ -11,6 +12,7 @@
 
 #include "kernels/deep_copy_counter.hpp"
 #include "physics/dem/dem_system.hpp"
+#include "physics/dem/insertion.hpp"
 #include "physics/water_mac/water_mac.hpp"
 #include "shaken_packing.hpp"
 #include "test_backend.hpp"
@@ -39,6 +41,48 @@ TEST(StepTransfers, DemStepsStayOnTheDevice) {
   }
   ASSERT_GT(quiet_steps, 10);
   ASSERT_GT(rebuild_steps, 2);
+}
+
+// A box periodic in x, y and z: the ghosts are the particles' own images, copied on the device
+// (no message, no host copy), and crossing particles are wrapped there at the rebuilds.
+TEST(StepTransfers, PeriodicDemStepsStayOnTheDevice) {
+  const double r = 1e-3, L = 0.03;
+  physics::dem::Material m;
+  m.youngs_modulus = 1e6;
+  m.restitution = 0.5;
+  physics::dem::DemConfig c;
+  c.materials = {m};
+  c.domain_hi = {L, L, L};
+  c.periodic = {true, true, true};
+  c.gravity = {0, 0, 0};
+  c.max_radius = 1.3 * r;
+  c.skin = 0.3 * r;
+  c.dt = 2e-5;
+  System s(c, Communicator());
+  physics::dem::InsertionRegion box;
+  for (int d = 0; d < 3; ++d) box.hi[d] = L;
+  auto ps = physics::dem::lattice_insertion(box, {r, 0.3}, 2.7 * r, 1000, 0.5 * r, 7, 0, {1.0},
+                                            c.periodic);
+  for (auto& p : ps)
+    for (int d = 0; d < 3; ++d) p.v[d] = 0.6 * (physics::dem::uniform01(11, d, p.gid) - 0.5);
+  s.add_particles(ps);
+  s.step();
+  kernels::DeepCopyCounter counter;
+  int quiet_steps = 0, rebuild_steps = 0;
+  for (int it = 0; it < 60; ++it) {
+    const long long rebuilds = s.timers().rebuilds;
+    counter.reset();
+    s.step();
+    const kernels::DeepCopyCount cc = counter.count();
+    const bool rebuilt = s.timers().rebuilds != rebuilds;
+    (rebuilt ? rebuild_steps : quiet_steps) += 1;
+    EXPECT_EQ(cc.copies, rebuilt ? 1 : 0) << "step " << it;
+    EXPECT_EQ(cc.host_device(), 0) << "step " << it;
+    EXPECT_EQ(cc.scalar_reads, 0) << "step " << it;
+  }
+  ASSERT_GT(quiet_steps, 10);
+  ASSERT_GT(rebuild_steps, 2);
+  EXPECT_GT(s.particles().n_ghost, 100) << "the images must be there";
 }
 
 /// Rows of spheres in free flight along +x, each row at its own speed (so no contacts), through

@@ -1,9 +1,11 @@
 #pragma once
 // The per-particle arrays a migration or a halo carries, packed on the device as doubles
 // (integers and ids exactly: all are below 2^53), each particle's record `width()` doubles
-// long. A ParticleFields sees the arrays as they are when it is made: make a new one after
-// an array is reallocated (grown, permuted).
+// long. Positions (add_position) may be shifted as they are unpacked: a periodic image's
+// record arrives moved by the box's length. A ParticleFields sees the arrays as they are when it is
+// made: make a new one after an array is reallocated (grown, permuted).
 #include <functional>
+#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
@@ -30,11 +32,23 @@ class ParticleFields {
     if (std::is_same_v<T, double> && doubles_.count < Doubles::max) {  // one kernel for these
       doubles_.data[doubles_.count] = reinterpret_cast<double*>(v.data());
       doubles_.inner[doubles_.count] = inner;
+      doubles_.position[doubles_.count] = false;
       doubles_.offset[doubles_.count++] = width_;
     } else {
       fields_.push_back({packer(v.data(), inner, width_), unpacker(v.data(), inner, width_)});
     }
     width_ += inner;
+    return *this;
+  }
+  /// Adds an (n, 3) array of positions: unpack's shift applies to it.
+  template <class View>
+  ParticleFields& add_position(const View& v) {
+    static_assert(std::is_same_v<typename View::non_const_value_type, double> && View::rank == 2,
+                  "positions are (n, 3) doubles");
+    if (doubles_.count == Doubles::max || v.extent(1) != 3)
+      throw std::logic_error("ParticleFields: positions must be (n, 3), at most 16 arrays");
+    add(v);
+    doubles_.position[doubles_.count - 1] = true;
     return *this;
   }
   int width() const { return width_; }
@@ -47,12 +61,14 @@ class ParticleFields {
                            PackDoubles{doubles_, which, buf, width_});
     for (const auto& f : fields_) f.pack(exec, which, count, buf, width_);
   }
-  /// Particles first .. first + count from the records in buf.
-  void unpack(const ExecSpace& exec, const Buffer& buf, int count, int first) const {
+  /// Particles first .. first + count from the records in buf, the positions' component
+  /// `shift_dim` (if >= 0) moved by `shift`.
+  void unpack(const ExecSpace& exec, const Buffer& buf, int count, int first, int shift_dim = -1,
+              double shift = 0.0) const {
     if (doubles_.count > 0)
       Kokkos::parallel_for("amphora::particles::unpack_doubles",
                            kernels::RangePolicy<ExecSpace>(exec, 0, count),
-                           UnpackDoubles{doubles_, buf, width_, first});
+                           UnpackDoubles{doubles_, buf, width_, first, shift_dim, shift});
     for (const auto& f : fields_) f.unpack(exec, buf, count, first, width_);
   }
 
@@ -62,6 +78,7 @@ class ParticleFields {
     int count = 0;
     double* data[max];
     int inner[max], offset[max];
+    bool position[max];
   };
   struct PackDoubles {
     Doubles f;
@@ -78,12 +95,16 @@ class ParticleFields {
   struct UnpackDoubles {
     Doubles f;
     Buffer buf;
-    int w, first;
+    int w, first, shift_dim;
+    double shift;
     KOKKOS_INLINE_FUNCTION void operator()(int k) const {
       const size_t i = size_t(first + k), from = size_t(k) * w;
       for (int a = 0; a < f.count; ++a)
-        for (int c = 0; c < f.inner[a]; ++c)
-          f.data[a][i * f.inner[a] + c] = buf(from + f.offset[a] + c);
+        for (int c = 0; c < f.inner[a]; ++c) {
+          const double s = f.position[a] && c == shift_dim ? shift : 0.0;
+          const double value = buf(from + f.offset[a] + c);
+          f.data[a][i * f.inner[a] + c] = s == 0.0 ? value : value + s;
+        }
     }
   };
   /// Device functors (not lambdas: nvcc takes no extended lambda inside a host lambda).

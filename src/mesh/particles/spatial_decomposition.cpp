@@ -14,11 +14,9 @@ Index3 cells_of(const std::array<double, 3>& lo, const std::array<double, 3>& hi
 
 SpatialDecomposition::SpatialDecomposition(const std::array<double, 3>& lo,
                                            const std::array<double, 3>& hi, double min_width,
-                                           const Communicator& comm)
-    : comm_(comm),
-      lo_(lo),
-      hi_(hi),
-      boxes_(cells_of(lo, hi, min_width), {false, false, false}, comm.size(), 1) {
+                                           const Communicator& comm,
+                                           const std::array<bool, 3>& periodic)
+    : comm_(comm), lo_(lo), hi_(hi), boxes_(cells_of(lo, hi, min_width), periodic, comm.size(), 1) {
   for (int d = 0; d < 3; ++d) h_[d] = (hi_[d] - lo_[d]) / boxes_.global_cells()[d];
 }
 
@@ -33,6 +31,23 @@ std::array<double, 3> SpatialDecomposition::hi(int rank) const {
   for (int d = 0; d < 3; ++d)
     h[d] = b.hi[d] == boxes_.global_cells()[d] ? hi_[d] : lo_[d] + b.hi[d] * h_[d];
   return h;
+}
+
+double SpatialDecomposition::image_shift(int d, int side) const {
+  if (!periodic(d)) return 0.0;
+  const int r = comm_.rank();
+  if (side == 0) return hi(r)[d] == hi_[d] ? hi_[d] - lo_[d] : 0.0;
+  return lo(r)[d] == lo_[d] ? lo_[d] - hi_[d] : 0.0;
+}
+
+PeriodicWrap SpatialDecomposition::wrap() const {
+  PeriodicWrap w;
+  for (int d = 0; d < 3; ++d) {
+    w.lo[d] = lo_[d];
+    w.length[d] = hi_[d] - lo_[d];
+    w.periodic[d] = periodic(d);
+  }
+  return w;
 }
 
 int SpatialDecomposition::owner(const double x[3]) const {

@@ -1,7 +1,10 @@
 #pragma once
 // A box in space split into one rectangular subdomain per rank (a BoxDecomposition over a
 // virtual grid of cells at least `min_width` wide), for particles: who owns a point, and who
-// the face neighbours are. Ranks exchange packed particle records through it.
+// the face neighbours are. Ranks exchange packed particle records through it. Periodic
+// directions wrap: the neighbours across the box's faces are the ranks at the opposite faces
+// (this rank itself where one block spans the direction), and records crossing them are
+// images, shifted by the box's length (image_shift).
 #include <array>
 #include <vector>
 
@@ -13,6 +16,20 @@ namespace amphora::mesh::particles {
 
 /// SpatialDecomposition::owner as a device-copyable map (the same arithmetic, so the same
 /// owner on host and device).
+/// Periodic wrapping of points into the box [lo, hi) along its periodic directions (device
+/// copyable).
+struct PeriodicWrap {
+  double lo[3] = {0, 0, 0}, length[3] = {0, 0, 0};
+  bool periodic[3] = {false, false, false};
+  KOKKOS_INLINE_FUNCTION bool any() const { return periodic[0] || periodic[1] || periodic[2]; }
+  /// x(d) moved by whole lengths into [lo, lo + length) where d is periodic.
+  KOKKOS_INLINE_FUNCTION double operator()(double x, int d) const {
+    if (!periodic[d]) return x;
+    const double s = kernels::math::floor((x - lo[d]) / length[d]);
+    return s == 0.0 ? x : x - s * length[d];
+  }
+};
+
 struct OwnerMap {
   double lo[3], h[3];
   int cells[3], blocks[3];
@@ -36,7 +53,8 @@ class SpatialDecomposition {
   /// Throws DecompositionError if the box cannot give every rank a subdomain at least
   /// min_width wide in each split direction.
   SpatialDecomposition(const std::array<double, 3>& lo, const std::array<double, 3>& hi,
-                       double min_width, const Communicator& comm);
+                       double min_width, const Communicator& comm,
+                       const std::array<bool, 3>& periodic = {false, false, false});
 
   const Communicator& comm() const { return comm_; }
   /// Subdomain of `rank` as [lo, hi) (the global box's upper faces are inclusive).
@@ -45,6 +63,12 @@ class SpatialDecomposition {
   /// Owner of a point (points outside the box go to the nearest subdomain).
   int owner(const double x[3]) const;
   int neighbor(int d, int side) const { return boxes_.neighbor(comm_.rank(), d, side); }
+  bool periodic(int d) const { return boxes_.periodic(d); }
+  /// The shift of the positions that arrive on the exchange across face (d, side): they come
+  /// from the neighbour across the opposite face, so +length(d) where side 0 receives across the
+  /// box's upper face, -length(d) where side 1 receives across its lower one, else 0.
+  double image_shift(int d, int side) const;
+  PeriodicWrap wrap() const;
   /// owner() for kernels.
   OwnerMap owner_map() const {
     OwnerMap m;

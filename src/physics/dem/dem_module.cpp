@@ -19,6 +19,10 @@ ParamTable parameter_table() {
           real_param("box_x", 0.03, "m", above(0.0), "box width"),
           real_param("box_y", 0.03, "m", above(0.0), "box depth"),
           real_param("box_z", 0.06, "m", above(0.0), "box height (particles above it are removed)"),
+          string_param("box_sides", std::string("walls"),
+                       "the box's sides: walls, periodic along x and y (a slice of a wide bed), "
+                       "or periodic_y (walls at x = 0 and box_x, periodic across y)",
+                       {"walls", "periodic", "periodic_y"}),
           real_param("floor_height", 0.0, "m", at_least(0.0),
                      "height of the box's floor (below it: room for what a coupling needs, "
                      "e.g. CFD-DEM's inflow; a distributor the fluid passes)"),
@@ -129,8 +133,11 @@ DemModule::DemModule(const Parameters& p, const Communicator& comm) : comm_(comm
       throw std::invalid_argument("dem: floor_height " + std::to_string(floor_) +
                                   " must lie below half the box's height " +
                                   std::to_string(box_[2]));
-    c.walls = {plane(2, 1, floor_), plane(0, 1, 0), plane(0, -1, box_[0]), plane(1, 1, 0),
-               plane(1, -1, box_[1])};
+    const std::string sides = p.string("box_sides");
+    c.periodic = {sides == "periodic", sides != "walls", false};
+    c.walls = {plane(2, 1, floor_)};
+    if (!c.periodic[0]) c.walls.insert(c.walls.end(), {plane(0, 1, 0), plane(0, -1, box_[0])});
+    if (!c.periodic[1]) c.walls.insert(c.walls.end(), {plane(1, 1, 0), plane(1, -1, box_[1])});
     impact_speed_ = std::sqrt(2 * gravity_ * box_[2]);
   } else {
     drum_radius_ = p.real("drum_radius");
@@ -240,7 +247,7 @@ void DemModule::insert_due(double t) {
       region.hi[1] = box_[1];
       region.hi[2] = box_[2];
       batch = lattice_insertion(region, radii_, spacing, particle_count_, 0.02 * radii_.mean, seed_,
-                                0, material_fractions_);
+                                0, material_fractions_, system_->config().periodic);
     }
     next_event_ = 1;
   } else {

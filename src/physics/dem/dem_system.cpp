@@ -58,6 +58,21 @@ void grow(View& v, int n) {
   }
 }
 
+/// A periodic direction must be at least two cutoffs long: a particle then meets at most one
+/// copy (itself or an image) of each partner, and never its own image.
+void check_periodic_lengths(const DemConfig& c, double cutoff) {
+  for (int d = 0; d < 3; ++d) {
+    const double length = c.domain_hi[d] - c.domain_lo[d];
+    if (c.periodic[d] && length < 2 * cutoff) {
+      std::ostringstream m;
+      m << "DEM: the domain is periodic along "
+        << "xyz"[d] << " but " << length
+        << " m long, shorter than two cutoffs (2 (2 max_radius + skin) = " << 2 * cutoff << " m)";
+      throw std::invalid_argument(m.str());
+    }
+  }
+}
+
 }  // namespace dem_system_kernels
 using namespace dem_system_kernels;
 using kernels::particles::bin_points;
@@ -70,13 +85,14 @@ DemSystem<ExecSpace>::DemSystem(const DemConfig& config, const Communicator& com
     : config_(config),
       comm_(comm),
       exec_(exec),
-      decomposition_(config.domain_lo, config.domain_hi, 2 * config.max_radius + config.skin,
-                     comm) {
+      decomposition_(config.domain_lo, config.domain_hi, 2 * config.max_radius + config.skin, comm,
+                     config.periodic) {
   if (config_.materials.empty()) throw std::invalid_argument("DEM: no materials");
   if (!(config_.max_radius > 0)) throw std::invalid_argument("DEM: max_radius must be > 0");
   if (!(config_.skin > 0)) throw std::invalid_argument("DEM: skin must be > 0");
   if (!(config_.dt > 0)) throw std::invalid_argument("DEM: dt must be > 0");
   ghost_width_ = 2 * config_.max_radius + config_.skin;
+  check_periodic_lengths(config_, ghost_width_);
   const int nm = static_cast<int>(config_.materials.size());
   pairs_ = Kokkos::View<PairCoefficients**, Mem>("amphora::dem::pairs", nm, nm);
   auto ph = Kokkos::create_mirror_view(pairs_);
@@ -327,14 +343,34 @@ void DemSystem<ExecSpace>::records_to_history() {
 }
 
 template <class ExecSpace>
+void DemSystem<ExecSpace>::wrap_periodic() {
+  // A restart's first rebuild keeps the checkpoint's build positions and wraps nothing: the
+  // run it continues wraps at its next rebuild, and so does the restart.
+  const mesh::particles::PeriodicWrap wrap = decomposition_.wrap();
+  if (!wrap.any() || keep_build_positions_) return;
+  const auto x = p_.x;
+  Kokkos::parallel_for(
+      "amphora::dem::wrap_periodic", kernels::RangePolicy<ExecSpace>(exec_, 0, p_.n_owned),
+      KOKKOS_LAMBDA(int i) {
+        for (int d = 0; d < 3; ++d) x(i, d) = wrap(x(i, d), d);
+      });
+}
+
+template <class ExecSpace>
 void DemSystem<ExecSpace>::remove_and_migrate() {
+  wrap_periodic();
   const int n = p_.n_owned;
   const auto x = p_.x;
   const auto lo = decomposition_.lo(comm_.rank());
   const auto hi = decomposition_.hi(comm_.rank());
   const auto dlo = config_.domain_lo, dhi = config_.domain_hi;
   const double l0 = lo[0], l1 = lo[1], l2 = lo[2], h0 = hi[0], h1 = hi[1], h2 = hi[2];
-  const double d0 = dlo[0], d1 = dlo[1], d2 = dlo[2], e0 = dhi[0], e1 = dhi[1], e2 = dhi[2];
+  // periodic directions: nobody leaves the domain (the infinite bounds never fail)
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto& per = config_.periodic;
+  const double d0 = per[0] ? -inf : dlo[0], d1 = per[1] ? -inf : dlo[1],
+               d2 = per[2] ? -inf : dlo[2];
+  const double e0 = per[0] ? inf : dhi[0], e1 = per[1] ? inf : dhi[1], e2 = per[2] ? inf : dhi[2];
   const bool top0 = hi[0] == dhi[0], top1 = hi[1] == dhi[1], top2 = hi[2] == dhi[2];
   int leaving = 0;
   Kokkos::parallel_reduce(
@@ -424,8 +460,8 @@ void DemSystem<ExecSpace>::build_ghosts() {
     p_.reserve(capacity);
     grow(x_build_, capacity);
     mesh::particles::ParticleFields<ExecSpace> record;
-    record.add(p_.x).add(p_.v).add(p_.omega).add(p_.radius).add(p_.mass).add(p_.inertia);
-    record.add(p_.material).add(p_.gid).add(x_build_);
+    record.add_position(p_.x).add(p_.v).add(p_.omega).add(p_.radius).add(p_.mass);
+    record.add(p_.inertia).add(p_.material).add(p_.gid).add_position(x_build_);
     return typename Halo::Arrays{record, x_build_};
   });
 }
@@ -434,7 +470,7 @@ template <class ExecSpace>
 void DemSystem<ExecSpace>::forward_ghosts() {
   if (halo_.empty()) return;
   mesh::particles::ParticleFields<ExecSpace> moving;
-  moving.add(p_.x).add(p_.v).add(p_.omega);
+  moving.add_position(p_.x).add(p_.v).add(p_.omega);
   halo_.forward(exec_, decomposition_, moving);
 }
 
@@ -462,9 +498,10 @@ void DemSystem<ExecSpace>::rebuild() {
   const auto lo = decomposition_.lo(comm_.rank());
   const auto hi = decomposition_.hi(comm_.rank());
   double glo[3], ghi[3];
-  for (int d = 0; d < 3; ++d) {
-    glo[d] = std::max(lo[d] - ghost_width_, config_.domain_lo[d]);
-    ghi[d] = std::min(hi[d] + ghost_width_, config_.domain_hi[d]);
+  for (int d = 0; d < 3; ++d) {  // the ghosts' reach (images beyond periodic faces)
+    const bool per = config_.periodic[d];
+    glo[d] = per ? lo[d] - ghost_width_ : std::max(lo[d] - ghost_width_, config_.domain_lo[d]);
+    ghi[d] = per ? hi[d] + ghost_width_ : std::min(hi[d] + ghost_width_, config_.domain_hi[d]);
   }
   const CellGrid grid = CellGrid::covering(glo, ghi, ghost_width_);
   bin_points(exec_, grid, x_build_, total, kernels::particles::PointIndex(), bins_);

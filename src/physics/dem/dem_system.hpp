@@ -46,6 +46,9 @@ struct DemConfig {
   std::vector<Wall> walls;
   std::array<double, 3> gravity{0.0, 0.0, -9.81};
   std::array<double, 3> domain_lo{0, 0, 0}, domain_hi{1, 1, 1};  ///< particles leaving are removed
+  /// Directions in which the domain is periodic: particles leaving re-enter at the opposite
+  /// face and meet the images of those there (the domain at least two cutoffs long).
+  std::array<bool, 3> periodic{false, false, false};
   double dt = 1e-5;
   double skin = 0;        ///< Verlet skin [m]
   double max_radius = 0;  ///< largest radius the run will hold (bins, ghost width)
@@ -173,6 +176,7 @@ class DemSystem {
   void size_next_springs();
   void zero_forces();  // force and torque to zero, in one kernel
   void remove_and_migrate();
+  void wrap_periodic();  // owned positions into the domain along its periodic directions
   /// Every per-particle array a particle carries to another rank.
   mesh::particles::ParticleFields<ExecSpace> migrating_fields() const;
   void sort_owned_by_cell();

@@ -55,7 +55,8 @@ std::vector<ParticleSpec> lattice_insertion(const InsertionRegion& region,
                                             const RadiusDistribution& radii, double spacing,
                                             long long count, double jitter, std::uint64_t seed,
                                             std::int64_t first_gid,
-                                            const std::vector<double>& material_fractions) {
+                                            const std::vector<double>& material_fractions,
+                                            const std::array<bool, 3>& periodic) {
   if (spacing < 2 * radii.max() * (1 + 1e-12)) {
     std::ostringstream m;
     m << "lattice insertion cannot fit: spacing " << spacing << " m is below the largest "
@@ -65,8 +66,14 @@ std::vector<ParticleSpec> lattice_insertion(const InsertionRegion& region,
   std::vector<ParticleSpec> out;
   const double r0 = radii.max();
   int n[3];
-  for (int d = 0; d < 3; ++d)
-    n[d] = std::max(0, int((region.hi[d] - region.lo[d] - 2 * r0) / spacing) + 1);
+  double step[3], first[3];
+  for (int d = 0; d < 3; ++d) {
+    const double length = region.hi[d] - region.lo[d];
+    n[d] = periodic[d] ? std::max(1, int(length / spacing))
+                       : std::max(0, int((length - 2 * r0) / spacing) + 1);
+    step[d] = periodic[d] ? length / n[d] : spacing;
+    first[d] = region.lo[d] + (periodic[d] ? 0.5 * step[d] : r0);
+  }
   for (int k = 0; k < n[2]; ++k)
     for (int j = 0; j < n[1]; ++j)
       for (int i = 0; i < n[0]; ++i) {
@@ -76,11 +83,14 @@ std::vector<ParticleSpec> lattice_insertion(const InsertionRegion& region,
         const int idx[3] = {i, j, k};
         for (int d = 0; d < 3; ++d)
           p.x[d] =
-              region.lo[d] + r0 + idx[d] * spacing +
+              first[d] + idx[d] * step[d] +
               jitter *
                   (uniform01(seed, 1000 + d, id + 7919ULL * (i + 31ULL * (j + 31ULL * k))) - 0.5);
         p.radius = radii.mean * (1 + radii.spread * (2 * uniform01(seed, 2000, id) - 1));
-        if (!region.contains(p.x, r0 + jitter)) continue;
+        double probe[3];  // periodic directions: a site may straddle the face
+        for (int d = 0; d < 3; ++d)
+          probe[d] = periodic[d] ? 0.5 * (region.lo[d] + region.hi[d]) : p.x[d];
+        if (!region.contains(probe, r0 + jitter)) continue;
         p.material = pick_material(uniform01(seed, 3000, id), material_fractions);
         p.gid = first_gid + static_cast<std::int64_t>(out.size());
         out.push_back(p);
@@ -106,11 +116,26 @@ std::vector<ParticleSpec> random_insertion(const DemSystem<ExecSpace>& system,
   auto x = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.x);
   auto r = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), p.radius);
   const double margin = 2 * radii.max();
+  // Periodic directions: distances to the nearest image (every particle may be near one).
+  const auto& cfg = system.config();
+  const auto per = cfg.periodic;
+  double length[3];
+  for (int d = 0; d < 3; ++d) length[d] = cfg.domain_hi[d] - cfg.domain_lo[d];
+  const auto gap = [&](const double* a, const double* b) {
+    double d2 = 0;
+    for (int d = 0; d < 3; ++d) {
+      double dx = a[d] - b[d];
+      if (per[d]) dx -= length[d] * std::round(dx / length[d]);
+      d2 += dx * dx;
+    }
+    return d2;
+  };
   std::vector<double> near;
   for (int i = 0; i < p.n_owned; ++i) {
     bool inside = true;
     for (int d = 0; d < 3; ++d)
-      inside = inside && x(i, d) > region.lo[d] - margin && x(i, d) < region.hi[d] + margin;
+      inside = inside &&
+               (per[d] || (x(i, d) > region.lo[d] - margin && x(i, d) < region.hi[d] + margin));
     if (inside) {
       for (int d = 0; d < 3; ++d) near.push_back(x(i, d));
       near.push_back(r(i));
@@ -128,16 +153,10 @@ std::vector<ParticleSpec> random_insertion(const DemSystem<ExecSpace>& system,
                (region.hi[d] - region.lo[d] - 2 * c.radius) * uniform01(seed, event, d0 + 1 + d);
     if (!region.contains(c.x, c.radius)) continue;
     bool free = true;
-    for (size_t k = 0; free && k < all.size(); k += 4) {
-      double d2 = 0;
-      for (int d = 0; d < 3; ++d) d2 += (c.x[d] - all[k + d]) * (c.x[d] - all[k + d]);
-      free = d2 >= (c.radius + all[k + 3]) * (c.radius + all[k + 3]);
-    }
-    for (size_t k = 0; free && k < out.size(); ++k) {
-      double d2 = 0;
-      for (int d = 0; d < 3; ++d) d2 += (c.x[d] - out[k].x[d]) * (c.x[d] - out[k].x[d]);
-      free = d2 >= (c.radius + out[k].radius) * (c.radius + out[k].radius);
-    }
+    for (size_t k = 0; free && k < all.size(); k += 4)
+      free = gap(c.x, &all[k]) >= (c.radius + all[k + 3]) * (c.radius + all[k + 3]);
+    for (size_t k = 0; free && k < out.size(); ++k)
+      free = gap(c.x, out[k].x) >= (c.radius + out[k].radius) * (c.radius + out[k].radius);
     if (!free) continue;
     c.material = pick_material(uniform01(seed, event, d0 + 4), material_fractions);
     c.gid = first_gid + static_cast<std::int64_t>(out.size());

@@ -3,6 +3,7 @@
 // in a box or a cylinder over time. Candidates come from a counter-based generator keyed by
 // (seed, event, draw), so every rank draws the same ones and the result does not depend on the
 // rank count; overlap checks see the particles of all ranks near the region.
+#include <array>
 #include <cstdint>
 #include <stdexcept>
 #include <vector>
@@ -41,12 +42,15 @@ double uniform01(std::uint64_t seed, std::uint64_t event, std::uint64_t draw);
 
 /// Simple-cubic lattice of spacing `spacing` (>= the largest diameter, else InsertionError)
 /// over the region, at most `count` particles (count <= 0: all sites); tiny deterministic
-/// jitter breaks the lattice's symmetry. Gids start at first_gid.
-std::vector<ParticleSpec> lattice_insertion(const InsertionRegion& region,
-                                            const RadiusDistribution& radii, double spacing,
-                                            long long count, double jitter, std::uint64_t seed,
-                                            std::int64_t first_gid,
-                                            const std::vector<double>& material_fractions);
+/// jitter breaks the lattice's symmetry. Gids start at first_gid. Along `periodic` directions
+/// (of a box region spanning the periodic domain) the lattice tiles the length: the spacing
+/// widened to length / floor(length / spacing), the sites half of it off the faces, so no seam
+/// of another spacing lies across the periodic face.
+std::vector<ParticleSpec> lattice_insertion(
+    const InsertionRegion& region, const RadiusDistribution& radii, double spacing, long long count,
+    double jitter, std::uint64_t seed, std::int64_t first_gid,
+    const std::vector<double>& material_fractions,
+    const std::array<bool, 3>& periodic = {false, false, false});
 
 /// Up to `count` random particles in `region` that overlap neither each other nor the
 /// particles of `system` (all ranks); `attempts` draws per particle. Throws InsertionError if
