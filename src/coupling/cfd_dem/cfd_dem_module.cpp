@@ -42,11 +42,16 @@ ParamTable cfd_dem_parameter_table() {
                      "the particles' floor, a distributor the fluid passes: clear fluid below "
                      "it, so the inflow meets eps = 1"),
           string_param("fluid_sides", std::string("periodic"),
-                       "the column's sides for the fluid: periodic (a slice of a wide bed; the "
-                       "particles still meet walls), no-slip walls (on a column a few cells "
-                       "wide these raise the pressure drop: docs/cfd_dem.md), or slot: walls "
-                       "at x = 0 and the width, periodic across the thin depth (pseudo-2D)",
+                       "the column's sides for the fluid: periodic (a slice of a wide bed), "
+                       "no-slip walls (on a column a few cells wide these raise the pressure "
+                       "drop: docs/cfd_dem.md), or slot: walls at x = 0 and the width, "
+                       "periodic across the thin depth (pseudo-2D)",
                        {"walls", "periodic", "slot"}),
+          string_param("particle_sides", std::string("fluid"),
+                       "the column's sides for the particles: as the fluid's (periodic where "
+                       "fluid_sides is, walls elsewhere), or walls everywhere (a particle-free "
+                       "gap along periodic fluid sides: docs/cfd_dem.md)",
+                       {"fluid", "walls"}),
           int_param("cells", 8, at_least(2) & at_most(256),
                     "cells across the column (about as many per length along it: the "
                     "nearest multiple of the largest power of two dividing cells, so that the "
@@ -132,6 +137,9 @@ Parameters dem_parameters(const Parameters& p) {
   d.set("box_y", column_depth(p));
   d.set("box_z", p.real("column_height"));
   d.set("floor_height", p.real("distributor_height"));
+  const std::string sides = p.string("fluid_sides");
+  if (p.string("particle_sides") == "fluid" && sides != "walls")
+    d.set("box_sides", std::string(sides == "periodic" ? "periodic" : "periodic_y"));
   d.set("particle_radius", 0.5 * p.real("particle_diameter"));
   d.set("density", p.real("particle_density"));
   for (const char* key : {"youngs_modulus", "poisson_ratio", "restitution", "friction",
