@@ -10,6 +10,7 @@
 
 #include "physics/dem/dem_system.hpp"
 #include "physics/dem/insertion.hpp"
+#include "shaken_packing.hpp"
 #include "test_backend.hpp"
 
 namespace amphora::physics::dem {
@@ -20,31 +21,10 @@ using Pairs = std::vector<std::pair<std::int64_t, std::int64_t>>;
 
 constexpr double kRadius = 1e-3;
 
+/// The shaken packing's box (shaken_packing.hpp) without gravity.
 DemConfig periodic_config(double L, std::array<bool, 3> periodic) {
-  Material m;
-  m.youngs_modulus = 1e6;
-  m.restitution = 0.5;
-  m.friction = 0.3;
-  DemConfig c;
-  c.materials = {m};
-  c.domain_lo = {0, 0, 0};
-  c.domain_hi = {L, L, L};
-  c.periodic = periodic;
+  DemConfig c = test_systems::shaken_config(L, periodic);
   c.gravity = {0, 0, 0};
-  c.max_radius = 1.3 * kRadius;
-  c.skin = 0.3 * kRadius;  // small: many rebuilds
-  c.dt = 2e-5;
-  for (int d = 0; d < 3; ++d) {  // walls only across the directions that are not periodic
-    if (periodic[d]) continue;
-    Wall lo, hi;
-    lo.axis[0] = lo.axis[1] = lo.axis[2] = 0;
-    lo.axis[d] = 1;
-    hi = lo;
-    hi.axis[d] = -1;
-    hi.point[d] = L;
-    c.walls.push_back(lo);
-    c.walls.push_back(hi);
-  }
   return c;
 }
 

@@ -12,7 +12,6 @@
 
 #include "kernels/deep_copy_counter.hpp"
 #include "physics/dem/dem_system.hpp"
-#include "physics/dem/insertion.hpp"
 #include "physics/water_mac/water_mac.hpp"
 #include "shaken_packing.hpp"
 #include "test_backend.hpp"
@@ -22,8 +21,9 @@ namespace test_step_transfers_cases {
 
 using System = physics::dem::DemSystem<test::TestExecSpace>;
 
-TEST(StepTransfers, DemStepsStayOnTheDevice) {
-  System s = physics::dem::test_systems::shaken_packing<test::TestExecSpace>(1000, 0.034);
+/// Steps s 60 times after its first: no step copies between host and device, and a rebuild
+/// copies once within it (the positions it was built at).
+void expect_steps_on_the_device(System& s) {
   s.step();  // the first step builds the lists
   kernels::DeepCopyCounter counter;
   int quiet_steps = 0, rebuild_steps = 0;
@@ -34,7 +34,6 @@ TEST(StepTransfers, DemStepsStayOnTheDevice) {
     const kernels::DeepCopyCount c = counter.count();
     const bool rebuilt = s.timers().rebuilds != rebuilds;
     (rebuilt ? rebuild_steps : quiet_steps) += 1;
-    // a rebuild keeps the positions it was built at: one copy within the device
     EXPECT_EQ(c.copies, rebuilt ? 1 : 0) << "step " << it;
     EXPECT_EQ(c.host_device(), 0) << "step " << it;
     EXPECT_EQ(c.scalar_reads, 0) << "step " << it;
@@ -43,45 +42,17 @@ TEST(StepTransfers, DemStepsStayOnTheDevice) {
   ASSERT_GT(rebuild_steps, 2);
 }
 
+TEST(StepTransfers, DemStepsStayOnTheDevice) {
+  System s = physics::dem::test_systems::shaken_packing<test::TestExecSpace>(1000, 0.034);
+  expect_steps_on_the_device(s);
+}
+
 // A box periodic in x, y and z: the ghosts are the particles' own images, copied on the device
 // (no message, no host copy), and crossing particles are wrapped there at the rebuilds.
 TEST(StepTransfers, PeriodicDemStepsStayOnTheDevice) {
-  const double r = 1e-3, L = 0.03;
-  physics::dem::Material m;
-  m.youngs_modulus = 1e6;
-  m.restitution = 0.5;
-  physics::dem::DemConfig c;
-  c.materials = {m};
-  c.domain_hi = {L, L, L};
-  c.periodic = {true, true, true};
-  c.gravity = {0, 0, 0};
-  c.max_radius = 1.3 * r;
-  c.skin = 0.3 * r;
-  c.dt = 2e-5;
-  System s(c, Communicator());
-  physics::dem::InsertionRegion box;
-  for (int d = 0; d < 3; ++d) box.hi[d] = L;
-  auto ps = physics::dem::lattice_insertion(box, {r, 0.3}, 2.7 * r, 1000, 0.5 * r, 7, 0, {1.0},
-                                            c.periodic);
-  for (auto& p : ps)
-    for (int d = 0; d < 3; ++d) p.v[d] = 0.6 * (physics::dem::uniform01(11, d, p.gid) - 0.5);
-  s.add_particles(ps);
-  s.step();
-  kernels::DeepCopyCounter counter;
-  int quiet_steps = 0, rebuild_steps = 0;
-  for (int it = 0; it < 60; ++it) {
-    const long long rebuilds = s.timers().rebuilds;
-    counter.reset();
-    s.step();
-    const kernels::DeepCopyCount cc = counter.count();
-    const bool rebuilt = s.timers().rebuilds != rebuilds;
-    (rebuilt ? rebuild_steps : quiet_steps) += 1;
-    EXPECT_EQ(cc.copies, rebuilt ? 1 : 0) << "step " << it;
-    EXPECT_EQ(cc.host_device(), 0) << "step " << it;
-    EXPECT_EQ(cc.scalar_reads, 0) << "step " << it;
-  }
-  ASSERT_GT(quiet_steps, 10);
-  ASSERT_GT(rebuild_steps, 2);
+  using physics::dem::test_systems::shaken_packing;
+  System s = shaken_packing<test::TestExecSpace>(1000, 0.03, {true, true, true}, 0.6);
+  expect_steps_on_the_device(s);
   EXPECT_GT(s.particles().n_ghost, 100) << "the images must be there";
 }
 
