@@ -87,8 +87,9 @@ void run_step(benchmark::State& state, int smoother_degree = 0, bool by_one = tr
   }
   state.counters["dofs"] = 4.0 * s.n_dofs();
   state.counters["iterations"] = iterations;
-  // Shares of the step (setup: operators, multigrid levels, smoother set-up; preconditioner:
-  // the V-cycles or Jacobi; other: GMRES's orthogonalisation and vector updates).
+  // Shares of the step (setup: operators, multigrid levels, smoother set-up; smoother: the
+  // V-cycles less their coarse solves, or Jacobi; coarse solve: the multigrid's coarsest level;
+  // other: GMRES's orthogonalisation and vector updates).
   double total = 0.0;
   for (const auto& [name, sec] : times.seconds()) total += sec;
   for (const auto& [name, sec] : times.seconds()) state.counters[name] = sec / total;

@@ -23,17 +23,20 @@ from scene_variant import here, run_variant  # noqa: E402
 reference = os.path.join(here, "..", "shared", "reference", "tgv_re1600", "spectral_Re1600_512.dat")
 
 
-def measure(k, cells, end_time, threads, out, preconditioner="multigrid", reuse=False):
+def measure(k, cells, end_time, threads, out, preconditioner="multigrid", reuse=False,
+            tau=None):
     """Runs Q_k on cells^3 (or, with reuse, reads the log a finished run of the same
     end time, threads and preconditioner left) and returns its E_k and -dE_k/dt."""
     d = os.path.join(out, f"q{k}_{cells}")
     log = os.path.join(d, "run.log")
-    key = f"end_time={end_time} threads={threads} preconditioner={preconditioner}\n"
+    key = f"end_time={end_time} threads={threads} preconditioner={preconditioner} tau={tau}\n"
     if reuse and os.path.exists(log) and open(log).readline() == key:
         stdout = open(log).read()
     else:
         values = {"degree": str(k), "cells": str(cells), "end_time": str(end_time),
                   "checkpoint_every": "0", "preconditioner": f'"{preconditioner}"'}
+        if tau:
+            values["tau"] = f'"{tau}"'
         stdout = key + run_variant("studies/tgv_re1600.toml", d, values, threads)["stdout"]
         open(log, "w").write(stdout)
     m = re.search(r"\[done\] (\d+) steps to t=\S+ in ([0-9.e+-]+) s stepping", stdout)
@@ -93,6 +96,9 @@ def main():
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--out", default="tgv_study")
     p.add_argument("--preconditioner", default="multigrid", choices=["multigrid", "jacobi"])
+    p.add_argument("--tau", choices=["steady", "transient"],
+                   help="[ins_fem] tau, the SUPG/PSPG parameter without or with (2 / dt)^2 "
+                        "(default: the scene's)")
     p.add_argument("--reuse", action="store_true",
                    help="read runs already in --out with the same settings instead of rerunning")
     a = p.parse_args()
@@ -101,7 +107,7 @@ def main():
     runs = []
     for pair in a.runs.split(","):
         k, cells = (int(v) for v in pair.split(":"))
-        r = measure(k, cells, a.end_time, a.threads, a.out, a.preconditioner, a.reuse)
+        r = measure(k, cells, a.end_time, a.threads, a.out, a.preconditioner, a.reuse, a.tau)
         r["core_hours"] = r["seconds"] * r["threads"] / 3600.0
         r.update(errors(r, ref))
         runs.append(r)

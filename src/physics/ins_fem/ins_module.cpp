@@ -60,6 +60,7 @@ class InsModule final : public Module {
     InsOptions o;
     o.nu = p.real("nu");
     o.grad_div = p.real("grad_div");
+    o.transient_tau = p.string("tau") == "transient";
     o.backflow = p.real("backflow");
     o.tolerance = p.real("tolerance");
     o.max_iterations = static_cast<int>(p.integer("max_iterations"));
@@ -265,6 +266,10 @@ ParamTable parameter_table() {
                          "faces kept in place (0: Cartesian cells)"),
               real_param("nu", 0.01, "m^2/s", above(0.0), "kinematic viscosity"),
               real_param("grad_div", 0.0, "1", at_least(0.0), "grad-div stabilisation weight"),
+              string_param("tau", std::string("steady"),
+                           "the SUPG/PSPG parameter: steady leaves (2 / dt)^2 out of tau, "
+                           "transient keeps it (tau <= dt / 2, as Lethe's)",
+                           {"steady", "transient"}),
               real_param("backflow", 1.0, "1", at_least(0.0),
                          "beta of the backflow stabilisation on open faces (the channel's "
                          "outflow; 0: plain do-nothing)"),

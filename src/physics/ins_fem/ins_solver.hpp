@@ -75,9 +75,11 @@ struct InsStepReport {
 };
 
 /// The phases a step's time is booked to (PhaseTimes indices).
-enum InsPhase { ins_setup = 0, ins_operator = 1, ins_preconditioner = 2, ins_other = 3 };
+/// smoother: the V-cycles less their coarse solves (smoothing, residuals, transfers), or the
+/// Jacobi preconditioner; coarse: the multigrid's coarsest level.
+enum InsPhase { ins_setup = 0, ins_operator = 1, ins_smoother = 2, ins_coarse = 3, ins_other = 4 };
 inline std::vector<std::string> ins_phase_names() {
-  return {"setup", "operator", "preconditioner", "other"};
+  return {"setup", "operator", "smoother", "coarse solve", "other"};
 }
 
 /// An operator or preconditioner whose applications are booked to a phase (the time before
@@ -508,7 +510,10 @@ class InsSolver {
       // restart cycle without convergence hands this step and the rest of the run to Jacobi.
       solvers::SolverControl first = control;
       first.max_iterations = std::min(control.max_iterations, options_.restart);
-      const TimedApply<Multigrid> timed_m{multigrid_.get(), times_, ins_preconditioner};
+      if (times_)
+        multigrid_->set_coarse_hook(
+            [t = times_](bool entering) { t->lap(entering ? ins_smoother : ins_coarse); });
+      const TimedApply<Multigrid> timed_m{multigrid_.get(), times_, ins_smoother};
       r = solvers::gmres(exec, timed_a, rhs_, delta_, first, options_.restart, timed_m,
                          solvers::LocalInnerProduct(), gmres_work_);
       if (!r.converged) {
@@ -524,7 +529,7 @@ class InsSolver {
       const solvers::JacobiPreconditioner<Vector> jacobi{diagonal_};
       if (times_) times_->lap(ins_setup);
       const TimedApply<solvers::JacobiPreconditioner<Vector>> timed_m{&jacobi, times_,
-                                                                      ins_preconditioner};
+                                                                      ins_smoother};
       const int spent = r.iterations;
       r = solvers::gmres(exec, timed_a, rhs_, delta_, control, options_.restart, timed_m,
                          solvers::LocalInnerProduct(), gmres_work_);

@@ -11,6 +11,7 @@
 // fine one's, rediscretised with the advecting velocity restricted to it (R f / R 1: a
 // weighted average). One rank; the coarse solve reads the residual back to the host.
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -187,6 +188,10 @@ class OseenMultigrid {
       throw std::invalid_argument("OseenMultigrid: the saved state does not fit these levels");
   }
 
+  /// Called with true before and false after each coarse solve (empty: none), so that a
+  /// caller's timer can split a V-cycle into its smoothing and its coarse solve.
+  void set_coarse_hook(std::function<void(bool)> hook) { coarse_hook_ = std::move(hook); }
+
   /// z = one V-cycle applied to r.
   void apply(const ExecSpace& exec, const Vector& r, const Vector& z) const {
     vcycle(exec, 0, r, z);
@@ -254,7 +259,12 @@ class OseenMultigrid {
 
   void vcycle(const ExecSpace& exec, std::size_t l, const Vector& b, const Vector& x) const {
     const Level& L = *levels_[l];
-    if (l + 1 == levels_.size()) return coarse_solve(exec, b, x);
+    if (l + 1 == levels_.size()) {
+      if (coarse_hook_) coarse_hook_(true);
+      coarse_solve(exec, b, x);
+      if (coarse_hook_) coarse_hook_(false);
+      return;
+    }
     L.smoother->smooth(exec, b, x, true);
     L.op->apply(exec, x, L.r);
     kernels::blas1::axpby(exec, 1.0, b, -1.0, L.r);  // r = b - A x
@@ -290,6 +300,7 @@ class OseenMultigrid {
   long updates_ = 0;
   bool have_state_ = false;
   double alpha_ = 0.0;  // the operator's alpha at the last refresh
+  std::function<void(bool)> coarse_hook_;
 };
 
 }  // namespace amphora::solvers::matrix_free
