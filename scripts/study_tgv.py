@@ -26,7 +26,7 @@ reference = os.path.join(here, "..", "shared", "reference", "tgv_re1600", "spect
 def measure(k, cells, end_time, threads, out, preconditioner="multigrid", reuse=False,
             tau=None):
     """Runs Q_k on cells^3 (or, with reuse, reads the log a finished run of the same
-    end time, threads and preconditioner left) and returns its E_k and -dE_k/dt."""
+    end time, threads, preconditioner and tau left) and returns its E_k and -dE_k/dt."""
     d = os.path.join(out, f"q{k}_{cells}")
     log = os.path.join(d, "run.log")
     key = f"end_time={end_time} threads={threads} preconditioner={preconditioner} tau={tau}\n"

@@ -268,7 +268,7 @@ ParamTable parameter_table() {
               real_param("grad_div", 0.0, "1", at_least(0.0), "grad-div stabilisation weight"),
               string_param("tau", std::string("steady"),
                            "the SUPG/PSPG parameter: steady leaves (2 / dt)^2 out of tau, "
-                           "transient keeps it (tau <= dt / 2, as Lethe's)",
+                           "transient keeps it (tau <= dt / 2; Lethe keeps a transient term too)",
                            {"steady", "transient"}),
               real_param("backflow", 1.0, "1", at_least(0.0),
                          "beta of the backflow stabilisation on open faces (the channel's "

@@ -287,7 +287,15 @@ class InsSolver {
 
   /// Books each step's time to the phases of ins_phase_names() (nullptr: no timing, no
   /// fences).
-  void set_phase_times(PhaseTimes* times) { times_ = times; }
+  void set_phase_times(PhaseTimes* times) {
+    times_ = times;
+    if (!multigrid_) return;
+    if (times)
+      multigrid_->set_coarse_hook(
+          [times](bool entering) { times->lap(entering ? ins_smoother : ins_coarse); });
+    else
+      multigrid_->set_coarse_hook({});
+  }
 
   /// One time step of length dt to time t + dt; force_amplitude scales F at t + dt.
   InsStepReport step(double dt, double force_amplitude = 0.0) {
@@ -510,9 +518,6 @@ class InsSolver {
       // restart cycle without convergence hands this step and the rest of the run to Jacobi.
       solvers::SolverControl first = control;
       first.max_iterations = std::min(control.max_iterations, options_.restart);
-      if (times_)
-        multigrid_->set_coarse_hook(
-            [t = times_](bool entering) { t->lap(entering ? ins_smoother : ins_coarse); });
       const TimedApply<Multigrid> timed_m{multigrid_.get(), times_, ins_smoother};
       r = solvers::gmres(exec, timed_a, rhs_, delta_, first, options_.restart, timed_m,
                          solvers::LocalInnerProduct(), gmres_work_);
