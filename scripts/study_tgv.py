@@ -24,12 +24,14 @@ reference = os.path.join(here, "..", "shared", "reference", "tgv_re1600", "spect
 
 
 def measure(k, cells, end_time, threads, out, preconditioner="multigrid", reuse=False,
-            tau=None):
+            tau=None, grad_div=None):
     """Runs Q_k on cells^3 (or, with reuse, reads the log a finished run of the same
-    end time, threads, preconditioner and tau left) and returns its E_k and -dE_k/dt."""
+    end time, threads, preconditioner, tau and grad-div left) and returns its E_k and
+    -dE_k/dt."""
     d = os.path.join(out, f"q{k}_{cells}")
     log = os.path.join(d, "run.log")
-    key = f"end_time={end_time} threads={threads} preconditioner={preconditioner} tau={tau}\n"
+    key = f"end_time={end_time} threads={threads} preconditioner={preconditioner} tau={tau}"
+    key += f" grad_div={grad_div}\n" if grad_div is not None else "\n"
     if reuse and os.path.exists(log) and open(log).readline() == key:
         stdout = open(log).read()
     else:
@@ -37,6 +39,8 @@ def measure(k, cells, end_time, threads, out, preconditioner="multigrid", reuse=
                   "checkpoint_every": "0", "preconditioner": f'"{preconditioner}"'}
         if tau:
             values["tau"] = f'"{tau}"'
+        if grad_div is not None:
+            values["grad_div"] = str(grad_div)
         stdout = key + run_variant("studies/tgv_re1600.toml", d, values, threads)["stdout"]
         open(log, "w").write(stdout)
     m = re.search(r"\[done\] (\d+) steps to t=\S+ in ([0-9.e+-]+) s stepping", stdout)
@@ -99,6 +103,8 @@ def main():
     p.add_argument("--tau", choices=["steady", "transient"],
                    help="[ins_fem] tau, the SUPG/PSPG parameter without or with (2 / dt)^2 "
                         "(default: the scene's)")
+    p.add_argument("--grad-div", type=float,
+                   help="[ins_fem] grad_div, the grad-div weight gamma (default: the scene's)")
     p.add_argument("--reuse", action="store_true",
                    help="read runs already in --out with the same settings instead of rerunning")
     a = p.parse_args()
@@ -107,7 +113,8 @@ def main():
     runs = []
     for pair in a.runs.split(","):
         k, cells = (int(v) for v in pair.split(":"))
-        r = measure(k, cells, a.end_time, a.threads, a.out, a.preconditioner, a.reuse, a.tau)
+        r = measure(k, cells, a.end_time, a.threads, a.out, a.preconditioner, a.reuse, a.tau,
+                    a.grad_div)
         r["core_hours"] = r["seconds"] * r["threads"] / 3600.0
         r.update(errors(r, ref))
         runs.append(r)
