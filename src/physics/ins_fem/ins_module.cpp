@@ -252,6 +252,7 @@ void InsModule<dim>::restore(const std::vector<StateBlock>& blocks) {
 using namespace ins_module_detail;
 
 ParamTable parameter_table() {
+  const solvers::matrix_free::OseenMultigridOptions multigrid;  // the keys' defaults
   return {"ins_fem",
           "incompressible Navier-Stokes, equal-order Q_k with SUPG/PSPG and grad-div, BDF2, "
           "matrix-free",
@@ -289,10 +290,10 @@ ParamTable parameter_table() {
                            "the rest of the run where it fails to converge in one restart "
                            "cycle) or point Jacobi",
                            {"multigrid", "jacobi"}),
-              int_param("smoothing_degree", 4, at_least(1) & at_most(12),
+              int_param("smoothing_degree", multigrid.smoother.degree, at_least(1) & at_most(12),
                         "Chebyshev degree of the multigrid's smoother (matrix-vector products "
                         "per smoothing on each level)"),
-              int_param("multigrid_refresh", 10, at_least(1),
+              int_param("multigrid_refresh", multigrid.refresh_every, at_least(1),
                         "steps between recomputations of the multigrid's diagonals and "
                         "eigenvalue bounds (each costs a cell application per cell DoF)"),
           }};
