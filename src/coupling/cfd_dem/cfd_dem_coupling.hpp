@@ -23,6 +23,7 @@
 #include "coupling/cfd_dem/drag_models.hpp"
 #include "coupling/cfd_dem/particle_fluid_force.hpp"
 #include "coupling/cfd_dem/particle_mesh.hpp"
+#include "coupling/cfd_dem/self_induced_velocity.hpp"
 #include "coupling/cfd_dem/void_fraction.hpp"
 #include "kernels/blas1.hpp"
 #include "physics/dem/dem_system.hpp"
@@ -57,6 +58,10 @@ struct CfdDemOptions {
   /// The viscous-stress force on each particle, V_p mu lap u (Lethe's "shear force"; zero on
   /// Q1 cells, where each cell's velocity is linear in every direction).
   bool viscous_force = true;
+  /// Give the closures the undisturbed velocity: the fluid's at each particle less what the
+  /// particle's own force induces there (self_induced_velocity.hpp; Q1 only). For lone
+  /// particles in cells a few diameters wide; a bed's closures are fitted to the mean flow.
+  bool self_induced_correction = false;
 };
 
 /// DEM steps per fluid step, N = dt_fluid / dt_dem; throws std::invalid_argument unless N is a
@@ -116,6 +121,9 @@ class CfdDemCoupling {
       throw std::invalid_argument("cfd_dem: dem_substeps must be at least 1, got " +
                                   std::to_string(options.dem_substeps));
     warn_unsmoothed_large_particles();
+    if (options.self_induced_correction)  // throws unless Q1
+      self_ = self_induced_velocity<ExecSpace>(void_fraction_.basis(),
+                                               options.fluid.viscosity / options.fluid.density);
     eps_ = Vector("amphora::cfd_dem::eps", n_);
     drag_ = Vector("amphora::cfd_dem::drag", n_);
     load_ = Vector("amphora::cfd_dem::load", 3 * n_);
@@ -221,6 +229,7 @@ class CfdDemCoupling {
       at_.velocity_laplacian = Vec("amphora::cfd_dem::lap_u_at", n);  // zeros
       eps_at_ = Kokkos::View<double* [3], Kokkos::LayoutRight, Mem>("amphora::cfd_dem::eps_at3", n);
       exchange_ = Vec("amphora::cfd_dem::exchange", n);
+      self_correction_ = Vec("amphora::cfd_dem::self_correction", n);  // zeros without the correction
     }
     const auto& basis = void_fraction_.basis();
     interpolate(exec, basis, flow_.velocity(), 3, p.x, n, at_.velocity);
@@ -233,6 +242,40 @@ class CfdDemCoupling {
     Kokkos::parallel_for(
         "amphora::cfd_dem::eps_at", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) { e(i) = e3(i, 0); });
+    if (options_.self_induced_correction) remove_self_induced(exec);
+  }
+
+  /// The sampled velocity less each particle's own: u_und = u + S W beta (u_und - v) / rho (the
+  /// force's reaction -beta slip spread and read back through W, screened by S), a fixed point
+  /// in a few iterations (S beta |W| / rho is the self-induced share of the slip, well under 1).
+  /// The correction u_und - u is kept for the fluid's exchange.
+  void remove_self_induced(const ExecSpace& exec) {
+    const Set& p = dem_.particles();
+    const auto u = at_.velocity, corr = self_correction_, v = p.v, x = p.x;
+    const auto r = p.radius;
+    const Vector eps = at_.void_fraction;
+    const FluidProperties fl = options_.fluid;
+    const SelfInducedVelocity t = self_;
+    Kokkos::parallel_for(
+        "amphora::cfd_dem::self_induced", kernels::RangePolicy<ExecSpace>(exec, 0, p.n_owned),
+        KOKKOS_LAMBDA(int i) {
+          const double xi[3] = {x(i, 0), x(i, 1), x(i, 2)};
+          double W[9], u0[3], und[3];
+          t.response(xi, W);
+          for (int c = 0; c < 3; ++c) u0[c] = und[c] = u(i, c);
+          for (int it = 0; it < 8; ++it) {
+            double slip[3], s2 = 0.0;
+            for (int c = 0; c < 3; ++c) slip[c] = und[c] - v(i, c), s2 += slip[c] * slip[c];
+            const double s = kernels::math::sqrt(s2);
+            const double beta =
+                drag_coefficient(fl.drag, fl.density, fl.viscosity, 2.0 * r(i), eps(i), s);
+            const double k = t.screening(W, s) * beta / fl.density;
+            for (int a = 0; a < 3; ++a)
+              und[a] = u0[a] +
+                       k * (W[3 * a] * slip[0] + W[3 * a + 1] * slip[1] + W[3 * a + 2] * slip[2]);
+          }
+          for (int c = 0; c < 3; ++c) u(i, c) = und[c], corr(i, c) = und[c] - u0[c];
+        });
   }
 
   /// The fluid's velocity at the owned particles now, into u (n_owned x 3), leaving the last
@@ -275,14 +318,14 @@ class CfdDemCoupling {
   }
 
   /// The semi-implicit exchange at the new positions: beta_p / rho to the drag field (over
-  /// each node's basis integral) and beta_p v_p / rho to the load; model B adds the pressure
-  /// and viscous forces' reaction, V_p (grad p - nu lap u), to the load.
+  /// each node's basis integral) and beta_p (v_p - (u_und - u)) / rho to the load; model B adds the
+  /// pressure and viscous forces' reaction, V_p (grad p - nu lap u), to the load.
   void implicit_exchange(const ExecSpace& exec) {
     const Set& p = dem_.particles();
     const int n = p.n_owned;
     const Vec bv = exchange_;
     const auto b1 = eps_at_;  // reused: beta_p / rho in column 0
-    const auto v = p.v, u = at_.velocity, gp = at_.pressure_gradient;
+    const auto v = p.v, u = at_.velocity, gp = at_.pressure_gradient, corr = self_correction_;
     const auto lap = at_.velocity_laplacian;
     const auto r = p.radius;
     const Vector eps = at_.void_fraction;
@@ -298,7 +341,8 @@ class CfdDemCoupling {
           const double beta =
               held_force(fl, 2.0 * r(i), eps(i), slip, gpi, lapi, g, F, undisturbed) / fl.density;
           b1(i, 0) = beta;
-          for (int c = 0; c < 3; ++c) bv(i, c) = beta * v(i, c) - b * undisturbed[c];
+          // -beta (u^(n+1) + corr - v): the fluid takes what the particle is given
+          for (int c = 0; c < 3; ++c) bv(i, c) = beta * (v(i, c) - corr(i, c)) - b * undisturbed[c];
         });
     kernels::blas1::fill(exec, load_, 0.0);
     kernels::blas1::fill(exec, drag_, 0.0);
@@ -360,7 +404,8 @@ class CfdDemCoupling {
   Vector eps_, drag_, load_;
   FluidAtParticles<Mem> at_;
   Kokkos::View<double* [3], Kokkos::LayoutRight, Mem> eps_at_;
-  Vec exchange_;
+  Vec exchange_, self_correction_;
+  SelfInducedVelocity self_;
   bool started_ = false;
   long steps_ = 0;
   physics::PhaseTimes* times_ = nullptr;

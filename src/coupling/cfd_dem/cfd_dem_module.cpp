@@ -92,6 +92,9 @@ ParamTable cfd_dem_parameter_table() {
           bool_param("viscous_force", true,
                      "the viscous-stress force V_p mu lap u on each particle (zero with degree "
                      "1)"),
+          bool_param("self_induced_correction", false,
+                     "give the drag closure the undisturbed velocity: the fluid's less what the "
+                     "particle's own force induces (lone particles in small cells; degree 1)"),
           string_param("drag_coupling", std::string("semi_implicit"),
                        "how the fluid takes the drag", {"semi_implicit", "explicit"}),
           int_param("dem_substeps", 200, at_least(1),
@@ -207,6 +210,7 @@ CfdDemOptions coupling_options(const Parameters& p) {
   o.move_particles = p.string("bed") != "packed";
   o.max_cfl = p.real("max_cfl");
   o.viscous_force = p.boolean("viscous_force");
+  o.self_induced_correction = p.boolean("self_induced_correction");
   return o;
 }
 
