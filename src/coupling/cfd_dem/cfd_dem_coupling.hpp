@@ -229,7 +229,8 @@ class CfdDemCoupling {
       at_.velocity_laplacian = Vec("amphora::cfd_dem::lap_u_at", n);  // zeros
       eps_at_ = Kokkos::View<double* [3], Kokkos::LayoutRight, Mem>("amphora::cfd_dem::eps_at3", n);
       exchange_ = Vec("amphora::cfd_dem::exchange", n);
-      self_correction_ = Vec("amphora::cfd_dem::self_correction", n);  // zeros without the correction
+      self_correction_ =
+          Vec("amphora::cfd_dem::self_correction", n);  // zeros without the correction
     }
     const auto& basis = void_fraction_.basis();
     interpolate(exec, basis, flow_.velocity(), 3, p.x, n, at_.velocity);
