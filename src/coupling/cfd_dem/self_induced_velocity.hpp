@@ -54,7 +54,7 @@ struct SelfInducedVelocity {
   double nu = 1.0;
   /// The Q1 response to a moving force is screened as if its kernel were this much wider than
   /// its Stokes response says: a force towed at Re_h = U h / nu = 50 (CFL 0.1) gives it
-  /// (test_cfd_dem_self_induced.cpp, TowedForce).
+  /// (test_cfd_dem_self_induced.cpp, TowedForceScreening).
   double oseen_width = 1.51;
   double screen[n_screen] = {};
 
@@ -63,6 +63,8 @@ struct SelfInducedVelocity {
     int cell[3];
     double xi[3];
     basis.locate(x, cell, xi);
+    double phi[3][2];  // the Q1 values per direction at xi
+    for (int d = 0; d < 3; ++d) basis.values_1d(xi[d], phi[d]);
     for (int k = 0; k < 9; ++k) W[k] = 0.0;
     for (int i = 0; i < 8; ++i)
       for (int j = 0; j < 8; ++j) {
@@ -70,7 +72,7 @@ struct SelfInducedVelocity {
         int o = 0;
         for (int d = 2; d >= 0; --d) {
           const int a = (i >> d) & 1, b = (j >> d) & 1;
-          w *= (a ? xi[d] : 1.0 - xi[d]) * (b ? xi[d] : 1.0 - xi[d]);
+          w *= phi[d][a] * phi[d][b];
           o = 3 * o + (a - b + 1);
         }
         for (int k = 0; k < 9; ++k) W[k] += w * g[o][k / 3][k % 3];
