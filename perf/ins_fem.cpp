@@ -6,6 +6,12 @@
 // then hypre's BoomerAMG-GMRES). Both to the same relative residual from the same state (two
 // BDF2 steps in). Args: degree, cells per direction; solver 0 = matrix-free Jacobi,
 // 1 = assembled, 2 = matrix-free multigrid.
+//
+// OseenOperator/k/cells/geometry: one application of the step's Oseen operator (4 components,
+// the vortex's velocity advecting, SUPG/PSPG with the viscous residual, grad-div) on the same
+// periodic box; geometry 2 = stored at the points, 3 = on the fly (solvers::matrix_free::
+// GeometryMode). MDoF/s counts every component; coef_B/DoF is what the operator reads besides
+// the vectors.
 #include <benchmark/benchmark.h>
 
 #include <vector>
@@ -119,5 +125,49 @@ BENCHMARK(InsStepSmoother)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(10);
+
+void OseenOperator(benchmark::State& state) {
+  using Op = solvers::matrix_free::MatrixFreeOperator<3, Exec>;
+  const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
+  const double pi = kernels::math::pi;
+  mesh::hex::StructuredHexMesh<3> m;
+  m.cells = {cells, cells, cells};
+  m.lower = {-pi, -pi, -pi};
+  m.upper = {pi, pi, pi};
+  for (int f = 0; f < 6; ++f) m.faces[f] = mesh::hex::FaceCondition::periodic;
+  const mesh::hex::QkSpace<3, Exec> space(m, k);
+  const auto tg = [](const mesh::hex::Point3& x, int c) {
+    return physics::ins_fem::TaylorGreen3D{c}.value(x.data());
+  };
+  const std::vector<double> b = space.interpolate(tg, 3), x4 = space.interpolate(tg, 4);
+  Op::Options o;
+  o.kind = solvers::matrix_free::OperatorKind::oseen;
+  o.geometry = static_cast<solvers::matrix_free::GeometryMode>(state.range(2));
+  o.components = 4;
+  o.nu = 1.0 / 1600.0;
+  const double dt = 0.5 * (2.0 * pi / cells) / k;
+  o.alpha = 1.5 / dt, o.grad_div = 0.1, o.dt_inverse = 1.0 / dt;
+  o.field = Op::Vector("field", b.size());
+  Kokkos::deep_copy(o.field, Kokkos::View<const double*, Kokkos::HostSpace>(b.data(), b.size()));
+  const Op op(space, o);
+  Op::Vector x("x", x4.size()), y("y", x4.size());
+  Kokkos::deep_copy(x, Kokkos::View<const double*, Kokkos::HostSpace>(x4.data(), x4.size()));
+  const Exec exec;
+  op.apply(exec, x, y);
+  exec.fence();
+  for (auto _ : state) {
+    op.apply(exec, x, y);
+    exec.fence();
+  }
+  const double n = static_cast<double>(x4.size());
+  state.counters["MDoF/s"] =
+      benchmark::Counter(n * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["DoFs"] = n;
+  state.counters["coef_B/DoF"] = static_cast<double>(op.geometry_bytes()) / n;
+}
+BENCHMARK(OseenOperator)
+    ->ArgsProduct({{2, 3}, {16, 24}, {2, 3}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace bench_ins_fem_cases
