@@ -2,7 +2,8 @@
 # scene run to 2 s, under VANS model A and B) once pseudo-steady (t >= 1 s) loses the bed's
 # buoyant weight in pressure, M g (1 - rho / rho_p) / A, within 2 % and expands to Richardson-Zaki's void fraction within
 # 10 % (the issue's tolerances); its void fraction holds the particles' volume to 1e-10; fluid
-# and particles share one XDMF series; bad input stops with one clear line.
+# and particles share one XDMF series; bad input stops with one clear line; the self-induced
+# correction on a bed warns.
 source "$(dirname "$0")/common.sh"
 scene="$AMPHORA_SOURCE_DIR/scenes/cfd_dem_fluidised_bed.toml"
 sed -e 's|^output_dir = .*|output_dir = "bed"|' -e 's|^end_time = .*|end_time = 2.0|' \
@@ -61,4 +62,12 @@ sed -e 's|^output_dir = .*|output_dir = "jet"|' "$scene" > jet.toml
 printf 'jet_width = 0.05\njet_velocity = 1.0\n' >> jet.toml
 expect_error 2 "cfd_dem: jet_width 0.050000 m must lie in \(0, column_width 0.030000 m\] where jet_velocity is set" \
   "$AMPHORA" run jet.toml
+# The self-induced correction on a bed runs, but says in one line that it is meant for dilute
+# particles (the lone sphere's scene does not warn: test_cfd_dem_settling.sh).
+sed -e 's|^output_dir = .*|output_dir = "dense"|' "$scene" > dense.toml
+echo 'self_induced_correction = true' >> dense.toml
+OMP_NUM_THREADS=2 "$AMPHORA" run dense.toml --max-steps 1 --no-output > dense.log 2> dense.err
+grep -q "^\[done\]" dense.log || fail "the corrected bed did not run: $(cat dense.err)"
+grep -q "^cfd_dem: warning: self_induced_correction is meant for lone or dilute particles, but the particles fill [0-9.]* % of the column (over 5 %; 2000 of diameter" dense.err ||
+  fail "no warning for the correction on a bed: $(cat dense.err)"
 echo "cfd_dem: ok"

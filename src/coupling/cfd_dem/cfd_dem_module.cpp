@@ -160,8 +160,8 @@ Parameters dem_parameters(const Parameters& p) {
 
 /// The column: sides as fluid_sides says, inflow at z = 0, open top. Along y and z the cells
 /// are as near cubic as a count that is a multiple of q, the largest power of two dividing the
-/// cells across, allows (a side shorter than q cells keeps its count): an odd count would stop the
-/// multigrid's halving at the first level (docs/cfd_dem.md).
+/// cells across, allows (a side shorter than q cells keeps its count), so that the multigrid's
+/// levels are nested as often as the width allows (odd counts coarsen without nesting).
 mesh::hex::StructuredHexMesh<3> column_mesh(const Parameters& p) {
   mesh::hex::StructuredHexMesh<3> m;
   const int n = static_cast<int>(p.integer("cells")), q = n & -n;
@@ -294,8 +294,6 @@ class CfdDemModule final : public physics::Module {
     flow_ = std::make_unique<Flow>(column_mesh(p), static_cast<int>(p.integer("degree")),
                                    flow_options(p));
     flow_->set_state(initial_state());
-    if (const std::string w = flow_->coarsening_warning(); !w.empty())
-      std::cerr << "cfd_dem: warning: " << w << "\n";
     const CfdDemOptions o = coupling_options(p);
     substeps_ = o.dem_substeps;
     coupling_ = std::make_unique<CfdDemCoupling<Exec>>(*flow_, dem_->system(), o);
@@ -303,6 +301,22 @@ class CfdDemModule final : public physics::Module {
     const double d = p.real("particle_diameter"), mu = o.fluid.viscosity;
     terminal_ = terminal_velocity(o.fluid.drag, rho_, mu, d, rho_p_, g_);
     rz_exponent_ = richardson_zaki_exponent(rho_ * terminal_ * d / mu, d / width_);
+    if (o.self_induced_correction) warn_if_dense(d);
+  }
+
+  /// The self-induced correction is for lone or dilute particles (docs/cfd_dem.md): one line
+  /// when the particles fill more than 5 % of the column above the distributor.
+  void warn_if_dense(double d) const {
+    const double volume = height_and_volume_sums(Exec(), dem_->system().particles()).second;
+    const double solids = volume / (width_ * depth_ * (height_ - floor_));
+    if (solids <= 0.05) return;
+    std::ostringstream line;
+    line.precision(3);
+    line << "cfd_dem: warning: self_induced_correction is meant for lone or dilute particles, "
+            "but the particles fill "
+         << 100.0 * solids << " % of the column (over 5 %; " << dem_->system().global_count()
+         << " of diameter " << d << " m): a bed's drag closure is fitted to the flow as it is";
+    std::cerr << line.str() << "\n";
   }
 
   /// bed = single: one sphere at rest on the column's axis, release_height above the floor.

@@ -1,7 +1,6 @@
 #include "physics/ins_fem/ins_module.hpp"
 
 #include <cmath>
-#include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -79,8 +78,6 @@ class InsModule final : public Module {
         static_cast<int>(p.integer("degree")), o);
     solver_->set_state(initial_state());
     solver_->set_phase_times(&times_);
-    if (const std::string w = solver_->coarsening_warning(); !w.empty())
-      std::cerr << "ins_fem: warning: " << w << "\n";
     energy_ = solver_->kinetic_energy();
   }
 

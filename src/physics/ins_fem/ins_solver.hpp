@@ -211,10 +211,6 @@ class InsSolver {
   void set_preconditioner_state(const std::vector<double>& s) {
     if (multigrid_) multigrid_->set_state(s);
   }
-  /// The multigrid's warning about its coarsening (odd cell counts), or empty.
-  std::string coarsening_warning() const {
-    return multigrid_ ? multigrid_->coarsening_warning() : std::string();
-  }
   /// The multigrid's levels, or "point Jacobi".
   std::string describe_preconditioner() const {
     return multigrid_ ? multigrid_->describe() : std::string("point Jacobi");

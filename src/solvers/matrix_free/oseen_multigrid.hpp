@@ -2,14 +2,14 @@
 // Geometric multigrid V-cycle for the coupled, stabilised Oseen operator (velocity and
 // pressure blocked, MatrixFreeOperator with OperatorKind::oseen), as the preconditioner of
 // GMRES: p-multigrid on the same cells (degree halved down to 1), then h-multigrid on Q1
-// (cells halved while even and the level is larger than max_coarse_dofs), the matrix-free
-// transfers on every component (the velocity's Dirichlet DoFs zeroed, the pressure free),
-// Chebyshev around the coupled point Jacobi as the smoother with lambda_max from power
-// iterations (the operator is not symmetric; Lethe's matrix-free solver, Blais et al.,
-// smooths the same way), and a dense least-squares solve of the assembled coarsest operator
-// (singular where the pressure is fixed only up to a constant). Each level's operator is the
-// fine one's, rediscretised with the advecting velocity restricted to it (R f / R 1: a
-// weighted average). One rank; the coarse solve reads the residual back to the host.
+// (n cells to ceil(n / 2) while the level is larger than max_coarse_dofs; odd counts through
+// the non-nested lattice interpolation), the matrix-free transfers on every component (the
+// velocity's Dirichlet DoFs zeroed, the pressure free), Chebyshev around the coupled point Jacobi
+// as the smoother with lambda_max from power iterations (the operator is not symmetric; Lethe's
+// matrix-free solver, Blais et al., smooths the same way), and a dense least-squares solve of the
+// assembled coarsest operator (singular where the pressure is fixed only up to a constant). Each
+// level's operator is the fine one's, rediscretised with the advecting velocity restricted to it (R
+// f / R 1: a weighted average). One rank; the coarse solve reads the residual back to the host.
 #include <cmath>
 #include <functional>
 #include <memory>
@@ -32,7 +32,7 @@ namespace amphora::solvers::matrix_free {
 
 struct OseenMultigridOptions {
   ChebyshevOptions smoother{4, 5.0, 20, 0.0, true};
-  /// Stop h-coarsening at or below this many DoFs (all components), or at odd cell counts.
+  /// Stop h-coarsening at or below this many DoFs (all components).
   long max_coarse_dofs = 1000;
   /// Above this many coarsest DoFs, the coarse "solve" is coarse_smoothing smoother sweeps.
   long max_dense_dofs = 4000;
@@ -69,15 +69,9 @@ class OseenMultigrid {
         next = std::make_unique<Space>(s.mesh(),
                                        options.degree_by_one ? s.degree() - 1 : s.degree() / 2);
       } else {
-        bool even = true;
-        for (int d = 0; d < dim; ++d) even = even && s.mesh().cells[d] % 2 == 0;
         if ((dim + 1) * s.n_dofs() <= options.max_coarse_dofs) break;
-        if (!even) {
-          odd_stop_ = true;  // above max_coarse_dofs: the coarsest level is larger than meant
-          break;
-        }
-        auto m = s.mesh();
-        for (int d = 0; d < dim; ++d) m.cells[d] /= 2;
+        auto m = s.mesh();  // n cells to ceil(n / 2): odd counts coarsen too (not nested)
+        for (int d = 0; d < dim; ++d) m.cells[d] = (m.cells[d] + 1) / 2;
         next = std::make_unique<Space>(m, 1);
       }
       auto level = std::make_unique<Level>();
@@ -198,22 +192,6 @@ class OseenMultigrid {
   }
 
   int n_levels() const { return static_cast<int>(levels_.size()); }
-  /// Non-empty when h-coarsening stopped at an odd cell count above max_coarse_dofs: the
-  /// coarsest level then costs each update a dense factorisation (or, above max_dense_dofs,
-  /// is only smoothed). One line for the user, naming the cells.
-  std::string coarsening_warning() const {
-    if (!odd_stop_) return {};
-    const auto& m = levels_.back()->space->mesh();
-    std::string cells = std::to_string(m.cells[0]);
-    for (int d = 1; d < dim; ++d) cells += " x " + std::to_string(m.cells[d]);
-    const long n = (dim + 1) * levels_.back()->space->n_dofs();
-    return "multigrid: " + cells +
-           " cells cannot be halved (odd count), so the coarsest level keeps " + std::to_string(n) +
-           " DoFs (" +
-           (dense_coarse() ? "factored densely at each update" : "smoothed, not solved") +
-           "); cell counts divisible by a power of two coarsen to " +
-           std::to_string(options_.max_coarse_dofs) + " DoFs or fewer";
-  }
   /// e.g. "Q3 16^3 -> Q1 16^3 -> Q1 8^3 | dense coarse on 2048 DoFs".
   std::string describe() const {
     std::string s;
@@ -290,7 +268,6 @@ class OseenMultigrid {
   }
 
   OseenMultigridOptions options_;
-  bool odd_stop_ = false;  // h-coarsening stopped at odd cells above max_coarse_dofs
   std::vector<std::unique_ptr<Level>> levels_;                       // 0: finest
   std::vector<MatrixFreeTransfer<dim, ExecSpace>> transfers_;        // l: levels l+1 and l
   std::vector<MatrixFreeTransfer<dim, ExecSpace>> field_transfers_;  // the field's, free

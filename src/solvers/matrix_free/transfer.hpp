@@ -6,6 +6,8 @@
 // restriction is its transpose. Cell by cell, shared fine nodes are weighted by 1/(number of
 // cells sharing them), which makes the sum over cells the global operator exactly: a coarse
 // basis function that is non-zero at a fine node is supported on every cell holding the node.
+// Q1 on n cells and on ceil(n / 2) (odd n: not nested) interpolate on the node lattice instead
+// (kernels::sumfac::LatticeInterpolation).
 #include <memory>
 
 #include <Kokkos_Core.hpp>
@@ -21,7 +23,8 @@ class MatrixFreeTransfer {
   using Space = mesh::hex::QkSpace<dim, ExecSpace>;
 
   /// `fine` has the cells of `coarse` and a higher degree (p), or twice the cells per
-  /// direction and both have degree 1 (h). Throws otherwise. Degree pairs compiled: k_f <= 2 k_c
+  /// direction or n where the coarse has ceil(n / 2), both of degree 1 (h). Throws otherwise.
+  /// Degree pairs compiled: k_f <= 2 k_c
   /// + 1. `components` blocked copies; the leading `constrained_components` of them (-1: all)
   /// take the spaces' Dirichlet constraints (Oseen: the velocity, not the pressure).
   MatrixFreeTransfer(const Space& coarse, const Space& fine, int components = 1,

@@ -8,6 +8,7 @@
 #include "kernels/sumfac/shape_data.hpp"
 #include "kernels/sumfac/tensor_product_evaluator.hpp"
 #include "kernels/sumfac/cell_operator_kernel.hpp"
+#include "kernels/sumfac/lattice_interpolation.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"
 #include "solvers/matrix_free/transfer.hpp"
 
@@ -30,6 +31,7 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
         KOKKOS_LAMBDA(int i) { y[c(i)] = 0.0; });
   }
   std::shared_ptr<void> shape;
+  kernels::sumfac::LatticeInterpolation<dim, typename ExecSpace::memory_space> lattice;  // halved
   void (*prolongate)(const Impl&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
   void (*restrict_to_coarse)(const Impl&, const ExecSpace&, const Vector&, const Vector&) = nullptr;
 
@@ -116,6 +118,20 @@ struct MatrixFreeTransfer<dim, ExecSpace>::Impl {
       if (cons) zero_constrained(exec, impl.coarse_constrained, dst);
     }
   }
+  static void lattice_prolongate(const Impl& impl, const ExecSpace& exec, const Vector& xc,
+                                 const Vector& xf) {
+    const long nc = impl.coarse.n_dofs(), nf = impl.fine.n_dofs();
+    for (int comp = 0; comp < impl.components; ++comp)
+      impl.lattice.prolongate(exec, xc.data() + comp * nc, xf.data() + comp * nf,
+                              comp < impl.constrained_components);
+  }
+  static void lattice_restrict(const Impl& impl, const ExecSpace& exec, const Vector& xf,
+                               const Vector& xc) {
+    const long nc = impl.coarse.n_dofs(), nf = impl.fine.n_dofs();
+    for (int comp = 0; comp < impl.components; ++comp)
+      impl.lattice.restrict_to_coarse(exec, xf.data() + comp * nf, xc.data() + comp * nc,
+                                      comp < impl.constrained_components);
+  }
 };
 
 namespace detail {
@@ -156,10 +172,11 @@ MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, cons
   impl->fine_constrained = fine.constrained_dofs();
   const auto& mc = coarse.mesh();
   const auto& mf = fine.mesh();
-  bool same = true, refined = true;
+  bool same = true, refined = true, halved = true;
   for (int d = 0; d < dim; ++d) {
     same = same && mf.cells[d] == mc.cells[d];
     refined = refined && mf.cells[d] == 2 * mc.cells[d];
+    halved = halved && mc.cells[d] == (mf.cells[d] + 1) / 2;
   }
   int fine_degree = fine.degree();
   if (same && fine.degree() > coarse.degree()) {
@@ -171,11 +188,18 @@ MatrixFreeTransfer<dim, ExecSpace>::MatrixFreeTransfer(const Space& coarse, cons
                                                          mc.dirichlet_faces(), impl->coarse.width);
     impl->fine.shared_faces = impl->coarse.shared_faces;
     fine_degree = 2;
+  } else if (halved && fine.degree() == 1 && coarse.degree() == 1) {
+    impl->fine = fine.lattice();
+    impl->lattice = {coarse.lattice(), fine.lattice()};
+    impl->prolongate = &Impl::lattice_prolongate;
+    impl->restrict_to_coarse = &Impl::lattice_restrict;
+    impl_ = impl;
+    return;
   } else {
     throw std::invalid_argument(
         "MatrixFreeTransfer: the fine space must have the coarse cells and a higher degree, or "
-        "twice "
-        "the cells per direction with both of degree 1");
+        "twice the cells per direction, or n cells where the coarse has ceil(n / 2), with both "
+        "of degree 1");
   }
   detail::dispatch_transfer(coarse.degree(), fine_degree, [&](auto pc, auto pf) {
     constexpr int n_pc = decltype(pc)::value, n_pf = decltype(pf)::value;
