@@ -20,6 +20,7 @@
 #include "physics/ins_fem/ins_solver.hpp"
 #include "solvers/hypre_boomeramg.hpp"
 #include "solvers/matrix_free/assembly.hpp"
+#include "time_applications.hpp"
 
 // A named namespace, not an anonymous one: CUDA does not support extended lambdas in
 // anonymous namespaces (Kokkos issue #1547).
@@ -42,17 +43,24 @@ physics::ins_fem::InsStepReport assembled_solve(const Exec& exec, const Solver::
   return {res.iterations, res.final_relative_residual <= tol, res.final_relative_residual};
 }
 
-/// One step as InsStep's; `smoother_degree` > 0 sets the multigrid's Chebyshev degree and
-/// `by_one` its p-coarsening (k to k - 1, or to k / 2).
-void run_step(benchmark::State& state, int smoother_degree = 0, bool by_one = true) {
-  const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
-  const bool assembled = state.range(2) == 1, multigrid = state.range(2) == 2;
+/// The vortex's periodic box (-pi, pi)^3 with `cells` cells per direction.
+mesh::hex::StructuredHexMesh<3> periodic_box(int cells) {
   const double pi = kernels::math::pi;
   mesh::hex::StructuredHexMesh<3> m;
   m.cells = {cells, cells, cells};
   m.lower = {-pi, -pi, -pi};
   m.upper = {pi, pi, pi};
   for (int f = 0; f < 6; ++f) m.faces[f] = mesh::hex::FaceCondition::periodic;
+  return m;
+}
+
+/// One step as InsStep's; `smoother_degree` > 0 sets the multigrid's Chebyshev degree and
+/// `by_one` its p-coarsening (k to k - 1, or to k / 2).
+void run_step(benchmark::State& state, int smoother_degree = 0, bool by_one = true) {
+  const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
+  const bool assembled = state.range(2) == 1, multigrid = state.range(2) == 2;
+  const double pi = kernels::math::pi;
+  const auto m = periodic_box(cells);
   physics::ins_fem::InsOptions o;
   o.nu = 1.0 / 1600.0;
   o.tolerance = 1e-8;
@@ -130,11 +138,7 @@ void OseenOperator(benchmark::State& state) {
   using Op = solvers::matrix_free::MatrixFreeOperator<3, Exec>;
   const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
   const double pi = kernels::math::pi;
-  mesh::hex::StructuredHexMesh<3> m;
-  m.cells = {cells, cells, cells};
-  m.lower = {-pi, -pi, -pi};
-  m.upper = {pi, pi, pi};
-  for (int f = 0; f < 6; ++f) m.faces[f] = mesh::hex::FaceCondition::periodic;
+  const auto m = periodic_box(cells);
   const mesh::hex::QkSpace<3, Exec> space(m, k);
   const auto tg = [](const mesh::hex::Point3& x, int c) {
     return physics::ins_fem::TaylorGreen3D{c}.value(x.data());
@@ -152,13 +156,7 @@ void OseenOperator(benchmark::State& state) {
   const Op op(space, o);
   Op::Vector x("x", x4.size()), y("y", x4.size());
   Kokkos::deep_copy(x, Kokkos::View<const double*, Kokkos::HostSpace>(x4.data(), x4.size()));
-  const Exec exec;
-  op.apply(exec, x, y);
-  exec.fence();
-  for (auto _ : state) {
-    op.apply(exec, x, y);
-    exec.fence();
-  }
+  perf::time_applications<Exec>(state, op, x, y);
   const double n = static_cast<double>(x4.size());
   state.counters["MDoF/s"] =
       benchmark::Counter(n * 1e-6, benchmark::Counter::kIsIterationInvariantRate);

@@ -54,6 +54,7 @@
 #include "solvers/matrix_free/multigrid.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "stream_bandwidth.hpp"
+#include "time_applications.hpp"
 
 // A named namespace, not an anonymous one: CUDA does not support extended lambdas in
 // anonymous namespaces (Kokkos issue #1547).
@@ -89,17 +90,11 @@ double total_stream_bandwidth() {
   return comm.sum(amphora::perf::stream_triad_bandwidth());
 }
 
-/// The timed loop: y = A x once to warm up, then once per iteration.
+/// The timed loop (perf/time_applications.hpp) on this file's execution space.
 template <class Operator>
 void time_applications(benchmark::State& state, const Operator& op, const Vector& x,
                        const Vector& y) {
-  const Exec exec;
-  op.apply(exec, x, y);
-  exec.fence();
-  for (auto _ : state) {
-    op.apply(exec, x, y);
-    exec.fence();
-  }
+  amphora::perf::time_applications<Exec>(state, op, x, y);
 }
 
 void report(benchmark::State& state, double dofs, double bytes_per_dof) {
