@@ -12,6 +12,9 @@
 // periodic box; geometry 2 = stored at the points, 3 = on the fly (solvers::matrix_free::
 // GeometryMode). MDoF/s counts every component; coef_B/DoF is what the operator reads besides
 // the vectors.
+// OseenDiagonal/k/cells/curved: that operator's diagonal (stored geometry), as a multigrid
+// refresh computes it: curved 0 probes the point functor (Cartesian cells), 1 takes unit
+// vectors (the same box sinusoidally curved, where the viscous residual's Laplacian needs them).
 #include <benchmark/benchmark.h>
 
 #include <vector>
@@ -134,30 +137,40 @@ BENCHMARK(InsStepSmoother)
     ->UseRealTime()
     ->Iterations(10);
 
-void OseenOperator(benchmark::State& state) {
-  using Op = solvers::matrix_free::MatrixFreeOperator<3, Exec>;
-  const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
+using Op = solvers::matrix_free::MatrixFreeOperator<3, Exec>;
+
+/// The step's Oseen operator at Q_k on the periodic box, the vortex advecting, with the given
+/// geometry mode; `x` gets the vortex's velocity and pressure.
+Op oseen_operator(const mesh::hex::QkSpace<3, Exec>& space, int cells, int geometry,
+                  Op::Vector& x) {
+  const int k = space.degree();
   const double pi = kernels::math::pi;
-  const auto m = periodic_box(cells);
-  const mesh::hex::QkSpace<3, Exec> space(m, k);
-  const auto tg = [](const mesh::hex::Point3& x, int c) {
-    return physics::ins_fem::TaylorGreen3D{c}.value(x.data());
+  const auto tg = [](const mesh::hex::Point3& p, int c) {
+    return physics::ins_fem::TaylorGreen3D{c}.value(p.data());
   };
   const std::vector<double> b = space.interpolate(tg, 3), x4 = space.interpolate(tg, 4);
   Op::Options o;
   o.kind = solvers::matrix_free::OperatorKind::oseen;
-  o.geometry = static_cast<solvers::matrix_free::GeometryMode>(state.range(2));
+  o.geometry = static_cast<solvers::matrix_free::GeometryMode>(geometry);
   o.components = 4;
   o.nu = 1.0 / 1600.0;
   const double dt = 0.5 * (2.0 * pi / cells) / k;
   o.alpha = 1.5 / dt, o.grad_div = 0.1, o.dt_inverse = 1.0 / dt;
   o.field = Op::Vector("field", b.size());
   Kokkos::deep_copy(o.field, Kokkos::View<const double*, Kokkos::HostSpace>(b.data(), b.size()));
-  const Op op(space, o);
-  Op::Vector x("x", x4.size()), y("y", x4.size());
+  x = Op::Vector("x", x4.size());
   Kokkos::deep_copy(x, Kokkos::View<const double*, Kokkos::HostSpace>(x4.data(), x4.size()));
+  return Op(space, o);
+}
+
+void OseenOperator(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
+  const mesh::hex::QkSpace<3, Exec> space(periodic_box(cells), k);
+  Op::Vector x;
+  const Op op = oseen_operator(space, cells, static_cast<int>(state.range(2)), x);
+  Op::Vector y("y", x.extent(0));
   perf::time_applications<Exec>(state, op, x, y);
-  const double n = static_cast<double>(x4.size());
+  const double n = static_cast<double>(x.extent(0));
   state.counters["MDoF/s"] =
       benchmark::Counter(n * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
   state.counters["DoFs"] = n;
@@ -165,6 +178,32 @@ void OseenOperator(benchmark::State& state) {
 }
 BENCHMARK(OseenOperator)
     ->ArgsProduct({{2, 3}, {16, 24}, {2, 3}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+void OseenDiagonal(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
+  auto m = periodic_box(cells);
+  if (state.range(2) == 1)  // curved: the kernel takes unit vectors (same stored-geometry reads)
+    m.deformation = mesh::hex::sinusoidal_deformation(3, 0.05, m.lower, m.upper);
+  const mesh::hex::QkSpace<3, Exec> space(m, k);
+  Op::Vector x;
+  const Op op = oseen_operator(space, cells, 2, x);
+  Op::Vector d("d", x.extent(0));
+  const Exec exec;
+  op.compute_diagonal(exec, d);
+  exec.fence();
+  for (auto _ : state) {
+    op.compute_diagonal(exec, d);
+    exec.fence();
+  }
+  const double n = static_cast<double>(x.extent(0));
+  state.counters["MDoF/s"] =
+      benchmark::Counter(n * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["DoFs"] = n;
+}
+BENCHMARK(OseenDiagonal)
+    ->ArgsProduct({{2, 3}, {16}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -66,6 +66,8 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
   /// Components 0 .. constrained_components - 1 take the lattice's Dirichlet constraints; the
   /// rest (a pressure) are free on every face.
   int constrained_components = 1 << 20;
+  /// J^-1 is constant in every cell (Cartesian or affine mesh): probed_diagonal is exact.
+  bool affine_cells = false;
 
   /// Scratch of one batch. Allocated on the stack of the calling thread.
   struct Scratch {
@@ -266,15 +268,10 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
 
   /// d = the diagonal of A_cell. Mass and Laplace structure: for each term of the bilinear
   /// form, the point coefficient integrated against products of 1D values/derivatives
-  /// (ShapeData::ss_t, sd_t, dd_t); other functors: unit vectors through apply_local.
+  /// (ShapeData::ss_t, sd_t, dd_t); other functors: probed at the points (probed_diagonal).
   KOKKOS_INLINE_FUNCTION void diagonal_local(const T* c, T* d, Scratch& s) const {
     if constexpr (!is_mass && !is_laplace) {
-      T u[n_comp * n_dofs];
-      for (int j = 0; j < n_comp * n_dofs; ++j) {
-        for (int i = 0; i < n_comp * n_dofs; ++i) u[i] = T(i == j ? 1.0 : 0.0);
-        apply_local(c, u, s);
-        d[j] = u[j];
-      }
+      probed_diagonal(c, d, s);
     } else {
       for (int i = 0; i < n_dofs; ++i) d[i] = T(0.0);
       if constexpr (is_mass)
@@ -297,6 +294,117 @@ struct CellOperatorKernel : BatchDofAccess<dim, n_p, simd_width_v<ExecSpace>> {
     for (int dd = 0; dd < dim; ++dd)
       m[dd] = (dd == a && dd == b) ? &shape.dd_t : (dd == a || dd == b) ? &shape.sd_t : &shape.ss_t;
     Eval::template integrate_tensor<true>(m, s.v, d, s.tmp);
+  }
+
+  /// The diagonal of a general functor, which is linear in what it reads of a component: for
+  /// each component and each input of one basis function phi_i (its value, reference gradient
+  /// and, where the functor reads Laplacians, its reference second derivatives), the functor's
+  /// integrands of that component at every point (probe), each integrated against the 1D
+  /// products of phi_i's factors that the input and the integrand's test function multiply.
+  /// (At most (1 + dim) (1 + dim + dim (dim + 1) / 2) integrations per component, against
+  /// n_comp n_dofs cell applications for unit vectors.) Exact where J^-1 is constant in each cell.
+  /// On curved cells the Laplacian differentiates the interpolant of J^-1 times the gradient
+  /// (laplacians()), which no 1D product reproduces: there a functor reading Laplacians takes unit
+  /// vectors.
+  KOKKOS_INLINE_FUNCTION void probed_diagonal(const T* c, T* d, Scratch& s) const {
+    constexpr int n_lap = laplacian_components_v<Point>, n_hess = dim * (dim + 1) / 2;
+    bool lap = false;
+    if constexpr (n_lap > 0) lap = point.needs_laplacian();
+    if (lap && !affine_cells) return diagonal_by_columns(c, d, s);
+    for (int i = 0; i < n_comp * n_dofs; ++i) d[i] = T(0.0);
+    for (int comp = 0; comp < n_comp; ++comp) {
+      const int n_in = 1 + dim + (lap && comp < n_lap ? n_hess : 0);
+      for (int in = 0; in < n_in; ++in) {
+        if ((in == 0 && !Point::reads_values) || (in > 0 && !Point::reads_gradients)) continue;
+        int trial[3] = {0, 0, 0};  // derivative orders of the input, per direction
+        if (in > 0 && in <= dim) trial[in - 1] = 1;
+        int ha = -1, hb = -1;
+        if (in > dim) {
+          hessian_pair(in - dim - 1, ha, hb);
+          ++trial[ha], ++trial[hb];
+        }
+        probe(c, comp, in, ha, hb, s);
+        for (int out = 0; out <= dim; ++out) {
+          if ((out == 0 && !Point::writes_values) || (out > 0 && !Point::writes_gradients))
+            continue;
+          T* const f = out == 0 ? s.v : s.grad + (out - 1) * n_points;
+          if (is_zero(f)) continue;  // the terms a Cartesian cell's J^-1 zeroes
+          const EvenOddMatrix<n_p, n_q>* m[3];
+          for (int dd = 0; dd < dim; ++dd) m[dd] = product(out == dd + 1 ? 1 : 0, trial[dd]);
+          Eval::template integrate_tensor<true>(m, f, d + comp * n_dofs, s.tmp);
+        }
+      }
+    }
+  }
+
+  /// The functor's integrands of component comp at every point for one input of that component
+  /// (0: a unit value; 1 .. dim: a unit reference gradient; above: the unit reference second
+  /// derivative d_ha d_hb, given as the Laplacian it makes through J^-1 at the point): value
+  /// integrands into s.v, those of reference gradient a into s.grad + a n_points.
+  KOKKOS_INLINE_FUNCTION void probe(const T* c, int comp, int in, int ha, int hb,
+                                    Scratch& s) const {
+    constexpr int n_lap = laplacian_components_v<Point>;
+    const bool cell = per_cell();
+    const long stride = cell ? 1 : n_points;
+    for (int q = 0; q < n_points; ++q) {
+      T val[n_comp], g[n_comp * dim], val_out[n_comp], g_out[n_comp * dim];
+      for (int i = 0; i < n_comp; ++i) val[i] = T(0.0), val_out[i] = T(0.0);
+      for (int i = 0; i < n_comp * dim; ++i) g[i] = T(0.0), g_out[i] = T(0.0);
+      if (in == 0) val[comp] = T(1.0);
+      if (in > 0 && in <= dim) g[comp * dim + in - 1] = T(1.0);
+      const PointCoefficients<T> pc{c + (cell ? 0 : q), stride};
+      if constexpr (n_lap > 0) {
+        T lq[n_lap];
+        for (int i = 0; i < n_lap; ++i) lq[i] = T(0.0);
+        if (ha >= 0) {
+          T h = T(0.0);
+          for (int a = 0; a < dim; ++a)
+            h += Point::inverse_jacobian(pc, ha, a) * Point::inverse_jacobian(pc, hb, a);
+          lq[comp] = T(ha == hb ? 1.0 : 2.0) * h;
+        }
+        point.at_point(pc, val, g, lq, val_out, g_out);
+      } else {
+        point.at_point(pc, val, g, val_out, g_out);
+      }
+      const T w = cell ? T(Eval::weight(shape, q)) : T(1.0);
+      s.v[q] = w * val_out[comp];
+      for (int a = 0; a < dim; ++a) s.grad[a * n_points + q] = w * g_out[comp * dim + a];
+    }
+  }
+
+  /// d = the diagonal of A_cell through unit vectors, one cell application per cell DoF.
+  KOKKOS_INLINE_FUNCTION void diagonal_by_columns(const T* c, T* d, Scratch& s) const {
+    T u[n_comp * n_dofs];
+    for (int j = 0; j < n_comp * n_dofs; ++j) {
+      for (int i = 0; i < n_comp * n_dofs; ++i) u[i] = T(i == j ? 1.0 : 0.0);
+      apply_local(c, u, s);
+      d[j] = u[j];
+    }
+  }
+
+  /// The p-th reference second derivative (ha <= hb) in the order (0,0), (0,1), ..., (1,1), ...
+  KOKKOS_INLINE_FUNCTION static void hessian_pair(int p, int& ha, int& hb) {
+    for (int a = 0; a < dim; ++a)
+      for (int b = a; b < dim; ++b, --p)
+        if (p == 0) {
+          ha = a, hb = b;
+          return;
+        }
+  }
+
+  /// The 1D products phi_i^(test) phi_i^(trial) at the points, transposed (test: 0, 1; trial:
+  /// 0, 1, 2 derivatives).
+  KOKKOS_INLINE_FUNCTION const EvenOddMatrix<n_p, n_q>* product(int test, int trial) const {
+    if (test == 0) return trial == 0 ? &shape.ss_t : trial == 1 ? &shape.sd_t : &shape.sh_t;
+    return trial == 0 ? &shape.sd_t : trial == 1 ? &shape.dd_t : &shape.dh_t;
+  }
+
+  /// Every lane of f is 0 at every point (the integration would add nothing).
+  KOKKOS_INLINE_FUNCTION static bool is_zero(const T* f) {
+    for (int q = 0; q < n_points; ++q)
+      for (int l = 0; l < W; ++l)
+        if (f[q][l] != 0.0) return false;
+    return true;
   }
 
   /// dst += A src on batches b0 .. b1 - 1 of one row of cells; n_components blocked copies

@@ -20,9 +20,10 @@ struct ShapeData {
   EvenOddMatrix<n_q, n_q> derivative;  ///< d/dx of the Lagrange basis on the points, at the points
   EvenOddMatrix<n_q, n_q> derivative_t;
   /// Transposed products of basis values s and derivatives d at the points, entry-wise:
-  /// s*s, s*d, d*d. They integrate a point field against phi_i^2 and its derivative
-  /// products, which gives an operator's diagonal in dim sweeps per term.
-  EvenOddMatrix<n_p, n_q> ss_t, sd_t, dd_t;
+  /// s*s, s*d, d*d, and with second derivatives h: s*h, d*h. They integrate a point field
+  /// against phi_i^2 and its derivative products, which gives an operator's diagonal in dim
+  /// sweeps per term.
+  EvenOddMatrix<n_p, n_q> ss_t, sd_t, dd_t, sh_t, dh_t;
   /// The quadrature's 1D mass and stiffness matrices, n_p x n_p: M_ij = sum_q w_q l_i l_j and
   /// K_ij = sum_q w_q l_i' l_j' at the points. A Cartesian cell's Laplacian is their Kronecker
   /// sum (TensorProductEvaluator::cartesian_laplace).
@@ -41,13 +42,23 @@ struct ShapeData {
         transpose(lagrange_values(nodes, q.points), n_q, n_p), 1);
     {
       const std::vector<double> v = lagrange_values(nodes, q.points),
-                                g = lagrange_derivatives(nodes, q.points);
-      std::vector<double> ss(v.size()), sd(v.size()), dd(v.size());
-      for (std::size_t i = 0; i < v.size(); ++i)
+                                g = lagrange_derivatives(nodes, q.points),
+                                dq = lagrange_derivatives(q.points, q.points);
+      // second derivatives: the derivative on the points of the first (degree k - 1 < n_q: exact)
+      std::vector<double> h(v.size(), 0.0);
+      for (int p = 0; p < n_q; ++p)
+        for (int r = 0; r < n_q; ++r)
+          for (int i = 0; i < n_p; ++i) h[p * n_p + i] += dq[p * n_q + r] * g[r * n_p + i];
+      std::vector<double> ss(v.size()), sd(v.size()), dd(v.size()), sh(v.size()), dh(v.size());
+      for (std::size_t i = 0; i < v.size(); ++i) {
         ss[i] = v[i] * v[i], sd[i] = v[i] * g[i], dd[i] = g[i] * g[i];
+        sh[i] = v[i] * h[i], dh[i] = g[i] * h[i];
+      }
       s.ss_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(ss, n_q, n_p), 1);
       s.sd_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(sd, n_q, n_p), -1);
       s.dd_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(dd, n_q, n_p), 1);
+      s.sh_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(sh, n_q, n_p), 1);
+      s.dh_t = EvenOddMatrix<n_p, n_q>::from_dense(transpose(dh, n_q, n_p), -1);
       std::vector<double> m(n_p * n_p, 0.0), k(n_p * n_p, 0.0);
       for (int i = 0; i < n_p; ++i)
         for (int j = 0; j < n_p; ++j)

@@ -85,6 +85,7 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     k.coordinates = op.space_->coordinates();
     k.field = op.options_.field;
     k.constrained_components = op.constrained_components_;
+    k.affine_cells = op.space_->mesh().affine();
     return k;
   }
 
