@@ -15,6 +15,9 @@
 // OseenDiagonal/k/cells/curved: that operator's diagonal (stored geometry), as a multigrid
 // refresh computes it: curved 0 probes the point functor (Cartesian cells), 1 takes unit
 // vectors (the same box sinusoidally curved, where the viscous residual's Laplacian needs them).
+// OseenTransfer/k/cells: restriction from Q_k to Q_k-1 then prolongation back, 4 components on
+// that box, as a V-cycle's p-levels move a residual down and a correction up; MDoF/s counts the
+// fine DoFs of all components.
 #include <benchmark/benchmark.h>
 
 #include <vector>
@@ -23,6 +26,7 @@
 #include "physics/ins_fem/ins_solver.hpp"
 #include "solvers/hypre_boomeramg.hpp"
 #include "solvers/matrix_free/assembly.hpp"
+#include "solvers/matrix_free/transfer.hpp"
 #include "time_applications.hpp"
 
 // A named namespace, not an anonymous one: CUDA does not support extended lambdas in
@@ -204,6 +208,37 @@ void OseenDiagonal(benchmark::State& state) {
 }
 BENCHMARK(OseenDiagonal)
     ->ArgsProduct({{2, 3}, {16}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+using Transfer = solvers::matrix_free::MatrixFreeTransfer<3, Exec>;
+
+/// P^T, then P: the fine vector down to `coarse` and back.
+struct TransferPair {
+  const Transfer* transfer;
+  Op::Vector coarse;
+  void apply(const Exec& exec, const Op::Vector& x, const Op::Vector& y) const {
+    transfer->restrict_to_coarse(exec, x, coarse);
+    transfer->prolongate(exec, coarse, y);
+  }
+};
+
+void OseenTransfer(benchmark::State& state) {
+  const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
+  const mesh::hex::QkSpace<3, Exec> fine(periodic_box(cells), k),
+      coarse(periodic_box(cells), k - 1);
+  const Transfer transfer(coarse, fine, 4, 3);
+  Op::Vector x("x", 4 * fine.n_dofs()), y("y", 4 * fine.n_dofs());
+  Kokkos::deep_copy(x, 1.0);
+  const TransferPair pair{&transfer, Op::Vector("coarse", 4 * coarse.n_dofs())};
+  perf::time_applications<Exec>(state, pair, x, y);
+  const double n = static_cast<double>(x.extent(0));
+  state.counters["MDoF/s"] =
+      benchmark::Counter(n * 1e-6, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["DoFs"] = n;
+}
+BENCHMARK(OseenTransfer)
+    ->ArgsProduct({{2, 3}, {16, 24}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

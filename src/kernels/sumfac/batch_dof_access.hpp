@@ -211,10 +211,30 @@ struct BatchDofAccess {
         b, [&](int n, int l, const int* node) { u[n][l] = src[lattice.dof_index(node)]; });
   }
 
-  /// Inverse multiplicities of the batch's nodes (cells sharing each node), lanes clamped.
+  /// Inverse multiplicities of the batch's nodes (cells sharing each node), lanes clamped: the
+  /// product of one factor per direction (QkLattice::multiplicity_1d), so n_p (W + dim - 1)
+  /// factors instead of n_dofs W multiplicities (transfers take it every application).
   KOKKOS_INLINE_FUNCTION void inverse_multiplicity(int b, T* w) const {
-    for_each_lane_node(
-        b, [&](int n, int l, const int* node) { w[n][l] = 1.0 / lattice.multiplicity(node); });
+    int cell[3] = {0, 0, 0};
+    lattice.batch_cell(b, cell);
+    const int active = lattice.active_lanes(b), k = lattice.degree;
+    T wx[n_p];
+    double wy[n_p], wz[n_p];
+    const auto inv = [&](int d, int node) {
+      return lattice.multiplicity_1d(d, node) == 2 ? 0.5 : 1.0;
+    };
+    for (int i = 0; i < n_p; ++i) {
+      for (int l = 0; l < W; ++l)
+        wx[i][l] = inv(0, (cell[0] + (l < active ? l : active - 1)) * k + i);
+      wy[i] = inv(1, cell[1] * k + i);
+      wz[i] = dim == 3 ? inv(dim - 1, cell[dim - 1] * k + i) : 1.0;
+    }
+    int n = 0;
+    for (int iz = 0; iz < (dim == 3 ? n_p : 1); ++iz)
+      for (int iy = 0; iy < n_p; ++iy) {
+        const T s(wy[iy] * wz[iz]);
+        for (int ix = 0; ix < n_p; ++ix, ++n) w[n] = wx[ix] * s;
+      }
   }
 };
 

@@ -178,15 +178,17 @@ struct QkLattice {
   /// across shared faces counted).
   KOKKOS_INLINE_FUNCTION int multiplicity(const int* node) const {
     int m = 1;
-    for (int d = 0; d < dim; ++d) {
-      const int i = node[d];
-      const bool vertex_layer = i % degree == 0;
-      const bool boundary =
-          !periodic[d] && ((i == 0 && !(shared_faces >> (2 * d) & 1)) ||
-                           (i == nodes[d] - 1 && !(shared_faces >> (2 * d + 1) & 1)));
-      m *= (vertex_layer && !boundary) ? 2 : 1;
-    }
+    for (int d = 0; d < dim; ++d) m *= multiplicity_1d(d, node[d]);
     return m;
+  }
+  /// The factor of direction d: 2 on a vertex layer inside (or across a periodic or shared
+  /// face), else 1.
+  KOKKOS_INLINE_FUNCTION int multiplicity_1d(int d, int i) const {
+    const bool vertex_layer = i % degree == 0;
+    const bool boundary =
+        !periodic[d] && ((i == 0 && !(shared_faces >> (2 * d) & 1)) ||
+                         (i == nodes[d] - 1 && !(shared_faces >> (2 * d + 1) & 1)));
+    return (vertex_layer && !boundary) ? 2 : 1;
   }
   /// True if a node of the batch lies on the wrapped last layer of a periodic direction.
   KOKKOS_INLINE_FUNCTION bool wraps(int b) const {
