@@ -174,15 +174,9 @@ struct QkLattice {
       if (constrained_1d(d, node[d])) return true;
     return false;
   }
-  /// Number of cells sharing lattice node (i, j, k) (periodic wrap and cells of other ranks
-  /// across shared faces counted).
-  KOKKOS_INLINE_FUNCTION int multiplicity(const int* node) const {
-    int m = 1;
-    for (int d = 0; d < dim; ++d) m *= multiplicity_1d(d, node[d]);
-    return m;
-  }
-  /// The factor of direction d: 2 on a vertex layer inside (or across a periodic or shared
-  /// face), else 1.
+  /// Direction d's factor of the number of cells sharing a node whose coordinate d is i (the
+  /// number is the product over d; periodic wrap and cells of other ranks across shared faces
+  /// counted): 2 on a vertex layer inside or across a periodic or shared face, else 1.
   KOKKOS_INLINE_FUNCTION int multiplicity_1d(int d, int i) const {
     const bool vertex_layer = i % degree == 0;
     const bool boundary =
