@@ -7,6 +7,9 @@
 // BDF2 steps in). Args: degree, cells per direction; solver 0 = matrix-free Jacobi,
 // 1 = assembled, 2 = matrix-free multigrid.
 //
+// InsStepLevelResidual/k/cells/2/viscous: the multigrid's operators with (1) or without (0)
+// -nu lap u in the SUPG/PSPG residual (GMRES applies the full operator either way).
+//
 // OseenOperator/k/cells/geometry: one application of the step's Oseen operator (4 components,
 // the vortex's velocity advecting, SUPG/PSPG with the viscous residual, grad-div) on the same
 // periodic box; geometry 2 = stored at the points, 3 = on the fly (solvers::matrix_free::
@@ -61,9 +64,11 @@ mesh::hex::StructuredHexMesh<3> periodic_box(int cells) {
   return m;
 }
 
-/// One step as InsStep's; `smoother_degree` > 0 sets the multigrid's Chebyshev degree and
-/// `by_one` its p-coarsening (k to k - 1, or to k / 2).
-void run_step(benchmark::State& state, int smoother_degree = 0, bool by_one = true) {
+/// One step as InsStep's; `smoother_degree` > 0 sets the multigrid's Chebyshev degree,
+/// `by_one` its p-coarsening (k to k - 1, or to k / 2) and `level_viscous` whether its
+/// operators keep -nu lap u in the stabilisation.
+void run_step(benchmark::State& state, int smoother_degree = 0, bool by_one = true,
+              bool level_viscous = true) {
   const int k = static_cast<int>(state.range(0)), cells = static_cast<int>(state.range(1));
   const bool assembled = state.range(2) == 1, multigrid = state.range(2) == 2;
   const double pi = kernels::math::pi;
@@ -75,6 +80,7 @@ void run_step(benchmark::State& state, int smoother_degree = 0, bool by_one = tr
                                : physics::ins_fem::InsPreconditioner::jacobi;
   if (smoother_degree > 0) o.multigrid.smoother.degree = smoother_degree;
   o.multigrid.degree_by_one = by_one;
+  o.multigrid.viscous_residual = level_viscous;
   Solver s(m, k, o);
   s.set_state(s.space().interpolate(
       [](const mesh::hex::Point3& x, int c) {
@@ -126,6 +132,15 @@ BENCHMARK(InsStep)
 // The multigrid refreshes its smoothers' diagonals every 10 steps: 10 steps give the mean.
 BENCHMARK(InsStep)
     ->ArgsProduct({{2, 3}, {8, 12, 16}, {2}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(10);
+
+void InsStepLevelResidual(benchmark::State& state) {
+  run_step(state, 0, true, state.range(3) == 1);
+}
+BENCHMARK(InsStepLevelResidual)
+    ->ArgsProduct({{2, 3}, {16}, {2}, {1, 0}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(10);

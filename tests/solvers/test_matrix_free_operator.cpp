@@ -392,6 +392,49 @@ TEST(MatrixFreeOperator, OseenMatchesAssembledStabilisedForm) {
   check_oseen<3>(GeometryMode::on_the_fly, 2, 4, 3, 2, false, "cartesian");
 }
 
+// without_viscous_residual() shares the stored coefficients and applies (and has the diagonal
+// of) the operator built without -nu lap u; at k = 2 that differs from the full operator.
+TEST(MatrixFreeOperator, OseenWithoutViscousResidualIsTheOperatorBuiltWithout) {
+  const mesh::hex::QkSpace<2, TestExecSpace> space(mixed_mesh<2>(5, 4, 1, "affine"), 2);
+  const long n = 3 * space.n_dofs();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> b(2 * space.n_dofs()), x(n);
+  for (double& e : b) e = u(rng);
+  for (double& e : x) e = u(rng);
+  typename MatrixFreeOperator<2, TestExecSpace>::Options o;
+  o.kind = OperatorKind::oseen;
+  o.components = 3;
+  o.field = to_device(b);
+  o.nu = 0.05, o.alpha = 3.0, o.grad_div = 0.4, o.dt_inverse = 2.0;
+  const MatrixFreeOperator<2, TestExecSpace> full(space, o);
+  const auto variant = full.without_viscous_residual();
+  o.viscous_residual = false;
+  const MatrixFreeOperator<2, TestExecSpace> built(space, o);
+  EXPECT_FALSE(variant.options().viscous_residual);
+  const TestExecSpace exec;
+  const auto apply = [&](const MatrixFreeOperator<2, TestExecSpace>& op, bool diagonal) {
+    Vector y("y", n);
+    if (diagonal)
+      op.compute_diagonal(exec, y);
+    else
+      op.apply(exec, to_device(x), y);
+    return to_host(y);
+  };
+  for (bool diagonal : {false, true}) {
+    const std::vector<double> yf = apply(full, diagonal), yv = apply(variant, diagonal),
+                              yb = apply(built, diagonal);
+    double same = 0.0, apart = 0.0, scale = 0.0;
+    for (long i = 0; i < n; ++i) {
+      same = std::max(same, std::abs(yv[i] - yb[i]));
+      apart = std::max(apart, std::abs(yv[i] - yf[i]));
+      scale = std::max(scale, std::abs(yb[i]));
+    }
+    EXPECT_LE(same, 1e-14 * scale) << (diagonal ? "diagonal" : "apply");
+    EXPECT_GT(apart, 1e-6 * scale) << (diagonal ? "diagonal" : "apply");
+  }
+}
+
 TEST(MatrixFreeOperator, OseenRefusesBadOptions) {
   const mesh::hex::QkSpace<2, TestExecSpace> space(mixed_mesh<2>(3, 2, 1, "curved"), 2);
   typename MatrixFreeOperator<2, TestExecSpace>::Options o;

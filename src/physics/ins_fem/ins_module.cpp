@@ -66,6 +66,7 @@ class InsModule final : public Module {
     o.restart = static_cast<int>(p.integer("restart"));
     o.multigrid.smoother.degree = static_cast<int>(p.integer("smoothing_degree"));
     o.multigrid.refresh_every = static_cast<int>(p.integer("multigrid_refresh"));
+    o.multigrid.viscous_residual = p.boolean("multigrid_viscous_residual");
     o.preconditioner = p.string("preconditioner") == "jacobi" ? InsPreconditioner::jacobi
                                                               : InsPreconditioner::multigrid;
     o.geometry = p.string("geometry") == "on_the_fly"
@@ -293,6 +294,10 @@ ParamTable parameter_table() {
               int_param("multigrid_refresh", multigrid.refresh_every, at_least(1),
                         "steps between recomputations of the multigrid's diagonals and "
                         "eigenvalue bounds (each costs a cell application per cell DoF)"),
+              bool_param("multigrid_viscous_residual", multigrid.viscous_residual,
+                         "whether the multigrid's operators keep -nu lap u in the SUPG/PSPG "
+                         "residual (false: its smoothers skip the second derivatives; GMRES "
+                         "still applies the full operator)"),
           }};
 }
 

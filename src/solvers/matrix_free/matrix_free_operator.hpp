@@ -73,6 +73,14 @@ class MatrixFreeOperator {
   MatrixFreeOperator(const Space& space, const Options& options, MatrixFreeOperator&& recycled)
       : MatrixFreeOperator(space, options, &recycled) {}
 
+  /// This operator with Options::viscous_residual off, sharing the stored coefficients (they do
+  /// not depend on it): Oseen and VANS without the second derivatives, for a preconditioner.
+  MatrixFreeOperator without_viscous_residual() const {
+    MatrixFreeOperator c = *this;
+    c.options_.viscous_residual = false;
+    return c;
+  }
+
   /// y = A x (constrained rows: y_i = x_i).
   void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const;
   /// y = A x of the operator without Dirichlet rows or columns: with x holding Dirichlet values,

@@ -42,6 +42,11 @@ struct OseenMultigridOptions {
   /// to the next, and its diagonal costs a cell application per cell DoF). state() and
   /// set_state() carry them through checkpoints, so restarts repeat runs bit for bit.
   int refresh_every = 10;
+  /// Whether the levels' operators, the finest included, keep -nu lap u in the strong residual
+  /// of the stabilisation (when the fine operator has it). false: the smoothers skip the second
+  /// derivatives while GMRES still applies the full operator (Lethe's `mg enable hessians in
+  /// jacobian = false`).
+  bool viscous_residual = true;
   /// p-coarsening: degree k to k - 1 (true) or to k / 2.
   bool degree_by_one = true;
   /// Components of the fine operator's field, restricted to every level: dim (the advecting
@@ -111,11 +116,15 @@ class OseenMultigrid {
     for (std::size_t l = 0; l < levels_.size(); ++l) {
       Level& L = *levels_[l];
       if (l == 0) {
-        L.op = &A;
+        L.owned_op = options_.viscous_residual
+                         ? nullptr
+                         : std::make_unique<Operator>(A.without_viscous_residual());
+        L.op = L.owned_op ? L.owned_op.get() : &A;
       } else {
         restrict_field(exec, l, levels_[l - 1]->op->options().field);
         auto o = A.options();
         o.field = L.field;
+        o.viscous_residual = o.viscous_residual && options_.viscous_residual;
         L.owned_op = L.owned_op ? std::make_unique<Operator>(*L.space, o, std::move(*L.owned_op))
                                 : std::make_unique<Operator>(*L.space, o);
         L.op = L.owned_op.get();
