@@ -338,6 +338,14 @@ TEST(MatrixFreeOperator, ElasticityMatchesAssembledBlockMatrix) {
   check_elasticity<3>(GeometryMode::stored, 2, 9, 3, 2);
 }
 
+/// n values drawn uniformly from [-scale, scale).
+std::vector<double> uniform_values(std::mt19937& rng, long n, double scale) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> v(n);
+  for (double& e : v) e = scale * u(rng);
+  return v;
+}
+
 // The stabilised Oseen operator (velocity and pressure coupled, SUPG/PSPG, grad-div) and its
 // history form against term-by-term assembly, on curved cells with a random advecting field.
 // The viscous term of the strong residual (-nu lap u) is checked on Cartesian cells, where the
@@ -350,10 +358,8 @@ void check_oseen(GeometryMode geometry, int degree, int nx, int ny, int nz, bool
   const mesh::hex::QkSpace<dim, TestExecSpace> space(mixed_mesh<dim>(nx, ny, nz, shape), degree);
   const long n = (dim + 1) * space.n_dofs();
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> b(dim * space.n_dofs()), x(n);
-  for (double& e : b) e = 2.0 * u(rng);
-  for (double& e : x) e = u(rng);
+  const std::vector<double> b = uniform_values(rng, dim * space.n_dofs(), 2.0);
+  const std::vector<double> x = uniform_values(rng, n, 1.0);
   typename MatrixFreeOperator<dim, TestExecSpace>::Options o;
   o.kind = OperatorKind::oseen;
   o.geometry = geometry;
@@ -398,10 +404,8 @@ TEST(MatrixFreeOperator, OseenWithoutViscousResidualIsTheOperatorBuiltWithout) {
   const mesh::hex::QkSpace<2, TestExecSpace> space(mixed_mesh<2>(5, 4, 1, "affine"), 2);
   const long n = 3 * space.n_dofs();
   std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  std::vector<double> b(2 * space.n_dofs()), x(n);
-  for (double& e : b) e = u(rng);
-  for (double& e : x) e = u(rng);
+  const std::vector<double> b = uniform_values(rng, 2 * space.n_dofs(), 1.0);
+  const std::vector<double> x = uniform_values(rng, n, 1.0);
   typename MatrixFreeOperator<2, TestExecSpace>::Options o;
   o.kind = OperatorKind::oseen;
   o.components = 3;
