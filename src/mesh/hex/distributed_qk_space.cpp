@@ -185,7 +185,7 @@ void DistributedQkSpace<dim, ExecSpace>::update_ghosts(const ExecSpace& exec, co
 
 template <int dim, class ExecSpace>
 void DistributedQkSpace<dim, ExecSpace>::compress_add(const ExecSpace& exec, const Vector& y,
-                                                      int components) const {
+                                                      int components, int constrained) const {
   if (prev_ == MPI_PROC_NULL && next_ == MPI_PROC_NULL) return;
   exec.fence();
   const long n = n_local();
@@ -196,10 +196,11 @@ void DistributedQkSpace<dim, ExecSpace>::compress_add(const ExecSpace& exec, con
     const auto top = Kokkos::subview(y, Kokkos::make_pair(base + n - layer_, base + n));
     exchange_layer(comm_, top, next_, received, prev_, kCompressTag + 16 * c);
     if (prev_ == MPI_PROC_NULL) continue;
+    const bool all_free = constrained >= 0 && c >= constrained;
     Kokkos::parallel_for(
         "amphora::DistributedQkSpace::compress_add",
         kernels::RangePolicy<ExecSpace>(exec, 0, layer_),
-        KOKKOS_LAMBDA(long i) { y(base + i) += free(i) * received(i); });
+        KOKKOS_LAMBDA(long i) { y(base + i) += (all_free ? 1.0 : free(i)) * received(i); });
   }
   exec.fence();
 }

@@ -65,9 +65,11 @@ class DistributedQkSpace {
   /// Copies the owners' values into this rank's ghost layer of x. Collective.
   void update_ghosts(const ExecSpace& exec, const Vector& x, int components = 1) const;
   /// Adds this rank's partial sums on its ghost layer to the owner's entries (only where the
-  /// DoF is free: a constrained row is the identity on every rank holding it). The ghost layer
-  /// is left as it was. Collective.
-  void compress_add(const ExecSpace& exec, const Vector& y, int components = 1) const;
+  /// DoF is free: a constrained row is the identity on every rank holding it). Only the first
+  /// `constrained` components take the constraints (-1: all), as the Oseen operator's velocity
+  /// does and its pressure does not. The ghost layer is left as it was. Collective.
+  void compress_add(const ExecSpace& exec, const Vector& y, int components = 1,
+                    int constrained = -1) const;
   /// Sum over ranks of the owned entries' products. Collective.
   double dot(const ExecSpace& exec, const Vector& x, const Vector& y, int components = 1) const;
   /// x += a p, r -= a q on owned entries; returns the sum over ranks of r.r there. Collective.

@@ -22,7 +22,7 @@ class DistributedOperator {
   void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {
     space_->update_ghosts(exec, x, components());
     local_.apply(exec, x, y);
-    space_->compress_add(exec, y, components());
+    space_->compress_add(exec, y, components(), local_.constrained_components());
   }
   /// CG's direction step (MatrixFreeOperator::apply_direction): p = z + beta p, q = A p, returns
   /// p.q summed over the ranks. In one sweep over the cells on a single rank; on several, in
@@ -36,7 +36,7 @@ class DistributedOperator {
   /// The diagonal on owned DoFs (constrained rows: 1).
   void compute_diagonal(const ExecSpace& exec, const Vector& diagonal) const {
     local_.compute_diagonal(exec, diagonal);
-    space_->compress_add(exec, diagonal, components());
+    space_->compress_add(exec, diagonal, components(), local_.constrained_components());
   }
 
   const Space& space() const { return *space_; }
