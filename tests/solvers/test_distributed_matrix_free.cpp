@@ -16,6 +16,7 @@
 #include "solvers/gmres.hpp"
 #include "solvers/matrix_free/load_vector.hpp"
 #include "solvers/matrix_free/multigrid.hpp"
+#include "solvers/matrix_free/transfer.hpp"
 #include "test_backend.hpp"
 
 namespace amphora::solvers::matrix_free {
@@ -89,6 +90,39 @@ Vector local_field(const mesh::hex::DistributedQkSpace<dim, TestExecSpace>& spac
   return kernels::to_view<test::TestMemSpace>(ul);
 }
 
+/// A rank's local vector of `components` blocks: the owned entries from the whole box's vector
+/// `global`, the ghost layer junk (what an operator or transfer must overwrite first).
+template <int dim>
+std::vector<double> owned_part(const mesh::hex::DistributedQkSpace<dim, TestExecSpace>& space,
+                               const std::vector<double>& global, int components,
+                               double ghost = 1e3) {
+  const long nl = space.n_local(), ng = space.n_global();
+  std::vector<double> local(static_cast<std::size_t>(nl) * components, ghost);
+  for (int a = 0; a < components; ++a)
+    for (long i = 0; i < space.n_owned(); ++i)
+      local[a * nl + i] = global[a * ng + space.global_index(i)];
+  return local;
+}
+
+/// max over the owned entries of every rank of |local - global| (collective).
+template <int dim>
+double owned_difference(const mesh::hex::DistributedQkSpace<dim, TestExecSpace>& space,
+                        const std::vector<double>& local, const std::vector<double>& global,
+                        int components) {
+  const long nl = space.n_local(), ng = space.n_global();
+  double err = 0.0;
+  for (int a = 0; a < components; ++a)
+    for (long i = 0; i < space.n_owned(); ++i)
+      err = std::max(err, std::abs(local[a * nl + i] - global[a * ng + space.global_index(i)]));
+  return space.communicator().max(err);
+}
+
+double max_abs(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m = std::max(m, std::abs(x));
+  return m;
+}
+
 template <int dim>
 void check(const Case& c, int n) {
   Communicator comm;
@@ -118,28 +152,14 @@ void check(const Case& c, int n) {
   ASSERT_EQ(space.n_global(), ng);
   if (c.kind == OperatorKind::oseen) o.field = local_field(space, whole);
   const DistributedOperator<dim, TestExecSpace> op(space, o);
-  const long nl = space.n_local();
-  std::vector<double> xl(static_cast<size_t>(nl) * o.components, 1e3);  // ghosts: junk
-  for (int a = 0; a < o.components; ++a)
-    for (long i = 0; i < space.n_owned(); ++i) xl[a * nl + i] = xg[a * ng + space.global_index(i)];
+  const std::vector<double> xl = owned_part(space, xg, o.components);
   Vector y("y", xl.size()), d("d", xl.size());
   op.apply(exec, kernels::to_view<test::TestMemSpace>(xl), y);
   op.compute_diagonal(exec, d);
-  const std::vector<double> yl = kernels::to_std_vector(y), dl = kernels::to_std_vector(d);
-
-  double scale = 0, dscale = 0, err = 0, derr = 0;
-  for (size_t i = 0; i < y_ref.size(); ++i) {
-    scale = std::max(scale, std::abs(y_ref[i]));
-    dscale = std::max(dscale, std::abs(d_ref[i]));
-  }
-  for (int a = 0; a < o.components; ++a)
-    for (long i = 0; i < space.n_owned(); ++i) {
-      const long g = a * ng + space.global_index(i);
-      err = std::max(err, std::abs(yl[a * nl + i] - y_ref[g]));
-      derr = std::max(derr, std::abs(dl[a * nl + i] - d_ref[g]));
-    }
-  EXPECT_LE(comm.max(err), 1e-12 * scale);
-  EXPECT_LE(comm.max(derr), 1e-12 * dscale);
+  EXPECT_LE(owned_difference(space, kernels::to_std_vector(y), y_ref, o.components),
+            1e-12 * max_abs(y_ref));
+  EXPECT_LE(owned_difference(space, kernels::to_std_vector(d), d_ref, o.components),
+            1e-12 * max_abs(d_ref));
 }
 
 TEST(DistributedMatrixFree, LaplaceAndMassOnSlabsEqualTheWholeBoxOperator) {
@@ -283,29 +303,78 @@ TEST(DistributedMatrixFree, OseenGmresOnSlabsReachesTheUndistributedSolution) {
   const mesh::hex::DistributedQkSpace<dim, TestExecSpace> space(m, c.degree, comm);
   o.field = local_field(space, whole);
   const DistributedOperator<dim, TestExecSpace> op(space, o);
-  const long nl = space.n_local();
-  std::vector<double> bl(nc * nl, 0.0);
-  for (int a = 0; a < nc; ++a)
-    for (long i = 0; i < space.n_owned(); ++i) bl[a * nl + i] = bg[a * ng + space.global_index(i)];
-  Vector xl("xl", nc * nl);
+  const std::vector<double> bl = owned_part(space, bg, nc, 0.0);
+  Vector xl("xl", bl.size());
   const SolverResult rl = gmres(exec, op, kernels::to_view<test::TestMemSpace>(bl), xl, control, 60,
-                                jacobi(op, nl), space.inner_product(nc));
+                                jacobi(op, space.n_local()), space.inner_product(nc));
   ASSERT_TRUE(rl.converged);
   EXPECT_NEAR(rl.iterations, rg.iterations, 2);
 
-  const auto xgh = kernels::to_std_vector(xg), xlh = kernels::to_std_vector(xl);
-  double scale = 0, err = 0;
-  for (double v : xgh) scale = std::max(scale, std::abs(v));
-  for (int a = 0; a < nc; ++a)
-    for (long i = 0; i < space.n_owned(); ++i)
-      err = std::max(err, std::abs(xlh[a * nl + i] - xgh[a * ng + space.global_index(i)]));
-  err = comm.max(err);
+  const auto xgh = kernels::to_std_vector(xg);
+  const double scale = max_abs(xgh);
+  const double err = owned_difference(space, kernels::to_std_vector(xl), xgh, nc);
   EXPECT_LE(err, 1e-10 * scale) << "iterations " << rl.iterations << " / " << rg.iterations;
   if (comm.is_root())
     std::printf(
         "Oseen Jacobi-GMRES: %d iterations on the whole box, %d on %d ranks; max "
         "difference %.2e of max |x| %.3f\n",
         rg.iterations, rl.iterations, comm.size(), err, scale);
+}
+
+// The multigrid's transfers on the Oseen layout (dim + 1 blocks, the velocity constrained, the
+// pressure free) on slabs, with the ghost update before and the compression after, equal the
+// whole box's: restriction and prolongation, p (k to k - 1) and h (Q1, cells halved), 2D and
+// 3D, Dirichlet faces beside the shared layer, periodic split or not.
+template <int dim>
+void check_transfer(int fine_degree, bool h, bool periodic) {
+  Communicator comm;
+  SCOPED_TRACE("dim " + std::to_string(dim) + (h ? " h" : " p") + " from Q" +
+               std::to_string(fine_degree) + (periodic ? " periodic split" : "") + " ranks " +
+               std::to_string(comm.size()));
+  const TestExecSpace exec;
+  const int nc = dim + 1;
+  auto m = box<dim>(3, "curved", periodic);
+  if (h) m.cells = {4, 4, 4};
+  const mesh::hex::QkSpace<dim, TestExecSpace> whole_f(m, fine_degree);
+  const mesh::hex::QkSpace<dim, TestExecSpace> whole_c(h ? m.coarsened() : m,
+                                                       h ? 1 : fine_degree - 1);
+  const MatrixFreeTransfer<dim, TestExecSpace> whole(whole_c, whole_f, nc, dim);
+  const mesh::hex::DistributedQkSpace<dim, TestExecSpace> fine(m, fine_degree, comm);
+  const auto coarse = h ? fine.coarsened(1) : fine.with_degree(fine_degree - 1);
+  const MatrixFreeTransfer<dim, TestExecSpace> slabs(coarse->local(), fine.local(), nc, dim);
+
+  std::vector<double> xf(nc * whole_f.n_dofs()), xc(nc * whole_c.n_dofs());
+  for (std::size_t i = 0; i < xf.size(); ++i) xf[i] = sample(static_cast<long>(i));
+  for (std::size_t i = 0; i < xc.size(); ++i) xc[i] = sample(static_cast<long>(3 * i + 1));
+  Vector rc("rc", xc.size()), pf("pf", xf.size());
+  whole.restrict_to_coarse(exec, kernels::to_view<test::TestMemSpace>(xf), rc);
+  whole.prolongate(exec, kernels::to_view<test::TestMemSpace>(xc), pf);
+  const auto rc_ref = kernels::to_std_vector(rc), pf_ref = kernels::to_std_vector(pf);
+
+  const Vector lf = kernels::to_view<test::TestMemSpace>(owned_part(fine, xf, nc));
+  const Vector lc = kernels::to_view<test::TestMemSpace>(owned_part(*coarse, xc, nc));
+  Vector lrc("lrc", lc.extent(0)), lpf("lpf", lf.extent(0));
+  fine.update_ghosts(exec, lf, nc);
+  slabs.restrict_to_coarse(exec, lf, lrc);
+  coarse->compress_add(exec, lrc, nc, dim);
+  coarse->update_ghosts(exec, lc, nc);
+  slabs.prolongate(exec, lc, lpf);
+  fine.compress_add(exec, lpf, nc, dim);
+  EXPECT_LE(owned_difference(*coarse, kernels::to_std_vector(lrc), rc_ref, nc),
+            1e-13 * max_abs(rc_ref));
+  EXPECT_LE(owned_difference(fine, kernels::to_std_vector(lpf), pf_ref, nc),
+            1e-13 * max_abs(pf_ref));
+}
+
+TEST(DistributedMatrixFree, OseenTransfersOnSlabsEqualTheWholeBox) {
+  for (const bool periodic : {false, true}) {
+    for (const int k : {2, 3, 4}) {
+      check_transfer<2>(k, false, periodic);
+      check_transfer<3>(k, false, periodic);
+    }
+    check_transfer<2>(1, true, periodic);
+    check_transfer<3>(1, true, periodic);
+  }
 }
 
 // Multigrid-CG (p-levels, h-levels while the slabs allow, BoomerAMG on the gathered coarsest
