@@ -206,11 +206,51 @@ void DistributedQkSpace<dim, ExecSpace>::compress_add(const ExecSpace& exec, con
 }
 
 template <int dim, class ExecSpace>
+std::vector<double> DistributedQkSpace<dim, ExecSpace>::gather(const Vector& x,
+                                                               int components) const {
+  const auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), x);
+  std::vector<double> whole;
+  for (int c = 0; c < components; ++c) {
+    const double* owned_c = h.data() + c * n_local();
+    const std::vector<double> all =
+        comm_.allgatherv(std::vector<double>(owned_c, owned_c + n_owned_));
+    whole.insert(whole.end(), all.begin(), all.end());
+  }
+  return whole;
+}
+
+template <int dim, class ExecSpace>
+std::vector<double> DistributedQkSpace<dim, ExecSpace>::local_entries(
+    const std::vector<double>& whole, int components) const {
+  const long n = n_local(), total = static_cast<long>(whole.size()) / components;
+  std::vector<double> local(static_cast<std::size_t>(n) * components);
+  for (long i = 0; i < n; ++i) {
+    const long g = global_index(i);
+    for (int c = 0; c < components; ++c) local[c * n + i] = whole[c * total + g];
+  }
+  return local;
+}
+
+template <int dim, class ExecSpace>
+void DistributedQkSpace<dim, ExecSpace>::scatter(const std::vector<double>& whole, const Vector& x,
+                                                 int components) const {
+  const std::vector<double> local = local_entries(whole, components);
+  Kokkos::deep_copy(x, Kokkos::View<const double*, Kokkos::HostSpace, Kokkos::MemoryUnmanaged>(
+                           local.data(), local.size()));
+}
+
+template <int dim, class ExecSpace>
 double DistributedQkSpace<dim, ExecSpace>::dot(const ExecSpace& exec, const Vector& x,
                                                const Vector& y, int components) const {
   double local = 0.0;
-  for (int c = 0; c < components; ++c)
-    local += kernels::blas1::dot(exec, Kokkos::subview(x, owned(c)), Kokkos::subview(y, owned(c)));
+  if (n_owned_ == n_local()) {  // no ghost layer: one pass over the blocks
+    const Kokkos::pair<long, long> all(0, components * n_local());
+    local = kernels::blas1::dot(exec, Kokkos::subview(x, all), Kokkos::subview(y, all));
+  } else {
+    for (int c = 0; c < components; ++c)
+      local +=
+          kernels::blas1::dot(exec, Kokkos::subview(x, owned(c)), Kokkos::subview(y, owned(c)));
+  }
   return comm_.sum(local);
 }
 
@@ -219,6 +259,12 @@ double DistributedQkSpace<dim, ExecSpace>::fused_cg_update(const ExecSpace& exec
                                                            const Vector& p, const Vector& q,
                                                            const Vector& x, const Vector& r,
                                                            int components) const {
+  if (n_owned_ == n_local()) {  // no ghost layer: one pass over the blocks
+    const Kokkos::pair<long, long> o(0, components * n_local());
+    return comm_.sum(kernels::blas1::cg_update(exec, alpha, Kokkos::subview(p, o),
+                                               Kokkos::subview(q, o), Kokkos::subview(x, o),
+                                               Kokkos::subview(r, o)));
+  }
   double local = 0.0;
   for (int c = 0; c < components; ++c) {
     const auto o = owned(c);

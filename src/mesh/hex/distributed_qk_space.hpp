@@ -12,6 +12,7 @@
 // does (update_ghost_values / compress(add)). Vectors with several components are blocked per
 // component (QkSpace's layout), each block distributed the same way.
 #include <memory>
+#include <vector>
 
 #include <Kokkos_Core.hpp>
 
@@ -70,6 +71,15 @@ class DistributedQkSpace {
   /// does and its pressure does not. The ghost layer is left as it was. Collective.
   void compress_add(const ExecSpace& exec, const Vector& y, int components = 1,
                     int constrained = -1) const;
+  /// The whole box's vector in the global DoF order of each component block (blocked as a
+  /// QkSpace on the whole box), on every rank, from the owned entries: the owned parts in rank
+  /// order are that order. Host; for small coarse problems and checkpoints. Collective.
+  std::vector<double> gather(const Vector& x, int components = 1) const;
+  /// This rank's local entries (owned and ghost layer, blocked) of a whole-box vector in
+  /// gather()'s order (host).
+  std::vector<double> local_entries(const std::vector<double>& whole, int components = 1) const;
+  /// x = local_entries(whole), on the device.
+  void scatter(const std::vector<double>& whole, const Vector& x, int components = 1) const;
   /// Sum over ranks of the owned entries' products. Collective.
   double dot(const ExecSpace& exec, const Vector& x, const Vector& y, int components = 1) const;
   /// x += a p, r -= a q on owned entries; returns the sum over ranks of r.r there. Collective.

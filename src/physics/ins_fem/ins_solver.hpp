@@ -5,7 +5,9 @@
 // steps, or Picard iterations to a steady state. Each linear problem is solved by GMRES,
 // preconditioned by a geometric multigrid V-cycle on the coupled operator (OseenMultigrid) or
 // by the coupled point Jacobi; every operator is a matrix-free point functor on the device. State:
-// (dim + 1) n_dofs blocked, velocity components then pressure.
+// (dim + 1) n_dofs blocked, velocity components then pressure. On several ranks each holds the
+// slab of a DistributedQkSpace: vectors are its local entries (owned, then the ghost layer,
+// which the state keeps equal to the owners' values) and every reduction is over the ranks.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -19,10 +21,13 @@
 
 #include "kernels/blas1.hpp"
 #include "kernels/host_vector.hpp"
+#include "base/communicator.hpp"
+#include "mesh/hex/distributed_qk_space.hpp"
 #include "mesh/hex/qk_space.hpp"
 #include "physics/ins_fem/backflow_stabilisation.hpp"
 #include "physics/phase_times.hpp"
 #include "solvers/gmres.hpp"
+#include "solvers/matrix_free/distributed_operator.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 #include "solvers/matrix_free/oseen_multigrid.hpp"
 
@@ -97,15 +102,21 @@ struct TimedApply {
   }
 };
 
-/// An operator plus the backflow term of the open faces (nullptr: the operator alone).
-template <class Op, class Backflow>
+/// An operator plus the backflow term of the open faces (nullptr: the operator alone) on the
+/// slabs of a DistributedQkSpace: x's ghost layer from its owners, then both terms on this
+/// rank's cells and faces, then the shared layer's partial sums added.
+template <class Space, class Op, class Backflow>
 struct WithBackflow {
+  const Space* space;
   const Op* op;
   const Backflow* backflow;
   template <class E, class X, class Y>
   void apply(const E& exec, const X& x, const Y& y) const {
+    const int nc = op->options().components;
+    space->update_ghosts(exec, x, nc);
     op->apply(exec, x, y);
     if (backflow) backflow->apply_add(exec, x, y);
+    space->compress_add(exec, y, nc, op->constrained_components());
   }
 };
 
@@ -113,15 +124,25 @@ template <int dim, class ExecSpace>
 class InsSolver {
  public:
   using Space = mesh::hex::QkSpace<dim, ExecSpace>;
+  using DistributedSpace = mesh::hex::DistributedQkSpace<dim, ExecSpace>;
   using Operator = solvers::matrix_free::MatrixFreeOperator<dim, ExecSpace>;
+  using DistributedOperator = solvers::matrix_free::DistributedOperator<dim, ExecSpace>;
   using Vector = typename Operator::Vector;
   using Multigrid = solvers::matrix_free::OseenMultigrid<dim, ExecSpace>;
   using Backflow = BackflowStabilisation<dim, ExecSpace>;
+  static constexpr int dimension = dim;
 
   /// The pressure is fixed up to a constant where no face is Neumann (periodic or walls all
   /// round): its mean is then kept zero and each step's right-hand side made consistent.
-  InsSolver(const mesh::hex::StructuredHexMesh<dim>& mesh, int degree, const InsOptions& options)
-      : space_(mesh, degree), options_(options), n_(space_.n_dofs()) {
+  /// `comm`: the ranks the box is split over (slabs along the last direction).
+  InsSolver(const mesh::hex::StructuredHexMesh<dim>& mesh, int degree, const InsOptions& options,
+            const Communicator& comm = Communicator(MPI_COMM_SELF))
+      : distributed_(mesh, degree, comm),
+        space_(distributed_.local()),
+        options_(options),
+        n_(space_.n_dofs()),
+        n_owned_(distributed_.n_owned()),
+        n_global_(distributed_.n_global()) {
     if (!(options.nu > 0.0))
       throw std::invalid_argument("ins_fem: viscosity nu must be positive, got " +
                                   std::to_string(options.nu));
@@ -145,7 +166,7 @@ class InsSolver {
     if (options.preconditioner == InsPreconditioner::multigrid) {
       auto mo = options.multigrid;
       mo.field_components = vans() ? dim + 2 : dim;
-      multigrid_ = std::make_unique<Multigrid>(space_, mo);
+      multigrid_ = std::make_unique<Multigrid>(distributed_, mo);
     }
   }
 
@@ -158,6 +179,7 @@ class InsSolver {
     require_vans("set_void_fraction");
     const ExecSpace exec;
     kernels::blas1::copy(exec, eps, void_fraction());
+    distributed_.update_ghosts(exec, void_fraction());
     if (!void_fraction_set_) {
       kernels::blas1::copy(exec, eps, eps_n_);
       kernels::blas1::copy(exec, eps, eps_nm1_);
@@ -170,9 +192,11 @@ class InsSolver {
   void set_drag(const Vector& beta) {
     require_vans("set_drag");
     kernels::blas1::copy(ExecSpace(), beta, drag());
+    distributed_.update_ghosts(ExecSpace(), drag());
   }
   /// VANS: a load vector (dim n_dofs, already integrated against the basis: the particles'
-  /// spread forces per unit fluid mass) added to every step's right-hand side until changed.
+  /// spread forces per unit fluid mass; on several ranks its owned entries summed over them)
+  /// added to every step's right-hand side until changed.
   /// Its density, load_j / (integral of phi_j), enters the SUPG/PSPG residual (as in Lethe):
   /// without it the stabilisation takes the load's balance for a residual, a mass source where
   /// the load changes (model B's packed bed lost a third of its pressure gradient).
@@ -187,7 +211,8 @@ class InsSolver {
       basis_integrals_ = Vector("amphora::ins_fem::basis_integrals", n_);
       const Vector one = Kokkos::subview(load_density_, Kokkos::make_pair(0L, n_));
       kernels::blas1::fill(exec, one, 1.0);
-      scalar_mass_->apply(exec, one, basis_integrals_);
+      apply_on_slabs(exec, *scalar_mass_, one, basis_integrals_);
+      distributed_.update_ghosts(exec, basis_integrals_);
     }
     kernels::blas1::copy(exec, load, particle_load_);
     const Vector f = load_density_, m = basis_integrals_;
@@ -195,6 +220,7 @@ class InsSolver {
     Kokkos::parallel_for(
         "amphora::ins_fem::load_density", kernels::RangePolicy<ExecSpace>(exec, 0, int(dim * n_)),
         KOKKOS_LAMBDA(int i) { f(i) = load(i) / m(i % n); });
+    distributed_.update_ghosts(exec, load_density_, dim + 1);
   }
   /// VANS: the void fraction and the implicit drag the next step uses (views into the field).
   Vector void_fraction() const { return field_block(dim); }
@@ -216,9 +242,14 @@ class InsSolver {
     return multigrid_ ? multigrid_->describe() : std::string("point Jacobi");
   }
 
+  /// This rank's slab (the whole box on one rank).
   const Space& space() const { return space_; }
+  const DistributedSpace& distributed_space() const { return distributed_; }
   const InsOptions& options() const { return options_; }
+  /// DoFs per component of this rank's slab (owned and ghost layer).
   long n_dofs() const { return n_; }
+  /// DoFs per component of the whole box.
+  long n_global_dofs() const { return n_global_; }
   /// The state (velocity, pressure), blocked; Dirichlet values are those it holds on
   /// constrained velocity DoFs, kept from set_state on.
   const Vector& state() const { return x_; }
@@ -228,28 +259,32 @@ class InsSolver {
   }
   long steps() const { return steps_; }
 
-  /// Sets the state from a host vector of (dim + 1) n_dofs entries; restarts the BDF history.
+  /// Sets the state from a host vector of (dim + 1) n_dofs entries (this rank's; the ghost
+  /// layer is taken from the owners); restarts the BDF history.
   void set_state(const std::vector<double>& state) {
     if (static_cast<long>(state.size()) != (dim + 1) * n_)
       throw std::invalid_argument("ins_fem: state needs (dim + 1) x n_dofs entries");
     Kokkos::deep_copy(x_, kernels::to_view<typename ExecSpace::memory_space>(state));
+    distributed_.update_ghosts(ExecSpace(), x_, dim + 1);
     steps_ = 0;
   }
   /// Restores the two-step history (checkpoints): state, previous velocity and step.
   void set_history(const std::vector<double>& u_old, double dt_old, long steps) {
     Kokkos::deep_copy(u_old_, kernels::to_view<typename ExecSpace::memory_space>(u_old));
+    distributed_.update_ghosts(ExecSpace(), u_old_, dim);
     dt_old_ = dt_old, dt_older_ = dt_old, steps_ = steps;
   }
   const Vector& previous_velocity() const { return u_old_; }
   double previous_dt() const { return dt_old_; }
 
-  /// VANS checkpoints: eps^n, eps^(n-1), eps^(n-2) (n_dofs each) and the step before the
-  /// previous one, which the filtered rate's test for a uniform step reads.
+  /// VANS checkpoints: eps^n, eps^(n-1), eps^(n-2) (the whole box's n_global_dofs each, in
+  /// global DoF order) and the step before the previous one, which the filtered rate's test
+  /// for a uniform step reads. Collective.
   std::vector<double> void_fraction_history() const {
     std::vector<double> h;
     for (const Vector& e : {eps_n_, eps_nm1_, eps_nm2_}) {
-      const auto eh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), e);
-      h.insert(h.end(), eh.data(), eh.data() + eh.extent(0));
+      const std::vector<double> g = distributed_.gather(e);
+      h.insert(h.end(), g.begin(), g.end());
     }
     h.push_back(dt_older_);
     return h;
@@ -257,14 +292,13 @@ class InsSolver {
   /// Restores void_fraction_history() after set_history; eps^n is also the void fraction now.
   void set_void_fraction_history(const std::vector<double>& h) {
     require_vans("set_void_fraction_history");
-    if (h.size() != static_cast<size_t>(3 * n_ + 1))
+    const long ng = n_global_;
+    if (h.size() != static_cast<size_t>(3 * ng + 1))
       throw std::invalid_argument(
           "ins_fem: the void fraction's history needs 3 n_dofs + 1 entries");
     const Vector e[3] = {eps_n_, eps_nm1_, eps_nm2_};
     for (int l = 0; l < 3; ++l)
-      Kokkos::deep_copy(e[l],
-                        kernels::to_view<typename ExecSpace::memory_space>(
-                            std::vector<double>(h.begin() + l * n_, h.begin() + (l + 1) * n_)));
+      distributed_.scatter(std::vector<double>(h.begin() + l * ng, h.begin() + (l + 1) * ng), e[l]);
     Kokkos::deep_copy(void_fraction(), eps_n_);
     void_fraction_set_ = true;
     dt_older_ = h.back();
@@ -311,7 +345,7 @@ class InsSolver {
     const Operator& A = renew(a_, o);
     o.history = true;
     const Operator& H = renew(h_, o);
-    H.apply(exec, history_, rhs_);
+    apply_on_slabs(exec, H, history_, rhs_);
     add_particle_load(exec, o);
     kernels::blas1::copy(exec, u, u_old_);  // u^(n-1) <- u^n; the guess: extrapolated velocity
     kernels::blas1::copy(exec, advecting_, u);
@@ -344,14 +378,14 @@ class InsSolver {
       const Operator& A = renew(a_, o);
       o.history = true;
       const Operator& H = renew(h_, o);
-      H.apply(exec, history_, rhs_);
+      apply_on_slabs(exec, H, history_, rhs_);
       add_particle_load(exec, o);
       const InsStepReport r = solve(exec, A);
       total.linear_iterations += r.linear_iterations;
       total.residual = r.residual;
       kernels::blas1::axpy(exec, -1.0, u, advecting_);  // advecting <- u_old - u_new
-      const double change = kernels::blas1::norm2(exec, advecting_);
-      const double size = kernels::blas1::norm2(exec, u);
+      const double change = norm(exec, advecting_, dim);
+      const double size = norm(exec, u, dim);
       if (picard) *picard = it + 1;
       if (!r.converged) return total;
       if (change <= tolerance * size) {
@@ -379,19 +413,19 @@ class InsSolver {
     double m = 0.0;
     Kokkos::parallel_reduce(
         "amphora::ins_fem::max_speed",
-        kernels::RangePolicy<ExecSpace>(ExecSpace(), 0, static_cast<int>(n)),
+        kernels::RangePolicy<ExecSpace>(ExecSpace(), 0, static_cast<int>(n_owned_)),
         KOKKOS_LAMBDA(int i, double& acc) {
           double s = 0.0;
           for (int d = 0; d < dim; ++d) s += x(d * n + i) * x(d * n + i);
           if (s > acc) acc = s;
         },
         Kokkos::Max<double>(m));
-    return std::sqrt(m);
+    return std::sqrt(distributed_.communicator().max(m));
   }
   /// Convective CFL number of step dt: dt max|u| k / h_min (h_min: the smallest cell width of
   /// the undeformed box).
   double cfl(double dt) const {
-    const auto& m = space_.mesh();
+    const auto& m = distributed_.global_mesh();
     double h = 1e300;
     for (int d = 0; d < dim; ++d) h = std::min(h, (m.upper[d] - m.lower[d]) / m.cells[d]);
     return dt * max_speed() * space_.degree() / h;
@@ -439,7 +473,7 @@ class InsSolver {
     kernels::blas1::axpy(exec, 1.0, particle_load_, ru);
     o.load_only = true;
     const Operator& S = renew(s_, o);
-    S.apply(exec, load_density_, work_);
+    apply_on_slabs(exec, S, load_density_, work_);
     kernels::blas1::axpy(exec, 1.0, work_, rhs_);
   }
   /// history = (c1 u^n + c2 u^(n-1) + s F, 0).
@@ -463,6 +497,14 @@ class InsSolver {
                 : std::make_unique<Operator>(space_, o);
     return *slot;
   }
+  /// The same for the step's Oseen operator, which the multigrid takes as a distributed one
+  /// (and keeps for its finest level); returns its slab operator.
+  const Operator& renew(std::unique_ptr<DistributedOperator>& slot,
+                        const typename Operator::Options& o) {
+    slot = slot ? std::make_unique<DistributedOperator>(distributed_, o, std::move(*slot))
+                : std::make_unique<DistributedOperator>(distributed_, o);
+    return slot->local();
+  }
 
   typename Operator::Options oseen_options(double alpha, double dt_inverse) const {
     typename Operator::Options o;
@@ -483,13 +525,15 @@ class InsSolver {
     // small step the extrapolated guess is so good that tolerance |rhs - A x| lies below it.
     A.apply_unconstrained(exec, x_, delta_);  // with the Dirichlet values x holds
     if (backflow_) backflow_->apply_add(exec, x_, delta_);
-    const double floor =
-        1e-12 * std::max(kernels::blas1::norm2(exec, rhs_), kernels::blas1::norm2(exec, delta_));
+    distributed_.compress_add(exec, delta_, dim + 1, 0);
+    const double floor = 1e-12 * std::max(norm(exec, rhs_, dim + 1), norm(exec, delta_, dim + 1));
     kernels::blas1::axpby(exec, 1.0, rhs_, -1.0, delta_);  // delta = rhs - A x
     zero_constrained(exec, delta_);
     if (pressure_null_space_) remove_pressure_mean(exec, delta_, false);
     kernels::blas1::copy(exec, delta_, rhs_);
     if (linear_solver_) {
+      if (distributed_.communicator().size() > 1)
+        throw std::invalid_argument("ins_fem: an external linear solver runs on one rank only");
       if (backflow_)
         throw std::invalid_argument("ins_fem: an external linear solver has no backflow term");
       kernels::blas1::fill(exec, delta_, 0.0);
@@ -503,20 +547,22 @@ class InsSolver {
     control.max_iterations = options_.max_iterations;
     control.absolute_tolerance = floor;
     kernels::blas1::fill(exec, delta_, 0.0);
-    const WithBackflow<Operator, Backflow> full{&A, backflow_.get()};
-    const TimedApply<WithBackflow<Operator, Backflow>> timed_a{&full, times_, ins_operator};
+    using Full = WithBackflow<DistributedSpace, Operator, Backflow>;
+    const Full full{&distributed_, &A, backflow_.get()};
+    const TimedApply<Full> timed_a{&full, times_, ins_operator};
+    const auto inner = distributed_.inner_product(dim + 1);
     solvers::SolverResult r;
     bool fell_back = false;
     if (multigrid_) {
-      multigrid_->update(exec, A);
+      multigrid_->update(exec, *a_);  // A is a_'s slab operator
       if (times_) times_->lap(ins_setup);
       // Point-Jacobi smoothing fails where viscosity dominates the cells (docs/ins.md): one
       // restart cycle without convergence hands this step and the rest of the run to Jacobi.
       solvers::SolverControl first = control;
       first.max_iterations = std::min(control.max_iterations, options_.restart);
       const TimedApply<Multigrid> timed_m{multigrid_.get(), times_, ins_smoother};
-      r = solvers::gmres(exec, timed_a, rhs_, delta_, first, options_.restart, timed_m,
-                         solvers::LocalInnerProduct(), gmres_work_);
+      r = solvers::gmres(exec, timed_a, rhs_, delta_, first, options_.restart, timed_m, inner,
+                         gmres_work_);
       if (!r.converged) {
         multigrid_.reset();
         kernels::blas1::fill(exec, delta_, 0.0);
@@ -526,17 +572,20 @@ class InsSolver {
     if (!multigrid_) {
       A.compute_diagonal(exec, diagonal_);
       if (backflow_) backflow_->add_diagonal(exec, diagonal_);
+      distributed_.compress_add(exec, diagonal_, dim + 1, dim);
+      distributed_.update_ghosts(exec, diagonal_, dim + 1);
       kernels::blas1::reciprocal(exec, diagonal_);
       const solvers::JacobiPreconditioner<Vector> jacobi{diagonal_};
       if (times_) times_->lap(ins_setup);
       const TimedApply<solvers::JacobiPreconditioner<Vector>> timed_m{&jacobi, times_,
                                                                       ins_smoother};
       const int spent = r.iterations;
-      r = solvers::gmres(exec, timed_a, rhs_, delta_, control, options_.restart, timed_m,
-                         solvers::LocalInnerProduct(), gmres_work_);
+      r = solvers::gmres(exec, timed_a, rhs_, delta_, control, options_.restart, timed_m, inner,
+                         gmres_work_);
       r.iterations += spent;
     }
     kernels::blas1::axpy(exec, 1.0, delta_, x_);
+    distributed_.update_ghosts(exec, x_, dim + 1);  // delta's ghost layer is not meaningful
     if (pressure_null_space_) remove_pressure_mean(exec, x_, true);
     if (times_) times_->lap(ins_other);
     return {r.iterations, r.converged, r.final_residual, fell_back};
@@ -559,10 +608,10 @@ class InsSolver {
     double mean = 0.0;
     if (weighted) {
       const Vector pm = Kokkos::subview(delta_, Kokkos::make_pair(0L, n_));
-      scalar_mass_->apply(exec, p, pm);
-      mean = kernels::blas1::sum(exec, pm) / volume_;
+      apply_on_slabs(exec, *scalar_mass_, p, pm);
+      mean = owned_sum(exec, pm) / volume_;
     } else {
-      mean = kernels::blas1::sum(exec, p) / static_cast<double>(n_);
+      mean = owned_sum(exec, p) / static_cast<double>(n_global_);
     }
     Kokkos::parallel_for(
         "amphora::ins_fem::pressure_mean",
@@ -575,8 +624,26 @@ class InsSolver {
     const ExecSpace exec;
     const Vector u = velocity();
     const Vector bu = Kokkos::subview(work_, Kokkos::make_pair(0L, dim * n_));
-    B.apply(exec, u, bu);
-    return kernels::blas1::dot(exec, u, bu);
+    apply_on_slabs(exec, B, u, bu);
+    return distributed_.dot(exec, u, bu, dim);
+  }
+
+  /// y = B x over the ranks (DistributedOperator::apply for this solver's operators on the slab).
+  void apply_on_slabs(const ExecSpace& exec, const Operator& B, const Vector& x,
+                      const Vector& y) const {
+    const int nc = B.options().components;
+    distributed_.update_ghosts(exec, x, nc);
+    B.apply(exec, x, y);
+    distributed_.compress_add(exec, y, nc, B.constrained_components());
+  }
+  /// The sum over the ranks of v's owned entries (one component).
+  double owned_sum(const ExecSpace& exec, const Vector& v) const {
+    const Vector owned = Kokkos::subview(v, Kokkos::make_pair(0L, n_owned_));
+    return distributed_.communicator().sum(kernels::blas1::sum(exec, owned));
+  }
+  /// |v| over the ranks' owned entries of `components` blocks.
+  double norm(const ExecSpace& exec, const Vector& v, int components) const {
+    return std::sqrt(distributed_.dot(exec, v, v, components));
   }
 
  private:
@@ -622,20 +689,22 @@ class InsSolver {
     const Vector one = Kokkos::subview(work_, Kokkos::make_pair(0L, n_));
     const Vector m1 = Kokkos::subview(work_, Kokkos::make_pair(n_, 2 * n_));
     kernels::blas1::fill(exec, one, 1.0);
-    scalar_mass_->apply(exec, one, m1);
-    volume_ = kernels::blas1::sum(exec, m1);
+    apply_on_slabs(exec, *scalar_mass_, one, m1);
+    volume_ = owned_sum(exec, m1);
   }
 
-  Space space_;
+  DistributedSpace distributed_;
+  const Space& space_;
   InsOptions options_;
-  long n_;
+  long n_, n_owned_, n_global_;  // DoFs per component: local, owned, of the whole box
   bool pressure_null_space_ = true;
   Vector x_, u_old_, field_, history_, rhs_, delta_, diagonal_, force_, work_;
   Vector advecting_;  // the field's first dim blocks
   Vector eps_n_, eps_nm1_, eps_nm2_, particle_load_, load_density_, basis_integrals_;  // VANS
   bool void_fraction_set_ = false;
   std::unique_ptr<Operator> mass_, laplace_, div_, scalar_mass_;
-  std::unique_ptr<Operator> a_, h_, s_;         // the step's operator, history and load terms
+  std::unique_ptr<DistributedOperator> a_;      // the step's operator
+  std::unique_ptr<Operator> h_, s_;             // its history and load terms
   solvers::GmresWorkspace<Vector> gmres_work_;  // kept: no allocation inside a step
   double volume_ = 0.0, dt_old_ = 0.0, dt_older_ = 0.0;
   long steps_ = 0;

@@ -3,6 +3,8 @@
 // update of x and the compression of y, so y = A x holds on every owned DoF as on one rank.
 // x's ghost layer is overwritten with the owners' values (x is otherwise unchanged); y's ghost
 // layer holds this rank's partial sums afterwards and is not meaningful.
+#include <utility>
+
 #include "mesh/hex/distributed_qk_space.hpp"
 #include "solvers/conjugate_gradient.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
@@ -18,6 +20,20 @@ class DistributedOperator {
 
   DistributedOperator(const Space& space, const typename Local::Options& options)
       : space_(&space), local_(space.local(), options) {}
+  /// The slab operator `local` (on space.local(), sharing its coefficients) as a distributed one.
+  DistributedOperator(const Space& space, Local local) : space_(&space), local_(std::move(local)) {}
+  /// As the first, in the device arrays of `recycled` (MatrixFreeOperator's recycling constructor).
+  DistributedOperator(const Space& space, const typename Local::Options& options,
+                      DistributedOperator&& recycled)
+      : space_(&space), local_(space.local(), options, std::move(recycled.local_)) {}
+
+  /// This operator without -nu lap u in the stabilisation's residual (Oseen, VANS), sharing
+  /// the stored coefficients: MatrixFreeOperator::without_viscous_residual.
+  DistributedOperator without_viscous_residual() const {
+    DistributedOperator c = *this;
+    c.local_ = local_.without_viscous_residual();
+    return c;
+  }
 
   void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {
     space_->update_ghosts(exec, x, components());
