@@ -1,8 +1,9 @@
 #pragma once
 // The flow solver's checkpoint block "flow", shared by the modules that own a solver: the
 // state, the previous velocity, VANS's void fraction history, the multigrid's smoother state
-// and a "history" of {previous dt, steps, then the owner's own entries}. A continuation from
-// it is the uninterrupted run bit for bit.
+// and a "history" of {previous dt, steps, then the owner's own entries}. The fields are in the
+// whole box's DoF order (gathered from the ranks' slabs), so a checkpoint restarts on any rank
+// count; a continuation from it on the same ranks is the uninterrupted run bit for bit.
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -14,17 +15,17 @@
 
 namespace amphora::physics::ins_fem {
 
-/// The block of `solver` with `extra` appended to its history.
+/// The block of `solver` with `extra` appended to its history. Collective: every rank gathers,
+/// and every rank gets the block (the module hands it to the writer on one rank).
 template <class Solver>
 StateBlock flow_state_block(const Solver& solver, const std::vector<double>& extra) {
-  const auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver.state());
-  const auto oh =
-      Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver.previous_velocity());
+  constexpr int dim = Solver::dimension;
+  const auto& space = solver.distributed_space();
   std::vector<double> history = {solver.previous_dt(), static_cast<double>(solver.steps())};
   history.insert(history.end(), extra.begin(), extra.end());
   StateBlock b{"flow",
-               {{"state", std::vector<double>(sh.data(), sh.data() + sh.extent(0))},
-                {"u_old", std::vector<double>(oh.data(), oh.data() + oh.extent(0))}}};
+               {{"state", space.gather(solver.state(), dim + 1)},
+                {"u_old", space.gather(solver.previous_velocity(), dim)}}};
   if (solver.vans()) b.arrays.push_back({"eps", solver.void_fraction_history()});
   b.arrays.push_back({"history", std::move(history)});
   std::vector<double> pc = solver.preconditioner_state();
@@ -45,7 +46,7 @@ std::vector<double> restore_flow_block(Solver& solver, const StateBlock& b,
      : key == "eps"            ? eps
      : key == "preconditioner" ? preconditioner
                                : history) = v;
-  const long n = solver.n_dofs(), entries = (dim + 1) * n;
+  const long n = solver.n_global_dofs(), entries = (dim + 1) * n;
   const auto refuse = [&](const std::string& why) {
     throw std::runtime_error(owner + ": the checkpoint's flow block does not fit this scene (" +
                              why + ")");
@@ -63,8 +64,12 @@ std::vector<double> restore_flow_block(Solver& solver, const StateBlock& b,
   if (solver.vans() && static_cast<long>(eps.size()) != 3 * n + 1)
     refuse(std::to_string(eps.size()) + " void fraction history entries, the scene has " +
            std::to_string(3 * n + 1));
-  solver.set_state(state);
-  solver.set_history(u_old, history[0], static_cast<long>(history[1]));
+  if (static_cast<long>(u_old.size()) != dim * n)
+    refuse(std::to_string(u_old.size()) + " previous velocity entries, the scene has " +
+           std::to_string(dim * n));
+  const auto& space = solver.distributed_space();
+  solver.set_state(space.local_entries(state, dim + 1));
+  solver.set_history(space.local_entries(u_old, dim), history[0], static_cast<long>(history[1]));
   if (solver.vans()) solver.set_void_fraction_history(eps);
   solver.set_preconditioner_state(preconditioner);
   return std::vector<double>(history.begin() + 2, history.end());

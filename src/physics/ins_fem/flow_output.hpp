@@ -6,6 +6,7 @@
 
 #include <Kokkos_Core.hpp>
 
+#include "base/communicator.hpp"
 #include "base/output_block.hpp"
 
 namespace amphora::physics::ins_fem {
@@ -20,7 +21,8 @@ long node_dof(const Lattice& lat, long node) {
 }
 
 /// Block `name` of the solver's nodes and fields u, v, (w,) p; the pressure times
-/// pressure_scale (1: the solver's kinematic pressure; rho: pascals).
+/// pressure_scale (1: the solver's kinematic pressure; rho: pascals). On several ranks each
+/// writes its slab, the shared node layer included so the pieces join, as "<name>_<rank>".
 template <int dim, class Solver>
 OutputBlock flow_output_block(const Solver& solver, const std::string& name,
                               double pressure_scale = 1.0) {
@@ -29,8 +31,9 @@ OutputBlock flow_output_block(const Solver& solver, const std::string& name,
   const long n_nodes = lat.n_nodes(), n = solver.n_dofs();
   auto xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), space.coordinates());
   auto sh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), solver.state());
+  const Communicator& comm = solver.distributed_space().communicator();
   OutputBlock b;
-  b.name = name;
+  b.name = comm.size() > 1 ? name + "_" + std::to_string(comm.rank()) : name;
   b.curvilinear = true;
   for (int d = 0; d < dim; ++d) b.nodes[d] = lat.nodes[d];
   b.x.resize(n_nodes);

@@ -4,8 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
-#include "kernels/reductions.hpp"
 #include "physics/ins_fem/flow_checkpoint.hpp"
 #include "physics/ins_fem/flow_failure.hpp"
 #include "physics/ins_fem/flow_output.hpp"
@@ -51,11 +51,8 @@ class InsModule final : public Module {
   using Solver = InsSolver<dim, Exec>;
   using Vector = typename Solver::Vector;
 
-  InsModule(const Parameters& p, const Communicator& comm) : flow_(p.string("flow")) {
-    if (comm.size() > 1)
-      throw std::invalid_argument(
-          "ins_fem runs on one rank (the distributed space is not wired in yet); run without "
-          "mpirun or with -n 1");
+  /// On several ranks the box is split into slabs along its last direction (InsSolver).
+  InsModule(const Parameters& p, const Communicator& comm) : flow_(p.string("flow")), comm_(comm) {
     InsOptions o;
     o.nu = p.real("nu");
     o.grad_div = p.real("grad_div");
@@ -76,7 +73,7 @@ class InsModule final : public Module {
     steady_ = flow_ == "kovasznay" || flow_ == "channel";
     solver_ = std::make_unique<Solver>(
         case_mesh<dim>(flow_, static_cast<int>(p.integer("cells")), p.real("deformation")),
-        static_cast<int>(p.integer("degree")), o);
+        static_cast<int>(p.integer("degree")), o, comm);
     solver_->set_state(initial_state());
     solver_->set_phase_times(&times_);
     energy_ = solver_->kinetic_energy();
@@ -84,21 +81,22 @@ class InsModule final : public Module {
 
   /// The initial state: the exact flow (Taylor-Green), its boundary values and rest
   /// (Kovasznay; the channel's inflow), rest with the lid's velocity on the top wall (cavity).
+  /// This rank's entries.
   std::vector<double> initial_state() const {
     const auto& s = solver_->space();
+    const auto& box = solver_->distributed_space().global_mesh();
     const double re = 1.0 / solver_->options().nu;
     return s.interpolate(
         [&](const mesh::hex::Point3& x, int c) {
           if (flow_ == "taylor_green_2d") return TaylorGreen2D{c, 1.0}.value(x.data());
           if (flow_ == "taylor_green_3d") return TaylorGreen3D{c}.value(x.data());
-          const bool boundary =
-              x[0] <= s.mesh().lower[0] + 1e-12 || x[0] >= s.mesh().upper[0] - 1e-12 ||
-              x[1] <= s.mesh().lower[1] + 1e-12 || x[1] >= s.mesh().upper[1] - 1e-12;
+          const bool boundary = x[0] <= box.lower[0] + 1e-12 || x[0] >= box.upper[0] - 1e-12 ||
+                                x[1] <= box.lower[1] + 1e-12 || x[1] >= box.upper[1] - 1e-12;
           if (!boundary || c == dim) return 0.0;
           if (flow_ == "kovasznay") return Kovasznay{c, re}.value(x.data());
           if (flow_ == "channel") return Poiseuille{c, 1.0 / re, 2.0}.value(x.data());
           // the regularised lid: u = 16 x^2 (1 - x)^2 on y = 1 (no corner singularity)
-          const bool lid = x[1] >= s.mesh().upper[1] - 1e-12;
+          const bool lid = x[1] >= box.upper[1] - 1e-12;
           return lid && c == 0 ? 16.0 * x[0] * x[0] * (1.0 - x[0]) * (1.0 - x[0]) : 0.0;
         },
         dim + 1);
@@ -143,7 +141,7 @@ class InsModule final : public Module {
       << last_.linear_iterations << " iterations)";
     failure_ = m.str();
   }
-  long long work_per_step() const override { return (dim + 1) * solver_->n_dofs(); }
+  long long work_per_step() const override { return (dim + 1) * solver_->n_global_dofs(); }
   std::string work_unit() const override { return "DoF-steps"; }
 
   std::vector<OutputBlock> output(double) const override;
@@ -152,10 +150,7 @@ class InsModule final : public Module {
     return has_exact() ? "velocity_l2_error" : "kinetic_energy";
   }
   std::optional<NonFiniteReport> find_nonfinite() const override {
-    const long i = kernels::reduce::first_nonfinite(Exec(), solver_->state());
-    if (i >= 0) return flow_report_at<dim>(*solver_, i, "");
-    if (failure_.empty()) return std::nullopt;
-    return flow_report_at<dim>(*solver_, largest_free_velocity<dim>(*solver_), failure_);
+    return find_flow_failure<dim>(*solver_, failure_);
   }
   std::vector<StateBlock> state() const override;
   void restore(const std::vector<StateBlock>& blocks) override;
@@ -166,7 +161,8 @@ class InsModule final : public Module {
   bool has_exact() const {
     return flow_ == "taylor_green_2d" || flow_ == "kovasznay" || flow_ == "channel";
   }
-  /// Velocity and pressure (mean-free) L2 errors against the exact flow at time t.
+  /// Velocity and pressure (mean-free) L2 errors against the exact flow at time t: each rank's
+  /// cells' integrals, summed over the ranks.
   template <class Exact>
   std::pair<double, double> errors(Exact exact) const {
     const Exec exec;
@@ -179,14 +175,16 @@ class InsModule final : public Module {
       eu += e * e;
     }
     exact.component = dim;
-    const double ep =
-        solvers::matrix_free::error_norms(exec, solver_->space(), solver_->pressure(), exact)
-            .l2_mean_free();
-    return {std::sqrt(eu), ep};
+    auto ep = solvers::matrix_free::error_norms(exec, solver_->space(), solver_->pressure(), exact);
+    ep.l2 = std::sqrt(comm_.sum(ep.l2 * ep.l2));
+    ep.integral = comm_.sum(ep.integral);
+    ep.volume = comm_.sum(ep.volume);
+    return {std::sqrt(comm_.sum(eu)), ep.l2_mean_free()};
   }
 
  private:
   std::string flow_;
+  Communicator comm_;
   std::unique_ptr<Solver> solver_;
   double max_cfl_ = 1.0, energy_ = 0.0, decay_rate_ = 0.0;
   bool steady_ = false, solved_ = false;
@@ -229,9 +227,12 @@ std::vector<OutputBlock> InsModule<dim>::output(double) const {
 
 template <int dim>
 std::vector<StateBlock> InsModule<dim>::state() const {
-  return {flow_state_block(*solver_, {energy_, decay_rate_, solved_ ? 1.0 : 0.0,
-                                      static_cast<double>(last_.linear_iterations),
-                                      solver_->multigrid_active() ? 1.0 : 0.0})};
+  // gathered on every rank (collective), written from rank 0 (the whole box's DoF order)
+  StateBlock b = flow_state_block(*solver_, {energy_, decay_rate_, solved_ ? 1.0 : 0.0,
+                                             static_cast<double>(last_.linear_iterations),
+                                             solver_->multigrid_active() ? 1.0 : 0.0});
+  if (!comm_.is_root()) return {};
+  return {std::move(b)};
 }
 
 template <int dim>
