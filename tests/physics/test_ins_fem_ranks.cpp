@@ -29,7 +29,7 @@ struct FlowRun {
 /// `steps` steps of dt from the state `initial` gives on the rank's slab.
 template <int dim, class Initial>
 FlowRun run(const mesh::hex::StructuredHexMesh<dim>& m, int k, const InsOptions& o,
-        const Communicator& comm, Initial initial, int steps, double dt) {
+            const Communicator& comm, Initial initial, int steps, double dt) {
   InsSolver<dim, TestExecSpace> s(m, k, o, comm);
   s.set_state(s.space().interpolate(initial, dim + 1));
   FlowRun r;
@@ -39,8 +39,8 @@ FlowRun run(const mesh::hex::StructuredHexMesh<dim>& m, int k, const InsOptions&
     r.iterations.push_back(rep.linear_iterations);
     if (s.backflow()) r.backflow = std::max(r.backflow, s.backflow()->coefficient_sum());
   }
-  r.diagnostics = {s.kinetic_energy(), s.viscous_dissipation(), s.divergence_rms(),
-                   s.max_speed(), s.cfl(dt)};
+  r.diagnostics = {s.kinetic_energy(), s.viscous_dissipation(), s.divergence_rms(), s.max_speed(),
+                   s.cfl(dt)};
   r.state = s.distributed_space().gather(s.state(), dim + 1);
   return r;
 }
