@@ -283,8 +283,8 @@ class CfdDemModule final : public physics::Module {
         single_(p.string("bed") == "single") {
     if (comm.size() > 1)
       throw std::invalid_argument(
-          "cfd_dem runs on one rank (the flow solver's distributed space is not wired in yet); "
-          "run without mpirun or with -n 1");
+          "cfd_dem runs on one rank (the flow runs on slabs, but the void fraction and the "
+          "particle forces are not exchanged across them yet); run without mpirun or with -n 1");
     if (jet_width_ > width_ || (jet_velocity_ > 0.0 && !(jet_width_ > 0.0)))
       throw std::invalid_argument("cfd_dem: jet_width " + std::to_string(jet_width_) +
                                   " m must lie in (0, column_width " + std::to_string(width_) +
