@@ -22,7 +22,9 @@ TEST(CfdDemSettlingCorrected, WithinTwoPercentOfTheDragLaw) {
             "Re %g, h = %g d, %d cells down: fall / drag law - 1 %+.3f %%, water %.3e "
             "(undisturbed %.3e)\n",
             re, cells, 3 + k, 100 * (r.speed[k] / r.terminal - 1), r.raw[k], r.fluid[k]);
-      if (cells == 10.0) EXPECT_NEAR(r.speed[1] / r.terminal, 1.0, 0.02) << "Re " << re;
+      if (cells == 10.0) {
+        EXPECT_NEAR(r.speed[1] / r.terminal, 1.0, 0.02) << "Re " << re;
+      }
     }
 }
 
