@@ -25,6 +25,8 @@
 #include "mesh/hex/distributed_qk_space.hpp"
 #include "mesh/hex/qk_space.hpp"
 #include "physics/ins_fem/backflow_stabilisation.hpp"
+#include "physics/ins_fem/ins_options.hpp"
+#include "physics/ins_fem/step_operators.hpp"
 #include "physics/phase_times.hpp"
 #include "solvers/gmres.hpp"
 #include "solvers/matrix_free/distributed_operator.hpp"
@@ -32,93 +34,6 @@
 #include "solvers/matrix_free/oseen_multigrid.hpp"
 
 namespace amphora::physics::ins_fem {
-
-enum class InsPreconditioner { multigrid, jacobi };
-
-/// The equations: incompressible Navier-Stokes, or the volume-averaged ones of unresolved
-/// CFD-DEM (VANS) with a void fraction, model A or B (kernels::sumfac::VansPoint).
-enum class FlowModel { navier_stokes, vans_a, vans_b };
-
-/// VANS: how the continuity's d eps / dt is taken from the void fraction's history. bdf: the
-/// velocity's BDF2. filtered: the second-order four-level difference that is blind to a
-/// period-two-step alternation, (eps^(n+1) - eps^n / 2 - eps^(n-1) + eps^(n-2) / 2) / dt on
-/// uniform steps (BDF2 while the history is short or the step changes): docs/cfd_dem.md.
-enum class VoidFractionRate { bdf, filtered };
-
-struct InsOptions {
-  FlowModel model = FlowModel::navier_stokes;
-  double nu = 0.01;       ///< kinematic viscosity
-  double grad_div = 0.0;  ///< grad-div weight gamma
-  /// beta of the backflow stabilisation on open (Neumann) faces (backflow_stabilisation.hpp);
-  /// 0: none, the plain do-nothing condition.
-  double backflow = 0.0;
-  /// VANS: the continuity's -d eps / dt; false drops it (Lethe's "void fraction time
-  /// derivative"), for beds that barely move: docs/cfd_dem.md.
-  bool void_fraction_time_derivative = true;
-  VoidFractionRate void_fraction_rate = VoidFractionRate::bdf;
-  /// (2 / dt)^2 in the SUPG/PSPG parameter tau. Off by default: with it, tau ~ dt / 2 shrinks
-  /// with the step and the pressure stabilisation with it (Bochev, Gunzburger & Shadid 2004,
-  /// CMAME 193); the 2D Taylor-Green vortex then lost up to one order of convergence in space
-  /// (tests/physics/test_ins_fem.cpp; docs/ins.md).
-  bool transient_tau = false;
-  double tolerance = 1e-9;  ///< GMRES: relative reduction of each step's residual
-  int max_iterations = 5000;
-  int restart = 60;
-  InsPreconditioner preconditioner = InsPreconditioner::multigrid;
-  solvers::matrix_free::OseenMultigridOptions multigrid;
-  solvers::matrix_free::GeometryMode geometry = solvers::matrix_free::GeometryMode::stored;
-};
-
-/// What one step (or one Picard iteration) of the solver did.
-struct InsStepReport {
-  int linear_iterations = 0;
-  bool converged = false;
-  double residual = 0.0;  ///< final linear residual
-  /// The multigrid failed to converge within one GMRES cycle and this step (and the run from
-  /// here on) fell back to point Jacobi.
-  bool fell_back = false;
-};
-
-/// The phases a step's time is booked to (PhaseTimes indices).
-/// smoother: the V-cycles less their coarse solves (smoothing, residuals, transfers), or the
-/// Jacobi preconditioner; coarse: the multigrid's coarsest level.
-enum InsPhase { ins_setup = 0, ins_operator = 1, ins_smoother = 2, ins_coarse = 3, ins_other = 4 };
-inline std::vector<std::string> ins_phase_names() {
-  return {"setup", "operator", "smoother", "coarse solve", "other"};
-}
-
-/// An operator or preconditioner whose applications are booked to a phase (the time before
-/// each, since the last lap, to ins_other).
-template <class Op>
-struct TimedApply {
-  const Op* op;
-  PhaseTimes* times;
-  int phase;
-  template <class E, class X, class Y>
-  void apply(const E& exec, const X& x, const Y& y) const {
-    if (times) times->lap(ins_other);
-    op->apply(exec, x, y);
-    if (times) times->lap(phase);
-  }
-};
-
-/// An operator plus the backflow term of the open faces (nullptr: the operator alone) on the
-/// slabs of a DistributedQkSpace: x's ghost layer from its owners, then both terms on this
-/// rank's cells and faces, then the shared layer's partial sums added.
-template <class Space, class Op, class Backflow>
-struct WithBackflow {
-  const Space* space;
-  const Op* op;
-  const Backflow* backflow;
-  template <class E, class X, class Y>
-  void apply(const E& exec, const X& x, const Y& y) const {
-    const int nc = op->options().components;
-    space->update_ghosts(exec, x, nc);
-    op->apply(exec, x, y);
-    if (backflow) backflow->apply_add(exec, x, y);
-    space->compress_add(exec, y, nc, op->constrained_components());
-  }
-};
 
 template <int dim, class ExecSpace>
 class InsSolver {
