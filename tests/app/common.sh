@@ -50,15 +50,15 @@ same_h5() {
 }
 
 # close_csv A B [REL]: same shape, every number equal to REL (default 1e-12) relative.
-close_csv() {
-  paste -d'\n' "$1" "$2" | awk -F, -v rel="${3:-1e-12}" '
+close_csv() {  # A B [REL [ABS]]: every value within REL relative or ABS absolute
+  paste -d'\n' "$1" "$2" | awk -F, -v rel="${3:-1e-12}" -v abs="${4:-0}" '
     NR % 2 == 1 { n = split($0, a, ","); next }
     { m = split($0, b, ","); if (m != n) { print "shape differs at row " NR/2; bad = 1; exit }
       for (i = 1; i <= n; ++i) {
         if (a[i] == b[i]) continue
         x = a[i] + 0; y = b[i] + 0; d = x - y; if (d < 0) d = -d
         s = (x < 0 ? -x : x); t = (y < 0 ? -y : y); if (t > s) s = t
-        if (d > rel * s) { print "row " NR/2 " column " i ": " a[i] " vs " b[i]; bad = 1 }
+        if (d > rel * s && d > abs) { print "row " NR/2 " column " i ": " a[i] " vs " b[i]; bad = 1 }
       } }
     END { exit bad }' || fail "$1 and $2 differ beyond ${3:-1e-12} relative"
 }

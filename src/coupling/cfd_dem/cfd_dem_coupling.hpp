@@ -25,6 +25,7 @@
 #include "coupling/cfd_dem/particle_mesh.hpp"
 #include "coupling/cfd_dem/self_induced_velocity.hpp"
 #include "coupling/cfd_dem/void_fraction.hpp"
+#include "base/communicator.hpp"
 #include "kernels/blas1.hpp"
 #include "physics/dem/dem_system.hpp"
 #include "physics/ins_fem/ins_solver.hpp"
@@ -105,7 +106,7 @@ class CfdDemCoupling {
       : flow_(flow),
         dem_(dem),
         options_(options),
-        void_fraction_(flow.space(), options.void_fraction),
+        void_fraction_(flow.distributed_space(), options.void_fraction),
         n_(flow.n_dofs()),
         model_b_(flow.options().model == physics::ins_fem::FlowModel::vans_b) {
     if (!flow.vans())
@@ -121,6 +122,7 @@ class CfdDemCoupling {
       throw std::invalid_argument("cfd_dem: dem_substeps must be at least 1, got " +
                                   std::to_string(options.dem_substeps));
     warn_unsmoothed_large_particles();
+    check_split();
     if (options.self_induced_correction)  // throws unless Q1
       self_ = self_induced_velocity<ExecSpace>(void_fraction_.basis(),
                                                options.fluid.viscosity / options.fluid.density);
@@ -183,17 +185,25 @@ class CfdDemCoupling {
 
   // (public for CUDA: extended lambdas may not live in private member functions)
 
-  /// The void fraction of the particles now, to the flow.
+  /// The void fraction of the particles now, to the flow. On several ranks the particles first
+  /// move to the ranks whose slabs hold them (DemSystem::redistribute), so that each spreads
+  /// into and samples its own cells.
   void update_void_fraction(const ExecSpace& exec) {
+    if (several_ranks() && (options_.move_particles || !started_)) dem_.redistribute();
     const Set& p = dem_.particles();
-    const auto r = void_fraction_.compute(exec, p.x, p.radius, p.n_owned, eps_);
+    std::array<bool, 3> own_images;
+    for (int d = 0; d < 3; ++d)
+      own_images[d] = dem_.decomposition().neighbor(d, 0) == comm().rank();
+    const auto r = void_fraction_.compute(exec, p.x, p.radius, p.n_owned, eps_,
+                                          p.n_owned + p.n_ghost, own_images);
     if (!r.converged)
       throw std::runtime_error("cfd_dem: the void fraction's projection did not converge");
     check_void_fraction(exec);
     flow_.set_void_fraction(eps_);
   }
 
-  /// Throws std::runtime_error naming the node (and the step) where eps leaves (0, 1].
+  /// Throws StepFailure naming the node (and the step) where eps leaves (0, 1], on every rank
+  /// alike. Collective.
   void check_void_fraction(const ExecSpace& exec) const {
     using Loc = Kokkos::MinLoc<double, int>;
     using Max = Kokkos::MaxLoc<double, int>;
@@ -213,9 +223,18 @@ class CfdDemCoupling {
           if (e(i) > a.val) a.val = e(i), a.loc = i;
         },
         Max(hi));
-    if (lo.val > 0.0 && hi.val <= 1.0 + 1e-9) return;
-    const bool low = !(lo.val > 0.0);
-    report_void_fraction(low ? lo.val : hi.val, low ? lo.loc : hi.loc);
+    const double low = comm().min(lo.val), high = comm().max(hi.val);
+    if (low > 0.0 && high <= 1.0 + 1e-9) return;
+    const bool below = !(low > 0.0);
+    const bool mine = below ? lo.val == low : hi.val == high;
+    // The lowest rank holding the extreme names it.
+    const int root = static_cast<int>(-comm().max(mine ? -static_cast<long long>(comm().rank())
+                                                       : -static_cast<long long>(comm().size())));
+    const int node = below ? lo.loc : hi.loc;
+    const std::string what = comm().broadcast(
+        comm().rank() == root ? void_fraction_message(below ? low : high, node) : std::string(),
+        root);
+    throw StepFailure(what, "eps", comm().rank() == root ? node : -1);
   }
 
   /// The fluid's velocity, kinematic pressure gradient and void fraction at the particles.
@@ -316,6 +335,7 @@ class CfdDemCoupling {
     if (options_.drag_coupling != DragCoupling::explicit_load) return;
     kernels::blas1::fill(exec, load_, 0.0);
     spread(exec, void_fraction_.basis(), drag, 3, p.x, n, load_);
+    void_fraction_.slabs().compress_add(exec, load_, 3, 0);
   }
 
   /// The semi-implicit exchange at the new positions: beta_p / rho to the drag field (over
@@ -349,6 +369,8 @@ class CfdDemCoupling {
     kernels::blas1::fill(exec, drag_, 0.0);
     spread(exec, void_fraction_.basis(), bv, 3, p.x, n, load_);
     spread(exec, void_fraction_.basis(), b1, 1, p.x, n, drag_);
+    void_fraction_.slabs().compress_add(exec, load_, 3, 0);
+    void_fraction_.slabs().compress_add(exec, drag_, 1, 0);
     const Vector dr = drag_, m = void_fraction_.basis_integrals();
     Kokkos::parallel_for(
         "amphora::cfd_dem::drag_field", kernels::RangePolicy<ExecSpace>(exec, 0, int(n_)),
@@ -356,7 +378,7 @@ class CfdDemCoupling {
   }
 
  private:
-  [[noreturn]] void report_void_fraction(double value, int node) const {
+  std::string void_fraction_message(double value, int node) const {
     const std::vector<double> x =
         flow_.space().interpolate([](const mesh::hex::Point3& p, int c) { return p[c]; }, 3);
     std::ostringstream v, m;
@@ -366,8 +388,50 @@ class CfdDemCoupling {
       << ": particles too large or too dense for the cells; set void_fraction "
          "smoothing_length (about 2 d; a lone sphere on a line of nodes needs 1.5 cells) or "
          "use larger cells";
-    throw StepFailure(m.str(), "eps", node);
+    return m.str();
   }
+  const Communicator& comm() const { return void_fraction_.slabs().communicator(); }
+  bool several_ranks() const { return comm().size() > 1; }
+  /// On several ranks the DEM's subdomains must be the flow's slabs (DemConfig::layout) and,
+  /// for QCM, its ghosts must reach over a reference sphere and a particle radius.
+  void check_split() const {
+    if (!several_ranks()) return;
+    const auto& slabs = void_fraction_.slabs();
+    const auto& m = slabs.global_mesh();
+    const double h = (m.upper[2] - m.lower[2]) / m.cells[2];
+    const double lo = m.lower[2] + h * slabs.first_cell(), hi = m.lower[2] + h * slabs.end_cell();
+    const auto& d = dem_.decomposition();
+    const double dlo = d.lo(comm().rank())[2], dhi = d.hi(comm().rank())[2];
+    if (std::abs(dlo - lo) > 1e-9 * h || std::abs(dhi - hi) > 1e-9 * h)
+      throw std::invalid_argument(
+          "cfd_dem: on several ranks the DEM's subdomains must be the flow's slabs along z "
+          "(DemConfig::layout: the flow's cells, split along z only); rank " +
+          std::to_string(comm().rank()) + " has z in [" + std::to_string(dlo) + ", " +
+          std::to_string(dhi) + ") against the flow's [" + std::to_string(lo) + ", " +
+          std::to_string(hi) + ")");
+    if (options_.void_fraction.method != VoidFractionMethod::qcm) return;
+    const double reach = qcm_reach();
+    if (dem_.halo_width() < reach)
+      throw std::invalid_argument("cfd_dem: QCM on several ranks needs the DEM's ghosts to reach " +
+                                  std::to_string(reach) + " m (DemConfig::min_halo_width), not " +
+                                  std::to_string(dem_.halo_width()) + " m");
+  }
+
+ public:
+  /// How far QCM's reference spheres reach past a cell: their radius and a particle's.
+  double qcm_reach() const {
+    return qcm_reach(flow_.distributed_space().global_mesh(), options_.void_fraction,
+                     dem_.config().max_radius);
+  }
+  static double qcm_reach(const mesh::hex::StructuredHexMesh<3>& m, const VoidFractionOptions& o,
+                          double max_radius) {
+    double cell = 1.0;
+    for (int a = 0; a < 3; ++a) cell *= (m.upper[a] - m.lower[a]) / m.cells[a];
+    const double R = o.qcm_radius > 0 ? o.qcm_radius : std::cbrt(3.0 * cell / (4.0 * M_PI));
+    return R + max_radius;
+  }
+
+ private:
   void check_cfl() const {
     const double c = flow_.cfl(fluid_dt());
     if (c <= options_.max_cfl) return;
@@ -387,7 +451,7 @@ class CfdDemCoupling {
     double h = 1e300;
     for (int a = 0; a < 3; ++a) h = std::min(h, (m.upper[a] - m.lower[a]) / m.cells[a]);
     const double d = 2.0 * dem_.config().max_radius;
-    if (d > h)
+    if (d > h && comm().is_root())
       std::cerr << "cfd_dem: warning: particles of d = " << d << " are " << d / h
                 << " times the smallest cell (" << h
                 << ") and PCM has no smoothing; set void_fraction smoothing_length (about 2 d)\n";

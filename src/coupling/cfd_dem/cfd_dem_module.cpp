@@ -229,10 +229,11 @@ std::pair<double, double> height_and_volume_sums(const Exec& exec, const Set& p)
   return {z, volume};
 }
 
-/// The owned particles' mean vertical velocity within `half` of the mid-plane x = c (the
-/// spout) and outside it (the annulus), and the highest particle's centre.
+/// Over the owned particles: the sum of the vertical velocities within `half` of the mid-plane
+/// x = c (the spout) and their count, the sum of all vertical velocities, and the highest
+/// particle's centre.
 template <class Set>
-std::array<double, 3> spout_velocities(const Exec& exec, const Set& p, double c, double half) {
+std::array<double, 4> spout_sums(const Exec& exec, const Set& p, double c, double half) {
   const auto x = p.x;
   const auto v = p.v;
   double w_in = 0.0, n_in = 0.0, w_all = 0.0, top = 0.0;
@@ -252,8 +253,7 @@ std::array<double, 3> spout_velocities(const Exec& exec, const Set& p, double c,
   Kokkos::parallel_reduce(
       "amphora::cfd_dem::top", all,
       KOKKOS_LAMBDA(int i, double& m) { m = x(i, 2) > m ? x(i, 2) : m; }, Kokkos::Max<double>(top));
-  const double n_out = p.n_owned - n_in;
-  return {n_in > 0 ? w_in / n_in : 0.0, n_out > 0 ? (w_all - w_in) / n_out : 0.0, top};
+  return {w_in, n_in, w_all, p.n_owned > 0 ? top : -1e300};
 }
 
 /// Sum of column c of an n x 3 particle field (forces, velocities) over its first n rows.
@@ -269,7 +269,8 @@ double column_sum(const Exec& exec, const Field& f, int n, int c) {
 class CfdDemModule final : public physics::Module {
  public:
   CfdDemModule(const Parameters& p, const Communicator& comm)
-      : width_(p.real("column_width")),
+      : comm_(comm),
+        width_(p.real("column_width")),
         depth_(column_depth(p)),
         height_(p.real("column_height")),
         rho_(p.real("fluid_density")),
@@ -281,20 +282,18 @@ class CfdDemModule final : public physics::Module {
         jet_velocity_(p.real("jet_velocity")),
         sides_(p.string("fluid_sides")),
         single_(p.string("bed") == "single") {
-    if (comm.size() > 1)
-      throw std::invalid_argument(
-          "cfd_dem runs on one rank (the flow runs on slabs, but the void fraction and the "
-          "particle forces are not exchanged across them yet); run without mpirun or with -n 1");
     if (jet_width_ > width_ || (jet_velocity_ > 0.0 && !(jet_width_ > 0.0)))
       throw std::invalid_argument("cfd_dem: jet_width " + std::to_string(jet_width_) +
                                   " m must lie in (0, column_width " + std::to_string(width_) +
                                   " m] where jet_velocity is set");
-    dem_ = std::make_unique<physics::dem::DemModule>(dem_parameters(p), comm);
-    if (single_) release_sphere(p);
-    flow_ = std::make_unique<Flow>(column_mesh(p), static_cast<int>(p.integer("degree")),
-                                   flow_options(p));
-    flow_->set_state(initial_state());
+    const auto mesh = column_mesh(p);
     const CfdDemOptions o = coupling_options(p);
+    dem_ = std::make_unique<physics::dem::DemModule>(dem_parameters(p), comm,
+                                                     dem_split(mesh, o, p, comm));
+    if (single_) release_sphere(p);
+    flow_ =
+        std::make_unique<Flow>(mesh, static_cast<int>(p.integer("degree")), flow_options(p), comm);
+    flow_->set_state(initial_state());
     substeps_ = o.dem_substeps;
     coupling_ = std::make_unique<CfdDemCoupling<Exec>>(*flow_, dem_->system(), o);
     coupling_->set_phase_times(&times_);
@@ -304,12 +303,28 @@ class CfdDemModule final : public physics::Module {
     if (o.self_induced_correction) warn_if_dense(d);
   }
 
+  /// On several ranks the particles are split as the flow is, in slabs of its cells along z,
+  /// and with QCM their ghosts reach over a reference sphere (CfdDemCoupling::check_split).
+  static physics::dem::DemSplit dem_split(const mesh::hex::StructuredHexMesh<3>& mesh,
+                                          const CfdDemOptions& o, const Parameters& p,
+                                          const Communicator& comm) {
+    physics::dem::DemSplit s;
+    if (comm.size() == 1) return s;
+    s.layout.cells = mesh.cells;
+    s.layout.split = {false, false, true};
+    if (o.void_fraction.method == VoidFractionMethod::qcm)
+      s.min_halo_width =
+          CfdDemCoupling<Exec>::qcm_reach(mesh, o.void_fraction, 0.5 * p.real("particle_diameter"));
+    return s;
+  }
+
   /// The self-induced correction is for lone or dilute particles (docs/cfd_dem.md): one line
   /// when the particles fill more than 5 % of the column above the distributor.
   void warn_if_dense(double d) const {
-    const double volume = height_and_volume_sums(Exec(), dem_->system().particles()).second;
+    const double volume =
+        comm_.sum(height_and_volume_sums(Exec(), dem_->system().particles()).second);
     const double solids = volume / (width_ * depth_ * (height_ - floor_));
-    if (solids <= 0.05) return;
+    if (solids <= 0.05 || !comm_.is_root()) return;
     std::ostringstream line;
     line.precision(3);
     line << "cfd_dem: warning: self_induced_correction is meant for lone or dilute particles, "
@@ -400,26 +415,25 @@ class CfdDemModule final : public physics::Module {
 
   std::optional<physics::NonFiniteReport> find_nonfinite() const override {
     if (auto bad = dem_->find_nonfinite()) return bad;
-    const long i = kernels::reduce::first_nonfinite(Exec(), flow_->state());
-    if (i >= 0) return physics::ins_fem::flow_report_at<3>(*flow_, i, "");
-    if (failure_.empty()) return std::nullopt;
-    // eps out of range names its node; a step over the CFL limit or a failed solve, the
-    // place the flow is fastest.
-    if (failure_node_ < 0)
-      return physics::ins_fem::flow_report_at<3>(
-          *flow_, physics::ins_fem::largest_free_velocity<3>(*flow_), failure_);
-    physics::NonFiniteReport r =
-        physics::ins_fem::flow_report_at<3>(*flow_, failure_node_, failure_);
-    r.field = failure_field_;
-    return r;
+    // eps out of range names its node (on the rank that found it); a step over the CFL limit
+    // or a failed solve, the place the flow is fastest. Collective.
+    auto r = physics::ins_fem::find_flow_failure<3>(*flow_, failure_);
+    if (!r || failure_field_ != "eps" || !r->reason.size()) return r;
+    const int owner = static_cast<int>(comm_.min(failure_node_ >= 0 ? comm_.rank() : comm_.size()));
+    physics::NonFiniteReport e =
+        physics::ins_fem::flow_report_at<3>(*flow_, std::max(0L, failure_node_), failure_);
+    e.field = failure_field_;
+    return physics::ins_fem::flow_report_from<3>(*flow_, e, owner);
   }
 
   std::vector<StateBlock> state() const override {
     const StateBlock flow = physics::ins_fem::flow_state_block(
         *flow_,
         {static_cast<double>(coupling_->steps()), static_cast<double>(last_.linear_iterations)});
+    // the flow gathered on every rank, the particles on rank 0 (collective); rank 0 writes
     std::vector<StateBlock> blocks = {flow};
     for (auto& b : dem_->state()) blocks.push_back(std::move(b));
+    if (!comm_.is_root()) return {};
     return blocks;
   }
   /// The flow (with its void fraction's history and multigrid), the coupling's step count and
@@ -446,8 +460,13 @@ class CfdDemModule final : public physics::Module {
   Diagnostics phase_seconds() const override { return times_.seconds(); }
 
   /// The mean of the flow's pressure [Pa] over the plane at height z (midpoint probes, two per
-  /// cell and direction: exact for Q1).
+  /// cell and direction: exact for Q1), from the rank whose slab holds the plane. Collective.
   double plane_mean_pressure(double z) const {
+    const auto& slab = flow_->space().mesh();
+    const bool top =
+        flow_->distributed_space().end_cell() == flow_->distributed_space().global_mesh().cells[2];
+    if (!(z >= slab.lower[2] && (z < slab.upper[2] || (top && z <= slab.upper[2]))))
+      return comm_.sum(0.0);
     const auto& cells = flow_->space().mesh().cells;
     const int k = flow_->space().degree(), mx = 2 * cells[0] * k, my = 2 * cells[1] * k;
     using Points = Kokkos::View<double* [3], Kokkos::LayoutRight, Exec::memory_space>;
@@ -465,10 +484,11 @@ class CfdDemModule final : public physics::Module {
     const auto o = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), out);
     double s = 0.0;
     for (int i = 0; i < mx * my; ++i) s += o(i, 0);
-    return rho_ * s / (mx * my);
+    return comm_.sum(rho_ * s / (mx * my));
   }
 
  private:
+  Communicator comm_;
   double width_, depth_, height_, rho_, rho_p_, g_, u_in_, floor_, jet_width_, jet_velocity_;
   std::string sides_;
   bool single_ = false;
@@ -490,7 +510,8 @@ class CfdDemModule final : public physics::Module {
 Diagnostics CfdDemModule::diagnostics(double t) const {
   const Exec exec;
   const auto& particles = dem_->system().particles();
-  const auto [z_sum, volume] = height_and_volume_sums(exec, particles);
+  const auto [z_local, volume_local] = height_and_volume_sums(exec, particles);
+  const double z_sum = comm_.sum(z_local), volume = comm_.sum(volume_local);
   const long long n = dem_->system().global_count();
   const double area = width_ * depth_;
   const double weight = volume * (rho_p_ - rho_) * g_ / area;
@@ -507,9 +528,9 @@ Diagnostics CfdDemModule::diagnostics(double t) const {
       {"weight_pressure", weight},
       {"pressure_drop_ratio", weight > 0.0 ? drop / weight : 0.0},
       {"fluid_force_ratio",
-       weight > 0.0
-           ? column_sum(exec, coupling_->held_forces(), particles.n_owned, 2) / (weight * area)
-           : 0.0},
+       weight > 0.0 ? comm_.sum(column_sum(exec, coupling_->held_forces(), particles.n_owned, 2)) /
+                          (weight * area)
+                    : 0.0},
       {"bed_height", bed},
       {"bed_void_fraction", bed > 0.0 ? 1.0 - volume / (area * bed) : 1.0},
       {"richardson_zaki_void_fraction",
@@ -520,16 +541,18 @@ Diagnostics CfdDemModule::diagnostics(double t) const {
       {"cfl", flow_->cfl(flow_->previous_dt())},
       {"linear_iterations", static_cast<double>(last_.linear_iterations)}};
   if (jet_width_ > 0.0) {
-    const auto spout = spout_velocities(exec, particles, 0.5 * width_, 0.5 * jet_width_);
-    d.push_back({"spout_particle_velocity", spout[0]});
-    d.push_back({"annulus_particle_velocity", spout[1]});
-    d.push_back({"fountain_height", spout[2] - floor_});
+    const auto s = spout_sums(exec, particles, 0.5 * width_, 0.5 * jet_width_);
+    const double w_in = comm_.sum(s[0]), n_in = comm_.sum(s[1]), w_all = comm_.sum(s[2]);
+    const double n_out = static_cast<double>(n) - n_in;
+    d.push_back({"spout_particle_velocity", n_in > 0 ? w_in / n_in : 0.0});
+    d.push_back({"annulus_particle_velocity", n_out > 0 ? (w_all - w_in) / n_out : 0.0});
+    d.push_back({"fountain_height", comm_.max(s[3]) - floor_});
   }
   if (single_ && n > 0) {
-    const double w = column_sum(exec, particles.v, particles.n_owned, 2) / n;
+    const double w = comm_.sum(column_sum(exec, particles.v, particles.n_owned, 2)) / n;
     const CfdDemCoupling<Exec>::Vec water("amphora::cfd_dem::u_at_sphere", particles.n_owned);
     coupling_->velocity_at_particles(exec, water);  // the water at the sphere now
-    const double u = column_sum(exec, water, particles.n_owned, 2) / n;
+    const double u = comm_.sum(column_sum(exec, water, particles.n_owned, 2)) / n;
     d.push_back({"particle_velocity", w});
     d.push_back({"terminal_velocity", terminal_});
     d.push_back({"settling_velocity_ratio", -w / terminal_});

@@ -10,8 +10,10 @@
 // quadrature_centred.hpp, 3D): the solid's volume is taken at the quadrature points from each
 // particle's overlap with a reference sphere there, and (1, v) - (solid, v) is projected the
 // same way. Cartesian cells only.
+#include <array>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Kokkos_Core.hpp>
@@ -21,6 +23,7 @@
 #include "coupling/cfd_dem/quadrature_centred.hpp"
 #include "kernels/sumfac/qk_point_basis.hpp"
 #include "kernels/sumfac/quadrature_1d.hpp"
+#include "mesh/hex/distributed_qk_space.hpp"
 #include "mesh/hex/qk_space.hpp"
 #include "solvers/conjugate_gradient.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
@@ -50,107 +53,153 @@ template <int dim, class ExecSpace>
 class VoidFraction {
  public:
   using Space = mesh::hex::QkSpace<dim, ExecSpace>;
+  using DistributedSpace = mesh::hex::DistributedQkSpace<dim, ExecSpace>;
   using Mem = typename ExecSpace::memory_space;
   using Vector = Kokkos::View<double*, Mem>;
   using Points = Kokkos::View<double* [3], Kokkos::LayoutRight, Mem>;
   using Operator = solvers::matrix_free::MatrixFreeOperator<dim, ExecSpace>;
 
-  /// Throws std::invalid_argument for curved cells, a negative length or QCM in 2D.
+  /// On the whole box of `space` (one rank). Throws std::invalid_argument for curved cells, a
+  /// negative length or QCM in 2D.
   VoidFraction(const Space& space, const VoidFractionOptions& options)
-      : space_(space), options_(options), length_(options.smoothing_length) {
-    if (!space.mesh().cartesian())
-      throw std::invalid_argument("void fraction: curved cells are not supported (Cartesian only)");
-    if (!(length_ >= 0))
-      throw std::invalid_argument("void fraction: smoothing length must be >= 0");
-    make_basis();
-    make_operators();
-    if (options.method == VoidFractionMethod::qcm) {
-      if constexpr (dim == 3) {
-        qcm_ = std::make_unique<QuadratureCentred<ExecSpace>>(basis_, options.qcm_radius);
-      } else {
-        throw std::invalid_argument("void fraction: qcm is 3D only");
-      }
-    }
+      : own_(std::make_unique<DistributedSpace>(space.mesh(), space.degree(),
+                                                Communicator(MPI_COMM_SELF))),
+        slabs_(own_.get()),
+        options_(options),
+        length_(options.smoothing_length) {
+    setup();
   }
-  // The operators point at space_: no copies, no moves.
+  /// On this rank's slab of `slabs` (which must outlive this): eps's owned entries and ghost
+  /// layer, its projection a CG over the ranks. Collective.
+  VoidFraction(const DistributedSpace& slabs, const VoidFractionOptions& options)
+      : slabs_(&slabs), options_(options), length_(options.smoothing_length) {
+    setup();
+  }
+  // The operators point at the slab's space: no copies, no moves.
   VoidFraction(const VoidFraction&) = delete;
   VoidFraction& operator=(const VoidFraction&) = delete;
 
-  /// eps of the first n particles (centres x, radii r); returns what CG did.
+  /// eps of the particles in rows [0, n) (centres x, radii r: this rank's own), its ghost
+  /// layer updated; returns what CG did. QCM also reads the ghost rows [n, rows) (another
+  /// rank's particles near the slab; own periodic images among them are skipped along the
+  /// directions with `own_images`). Collective.
   solvers::SolverResult compute(const ExecSpace& exec, const Points& x, const Vector& radius, int n,
-                                const Vector& eps) const {
+                                const Vector& eps, int rows = -1,
+                                const std::array<bool, 3>& own_images = {true, true, true}) const {
     const Vector b = rhs_;  // kept, like CG's work vectors: no allocation in a time step
-    kernels::blas1::copy(exec, mass_one_, b);
+    kernels::blas1::fill(exec, b, 0.0);
     if (qcm_) {
-      qcm_->load(exec, x, radius, n, b);
+      const int unseen = qcm_->load(exec, x, radius, n, rows < 0 ? n : rows, own_images, b);
+      const long long all = slabs_->communicator().sum(static_cast<long long>(unseen));
+      if (all > 0)
+        throw std::runtime_error("void fraction (qcm): " + std::to_string(all) +
+                                 " particle(s) share no volume with any reference sphere; raise "
+                                 "qcm_radius");
     } else {
       deposit(exec, x, radius, n, b);
     }
+    slabs_->compress_add(exec, b, 1, 0);
+    kernels::blas1::axpy(exec, 1.0, mass_one_, b);
     solvers::SolverControl control;
     control.relative_tolerance = options_.tolerance;
     control.max_iterations = 2000;
-    return solvers::conjugate_gradient(exec, *this, b, eps, control,
-                                       solvers::JacobiPreconditioner<Vector>{inverse_diagonal_},
-                                       solvers::LocalInnerProduct(), cg_work_);
+    const auto r = solvers::conjugate_gradient(
+        exec, *this, b, eps, control, solvers::JacobiPreconditioner<Vector>{inverse_diagonal_},
+        slabs_->inner_product(), cg_work_);
+    slabs_->update_ghosts(exec, eps);
+    return r;
   }
 
-  /// The integral of a Q_k field over the box.
+  /// The integral of a Q_k field over the box (its owned entries; collective).
   double integral(const ExecSpace& exec, const Vector& f) const {
-    return kernels::blas1::dot(exec, mass_one_, f);
+    return slabs_->dot(exec, mass_one_, f);
   }
 
   const kernels::sumfac::QkPointBasis<dim>& basis() const { return basis_; }
-  /// The integral of each basis function (the lumped mass; positive at every node).
+  /// The integral of each basis function (the lumped mass; positive at every node, the ghost
+  /// layer included).
   const Vector& basis_integrals() const { return mass_one_; }
+  const DistributedSpace& slabs() const { return *slabs_; }
 
-  /// y = (M + L^2 K) x (what CG applies).
+  /// y = (M + L^2 K) x (what CG applies; x's ghost layer updated first, y's owned entries
+  /// summed over the ranks).
   void apply(const ExecSpace& exec, const Vector& x, const Vector& y) const {
+    slabs_->update_ghosts(exec, x);
     laplace_->apply(exec, x, work_);
     mass_->apply(exec, x, y);
     kernels::blas1::axpy(exec, length_ * length_, work_, y);
+    slabs_->compress_add(exec, y, 1, 0);
   }
 
   /// b -= V_p phi_j(x_p) for the first n particles (atomic: the sums' order, and so the last
-  /// bits, follow the threads).
+  /// bits, follow the threads), this rank's partial sums.
   void deposit(const ExecSpace& exec, const Points& x, const Vector& radius, int n,
                const Vector& b) const {
     spread(exec, basis_, NegativeVolume<dim, Vector>{radius}, 1, x, n, b);
   }
 
  private:
-  void make_basis() {
-    const auto& mesh = space_.mesh();
-    basis_.lattice = space_.lattice();
-    for (int d = 0; d < dim; ++d) {
-      basis_.lower[d] = mesh.lower[d];
-      basis_.h[d] = (mesh.upper[d] - mesh.lower[d]) / mesh.cells[d];
+  void setup() {
+    const Space& space = slabs_->local();
+    if (!space.mesh().cartesian())
+      throw std::invalid_argument("void fraction: curved cells are not supported (Cartesian only)");
+    if (!(length_ >= 0))
+      throw std::invalid_argument("void fraction: smoothing length must be >= 0");
+    basis_ = point_basis(space.mesh(), space.lattice());
+    make_operators();
+    if (options_.method == VoidFractionMethod::qcm) {
+      if constexpr (dim == 3) {
+        const Space whole(slabs_->global_mesh(), space.degree());
+        qcm_ = std::make_unique<QuadratureCentred<ExecSpace>>(
+            point_basis(whole.mesh(), whole.lattice()), basis_, slabs_->first_cell(),
+            options_.qcm_radius);
+      } else {
+        throw std::invalid_argument("void fraction: qcm is 3D only");
+      }
     }
-    const auto gl = kernels::sumfac::gauss_lobatto(space_.degree() + 1);
-    for (int a = 0; a <= space_.degree(); ++a) basis_.nodes[a] = gl.points[a];
+  }
+
+  kernels::sumfac::QkPointBasis<dim> point_basis(
+      const mesh::hex::StructuredHexMesh<dim>& mesh,
+      const kernels::sumfac::QkLattice<dim>& lattice) const {
+    kernels::sumfac::QkPointBasis<dim> b;
+    b.lattice = lattice;
+    for (int d = 0; d < dim; ++d) {
+      b.lower[d] = mesh.lower[d];
+      b.h[d] = (mesh.upper[d] - mesh.lower[d]) / mesh.cells[d];
+    }
+    const auto gl = kernels::sumfac::gauss_lobatto(lattice.degree + 1);
+    for (int a = 0; a <= lattice.degree; ++a) b.nodes[a] = gl.points[a];
+    return b;
   }
 
   void make_operators() {
+    const Space& space = slabs_->local();
     typename Operator::Options o;
     o.constrained_components = 0;  // no boundary condition: the natural one
     o.kind = solvers::matrix_free::OperatorKind::mass;
-    mass_ = std::make_unique<Operator>(space_, o);
+    mass_ = std::make_unique<Operator>(space, o);
     o.kind = solvers::matrix_free::OperatorKind::laplace;
-    laplace_ = std::make_unique<Operator>(space_, o);
+    laplace_ = std::make_unique<Operator>(space, o);
     const ExecSpace exec;
-    const long n = space_.n_dofs();
+    const long n = space.n_dofs();
     work_ = Vector("amphora::cfd_dem::void_fraction_work", n);
     mass_one_ = Vector("amphora::cfd_dem::mass_one", n);
     rhs_ = Vector("amphora::cfd_dem::void_fraction_rhs", n);
     inverse_diagonal_ = Vector("amphora::cfd_dem::void_fraction_diagonal", n);
     kernels::blas1::fill(exec, work_, 1.0);
     mass_->apply(exec, work_, mass_one_);
+    slabs_->compress_add(exec, mass_one_, 1, 0);
+    slabs_->update_ghosts(exec, mass_one_);
     mass_->compute_diagonal(exec, inverse_diagonal_);
     laplace_->compute_diagonal(exec, work_);
     kernels::blas1::axpy(exec, length_ * length_, work_, inverse_diagonal_);
+    slabs_->compress_add(exec, inverse_diagonal_, 1, 0);
     kernels::blas1::reciprocal(exec, inverse_diagonal_);
   }
 
-  Space space_;
+  std::unique_ptr<DistributedSpace> own_;  // the one-rank split of a whole-box space
+  const DistributedSpace* slabs_;
   VoidFractionOptions options_;
   double length_;
   std::unique_ptr<QuadratureCentred<ExecSpace>> qcm_;

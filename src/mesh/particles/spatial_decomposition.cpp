@@ -1,22 +1,42 @@
 #include "mesh/particles/spatial_decomposition.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace amphora::mesh::particles {
 
 namespace {
-Index3 cells_of(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double w) {
+Index3 cells_of(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double w,
+                const DecompositionLayout& layout) {
   Index3 n;
-  for (int d = 0; d < 3; ++d) n[d] = std::max(1, static_cast<int>((hi[d] - lo[d]) / w));
+  for (int d = 0; d < 3; ++d)
+    n[d] =
+        layout.cells[d] > 0 ? layout.cells[d] : std::max(1, static_cast<int>((hi[d] - lo[d]) / w));
   return n;
+}
+
+/// Cells a block needs along the split directions to be at least w wide.
+int min_block_cells(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double w,
+                    const Index3& cells, const DecompositionLayout& layout) {
+  int m = 1;
+  for (int d = 0; d < 3; ++d)
+    if (layout.split[d] && layout.cells[d] > 0)
+      m = std::max(m, static_cast<int>(std::ceil(w / ((hi[d] - lo[d]) / cells[d]) - 1e-9)));
+  return m;
 }
 }  // namespace
 
 SpatialDecomposition::SpatialDecomposition(const std::array<double, 3>& lo,
                                            const std::array<double, 3>& hi, double min_width,
                                            const Communicator& comm,
-                                           const std::array<bool, 3>& periodic)
-    : comm_(comm), lo_(lo), hi_(hi), boxes_(cells_of(lo, hi, min_width), periodic, comm.size(), 1) {
+                                           const std::array<bool, 3>& periodic,
+                                           const DecompositionLayout& layout)
+    : comm_(comm),
+      lo_(lo),
+      hi_(hi),
+      boxes_(cells_of(lo, hi, min_width, layout), periodic, comm.size(),
+             min_block_cells(lo, hi, min_width, cells_of(lo, hi, min_width, layout), layout),
+             layout.split) {
   for (int d = 0; d < 3; ++d) h_[d] = (hi_[d] - lo_[d]) / boxes_.global_cells()[d];
 }
 

@@ -30,6 +30,13 @@ struct PeriodicWrap {
   }
 };
 
+/// The grid a SpatialDecomposition's subdomains are whole blocks of, where a caller sets it (a
+/// coupling whose mesh is split so: the flow's cells and slabs along z).
+struct DecompositionLayout {
+  std::array<int, 3> cells{0, 0, 0};  ///< cells per direction (0: as wide as min_width allows)
+  std::array<bool, 3> split{true, true, true};  ///< directions the ranks may be split along
+};
+
 struct OwnerMap {
   double lo[3], h[3];
   int cells[3], blocks[3];
@@ -51,10 +58,11 @@ struct OwnerMap {
 class SpatialDecomposition {
  public:
   /// Throws DecompositionError if the box cannot give every rank a subdomain at least
-  /// min_width wide in each split direction.
+  /// min_width wide in each split direction (of whole cells of `layout` where it sets them).
   SpatialDecomposition(const std::array<double, 3>& lo, const std::array<double, 3>& hi,
                        double min_width, const Communicator& comm,
-                       const std::array<bool, 3>& periodic = {false, false, false});
+                       const std::array<bool, 3>& periodic = {false, false, false},
+                       const DecompositionLayout& layout = {});
 
   const Communicator& comm() const { return comm_; }
   /// Subdomain of `rank` as [lo, hi) (the global box's upper faces are inclusive).

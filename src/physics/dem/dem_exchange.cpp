@@ -80,7 +80,8 @@ void DemSystem<ExecSpace>::remove_and_migrate() {
       leaving);
   if (!comm_.any(leaving > 0)) return;
 
-  // Force and torque are not carried: the force evaluation under way zeroes them again.
+  // Force and torque are not carried (but by redistribute): the force evaluation under way
+  // zeroes them again.
   forces_zeroed_ = false;
   const mesh::particles::OwnerMap owner = decomposition_.owner_map();
   kernels::grow_uninitialized(destination_, n, "amphora::dem::destination");
@@ -107,6 +108,7 @@ mesh::particles::ParticleFields<ExecSpace> DemSystem<ExecSpace>::migrating_field
   f.add(p_.x).add(p_.v).add(p_.omega).add(p_.radius).add(p_.mass).add(p_.inertia);
   f.add(p_.material).add(p_.gid).add(wall_shear_).add(rec_gid_).add(rec_shear_).add(x_build_);
   if (external_.extent(0) > 0) f.add(external_);
+  if (carry_forces_) f.add(p_.force).add(p_.torque);
   return f;
 }
 
@@ -151,7 +153,7 @@ void DemSystem<ExecSpace>::build_ghosts() {
   p_.n_ghost = 0;
   const int n = p_.n_owned;
   // What a ghost needs, chosen where the lists are built (x_build_).
-  p_.n_ghost = halo_.build(exec_, decomposition_, n, ghost_width_, [&](int capacity) {
+  p_.n_ghost = halo_.build(exec_, decomposition_, n, halo_width_, [&](int capacity) {
     p_.reserve(capacity);
     kernels::grow_preserving(x_build_, capacity);
     mesh::particles::ParticleFields<ExecSpace> record;

@@ -76,7 +76,8 @@ ParamTable parameter_table() {
       }};
 }
 
-DemModule::DemModule(const Parameters& p, const Communicator& comm) : comm_(comm) {
+DemModule::DemModule(const Parameters& p, const Communicator& comm, const DemSplit& split)
+    : comm_(comm) {
   drum_ = p.string("geometry") == "drum";
   gravity_ = p.real("gravity");
   radii_ = {p.real("particle_radius"), p.real("radius_spread")};
@@ -112,6 +113,8 @@ DemModule::DemModule(const Parameters& p, const Communicator& comm) : comm_(comm
   c.max_radius = radii_.max();
   c.skin = p.real("verlet_skin") * 2 * radii_.max();
   c.max_contacts = static_cast<int>(p.integer("max_contacts"));
+  c.layout = split.layout;
+  c.min_halo_width = split.min_halo_width;
   auto plane = [](int axis, double sign, double at) {
     Wall w;
     w.type = kPlane;

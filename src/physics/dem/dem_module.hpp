@@ -15,10 +15,17 @@ namespace amphora::physics::dem {
 /// The scene table `[dem]`.
 ParamTable parameter_table();
 
+/// How a coupling wants the particles split over the ranks (DemConfig::layout and
+/// min_halo_width); the default is the DEM's own.
+struct DemSplit {
+  mesh::particles::DecompositionLayout layout;
+  double min_halo_width = 0;
+};
+
 class DemModule final : public Module {
  public:
   using System = DemSystem<kernels::DefaultExecSpace>;
-  DemModule(const Parameters& p, const Communicator& comm);
+  DemModule(const Parameters& p, const Communicator& comm, const DemSplit& split = {});
 
   std::string name() const override { return "dem"; }
   double stable_dt() const override { return dt_limit_; }

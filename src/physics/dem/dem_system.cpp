@@ -50,14 +50,16 @@ DemSystem<ExecSpace>::DemSystem(const DemConfig& config, const Communicator& com
     : config_(config),
       comm_(comm),
       exec_(exec),
-      decomposition_(config.domain_lo, config.domain_hi, 2 * config.max_radius + config.skin, comm,
-                     config.periodic) {
+      decomposition_(config.domain_lo, config.domain_hi,
+                     std::max(2 * config.max_radius + config.skin, config.min_halo_width), comm,
+                     config.periodic, config.layout) {
   if (config_.materials.empty()) throw std::invalid_argument("DEM: no materials");
   if (!(config_.max_radius > 0)) throw std::invalid_argument("DEM: max_radius must be > 0");
   if (!(config_.skin > 0)) throw std::invalid_argument("DEM: skin must be > 0");
   if (!(config_.dt > 0)) throw std::invalid_argument("DEM: dt must be > 0");
   ghost_width_ = 2 * config_.max_radius + config_.skin;
-  check_periodic_lengths(config_, ghost_width_);
+  halo_width_ = std::max(ghost_width_, config_.min_halo_width);
+  check_periodic_lengths(config_, halo_width_);
   const int nm = static_cast<int>(config_.materials.size());
   pairs_ = Kokkos::View<PairCoefficients**, Mem>("amphora::dem::pairs", nm, nm);
   auto ph = Kokkos::create_mirror_view(pairs_);
@@ -333,8 +335,8 @@ void DemSystem<ExecSpace>::rebuild() {
   double glo[3], ghi[3];
   for (int d = 0; d < 3; ++d) {  // the ghosts' reach (images beyond periodic faces)
     const bool per = config_.periodic[d];
-    glo[d] = per ? lo[d] - ghost_width_ : std::max(lo[d] - ghost_width_, config_.domain_lo[d]);
-    ghi[d] = per ? hi[d] + ghost_width_ : std::min(hi[d] + ghost_width_, config_.domain_hi[d]);
+    glo[d] = per ? lo[d] - halo_width_ : std::max(lo[d] - halo_width_, config_.domain_lo[d]);
+    ghi[d] = per ? hi[d] + halo_width_ : std::min(hi[d] + halo_width_, config_.domain_hi[d]);
   }
   const CellGrid grid = CellGrid::covering(glo, ghi, ghost_width_);
   bin_points(exec_, grid, x_build_, total, kernels::particles::PointIndex(), bins_);
@@ -511,27 +513,40 @@ void DemSystem<ExecSpace>::compute_forces() {
 }
 
 template <class ExecSpace>
+void DemSystem<ExecSpace>::evaluate_forces_at_rest() {
+  // A force evaluation advances the tangential springs; at an unchanged state they must not
+  // move, so they are put back.
+  decltype(shear_) springs("amphora::dem::shear_copy", shear_.extent(0));
+  Hist wall_springs("amphora::dem::wall_shear_copy", wall_shear_.extent(0), wall_shear_.extent(1));
+  Kokkos::View<unsigned*, Mem> masks("amphora::dem::row_mask_copy", row_mask_.extent(0));
+  Kokkos::View<unsigned*, Mem> wall_masks("amphora::dem::wall_mask_copy", wall_mask_.extent(0));
+  Kokkos::deep_copy(springs, shear_);
+  Kokkos::deep_copy(wall_springs, wall_shear_);
+  Kokkos::deep_copy(masks, row_mask_);
+  Kokkos::deep_copy(wall_masks, wall_mask_);
+  compute_forces();
+  Kokkos::deep_copy(shear_, springs);
+  Kokkos::deep_copy(wall_shear_, wall_springs);
+  Kokkos::deep_copy(row_mask_, masks);
+  Kokkos::deep_copy(wall_mask_, wall_masks);
+  forces_valid_ = true;
+}
+
+template <class ExecSpace>
+void DemSystem<ExecSpace>::redistribute() {
+  // The forces travel with their particles (not evaluated anew: at the end of a step they are
+  // those of the half-step velocities, and the deferred half kick still needs them).
+  carry_forces_ = true;
+  rebuild();
+  carry_forces_ = false;
+}
+
+template <class ExecSpace>
 void DemSystem<ExecSpace>::step() {
   double t = profiling_ ? now() : 0.0;
-  if (!forces_valid_) {
-    // Forces at the current state, for the first half kick. A force evaluation advances the
-    // tangential springs; at an unchanged state they must not move, so they are put back.
+  if (!forces_valid_) {  // forces at the current state, for the first half kick
     if (need_rebuild_) rebuild();
-    decltype(shear_) springs("amphora::dem::shear_copy", shear_.extent(0));
-    Hist wall_springs("amphora::dem::wall_shear_copy", wall_shear_.extent(0),
-                      wall_shear_.extent(1));
-    Kokkos::View<unsigned*, Mem> masks("amphora::dem::row_mask_copy", row_mask_.extent(0));
-    Kokkos::View<unsigned*, Mem> wall_masks("amphora::dem::wall_mask_copy", wall_mask_.extent(0));
-    Kokkos::deep_copy(springs, shear_);
-    Kokkos::deep_copy(wall_springs, wall_shear_);
-    Kokkos::deep_copy(masks, row_mask_);
-    Kokkos::deep_copy(wall_masks, wall_mask_);
-    compute_forces();
-    Kokkos::deep_copy(shear_, springs);
-    Kokkos::deep_copy(wall_shear_, wall_springs);
-    Kokkos::deep_copy(row_mask_, masks);
-    Kokkos::deep_copy(wall_mask_, wall_masks);
-    forces_valid_ = true;
+    evaluate_forces_at_rest();
     t = timer_mark(timers_.force, t);
   }
   const double max_d2 = comm_.max(kick_drift());

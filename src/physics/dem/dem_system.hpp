@@ -53,6 +53,11 @@ struct DemConfig {
   double skin = 0;        ///< Verlet skin [m]
   double max_radius = 0;  ///< largest radius the run will hold (bins, ghost width)
   int max_contacts = 24;  ///< history records a particle carries across a rebuild
+  /// The subdomains as whole blocks of a coupling's grid (default: cells of the ghost width).
+  mesh::particles::DecompositionLayout layout;
+  /// Ghosts reach at least this far from a subdomain (a coupling that reads the neighbours'
+  /// particles, e.g. QCM's reference spheres); the contact cutoff 2 max_radius + skin at least.
+  double min_halo_width = 0;
 };
 
 /// One particle to add (host side).
@@ -126,6 +131,12 @@ class DemSystem {
   void set_forces_by_particle(bool on) { by_particle_ = on; }
   /// Forces a neighbour-list rebuild (and migration) before the next force evaluation.
   void invalidate() { need_rebuild_ = true; }
+  /// Migrates every particle to the rank whose subdomain holds it and rebuilds the lists and
+  /// ghosts now (between steps: a coupling that needs each particle on its owner), the forces
+  /// and the deferred half kick carried along: the trajectories are unchanged. Collective.
+  void redistribute();
+  /// How far the ghosts reach from this rank's subdomain.
+  double halo_width() const { return halo_width_; }
   /// Force on each owned particle from outside the DEM (a coupling's fluid force), added to
   /// every force evaluation until changed; it travels with its particle through sorting and
   /// migration, and new or loaded particles start with none. The first call allocates it
@@ -175,6 +186,8 @@ class DemSystem {
   /// shear_next_ (the by-particle loop's output springs) sized as shear_, zero where new.
   void size_next_springs();
   void zero_forces();  // force and torque to zero, in one kernel
+  /// The forces of the current state with the springs put back (an evaluation advances them).
+  void evaluate_forces_at_rest();
   void remove_and_migrate();
   void wrap_periodic();  // owned positions into the domain along its periodic directions
   /// Every per-particle array a particle carries to another rank.
@@ -212,13 +225,15 @@ class DemSystem {
   Kokkos::View<PairCoefficients**, Mem> pairs_;
   Kokkos::View<Wall*, Mem> walls_;
   int n_walls_ = 0;
-  double ghost_width_ = 0;
+  double ghost_width_ = 0;  // the contact cutoff: 2 max_radius + skin
+  double halo_width_ = 0;   // the ghosts' reach: ghost_width_ or config.min_halo_width
 
   ParticleSet<Mem> p_;
   Vec external_;  // external force per owned particle; empty: none
   // Positions at the last rebuild (owned and ghosts): the lists, the ghosts and the rows' order
   // are those of these positions.
   Vec x_build_;
+  bool carry_forces_ = false;          // migration carries force and torque (redistribute)
   bool keep_build_positions_ = false;  // the next rebuild keeps x_build_ (a restart's first)
   bool forces_zeroed_ = false;         // force and torque are zero, ready for a force evaluation
   Hist wall_shear_;                    // (particle, wall, 3)

@@ -49,6 +49,25 @@ long largest_free_velocity(const Solver& solver, double* magnitude = nullptr) {
   return at;
 }
 
+/// rank `owner`'s report r (its field, index and point) on every rank, the block named as the
+/// rank's output block ("flow_<owner>") on several ranks; the reason is each rank's own.
+/// Collective.
+template <int dim, class Solver>
+NonFiniteReport flow_report_from(const Solver& solver, NonFiniteReport r, int owner) {
+  const Communicator& comm = solver.distributed_space().communicator();
+  const char* fields[3] = {"velocity", "pressure", "eps"};
+  double packed[5] = {0.0, static_cast<double>(r.index), 0, 0, 0};
+  for (int f = 0; f < 3; ++f)
+    if (r.field == fields[f]) packed[0] = f;
+  for (int d = 0; d < dim; ++d) packed[2 + d] = r.point[d];
+  MPI_Bcast(packed, 5, MPI_DOUBLE, owner, comm.get());
+  r.field = fields[static_cast<int>(packed[0])];
+  r.index = static_cast<long long>(packed[1]);
+  for (int d = 0; d < dim; ++d) r.point[d] = packed[2 + d];
+  if (comm.size() > 1) r.block = "flow_" + std::to_string(owner);
+  return r;
+}
+
 /// Where the flow failed, the same report on every rank (collective): the first non-finite
 /// state entry of the lowest rank that holds one; else, where `failure` (a failed solve, the
 /// same on every rank) is not empty, the largest free velocity over the ranks; else none. On
@@ -64,16 +83,9 @@ std::optional<NonFiniteReport> find_flow_failure(const Solver& solver, const std
   const long at = nonfinite ? bad : largest_free_velocity<dim>(solver, &score);
   const double best = comm.max(score);
   const int owner = static_cast<int>(comm.min(score == best ? comm.rank() : comm.size()));
-  NonFiniteReport r =
-      flow_report_at<dim>(solver, at < 0 ? 0 : at, nonfinite ? std::string() : failure);
-  double packed[5] = {r.field == "velocity" ? 0.0 : 1.0, static_cast<double>(r.index), 0, 0, 0};
-  for (int d = 0; d < dim; ++d) packed[2 + d] = r.point[d];
-  MPI_Bcast(packed, 5, MPI_DOUBLE, owner, comm.get());
-  r.field = packed[0] == 0.0 ? "velocity" : "pressure";
-  r.index = static_cast<long long>(packed[1]);
-  for (int d = 0; d < dim; ++d) r.point[d] = packed[2 + d];
-  if (comm.size() > 1) r.block = "flow_" + std::to_string(owner);
-  return r;
+  return flow_report_from<dim>(
+      solver, flow_report_at<dim>(solver, at < 0 ? 0 : at, nonfinite ? std::string() : failure),
+      owner);
 }
 
 }  // namespace amphora::physics::ins_fem
