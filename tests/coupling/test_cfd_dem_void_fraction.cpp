@@ -233,6 +233,24 @@ TEST(ParticleMesh, SpreadForcesSumToTheParticlesTotal) {
   }
 }
 
+TEST(VoidFraction, QcmCountsAParticleThatDriftedPastAPeriodicFaceOnce) {
+  // Between list rebuilds a DEM's owned particle drifts past a periodic face (here x = 1.02,
+  // built at 0.99) and its ghost image (built at -0.01, now 0.02) into the box. The image is
+  // told by where it was built: eps is the lone particle's at the wrapped place, volume held.
+  const Space space(box(4, false), 2);
+  const Fraction fraction(space, qcm(0.0));
+  const Particles now = particles({1.02, 0.4, 0.6, 0.02, 0.4, 0.6}, 0.04);
+  const Particles built = particles({0.99, 0.4, 0.6, -0.01, 0.4, 0.6}, 0.04);
+  const Particles alone = particles({0.02, 0.4, 0.6}, 0.04);
+  Fraction::Vector eps("eps", space.n_dofs()), lone("lone", space.n_dofs());
+  ASSERT_TRUE(fraction.compute(Exec(), now.x, now.radius, 1, eps, 2, {true, true, true}, built.x)
+                  .converged);
+  ASSERT_TRUE(fraction.compute(Exec(), alone.x, alone.radius, 1, lone).converged);
+  EXPECT_NEAR((1.0 - fraction.integral(Exec(), eps)) / alone.volume, 1.0, 1e-10);
+  const auto he = host(eps), hl = host(lone);
+  for (std::size_t i = 0; i < he.size(); ++i) EXPECT_NEAR(he[i], hl[i], 1e-12) << i;
+}
+
 TEST(VoidFraction, QcmSpheresThatMissAParticleAreRefused) {
   // Reference spheres of radius 0.01 on cells of 0.25 miss a particle between the Gauss
   // points: its volume would be lost, so the computation stops and says what to change.

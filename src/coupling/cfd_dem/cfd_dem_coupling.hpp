@@ -194,8 +194,9 @@ class CfdDemCoupling {
     std::array<bool, 3> own_images;
     for (int d = 0; d < 3; ++d)
       own_images[d] = dem_.decomposition().neighbor(d, 0) == comm().rank();
-    const auto r = void_fraction_.compute(exec, p.x, p.radius, p.n_owned, eps_,
-                                          p.n_owned + p.n_ghost, own_images);
+    const auto r =
+        void_fraction_.compute(exec, p.x, p.radius, p.n_owned, eps_, p.n_owned + p.n_ghost,
+                               own_images, dem_.build_positions());
     if (!r.converged)
       throw std::runtime_error("cfd_dem: the void fraction's projection did not converge");
     check_void_fraction(exec);

@@ -65,11 +65,14 @@ class QuadratureCentred {
 
   /// b -= (solid, phi_j) over the slab's cells for the particles in rows [0, rows) (centres x,
   /// radii r): the owned ones [0, owned) and ghosts (another rank's particles near the slab).
-  /// A ghost outside the box along a direction with `own_images` set is an image of a particle
-  /// already counted and is skipped. Returns the owned particles that share no volume with
-  /// any reference sphere (R too small for the cells).
+  /// A ghost placed outside the box along a direction with `own_images` set is an image of a
+  /// particle already counted and is skipped. `placed` holds the positions that test reads:
+  /// where the rows were when the ghosts were made (a DEM's positions at its last list build;
+  /// empty: x). The current positions cannot tell: between rebuilds an owned particle drifts
+  /// past a periodic face and its image into the box. Returns the owned particles that share
+  /// no volume with any reference sphere (R too small for the cells).
   int load(const ExecSpace& exec, const Points& x, const Vector& r, int owned, int rows,
-           const std::array<bool, 3>& own_images, const Vector& b) const {
+           const std::array<bool, 3>& own_images, const Points& placed, const Vector& b) const {
     Kokkos::deep_copy(exec, solid_, 0.0);
     const Vector scale("amphora::cfd_dem::qcm_scale", rows);
     double lo[3], hi[3];
@@ -78,12 +81,13 @@ class QuadratureCentred {
       lo[d] = skip ? b_.lower[d] : -1e300;
       hi[d] = skip ? b_.lower[d] + b_.lattice.cells[d] * b_.h[d] : 1e300;
     }
+    const Points at = placed.extent(0) > 0 ? placed : x;
     int unseen = 0;
     Kokkos::parallel_reduce(
         "amphora::cfd_dem::qcm_shares", kernels::RangePolicy<ExecSpace>(exec, 0, rows),
         KOKKOS_CLASS_LAMBDA(int p, int& count) {
           bool image = false;
-          for (int d = 0; d < 3; ++d) image = image || x(p, d) < lo[d] || x(p, d) >= hi[d];
+          for (int d = 0; d < 3; ++d) image = image || at(p, d) < lo[d] || at(p, d) >= hi[d];
           double s = 0.0;
           if (p < owned || !image) visit(x, r, p, [&](long, double share) { s += share; });
           const double volume = 4.0 / 3.0 * M_PI * r(p) * r(p) * r(p);

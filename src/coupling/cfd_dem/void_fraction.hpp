@@ -81,15 +81,17 @@ class VoidFraction {
 
   /// eps of the particles in rows [0, n) (centres x, radii r: this rank's own), its ghost
   /// layer updated; returns what CG did. QCM also reads the ghost rows [n, rows) (another
-  /// rank's particles near the slab; own periodic images among them are skipped along the
-  /// directions with `own_images`). Collective.
+  /// rank's particles near the slab; own periodic images among them, told by their positions
+  /// in `placed` when the ghosts were made (empty: x), are skipped along the directions with
+  /// `own_images`: QuadratureCentred::load). Collective.
   solvers::SolverResult compute(const ExecSpace& exec, const Points& x, const Vector& radius, int n,
                                 const Vector& eps, int rows = -1,
-                                const std::array<bool, 3>& own_images = {true, true, true}) const {
+                                const std::array<bool, 3>& own_images = {true, true, true},
+                                const Points& placed = Points()) const {
     const Vector b = rhs_;  // kept, like CG's work vectors: no allocation in a time step
     kernels::blas1::fill(exec, b, 0.0);
     if (qcm_) {
-      const int unseen = qcm_->load(exec, x, radius, n, rows < 0 ? n : rows, own_images, b);
+      const int unseen = qcm_->load(exec, x, radius, n, rows < 0 ? n : rows, own_images, placed, b);
       const long long all = slabs_->communicator().sum(static_cast<long long>(unseen));
       if (all > 0)
         throw std::runtime_error("void fraction (qcm): " + std::to_string(all) +

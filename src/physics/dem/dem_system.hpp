@@ -137,6 +137,10 @@ class DemSystem {
   void redistribute();
   /// How far the ghosts reach from this rank's subdomain.
   double halo_width() const { return halo_width_; }
+  /// The rows' positions (owned and ghosts) at the last list build: owned ones inside the box
+  /// along periodic directions, periodic images outside it (positions now may have drifted
+  /// past a face since).
+  const Vec& build_positions() const { return x_build_; }
   /// Force on each owned particle from outside the DEM (a coupling's fluid force), added to
   /// every force evaluation until changed; it travels with its particle through sorting and
   /// migration, and new or loaded particles start with none. The first call allocates it
