@@ -290,11 +290,13 @@ void count_allocation(Kokkos::Profiling::SpaceHandle, const char* label, const v
 }
 
 /// Once the first step has sized them, the solvers' work vectors (CG's of the void fraction,
-/// GMRES's of the flow) and the void fraction's right-hand side are kept: no later step
-/// allocates them (on a GPU each would be a device malloc and free inside the step).
+/// GMRES's of the flow), the void fraction's right-hand side and the coupling's arrays (with
+/// PCM and with QCM) are kept: no later step allocates them (on a GPU each would be a device
+/// malloc and free inside the step).
 /// Device allocations by label in two coupled steps after a first (the DEM's list rebuilds
 /// among them: their number into `rebuilds`).
-std::map<std::string, int> allocations_of_two_steps(long long& rebuilds) {
+std::map<std::string, int> allocations_of_two_steps(
+    long long& rebuilds, VoidFractionMethod method = VoidFractionMethod::pcm) {
   physics::ins_fem::InsOptions fo;
   fo.model = physics::ins_fem::FlowModel::vans_a;
   fo.nu = kMu / kRho;
@@ -305,6 +307,7 @@ std::map<std::string, int> allocations_of_two_steps(long long& rebuilds) {
   CfdDemOptions o;
   o.fluid = {kRho, kMu, DragModel::di_felice};
   o.void_fraction.smoothing_length = 2.0 * kD;
+  o.void_fraction.method = method;
   o.dem_substeps = 10;
   CfdDemCoupling<Exec> coupling(flow, dem, o);
   coupling.step();
@@ -325,19 +328,24 @@ std::map<std::string, int> allocations_of_two_steps(long long& rebuilds) {
 }
 
 TEST(CfdDemPackedBed, StepsAfterTheFirstAllocateNoSolverVectors) {
-  long long rebuilds = 0;
-  const auto counted = allocations_of_two_steps(rebuilds);
-  EXPECT_EQ(counted.at("amphora::test::probe"), 1);
-  int solvers = 0;
-  for (const auto& [label, count] : counted) {
-    const bool solver_vector = label.rfind("amphora::cg::", 0) == 0 ||
-                               label.rfind("amphora::gmres::", 0) == 0 ||
-                               label == "amphora::cfd_dem::void_fraction_rhs";
-    if (solver_vector) solvers += count;
+  for (const auto method : {VoidFractionMethod::pcm, VoidFractionMethod::qcm}) {
+    long long rebuilds = 0;
+    const auto counted = allocations_of_two_steps(rebuilds, method);
+    EXPECT_EQ(counted.at("amphora::test::probe"), 1);
+    int solvers = 0, coupling = 0;
+    for (const auto& [label, count] : counted) {
+      const bool solver_vector = label.rfind("amphora::cg::", 0) == 0 ||
+                                 label.rfind("amphora::gmres::", 0) == 0 ||
+                                 label == "amphora::cfd_dem::void_fraction_rhs";
+      if (solver_vector) solvers += count;
+      // the coupling's own arrays (samples, loads, QCM's shares) are kept too
+      if (label.rfind("amphora::cfd_dem::", 0) == 0) coupling += count;
+    }
+    EXPECT_EQ(solvers, 0);
+    EXPECT_EQ(coupling, 0) << (method == VoidFractionMethod::qcm ? "qcm" : "pcm");
+    // the flow's step operators are rebuilt in their own arrays
+    EXPECT_EQ(counted.count("amphora::MatrixFreeOperator::point_coef"), 0u);
   }
-  EXPECT_EQ(solvers, 0);
-  // the flow's step operators are rebuilt in their own arrays
-  EXPECT_EQ(counted.count("amphora::MatrixFreeOperator::point_coef"), 0u);
 }
 
 /// A list rebuild keeps the particles' arrays (sorted in place), the bins, the row schedule,

@@ -13,6 +13,7 @@
 
 #include <Kokkos_Core.hpp>
 
+#include "kernels/grow_view.hpp"
 #include "kernels/kokkos_compat.hpp"
 #include "kernels/spaces.hpp"
 #include "kernels/sumfac/qk_point_basis.hpp"
@@ -74,7 +75,9 @@ class QuadratureCentred {
   int load(const ExecSpace& exec, const Points& x, const Vector& r, int owned, int rows,
            const std::array<bool, 3>& own_images, const Points& placed, const Vector& b) const {
     Kokkos::deep_copy(exec, solid_, 0.0);
-    const Vector scale("amphora::cfd_dem::qcm_scale", rows);
+    if (scale_.extent(0) < static_cast<std::size_t>(rows))  // kept: no allocation in a step
+      kernels::grow_uninitialized(scale_, rows + rows / 8, "amphora::cfd_dem::qcm_scale");
+    const Vector scale = scale_;
     double lo[3], hi[3];
     for (int d = 0; d < 3; ++d) {
       const bool skip = own_images[d] && b_.lattice.periodic[d];
@@ -206,6 +209,7 @@ class QuadratureCentred {
   double points_[max_q] = {}, weights_[max_q] = {};
   double phi_[max_q * max_q] = {};  // phi_[q * max_q + a]: 1D basis a at Gauss point q
   double radius_ = 0.0;
+  mutable Vector scale_;  // each row's volume over its shares' sum (load's scratch)
   Vector solid_;
 };
 
