@@ -28,6 +28,13 @@ struct ChebyshevOptions {
   bool power_iteration = false;
 };
 
+/// The eigenvalue estimate's start entry for DoF number g, in [-0.5, 0.5): deterministic and
+/// rich in every eigencomponent (Knuth's multiplicative hash). A distributed operator numbers
+/// its DoFs globally, so that every rank count starts from the same vector.
+KOKKOS_INLINE_FUNCTION double eigenvalue_start_entry(unsigned g) {
+  return static_cast<double>((g * 2654435761u) % 1000003u) / 1000003.0 - 0.5;
+}
+
 /// `Inner` is the inner product of the eigenvalue estimate (conjugate_gradient's); `start`,
 /// if given, its start vector (a distributed operator passes one that depends on global DoF
 /// numbers only, so every rank count estimates the same lambda_max).
@@ -120,8 +127,8 @@ class ChebyshevSmoother {
     Kokkos::parallel_for(
         "amphora::ChebyshevSmoother::start", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) {
-          const double h = static_cast<double>((i * 2654435761u) % 1000003u) / 1000003.0;
-          x(i) = (given ? start(i) : h - 0.5) * (D(i) != 0.0 ? 1.0 : 0.0);
+          const double h = given ? start(i) : eigenvalue_start_entry(static_cast<unsigned>(i));
+          x(i) = h * (D(i) != 0.0 ? 1.0 : 0.0);
         });
     double norm = std::sqrt(dot(exec, x, x)), lambda = 1.0;
     for (int it = 0; it < options_.eigenvalue_iterations && norm > 0.0; ++it) {
@@ -145,9 +152,8 @@ class ChebyshevSmoother {
     Kokkos::parallel_for(
         "amphora::ChebyshevSmoother::start", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) {
-          // deterministic, rich in every eigencomponent
-          const double h = static_cast<double>((i * 2654435761u) % 1000003u) / 1000003.0;
-          r(i) = (given ? start(i) : h - 0.5) * (D(i) != 0.0 ? 1.0 : 0.0);
+          const double h = given ? start(i) : eigenvalue_start_entry(static_cast<unsigned>(i));
+          r(i) = h * (D(i) != 0.0 ? 1.0 : 0.0);
         });
     std::vector<double> alphas, betas;
     Kokkos::parallel_for(

@@ -11,15 +11,14 @@ namespace amphora::solvers::matrix_free {
 // A named namespace and a free function: CUDA's extended lambdas may not be defined in a
 // constructor (nor in the lambdas inside one) or in an anonymous namespace.
 namespace multigrid_detail {
-/// start(i) from DoF i's global number alone (deterministic, rich in every eigencomponent).
+/// start(i) from DoF i's global number alone (eigenvalue_start_entry).
 template <class ExecSpace, class Global, class Vector>
 void start_from_global_numbers(const ExecSpace& exec, const Global& global, const Vector& start) {
   Kokkos::parallel_for(
       "amphora::mg::start_vector",
       kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(start.extent(0))),
       KOKKOS_LAMBDA(int i) {
-        const unsigned g = static_cast<unsigned>(global(i));
-        start(i) = static_cast<double>((g * 2654435761u) % 1000003u) / 1000003.0 - 0.5;
+        start(i) = eigenvalue_start_entry(static_cast<unsigned>(global(i)));
       });
 }
 }  // namespace multigrid_detail

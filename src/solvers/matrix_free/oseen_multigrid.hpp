@@ -237,11 +237,9 @@ class OseenMultigrid {
     std::vector<double> start(n);
     for (long i = 0; i < sp.n_local(); ++i) {
       const long g = sp.global_index(i);
-      for (int c = 0; c <= dim; ++c) {
-        const unsigned gc = static_cast<unsigned>(c * L.n_global + g);
+      for (int c = 0; c <= dim; ++c)
         start[c * sp.n_local() + i] =
-            static_cast<double>((gc * 2654435761u) % 1000003u) / 1000003.0 - 0.5;
-      }
+            eigenvalue_start_entry(static_cast<unsigned>(c * L.n_global + g));
     }
     L.start = kernels::to_view<typename ExecSpace::memory_space>(start);
     if (l == 0) return;
