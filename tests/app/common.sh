@@ -24,6 +24,15 @@ make_scene() {  # file [extra run lines...]
   } > "$file"
 }
 
+# A shipped scene (scenes/SOURCE.toml) as NAME.toml, its output in NAME/, with sed edits.
+shipped_scene() {  # SOURCE NAME [SED_EXPR...]
+  local src=$1 name=$2
+  shift 2
+  local edits=(-e "s|^output_dir = .*|output_dir = \"$name\"|")
+  for e in "$@"; do edits+=(-e "$e"); done
+  sed "${edits[@]}" "$AMPHORA_SOURCE_DIR/scenes/$src.toml" > "$name.toml"
+}
+
 # expect_error CODE REGEX CMD...: CMD exits with CODE and its stderr matches REGEX in one line.
 expect_error() {
   local code=$1 regex=$2; shift 2

@@ -3,15 +3,8 @@
 # smoothed PCM, and the spouted bed's jet, give the same diagnostics to 1e-8 relative; one flow
 # block per rank; a 2-rank checkpoint continues on 1 rank to the 1-rank run's diagnostics.
 source "$(dirname "$0")/common.sh"
-scene() {  # SOURCE NAME [SED_EXPR...]: the scene with its output in NAME/
-  local src=$1 name=$2
-  shift 2
-  local edits=(-e "s|^output_dir = .*|output_dir = \"$name\"|")
-  for e in "$@"; do edits+=(-e "$e"); done
-  sed "${edits[@]}" "$AMPHORA_SOURCE_DIR/scenes/$src.toml" > "$name.toml"
-}
 compare_ranks() {  # SOURCE NAME [SED_EXPR...]: 1 rank against 2
-  scene "$@"
+  shipped_scene "$@"
   local name=$2
   sed "s|^output_dir = .*|output_dir = \"${name}_two\"|" "$name.toml" > "${name}_two.toml"
   "$AMPHORA" run "$name.toml" > "$name.log"
@@ -27,7 +20,7 @@ compare_ranks cfd_dem_spouted_bed spout 's|^end_time = .*|end_time = 0.0025|'
 
 # A 2-rank checkpoint (the flow in the whole box's DoF order, the particles by gid) restarts on
 # 1 rank.
-scene cfd_dem_fluidised_bed split
+shipped_scene cfd_dem_fluidised_bed split
 "$MPIEXEC" -n 2 "$AMPHORA" run split.toml --max-steps 4 > split_first.log
 "$AMPHORA" run split.toml --restart split/checkpoint.h5 > split_second.log
 grep -q "steps 4\.\.10 .*(restart)" split_second.log || { cat split_second.log; fail "restart from step 4 not announced"; }

@@ -5,16 +5,9 @@
 # 7e-11 measured), one output block per rank, and a 2-rank checkpoint continues on 1 rank to the
 # 1-rank run's diagnostics.
 source "$(dirname "$0")/common.sh"
-scene() {  # SOURCE NAME [SED_EXPR...]: the scene with its output in NAME/
-  local src=$1 name=$2
-  shift 2
-  local edits=(-e "s|^output_dir = .*|output_dir = \"$name\"|")
-  for e in "$@"; do edits+=(-e "$e"); done
-  sed "${edits[@]}" "$AMPHORA_SOURCE_DIR/scenes/$src.toml" > "$name.toml"
-}
-scene ins_taylor_green_2d tgv_one
-scene ins_taylor_green_2d tgv_two
-scene ins_taylor_green_2d tgv_split
+shipped_scene ins_taylor_green_2d tgv_one
+shipped_scene ins_taylor_green_2d tgv_two
+shipped_scene ins_taylor_green_2d tgv_split
 "$AMPHORA" run tgv_one.toml > tgv_one.log
 "$MPIEXEC" -n 2 "$AMPHORA" run tgv_two.toml > tgv_two.log
 grep -q "ranks 2" tgv_two.log || fail "the 2-rank run did not use 2 ranks"
@@ -28,8 +21,8 @@ h5ls "$f" | grep -q "^flow_0" && h5ls "$f" | grep -q "^flow_1" || { h5ls "$f"; f
 grep -q "steps 3\.\.8 .*(restart)" tgv_second.log || { cat tgv_second.log; fail "restart from step 3 not announced"; }
 close_csv tgv_one/diagnostics.csv tgv_split/diagnostics.csv 1e-8
 
-scene ins_channel channel_one
-scene ins_channel channel_two
+shipped_scene ins_channel channel_one
+shipped_scene ins_channel channel_two
 "$AMPHORA" run channel_one.toml > channel_one.log
 "$MPIEXEC" -n 2 "$AMPHORA" run channel_two.toml > channel_two.log
 close_csv channel_one/diagnostics.csv channel_two/diagnostics.csv 1e-8
