@@ -6,4 +6,5 @@ namespace amphora::solvers::matrix_free {
 AMPHORA_IF_SERIAL(AMPHORA_MF_OPERATOR(Kokkos::Serial))
 AMPHORA_IF_OPENMP(AMPHORA_MF_OPERATOR(Kokkos::OpenMP))
 AMPHORA_IF_CUDA(AMPHORA_MF_OPERATOR(Kokkos::Cuda))
+#undef AMPHORA_MF_OPERATOR  // the unity build puts the 2D and 3D files in one unit
 }  // namespace amphora::solvers::matrix_free
