@@ -289,10 +289,6 @@ void count_allocation(Kokkos::Profiling::SpaceHandle, const char* label, const v
   ++allocations[label];
 }
 
-/// Once the first step has sized them, the solvers' work vectors (CG's of the void fraction,
-/// GMRES's of the flow), the void fraction's right-hand side and the coupling's arrays (with
-/// PCM and with QCM) are kept: no later step allocates them (on a GPU each would be a device
-/// malloc and free inside the step).
 /// Device allocations by label in two coupled steps after a first (the DEM's list rebuilds
 /// among them: their number into `rebuilds`).
 std::map<std::string, int> allocations_of_two_steps(
@@ -327,6 +323,10 @@ std::map<std::string, int> allocations_of_two_steps(
   return allocations;
 }
 
+/// Once the first step has sized them, the solvers' work vectors (CG's of the void fraction,
+/// GMRES's of the flow), the void fraction's right-hand side and the coupling's arrays (with
+/// PCM and with QCM) are kept: no later step allocates them (on a GPU each would be a device
+/// malloc and free inside the step).
 TEST(CfdDemPackedBed, StepsAfterTheFirstAllocateNoSolverVectors) {
   for (const auto method : {VoidFractionMethod::pcm, VoidFractionMethod::qcm}) {
     long long rebuilds = 0;
