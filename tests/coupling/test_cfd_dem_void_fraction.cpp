@@ -1,8 +1,10 @@
 // The particle-centred void fraction with L2-projection smoothing (coupling/cfd_dem): it holds
 // the particles' volume exactly, is uniform where the particles are, moves continuously with
 // them, and the point basis it deposits with interpolates Q_k fields exactly.
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "coupling/cfd_dem/void_fraction.hpp"
 #include "test_backend.hpp"
@@ -130,6 +132,84 @@ TEST(VoidFraction, MovesContinuouslyWithTheParticles) {
     EXPECT_LT(c1, 0.05 * 4.0 / 3.0 * M_PI * std::pow(0.04, 3) / std::pow(0.25, 3));
     EXPECT_NEAR(c1 / c2, 2.0, 0.05);
   }
+}
+
+VoidFractionOptions bounded(VoidFractionOptions o) {
+  o.bounded = true;  // [0.36, 1]
+  return o;
+}
+
+/// g = A eps - b over the lumped mass (a value of eps): the bounded problem's multiplier.
+std::vector<double> multiplier(const Fraction& fraction, const Particles& p, int n,
+                               const Fraction::Vector& eps) {
+  const long dofs = fraction.basis_integrals().extent(0);
+  Fraction::Vector b("b", dofs), g("g", dofs);
+  fraction.deposit(Exec(), p.x, p.radius, n, b);
+  kernels::blas1::axpy(Exec(), 1.0, fraction.basis_integrals(), b);
+  fraction.apply(Exec(), eps, g);
+  kernels::blas1::axpy(Exec(), -1.0, b, g);
+  auto m = host(g);
+  const auto mass = host(fraction.basis_integrals());
+  for (std::size_t i = 0; i < m.size(); ++i) m[i] /= mass[i];
+  return m;
+}
+
+TEST(VoidFraction, BoundedMeetsTheOptimalityConditions) {
+  // 40 particles crowded into a cube of 0.2: unbounded, eps falls far below 0.36 there (and
+  // rises over 1 beside it on Q2 without smoothing). Bounded, eps is the constrained
+  // minimiser: within [0.36, 1], the multiplier zero where eps is free, >= 0 at the lower
+  // bound, <= 0 at the upper. (PCM: the test forms its right-hand side from the deposit.)
+  auto c = random_centres(40, 3);
+  for (double& v : c) v = 0.4 + 0.2 * v;
+  const Particles p = particles(c, 0.06);
+  for (int degree : {1, 2}) {
+    const Space space(box(4, false), degree);
+    for (const auto& options : {pcm(0.0), pcm(0.12)}) {
+      const Fraction plain(space, options), fraction(space, bounded(options));
+      Fraction::Vector free("free", space.n_dofs()), eps("eps", space.n_dofs());
+      ASSERT_TRUE(plain.compute(Exec(), p.x, p.radius, 40, free).converged);
+      const auto result = fraction.compute(Exec(), p.x, p.radius, 40, eps);
+      ASSERT_TRUE(result.converged) << fraction.bounds().iterations;
+      const auto hf = host(free), he = host(eps);
+      ASSERT_LT(*std::min_element(hf.begin(), hf.end()), 0.36);
+      EXPECT_GT(fraction.bounds().at_lower, 0);
+      const auto m = multiplier(fraction, p, 40, eps);
+      for (std::size_t i = 0; i < he.size(); ++i) {
+        const std::string where = "k " + std::to_string(degree) + " node " + std::to_string(i);
+        EXPECT_GE(he[i], 0.36 - 1e-12) << where;
+        EXPECT_LE(he[i], 1.0 + 1e-12) << where;
+        if (he[i] == 0.36)
+          EXPECT_GE(m[i], -1e-9) << where;
+        else if (he[i] == 1.0)
+          EXPECT_LE(m[i], 1e-9) << where;
+        else
+          EXPECT_NEAR(m[i], 0.0, 1e-9) << where;
+      }
+    }
+  }
+}
+
+TEST(VoidFraction, BoundedIsTheUnboundedWhereNoBoundBinds) {
+  const Space space(box(4, true), 1);
+  const Particles p = particles(random_centres(60, 7), 0.03);
+  const Fraction plain(space, pcm(0.12)), fraction(space, bounded(pcm(0.12)));
+  Fraction::Vector free("free", space.n_dofs()), eps("eps", space.n_dofs());
+  plain.compute(Exec(), p.x, p.radius, 60, free);
+  ASSERT_TRUE(fraction.compute(Exec(), p.x, p.radius, 60, eps).converged);
+  const auto hf = host(free);
+  ASSERT_GT(*std::min_element(hf.begin(), hf.end()), 0.36);
+  ASSERT_LE(*std::max_element(hf.begin(), hf.end()), 1.0);
+  EXPECT_EQ(fraction.bounds().iterations, 0);
+  EXPECT_EQ(host(eps), hf);
+}
+
+TEST(VoidFraction, BoundsOutOfOrderAreRefused) {
+  const Space space(box(2, false), 1);
+  VoidFractionOptions o = bounded(pcm(0.1));
+  o.lower_bound = 0.5, o.upper_bound = 0.4;
+  EXPECT_THROW(Fraction(space, o), std::invalid_argument);
+  o.lower_bound = 0.0, o.upper_bound = 1.0;
+  EXPECT_THROW(Fraction(space, o), std::invalid_argument);
 }
 
 TEST(ParticleMesh, InterpolatesQkFieldsAndGradientsExactly) {

@@ -2,7 +2,8 @@
 // projection on one rank's whole box: each rank deposits the particles whose centres lie in its
 // slab (PCM) or takes every particle near it, the others' as ghost rows (QCM, whose reference
 // spheres reach across the slab boundary), and the projection is a CG over the ranks. eps
-// agrees to the CG tolerance and holds the particles' volume to round-off.
+// agrees to the CG tolerance and holds the particles' volume to round-off; bounded, the same
+// nodes bind.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -93,7 +94,14 @@ void compare(const VoidFractionOptions& o, int degree, bool periodic_z) {
   const double volume = n * 4.0 / 3.0 * M_PI * r * r * r,
                box = m.upper[0] * m.upper[1] * m.upper[2];
   const double held = box - many.integral(exec, eps);
-  EXPECT_NEAR(held, volume, 1e-10 * volume);
+  if (o.bounded) {  // active bounds give up the volume; the same nodes bind on every split
+    EXPECT_GT(one.bounds().at_lower, 0);
+    EXPECT_GT(one.bounds().at_upper, 0);
+    EXPECT_EQ(many.bounds().at_lower, one.bounds().at_lower);
+    EXPECT_EQ(many.bounds().at_upper, one.bounds().at_upper);
+  } else {
+    EXPECT_NEAR(held, volume, 1e-10 * volume);
+  }
   if (comm.is_root())
     std::printf(
         "%s Q%d %s z: eps differs by %.2e from one rank's; volume held to %.2e (%d ranks)\n",
@@ -111,6 +119,14 @@ TEST(VoidFractionRanks, PcmSmoothedMatchesOneRank) {
 TEST(VoidFractionRanks, QcmMatchesOneRank) {
   VoidFractionOptions o;
   o.method = VoidFractionMethod::qcm;
+  for (int k : {1, 2})
+    for (bool periodic_z : {false, true}) compare(o, k, periodic_z);
+}
+
+TEST(VoidFractionRanks, BoundedMatchesOneRank) {
+  VoidFractionOptions o;
+  o.bounded = true;                           // no smoothing: eps varies most
+  o.lower_bound = 0.8, o.upper_bound = 0.95;  // tight, so that both bind
   for (int k : {1, 2})
     for (bool periodic_z : {false, true}) compare(o, k, periodic_z);
 }

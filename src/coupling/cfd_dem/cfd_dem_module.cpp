@@ -84,6 +84,13 @@ ParamTable cfd_dem_parameter_table() {
                        "particle-centred (smoothed) or quadrature-centred", {"pcm", "qcm"}),
           real_param("smoothing_length", 1.0, "diameters", at_least(0.0),
                      "L of the void fraction's L2-projection smoothing, in particle diameters"),
+          bool_param("bound_void_fraction", false,
+                     "keep eps within [void_fraction_lower_bound, void_fraction_upper_bound] "
+                     "(an active set; the particles' volume is then not held exactly)"),
+          real_param("void_fraction_lower_bound", 0.36, "1", above(0.0) & below(1.0),
+                     "the least eps where bound_void_fraction"),
+          real_param("void_fraction_upper_bound", 1.0, "1", above(0.0) & at_most(1.0),
+                     "the largest eps where bound_void_fraction"),
           string_param("vans_model", std::string("A"),
                        "A: the pressure shared by the phases, -eps grad p in the fluid; B: the "
                        "fluid's alone, -grad p, and the particles' pressure and viscous forces "
@@ -204,6 +211,13 @@ CfdDemOptions coupling_options(const Parameters& p) {
   o.void_fraction.method =
       p.string("void_fraction") == "qcm" ? VoidFractionMethod::qcm : VoidFractionMethod::pcm;
   o.void_fraction.smoothing_length = p.real("smoothing_length") * p.real("particle_diameter");
+  o.void_fraction.bounded = p.boolean("bound_void_fraction");
+  o.void_fraction.lower_bound = p.real("void_fraction_lower_bound");
+  o.void_fraction.upper_bound = p.real("void_fraction_upper_bound");
+  if (o.void_fraction.bounded && !(o.void_fraction.lower_bound < o.void_fraction.upper_bound))
+    throw std::invalid_argument(
+        "cfd_dem: void_fraction_lower_bound " + std::to_string(o.void_fraction.lower_bound) +
+        " must lie below void_fraction_upper_bound " + std::to_string(o.void_fraction.upper_bound));
   o.drag_coupling = p.string("drag_coupling") == "explicit" ? DragCoupling::explicit_load
                                                             : DragCoupling::semi_implicit;
   o.dem_substeps = static_cast<int>(p.integer("dem_substeps"));
@@ -281,7 +295,8 @@ class CfdDemModule final : public physics::Module {
         jet_width_(p.real("jet_width")),
         jet_velocity_(p.real("jet_velocity")),
         sides_(p.string("fluid_sides")),
-        single_(p.string("bed") == "single") {
+        single_(p.string("bed") == "single"),
+        bounded_(p.boolean("bound_void_fraction")) {
     if (jet_width_ > width_ || (jet_velocity_ > 0.0 && !(jet_width_ > 0.0)))
       throw std::invalid_argument("cfd_dem: jet_width " + std::to_string(jet_width_) +
                                   " m must lie in (0, column_width " + std::to_string(width_) +
@@ -492,6 +507,7 @@ class CfdDemModule final : public physics::Module {
   double width_, depth_, height_, rho_, rho_p_, g_, u_in_, floor_, jet_width_, jet_velocity_;
   std::string sides_;
   bool single_ = false;
+  bool bounded_ = false;  // bound_void_fraction
   double terminal_ = 0.0, rz_exponent_ = 0.0;
   int substeps_ = 1;
   std::unique_ptr<physics::dem::DemModule> dem_;
@@ -540,6 +556,11 @@ Diagnostics CfdDemModule::diagnostics(double t) const {
       {"particles", static_cast<double>(n)},
       {"cfl", flow_->cfl(flow_->previous_dt())},
       {"linear_iterations", static_cast<double>(last_.linear_iterations)}};
+  if (bounded_) {  // the nodes the last void fraction held at each bound
+    const auto& b = coupling_->void_fraction_solver().bounds();
+    d.push_back({"void_fraction_at_lower_bound", static_cast<double>(b.at_lower)});
+    d.push_back({"void_fraction_at_upper_bound", static_cast<double>(b.at_upper)});
+  }
   if (jet_width_ > 0.0) {
     const auto s = spout_sums(exec, particles, 0.5 * width_, 0.5 * jet_width_);
     const double w_in = comm_.sum(s[0]), n_in = comm_.sum(s[1]), w_all = comm_.sum(s[2]);

@@ -9,7 +9,9 @@
 // about two diameters spreads a particle over its neighbourhood. Or quadrature-centred (QCM,
 // quadrature_centred.hpp, 3D): the solid's volume is taken at the quadrature points from each
 // particle's overlap with a reference sphere there, and (1, v) - (solid, v) is projected the
-// same way. Cartesian cells only.
+// same way. Bounded (as Lethe offers): eps minimises the projection's quadratic form within
+// [lower, upper] (solvers/mprgp.hpp), and no longer holds the particles' volume exactly where a
+// bound is active. Cartesian cells only.
 #include <array>
 #include <memory>
 #include <stdexcept>
@@ -25,7 +27,9 @@
 #include "kernels/sumfac/quadrature_1d.hpp"
 #include "mesh/hex/distributed_qk_space.hpp"
 #include "mesh/hex/qk_space.hpp"
+#include "solvers/chebyshev.hpp"
 #include "solvers/conjugate_gradient.hpp"
+#include "solvers/mprgp.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
 
 namespace amphora::coupling::cfd_dem {
@@ -34,9 +38,11 @@ enum class VoidFractionMethod { pcm, qcm };
 
 struct VoidFractionOptions {
   VoidFractionMethod method = VoidFractionMethod::pcm;
-  double smoothing_length = 0.0;  ///< L of the projection (0: plain L2 projection)
-  double qcm_radius = 0.0;        ///< QCM's reference sphere (0: a cell's volume)
-  double tolerance = 1e-13;       ///< CG, relative
+  double smoothing_length = 0.0;                 ///< L of the projection (0: plain L2 projection)
+  double qcm_radius = 0.0;                       ///< QCM's reference sphere (0: a cell's volume)
+  double tolerance = 1e-13;                      ///< CG, relative
+  bool bounded = false;                          ///< eps within [lower_bound, upper_bound]
+  double lower_bound = 0.36, upper_bound = 1.0;  ///< Lethe's defaults
 };
 
 /// -V_p of particle i as spread reads a force, (i, 0): a sphere's (dim 3) or disc's volume.
@@ -105,12 +111,16 @@ class VoidFraction {
     solvers::SolverControl control;
     control.relative_tolerance = options_.tolerance;
     control.max_iterations = 2000;
-    const auto r = solvers::conjugate_gradient(
-        exec, *this, b, eps, control, solvers::JacobiPreconditioner<Vector>{inverse_diagonal_},
-        slabs_->inner_product(), cg_work_);
+    auto r = solvers::conjugate_gradient(exec, *this, b, eps, control,
+                                         solvers::JacobiPreconditioner<Vector>{inverse_diagonal_},
+                                         slabs_->inner_product(), cg_work_);
+    if (options_.bounded && r.converged) bound(exec, b, eps, control, r);
     slabs_->update_ghosts(exec, eps);
     return r;
   }
+
+  /// The last bounded computation's steps and nodes at each bound.
+  const solvers::BoxResult& bounds() const { return bounds_; }
 
   /// The integral of a Q_k field over the box (its owned entries; collective).
   double integral(const ExecSpace& exec, const Vector& f) const {
@@ -140,13 +150,64 @@ class VoidFraction {
     spread(exec, basis_, NegativeVolume<dim, Vector>{radius}, 1, x, n, b);
   }
 
+ public:  // (CUDA: extended lambdas may not live in private member functions)
+  /// 2 / (1.2 lambda_max) of the projection (Lanczos, as the Chebyshev smoother estimates it,
+  /// from a start vector of global DoF numbers: the same on every rank count).
+  double projected_gradient_step() const {
+    const ExecSpace exec;
+    const long n = slabs_->n_local();
+    Vector ones("amphora::cfd_dem::ones", n), start("amphora::cfd_dem::start", n);
+    kernels::blas1::fill(exec, ones, 1.0);
+    const auto global = slabs_->global_indices();
+    Kokkos::parallel_for(
+        "amphora::cfd_dem::lanczos_start", kernels::RangePolicy<ExecSpace>(exec, 0, int(n)),
+        KOKKOS_LAMBDA(int i) {
+          start(i) = solvers::eigenvalue_start_entry(static_cast<unsigned>(global(i)));
+        });
+    using Inner = decltype(slabs_->inner_product());
+    const solvers::ChebyshevSmoother<ExecSpace, VoidFraction, Vector, Inner> lanczos(
+        exec, *this, ones, {}, slabs_->inner_product(), start);
+    return 2.0 / lanczos.upper();
+  }
+
  private:
+  /// eps within the bounds, from the unbounded solution in eps (kept where it lies within
+  /// them); r takes MPRGP's steps and whether it converged.
+  void bound(const ExecSpace& exec, const Vector& b, const Vector& eps,
+             const solvers::SolverControl& control, solvers::SolverResult& r) const {
+    solvers::BoxControl c;
+    c.lower = options_.lower_bound;
+    c.upper = options_.upper_bound;
+    c.relative_tolerance = control.relative_tolerance;
+    c.max_iterations = control.max_iterations;
+    c.step = step_;
+    const Ranks ranks{&slabs_->communicator(), slabs_->n_owned()};
+    bounds_ = solvers::BoxResult();
+    bounds_.converged = true;
+    if (solvers::inside_box(exec, eps, c, ranks)) return;  // the unbounded eps, bit for bit
+    bounds_ = solvers::mprgp(exec, *this, b, eps, c, ranks, box_work_);
+    r.iterations += bounds_.iterations;
+    r.converged = bounds_.converged;
+  }
+
+  /// MPRGP's reductions over the slabs' ranks.
+  struct Ranks {
+    const Communicator* comm;
+    long owned;
+    double sum(double v) const { return comm->sum(v); }
+    double min(double v) const { return comm->min(v); }
+  };
+
   void setup() {
     const Space& space = slabs_->local();
     if (!space.mesh().cartesian())
       throw std::invalid_argument("void fraction: curved cells are not supported (Cartesian only)");
     if (!(length_ >= 0))
       throw std::invalid_argument("void fraction: smoothing length must be >= 0");
+    if (options_.bounded &&
+        !(options_.lower_bound > 0.0 && options_.lower_bound < options_.upper_bound &&
+          options_.upper_bound <= 1.0))
+      throw std::invalid_argument("void fraction: bounds must satisfy 0 < lower < upper <= 1");
     basis_ = point_basis(space.mesh(), space.lattice());
     make_operators();
     if (options_.method == VoidFractionMethod::qcm) {
@@ -198,6 +259,7 @@ class VoidFraction {
     kernels::blas1::axpy(exec, length_ * length_, work_, inverse_diagonal_);
     slabs_->compress_add(exec, inverse_diagonal_, 1, 0);
     kernels::blas1::reciprocal(exec, inverse_diagonal_);
+    if (options_.bounded) step_ = projected_gradient_step();
   }
 
   std::unique_ptr<DistributedSpace> own_;  // the one-rank split of a whole-box space
@@ -209,6 +271,9 @@ class VoidFraction {
   std::unique_ptr<Operator> mass_, laplace_;
   Vector mass_one_, inverse_diagonal_, work_, rhs_;
   mutable solvers::CgWorkspace<Vector> cg_work_;
+  double step_ = 0.0;  // MPRGP's projected-gradient step
+  mutable solvers::BoxWorkspace<Vector> box_work_;
+  mutable solvers::BoxResult bounds_;
 };
 
 }  // namespace amphora::coupling::cfd_dem
