@@ -55,6 +55,15 @@ struct NegativeVolume {
   }
 };
 
+/// MPRGP's reductions over the ranks of a split space, `owned` entries here. (At namespace
+/// scope: CUDA's extended lambdas may not take private member types as template arguments.)
+struct RanksOfSlabs {
+  const Communicator* comm;
+  long owned;
+  double sum(double v) const { return comm->sum(v); }
+  double min(double v) const { return comm->min(v); }
+};
+
 template <int dim, class ExecSpace>
 class VoidFraction {
  public:
@@ -181,7 +190,7 @@ class VoidFraction {
     c.relative_tolerance = control.relative_tolerance;
     c.max_iterations = control.max_iterations;
     c.step = step_;
-    const Ranks ranks{&slabs_->communicator(), slabs_->n_owned()};
+    const RanksOfSlabs ranks{&slabs_->communicator(), slabs_->n_owned()};
     bounds_ = solvers::BoxResult();
     bounds_.converged = true;
     if (solvers::inside_box(exec, eps, c, ranks)) return;  // the unbounded eps, bit for bit
@@ -189,14 +198,6 @@ class VoidFraction {
     r.iterations += bounds_.iterations;
     r.converged = bounds_.converged;
   }
-
-  /// MPRGP's reductions over the slabs' ranks.
-  struct Ranks {
-    const Communicator* comm;
-    long owned;
-    double sum(double v) const { return comm->sum(v); }
-    double min(double v) const { return comm->min(v); }
-  };
 
   void setup() {
     const Space& space = slabs_->local();
