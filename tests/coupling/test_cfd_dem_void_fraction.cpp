@@ -246,6 +246,36 @@ TEST(ParticleMesh, InterpolatesQkFieldsAndGradientsExactly) {
   }
 }
 
+TEST(ParticleMesh, InterpolatesCurlsExactly) {
+  // u = (x y z, x^2 - z^2, x y^2) lies in Q_2 per component; curl u = (2 x y + 2 z, x y - y^2,
+  // 2 x - x z).
+  auto m = box(3, false);
+  for (auto& face : m.faces) face = FaceCondition::dirichlet;
+  const Space space(m, 2);
+  const Fraction fraction(space, pcm(0.0));
+  const std::vector<double> nodal = space.interpolate(
+      [](const mesh::hex::Point3& x, int c) {
+        return c == 0 ? x[0] * x[1] * x[2]
+                      : (c == 1 ? x[0] * x[0] - x[2] * x[2] : x[0] * x[1] * x[1]);
+      },
+      3);
+  Fraction::Vector u("u", nodal.size());
+  auto uh = Kokkos::create_mirror_view(u);
+  for (std::size_t i = 0; i < nodal.size(); ++i) uh(i) = nodal[i];
+  Kokkos::deep_copy(u, uh);
+  const std::vector<double> c = random_centres(40, 5);
+  const Particles p = particles(c, 0.01);
+  Fraction::Points curl("curl", 40);
+  interpolate_curl(Exec(), fraction.basis(), u, p.x, 40, curl);
+  auto h = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), curl);
+  for (int i = 0; i < 40; ++i) {
+    const double x = c[3 * i], y = c[3 * i + 1], z = c[3 * i + 2];
+    EXPECT_NEAR(h(i, 0), 2 * x * y + 2 * z, 1e-12) << i;
+    EXPECT_NEAR(h(i, 1), x * y - y * y, 1e-12) << i;
+    EXPECT_NEAR(h(i, 2), 2 * x - x * z, 1e-12) << i;
+  }
+}
+
 TEST(ParticleMesh, InterpolatesLaplaciansExactly) {
   // Q2: f = x^2 y - 3 z^2 + x y z, lap f = 2 y - 6; Q3: g = x^3 - 2 y^2 z^3,
   // lap g = 6 x - 4 z^3 - 12 y^2 z. Both lie in their spaces, so the Laplacians of their

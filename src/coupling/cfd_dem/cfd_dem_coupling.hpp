@@ -247,6 +247,7 @@ class CfdDemCoupling {
       at_.pressure_gradient = Vec("amphora::cfd_dem::grad_p_at", n);
       at_.void_fraction = Vector("amphora::cfd_dem::eps_at", n);
       at_.velocity_laplacian = Vec("amphora::cfd_dem::lap_u_at", n);  // zeros
+      at_.vorticity = Vec("amphora::cfd_dem::curl_u_at", n);          // zeros without lift
       eps_at_ = Kokkos::View<double* [3], Kokkos::LayoutRight, Mem>("amphora::cfd_dem::eps_at3", n);
       exchange_ = Vec("amphora::cfd_dem::exchange", n);
       self_correction_ =
@@ -257,6 +258,8 @@ class CfdDemCoupling {
     interpolate_gradient(exec, basis, flow_.pressure(), p.x, n, at_.pressure_gradient);
     if (options_.viscous_force && basis.lattice.degree > 1)
       interpolate_laplacian(exec, basis, flow_.velocity(), 3, p.x, n, at_.velocity_laplacian);
+    if (options_.fluid.saffman_lift)
+      interpolate_curl(exec, basis, flow_.velocity(), p.x, n, at_.vorticity);
     interpolate(exec, basis, eps_, 1, p.x, n, eps_at_);
     const auto e3 = eps_at_;
     const auto e = at_.void_fraction;
@@ -313,7 +316,7 @@ class CfdDemCoupling {
     const int n = p.n_owned;
     const Vec F = dem_.external_force(), drag = exchange_;
     const auto v = p.v, u = at_.velocity, gp = at_.pressure_gradient;
-    const auto lap = at_.velocity_laplacian;
+    const auto lap = at_.velocity_laplacian, vort = at_.vorticity;
     const auto r = p.radius;
     const Vector eps = at_.void_fraction;
     const FluidProperties fl = options_.fluid;
@@ -323,13 +326,13 @@ class CfdDemCoupling {
     Kokkos::parallel_for(
         "amphora::cfd_dem::held_forces", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) {
-          double slip[3], gpi[3], lapi[3], Fi[3], undisturbed[3];
+          double slip[3], gpi[3], lapi[3], w[3], Fi[3], undisturbed[3], lift[3];
           for (int c = 0; c < 3; ++c)
-            slip[c] = u(i, c) - v(i, c), gpi[c] = gp(i, c), lapi[c] = lap(i, c);
+            slip[c] = u(i, c) - v(i, c), gpi[c] = gp(i, c), lapi[c] = lap(i, c), w[c] = vort(i, c);
           const double beta =
-              held_force(fl, 2.0 * r(i), eps(i), slip, gpi, lapi, g, Fi, undisturbed);
+              held_force(fl, 2.0 * r(i), eps(i), slip, gpi, lapi, w, g, Fi, undisturbed, lift);
           for (int c = 0; c < 3; ++c) {  // the fluid's share, per unit mass
-            drag(i, c) = -beta * slip[c] / fl.density - b * undisturbed[c];
+            drag(i, c) = -(beta * slip[c] + lift[c]) / fl.density - b * undisturbed[c];
             F(i, c) = Fi[c];
           }
         });
@@ -348,7 +351,7 @@ class CfdDemCoupling {
     const Vec bv = exchange_;
     const auto b1 = eps_at_;  // reused: beta_p / rho in column 0
     const auto v = p.v, u = at_.velocity, gp = at_.pressure_gradient, corr = self_correction_;
-    const auto lap = at_.velocity_laplacian;
+    const auto lap = at_.velocity_laplacian, vort = at_.vorticity;
     const auto r = p.radius;
     const Vector eps = at_.void_fraction;
     const FluidProperties fl = options_.fluid;
@@ -357,14 +360,16 @@ class CfdDemCoupling {
     Kokkos::parallel_for(
         "amphora::cfd_dem::implicit_drag", kernels::RangePolicy<ExecSpace>(exec, 0, n),
         KOKKOS_LAMBDA(int i) {
-          double slip[3], gpi[3], lapi[3], F[3], undisturbed[3];
+          double slip[3], gpi[3], lapi[3], w[3], F[3], undisturbed[3], lift[3];
           for (int c = 0; c < 3; ++c)
-            slip[c] = u(i, c) - v(i, c), gpi[c] = gp(i, c), lapi[c] = lap(i, c);
+            slip[c] = u(i, c) - v(i, c), gpi[c] = gp(i, c), lapi[c] = lap(i, c), w[c] = vort(i, c);
           const double beta =
-              held_force(fl, 2.0 * r(i), eps(i), slip, gpi, lapi, g, F, undisturbed) / fl.density;
+              held_force(fl, 2.0 * r(i), eps(i), slip, gpi, lapi, w, g, F, undisturbed, lift) /
+              fl.density;
           b1(i, 0) = beta;
-          // -beta (u^(n+1) + corr - v): the fluid takes what the particle is given
-          for (int c = 0; c < 3; ++c) bv(i, c) = beta * (v(i, c) - corr(i, c)) - b * undisturbed[c];
+          // -beta (u^(n+1) + corr - v) - lift: the fluid takes what the particle is given
+          for (int c = 0; c < 3; ++c)
+            bv(i, c) = beta * (v(i, c) - corr(i, c)) - lift[c] / fl.density - b * undisturbed[c];
         });
     kernels::blas1::fill(exec, load_, 0.0);
     kernels::blas1::fill(exec, drag_, 0.0);

@@ -80,6 +80,9 @@ ParamTable cfd_dem_parameter_table() {
           real_param("gravity", 9.81, "m/s^2", at_least(0.0), "gravity, along -z"),
           string_param("drag", std::string("rong"), "drag closure",
                        {"di_felice", "rong", "beetstra", "gidaspow"}),
+          bool_param("saffman_lift", false,
+                     "add the Saffman-Mei shear lift to the particles (and its reaction to the "
+                     "fluid)"),
           string_param("void_fraction", std::string("qcm"),
                        "particle-centred (smoothed) or quadrature-centred", {"pcm", "qcm"}),
           real_param("smoothing_length", 1.0, "diameters", at_least(0.0),
@@ -208,6 +211,7 @@ CfdDemOptions coupling_options(const Parameters& p) {
   o.fluid.density = p.real("fluid_density");
   o.fluid.viscosity = p.real("viscosity") * o.fluid.density;
   o.fluid.drag = *drag_model_from_name(p.string("drag"));  // the table allows only these
+  o.fluid.saffman_lift = p.boolean("saffman_lift");
   o.void_fraction.method =
       p.string("void_fraction") == "qcm" ? VoidFractionMethod::qcm : VoidFractionMethod::pcm;
   o.void_fraction.smoothing_length = p.real("smoothing_length") * p.real("particle_diameter");

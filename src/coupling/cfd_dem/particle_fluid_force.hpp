@@ -5,6 +5,7 @@
 // One point law (held_force) for the coupling and for one-way use; the fluid at each particle
 // (velocity, void fraction, pressure gradient, the velocity's Laplacian) is sampled first.
 #include "coupling/cfd_dem/drag_models.hpp"
+#include "coupling/cfd_dem/lift_force.hpp"
 #include "kernels/spaces.hpp"
 #include "mesh/particles/particle_set.hpp"
 
@@ -17,29 +18,35 @@ struct FluidAtParticles {
   /// The velocity's Laplacian (the viscous-stress force's; zero on Q1 cells).
   typename mesh::particles::ParticleSet<MemSpace>::Vec velocity_laplacian;
   typename mesh::particles::ParticleSet<MemSpace>::Scalar void_fraction;
+  /// curl u (the lift's; zero without it).
+  typename mesh::particles::ParticleSet<MemSpace>::Vec vorticity;
 };
 
 struct FluidProperties {
   double density = 1000.0;  ///< kg/m^3
   double viscosity = 1e-3;  ///< dynamic, Pa s
   DragModel drag = DragModel::di_felice;
+  bool saffman_lift = false;  ///< add the Saffman-Mei lift
 };
 
 /// The held force F on a particle of diameter d at void fraction eps, slip u - v, kinematic
-/// pressure gradient gp and velocity Laplacian lap, under gravity g; also the undisturbed
-/// flow's force per unit fluid density, V_p (nu lap - gp), which model B returns to the fluid.
+/// pressure gradient gp, velocity Laplacian lap and vorticity w, under gravity g; also the
+/// undisturbed flow's force per unit fluid density, V_p (nu lap - gp), which model B returns to
+/// the fluid, and the lift in F (zero without it), which the fluid takes back like the drag.
 /// Returns the drag coefficient beta (F_drag = beta slip).
 KOKKOS_INLINE_FUNCTION double held_force(const FluidProperties& fl, double d, double eps,
                                          const double slip[3], const double gp[3],
-                                         const double lap[3], const double g[3], double F[3],
-                                         double undisturbed[3]) {
+                                         const double lap[3], const double w[3], const double g[3],
+                                         double F[3], double undisturbed[3], double lift[3]) {
   const double s2 = slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2];
   const double volume = M_PI * d * d * d / 6.0, nu = fl.viscosity / fl.density;
   const double beta =
       drag_coefficient(fl.drag, fl.density, fl.viscosity, d, eps, kernels::math::sqrt(s2));
+  for (int c = 0; c < 3; ++c) lift[c] = 0.0;
+  if (fl.saffman_lift) saffman_mei_lift(fl.density, fl.viscosity, d, slip, w, lift);
   for (int c = 0; c < 3; ++c) {
     undisturbed[c] = volume * (nu * lap[c] - gp[c]);
-    F[c] = beta * slip[c] + fl.density * (undisturbed[c] - volume * g[c]);
+    F[c] = beta * slip[c] + fl.density * (undisturbed[c] - volume * g[c]) + lift[c];
   }
   return beta;
 }
@@ -52,6 +59,7 @@ void particle_fluid_force(const ExecSpace& exec, const FluidProperties& fluid,
                           const FluidAtParticles<MemSpace>& at,
                           const typename mesh::particles::ParticleSet<MemSpace>::Vec& force) {
   const auto v = p.v, u = at.velocity, gp = at.pressure_gradient, lap = at.velocity_laplacian;
+  const auto vort = at.vorticity;
   const auto r = p.radius;
   const auto eps = at.void_fraction;
   const FluidProperties fl = fluid;
@@ -59,10 +67,12 @@ void particle_fluid_force(const ExecSpace& exec, const FluidProperties& fluid,
   Kokkos::parallel_for(
       "amphora::cfd_dem::particle_fluid_force", kernels::RangePolicy<ExecSpace>(exec, 0, p.n_owned),
       KOKKOS_LAMBDA(int i) {
-        double slip[3], gpi[3], lapi[3], F[3], undisturbed[3];
+        double slip[3], gpi[3], lapi[3], w[3] = {0, 0, 0}, F[3], undisturbed[3], lift[3];
         for (int c = 0; c < 3; ++c)
           slip[c] = u(i, c) - v(i, c), gpi[c] = gp(i, c), lapi[c] = lap(i, c);
-        held_force(fl, 2.0 * r(i), eps(i), slip, gpi, lapi, g, F, undisturbed);
+        if (fl.saffman_lift)
+          for (int c = 0; c < 3; ++c) w[c] = vort(i, c);
+        held_force(fl, 2.0 * r(i), eps(i), slip, gpi, lapi, w, g, F, undisturbed, lift);
         for (int c = 0; c < 3; ++c) force(i, c) = F[c];
       });
 }

@@ -45,6 +45,27 @@ void interpolate_gradient(const ExecSpace& exec, const kernels::sumfac::QkPointB
       });
 }
 
+/// out(i, .) = curl u at x_i for a 3D velocity u blocked by component (as in interpolate) and
+/// the first n points.
+template <class ExecSpace, class Field, class Points, class Out>
+void interpolate_curl(const ExecSpace& exec, const kernels::sumfac::QkPointBasis<3>& basis,
+                      const Field& u, const Points& x, int n, const Out& out) {
+  const long n_dofs = basis.lattice.n_dofs();
+  Kokkos::parallel_for(
+      "amphora::cfd_dem::interpolate_curl", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+      KOKKOS_LAMBDA(int i) {
+        const double p[3] = {x(i, 0), x(i, 1), x(i, 2)};
+        double G[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};  // G[c][a] = d u_c / d x_a
+        basis.for_each_gradient(p, [&](long j, const double* g) {
+          for (int c = 0; c < 3; ++c)
+            for (int a = 0; a < 3; ++a) G[c][a] += u(c * n_dofs + j) * g[a];
+        });
+        out(i, 0) = G[2][1] - G[1][2];
+        out(i, 1) = G[0][2] - G[2][0];
+        out(i, 2) = G[1][0] - G[0][1];
+      });
+}
+
 /// out(i, c) = Laplacian of component c of f at x_i (f blocked by component as in
 /// interpolate) for the first n points and c < components.
 template <int dim, class ExecSpace, class Field, class Points, class Out>
