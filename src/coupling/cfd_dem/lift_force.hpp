@@ -29,8 +29,8 @@ KOKKOS_INLINE_FUNCTION void saffman_mei_lift(double rho, double mu, double d, co
   for (int c = 0; c < 3; ++c) L[c] = 0.0;
   if (!(s > 0.0) || !(wn > 0.0)) return;
   const double re = rho * s * d / mu, re_w = rho * wn * d * d / mu;
-  const double k = 1.615 * d * d * kernels::math::sqrt(rho * mu / wn) *
-                   mei_lift_factor(re, 0.5 * re_w / re);
+  const double k =
+      1.615 * d * d * kernels::math::sqrt(rho * mu / wn) * mei_lift_factor(re, 0.5 * re_w / re);
   L[0] = k * (slip[1] * w[2] - slip[2] * w[1]);
   L[1] = k * (slip[2] * w[0] - slip[0] * w[2]);
   L[2] = k * (slip[0] * w[1] - slip[1] * w[0]);
