@@ -543,13 +543,11 @@ class InsSolver {
     return distributed_.dot(exec, u, bu, dim);
   }
 
-  /// y = B x over the ranks (DistributedOperator::apply for this solver's operators on the slab).
+  /// y = B x over the ranks (the step operator without a backflow term).
   void apply_on_slabs(const ExecSpace& exec, const Operator& B, const Vector& x,
                       const Vector& y) const {
-    const int nc = B.options().components;
-    distributed_.update_ghosts(exec, x, nc);
-    B.apply(exec, x, y);
-    distributed_.compress_add(exec, y, nc, B.constrained_components());
+    WithBackflow<DistributedSpace, Operator, Backflow>{&distributed_, &B, nullptr}.apply(exec, x,
+                                                                                         y);
   }
   /// The sum over the ranks of v's owned entries (one component).
   double owned_sum(const ExecSpace& exec, const Vector& v) const {
