@@ -82,12 +82,8 @@ KOKKOS_INLINE_FUNCTION double reduced_part(double x, double g, double lo, double
 /// sum over the ranks' owned entries of x y.
 template <class ExecSpace, class View, class Ranks>
 double owned_dot(const ExecSpace& exec, const View& x, const View& y, const Ranks& ranks) {
-  double s = 0.0;
-  Kokkos::parallel_reduce(
-      "amphora::mprgp::dot",
-      kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(ranks.owned)),
-      KOKKOS_LAMBDA(int i, double& a) { a += x(i) * y(i); }, s);
-  return ranks.sum(s);
+  const Kokkos::pair<long, long> owned(0, ranks.owned);
+  return ranks.sum(kernels::blas1::dot(exec, Kokkos::subview(x, owned), Kokkos::subview(y, owned)));
 }
 
 /// |projected gradient|^2, |chopped|^2 and (reduced free gradient).(free gradient), summed
