@@ -89,7 +89,7 @@ ParamTable cfd_dem_parameter_table() {
                      "L of the void fraction's L2-projection smoothing, in particle diameters"),
           bool_param("bound_void_fraction", false,
                      "keep eps within [void_fraction_lower_bound, void_fraction_upper_bound] "
-                     "(an active set; the particles' volume is then not held exactly)"),
+                     "(MPRGP; the particles' volume is then not held exactly where one binds)"),
           real_param("void_fraction_lower_bound", 0.36, "1", above(0.0) & below(1.0),
                      "the least eps where bound_void_fraction"),
           real_param("void_fraction_upper_bound", 1.0, "1", above(0.0) & at_most(1.0),
