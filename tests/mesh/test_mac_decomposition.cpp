@@ -288,8 +288,8 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
       if (c.has_tall_cell())
         mine[c.first_unknown] = w.first_unknown, mine[c.first_unknown + 1] = w.first_unknown + 1;
       for (int j = c.band; j < local.grid.ny; ++j) {
-        const int u = T.cell_unknown()[local.grid.index(i, j, k)];
-        if (u >= 0) mine[u] = W.cell_unknown()[whole.grid.index(box.lo[0] + i, j, box.lo[2] + k)];
+        const int u = T.cell_unknown()(local.grid.index(i, j, k));
+        if (u >= 0) mine[u] = W.cell_unknown()(whole.grid.index(box.lo[0] + i, j, box.lo[2] + k));
       }
     }
   const std::vector<std::int64_t> to_whole = comm.allgatherv(mine);
@@ -321,11 +321,11 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   using solvers::mac::PressureBackend;
   int iterations[2] = {0, 0};
   const auto solve_tall = [&](PressureBackend backend, const mesh::mac::TallCellGrid& grid,
-                              const Block& B, const solvers::CsrMatrix& A_t, int& its) {
+                              const Block& B, int& its) {
     std::vector<double> bt(grid.unknowns()), lattice(B.grid.padded_size());
     grid.restrict_to_unknowns(B.b.data(), bt.data());
     auto solver = solvers::mac::make_tall_cell_pressure_solver(
-        backend, Exec(), grid, A_t, kernels::mac::copy_stencil<Mem>(B.A));
+        backend, Exec(), grid, kernels::mac::copy_stencil<Mem>(B.A));
     Kokkos::View<double*, Mem> y("y", grid.unknowns());
     const auto r = solver->solve(Exec(), kernels::to_view<Mem>(bt), y, control);
     EXPECT_TRUE(r.converged);
@@ -335,8 +335,8 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   };
   // BoomerAMG-CG and the own tall-cell multigrid-CG on the blocks: the single block's pressure
   for (const auto backend : {PressureBackend::hypre, PressureBackend::multigrid}) {
-    const Difference pq = block_difference(comm, S, solve_tall(backend, T, local, M, iterations[0]),
-                                           solve_tall(backend, W, whole, Mw, iterations[1]));
+    const Difference pq = block_difference(comm, S, solve_tall(backend, T, local, iterations[0]),
+                                           solve_tall(backend, W, whole, iterations[1]));
     const double diff = pq.max, scale = pq.scale;
     EXPECT_GT(scale, 0.0);
     EXPECT_LT(diff, 1e-8 * scale) << solvers::mac::to_string(backend) << " on " << comm.size()
@@ -356,8 +356,8 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
   using TallMG = solvers::mac::TallCellMultigrid<Exec>;
   solvers::mac::TallCellMultigridOptions deep;
   deep.max_coarse_cells = 64;  // down to 4^3: every transfer crosses the block faces
-  const TallMG split_mg(Exec(), T, M, kernels::mac::copy_stencil<Mem>(local.A), deep);
-  const TallMG whole_mg(Exec(), W, Mw, kernels::mac::copy_stencil<Mem>(whole.A), deep);
+  const TallMG split_mg(Exec(), T, kernels::mac::copy_stencil<Mem>(local.A), deep);
+  const TallMG whole_mg(Exec(), W, kernels::mac::copy_stencil<Mem>(whole.A), deep);
   EXPECT_EQ(split_mg.levels(), whole_mg.levels());
   const auto vcycle = [&](const TallMG& mg, const mesh::mac::TallCellGrid& grid, const Block& B) {
     std::vector<double> bt(grid.unknowns()), lattice(B.grid.padded_size());
@@ -376,7 +376,7 @@ TEST_P(MacDecomposition, TallCellSystemOnBlocksMatchesTheSingleBlock) {
                 dz, zmax);
   if (comm.size() > 1) {  // MIC(0) solves one block only
     EXPECT_THROW(solvers::mac::make_tall_cell_pressure_solver(
-                     PressureBackend::mic0, Exec(), T, M, kernels::mac::copy_stencil<Mem>(local.A)),
+                     PressureBackend::mic0, Exec(), T, kernels::mac::copy_stencil<Mem>(local.A)),
                  std::invalid_argument);
   }
 }

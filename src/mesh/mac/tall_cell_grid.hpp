@@ -13,6 +13,7 @@
 // blocks of lower ranks (global number = local + first_unknown()), and learns the columns of
 // its ghost ring (their rows and global unknowns) from the neighbouring blocks, so the matrix
 // rows of its unknowns can be assembled with their couplings across the block faces.
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -21,6 +22,7 @@
 #include "mesh/mac/lattice_halo.hpp"
 #include "kernels/mac/tall_cell_columns.hpp"
 #include "kernels/mac/tall_cell_layout.hpp"
+#include "kernels/mac/tall_cell_numbering.hpp"
 
 namespace amphora::mesh::mac {
 
@@ -37,18 +39,30 @@ class TallCellGrid {
  public:
   /// The columns of A's fluid cells with uniform rows within optical_depth cells of the lowest
   /// non-fluid row above the terrain; a tall cell needs at least two rows (else the column stays
-  /// uniform). A is on the host. On a split grid (block.split()) every rank of block.comm
-  /// constructs its block's grid together (collective).
-  TallCellGrid(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A, int optical_depth,
-               const MacBlock& block = {});
+  /// uniform). Built by kernels on exec in A's memory space (kernels/mac/tall_cell_numbering),
+  /// with a host copy for the host's assemblies. On a split grid (block.split()) every rank of
+  /// block.comm constructs its block's grid together (collective).
+  template <class ExecSpace>
+  TallCellGrid(const ExecSpace& exec,
+               const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
+               int optical_depth, const MacBlock& block = {});
   /// The next coarser multigrid level's grid over A, whose lattice has cells twice as wide as
   /// finer's: a column has a tall cell where the four finer columns under it all have one, and
   /// its band is the coarse row holding the lowest of their bands (rounded up), so the coarse
   /// tall cells follow the finer ones (0.5 coarse rows at most apart) rather than A's surface
   /// (fewer CG iterations than bands from A's surface: docs/water.md). Collective on a split
   /// grid.
-  TallCellGrid(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A,
+  template <class ExecSpace>
+  TallCellGrid(const ExecSpace& exec,
+               const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
                const TallCellGrid& finer, const MacBlock& block = {});
+  /// The same from a host stencil, built by the host's threads.
+  TallCellGrid(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A, int optical_depth,
+               const MacBlock& block = {})
+      : TallCellGrid(kernels::HostExecSpace(), A, optical_depth, block) {}
+  TallCellGrid(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A,
+               const TallCellGrid& finer, const MacBlock& block = {})
+      : TallCellGrid(kernels::HostExecSpace(), A, finer, block) {}
 
   const kernels::mac::MacGrid& grid() const { return grid_; }
   const MacBlock& block() const { return block_; }
@@ -59,14 +73,23 @@ class TallCellGrid {
   long global_unknowns() const { return global_unknowns_; }
   int optical_depth() const { return optical_depth_; }
   long tall_cells() const { return tall_cells_; }
-  const std::vector<TallCellColumn>& columns() const { return columns_; }
-  /// Unknown of a uniform fluid cell (padded index), -1 elsewhere (this block's numbering).
-  const std::vector<int>& cell_unknown() const { return cell_unknown_; }
+  /// The grid in MemSpace, for kernels: the arrays it was built in (no copy), or the host's.
+  template <class MemSpace>
+  kernels::mac::TallCellMap<MemSpace> map() const;
+  template <class MemSpace>
+  kernels::mac::TallCellLayout<MemSpace> layout() const {
+    return map<MemSpace>().own;
+  }
+  /// Unknown of a uniform fluid cell (padded index), -1 elsewhere (this block's numbering; host).
+  const Kokkos::View<int*, kernels::HostMemSpace>& cell_unknown() const {
+    return host_.own.cell_unknown;
+  }
   /// Column (i, k) of the block or of its ghost ring (i = -1..nx, k = -1..nz; the ring's
   /// first_unknown in the global numbering; outside the global box: no fluid).
-  const TallCellColumn& column(int i, int k) const {
-    if (i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz) return columns_[i + grid_.nx * k];
-    return ring_columns_.at((i + 1) + (grid_.nx + 2) * (k + 1));
+  TallCellColumn column(int i, int k) const {
+    TallCellColumn c;
+    host_.column(i, k, c.terrain, c.band, c.first_unknown);
+    return c;
   }
   /// Global number of the first unknown of column (i, k) (block or ghost ring).
   long global_first_unknown(int i, int k) const {
@@ -79,7 +102,7 @@ class TallCellGrid {
   /// samples its lowest two cells, then the uniform fluid cells upwards.
   template <class F>
   void for_each_unknown_in_column(int i, int k, const F& f) const {
-    for_each_carrier(columns_[i + grid_.nx * k], cell_unknown_, i, k, f);
+    for_each_carrier(column(i, k), host_.own.cell_unknown, i, k, f);
   }
   /// The lattice cell (padded index) that carries each of this block's unknowns in a ghost
   /// exchange (as for_each_unknown_in_column).
@@ -91,20 +114,7 @@ class TallCellGrid {
   /// its ghost ring: p = sum w u.
   /// (Inline: the assemblies and level transfers call it a few times per unknown.)
   int weights(int i, int j, int k, int u[2], double w[2]) const {
-    const bool own = i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz;
-    const TallCellColumn& col = column(i, k);
-    const long base = own ? first_unknown_ : 0;  // the ring's numbers are global already
-    if (j >= col.terrain && j < col.band) {
-      const double t = double(j - col.terrain) / double(col.band - 1 - col.terrain);
-      u[0] = static_cast<int>(base + col.first_unknown), w[0] = 1.0 - t;
-      u[1] = static_cast<int>(base + col.first_unknown + 1), w[1] = t;
-      return 2;
-    }
-    const int unknown =
-        own ? cell_unknown_[grid_.index(i, j, k)] : ring_unknown_.at(grid_.index(i, j, k));
-    if (unknown < 0) return 0;
-    u[0] = static_cast<int>(base + unknown), w[0] = 1.0;
-    return 1;
+    return host_.weights(i, j, k, u, w);
   }
   /// Lattice values P y (host, padded lattice; zero off the fluid).
   void prolongate(const double* y, double* lattice) const;
@@ -112,22 +122,21 @@ class TallCellGrid {
   void restrict_to_unknowns(const double* lattice, double* y) const;
 
  private:
-  /// Columns (terrain: the lowest fluid row; band = band_of(i, k, terrain, top of the fluid run
-  /// above it)), numbering and ghost ring.
-  template <class Band>
-  void build(const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A, const Band& band_of);
-  void learn_ghost_ring();
+  /// Columns and numbering by the kernels (band_of: the band rule), the ghost ring on a split
+  /// grid, and the host copies.
+  template <class ExecSpace, class Stencil, class Band>
+  void build(const ExecSpace& exec, const Stencil& A, const Band& band_of);
   /// f(u, i, j, k) for the unknowns of column (i, k) as `uniform` (per padded cell) and the
   /// column number them.
-  template <class F>
-  void for_each_carrier(const TallCellColumn& col, const std::vector<int>& uniform, int i, int k,
+  template <class F, class Uniform>
+  void for_each_carrier(const TallCellColumn& col, const Uniform& uniform, int i, int k,
                         const F& f) const {
     if (col.has_tall_cell()) {
       f(col.first_unknown, i, col.terrain, k);
       f(col.first_unknown + 1, i, col.terrain + 1, k);
     }
     for (int j = col.band; j < grid_.ny; ++j) {
-      const int u = uniform[grid_.index(i, j, k)];
+      const int u = uniform(grid_.index(i, j, k));
       if (u >= 0) f(u, i, j, k);
     }
   }
@@ -136,13 +145,50 @@ class TallCellGrid {
   MacBlock block_;
   int optical_depth_ = 0;
   long unknowns_ = 0, tall_cells_ = 0, first_unknown_ = 0, global_unknowns_ = 0;
-  std::vector<TallCellColumn> columns_;
-  std::vector<int> cell_unknown_;
-  // the ghost ring: columns (nx + 2) x (nz + 2) padded (own ones unused), global unknowns of
-  // its uniform cells per padded lattice index (-1: none)
-  std::vector<TallCellColumn> ring_columns_;
-  std::vector<int> ring_unknown_;
+  /// the arrays where they were built (the default memory space's, if they were built there)
+  /// and on the host (the same Views where the host can read them)
+  kernels::mac::TallCellMap<kernels::DefaultMemSpace> built_;
+  kernels::mac::TallCellMap<kernels::HostMemSpace> host_;
 };
+
+namespace detail {
+template <class MemSpace, class View>
+auto copy_to(const View& v) {
+  return Kokkos::create_mirror_view_and_copy(MemSpace(), v);
+}
+/// M's arrays in MemSpace (the same Views where they are there already).
+template <class MemSpace, class From>
+kernels::mac::TallCellMap<MemSpace> copy_map(const kernels::mac::TallCellMap<From>& M) {
+  kernels::mac::TallCellMap<MemSpace> C;
+  C.first = M.first, C.split = M.split;
+  C.own.grid = M.own.grid;
+  C.own.terrain = copy_to<MemSpace>(M.own.terrain);
+  C.own.band = copy_to<MemSpace>(M.own.band);
+  C.own.first_unknown = copy_to<MemSpace>(M.own.first_unknown);
+  C.own.cell_unknown = copy_to<MemSpace>(M.own.cell_unknown);
+  if (!M.split) return C;
+  C.ring.slots = M.ring.slots;
+  C.ring.terrain = copy_to<MemSpace>(M.ring.terrain);
+  C.ring.band = copy_to<MemSpace>(M.ring.band);
+  C.ring.first_unknown = copy_to<MemSpace>(M.ring.first_unknown);
+  C.ring.unknown = copy_to<MemSpace>(M.ring.unknown);
+  C.ring.first_slot = copy_to<MemSpace>(M.ring.first_slot);
+  C.ring.slot = copy_to<MemSpace>(M.ring.slot);
+  C.ring.slot_cell = copy_to<MemSpace>(M.ring.slot_cell);
+  return C;
+}
+}  // namespace detail
+
+template <class MemSpace>
+kernels::mac::TallCellMap<MemSpace> TallCellGrid::map() const {
+  if constexpr (std::is_same_v<MemSpace, kernels::DefaultMemSpace>) {
+    if (built_.own.cell_unknown.data() != nullptr) return built_;
+  }
+  if constexpr (std::is_same_v<MemSpace, kernels::HostMemSpace>)
+    return host_;
+  else
+    return detail::copy_map<MemSpace>(host_);
+}
 
 }  // namespace amphora::mesh::mac
 
@@ -151,16 +197,7 @@ namespace amphora::mesh::mac {
 /// The grid's arrays in a memory space, for kernels.
 template <class MemSpace>
 kernels::mac::TallCellLayout<MemSpace> make_layout(const TallCellGrid& T) {
-  std::vector<int> t, b, f;
-  for (const TallCellColumn& c : T.columns())
-    t.push_back(c.terrain), b.push_back(c.band), f.push_back(c.first_unknown);
-  kernels::mac::TallCellLayout<MemSpace> L;
-  L.grid = T.grid();
-  L.terrain = kernels::to_view<MemSpace>(t, "amphora::tall::terrain");
-  L.band = kernels::to_view<MemSpace>(b, "amphora::tall::band");
-  L.first_unknown = kernels::to_view<MemSpace>(f, "amphora::tall::first_unknown");
-  L.cell_unknown = kernels::to_view<MemSpace>(T.cell_unknown(), "amphora::tall::cell_unknown");
-  return L;
+  return T.layout<MemSpace>();
 }
 
 }  // namespace amphora::mesh::mac

@@ -79,6 +79,24 @@ struct BlockCsrMatrix {
     lattice = Vector("amphora::block_csr::lattice", grid.padded_size());
   }
 
+  /// M: this block's rows of a square matrix over T's unknowns with local columns (this block's
+  /// unknowns, then the ring's slots: kernels::mac::TallCellRing), assembled in MemSpace;
+  /// carriers: the lattice cell of each of T's unknowns (tall_cell_carriers). No host work.
+  BlockCsrMatrix(DeviceCsrMatrix<MemSpace> M, const mesh::mac::TallCellGrid& T,
+                 const Kokkos::View<int*, MemSpace>& carriers)
+      : local(std::move(M)), grid(T.grid()), halo(T.block()) {
+    n = local.n;
+    columns = static_cast<int>(T.unknowns());
+    inverse_diagonal = local.inverse_diagonal;
+    if (!halo.block().split()) return;
+    const auto ring = T.map<MemSpace>().ring;
+    ghosts = ring.slots;
+    own_cells = carriers;
+    ghost_cells = ring.slot_cell;
+    extended = Vector("amphora::block_csr::extended", columns + ghosts);
+    lattice = Vector("amphora::block_csr::lattice", grid.padded_size());
+  }
+
   /// y = A x (x: this block's unknowns of the column grid, y: its rows). Collective on a split
   /// grid.
   template <class ExecSpace, class X, class Y>

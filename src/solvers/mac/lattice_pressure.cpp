@@ -2,7 +2,6 @@
 
 #include "kernels/mac/tall_cell_transfer.hpp"
 #include "mesh/mac/tall_cell_grid.hpp"
-#include "solvers/mac/tall_cell_matrix.hpp"
 
 namespace amphora::solvers::mac {
 
@@ -17,20 +16,16 @@ LatticePressure<ExecSpace>::LatticePressure(const ExecSpace& exec, PressureBacke
     return;
   }
   Kokkos::Profiling::pushRegion("amphora::water::tall_cell_grid");
-  const auto H = kernels::mac::host_stencil(A);
-  const mesh::mac::TallCellGrid T(H, optical_depth, block);
+  const mesh::mac::TallCellGrid T(exec, A, optical_depth, block);
   Kokkos::Profiling::popRegion();
-  Kokkos::Profiling::pushRegion("amphora::water::tall_cell_matrix");
-  CsrMatrix M = assemble_tall_cell_matrix(T, H);
-  Kokkos::Profiling::popRegion();
-  layout_ = mesh::mac::make_layout<Mem>(T);
+  layout_ = T.layout<Mem>();
   bt_ = Vector("amphora::water::b_tall", T.unknowns());
   y_ = Vector("amphora::water::p_tall", T.unknowns());
   kernels::mac::tall_cell_restrict(exec, *layout_, b_, bt_);
   kernels::mac::tall_cell_restrict(exec, *layout_, p_, y_);
   kernels::mac::tall_cell_gram_solve(exec, *layout_, y_);
   Kokkos::Profiling::pushRegion("amphora::water::tall_cell_solver_setup");
-  solver_ = make_tall_cell_pressure_solver(backend, exec, T, std::move(M), A, kept);
+  solver_ = make_tall_cell_pressure_solver(backend, exec, T, A, kept);
   Kokkos::Profiling::popRegion();
   global_unknowns_ = T.global_unknowns();
 }

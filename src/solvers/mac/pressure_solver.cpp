@@ -12,6 +12,7 @@
 #include "solvers/mac/stencil_csr.hpp"
 #include "solvers/hypre_boomeramg.hpp"
 #include "solvers/mac/stencil_mic0.hpp"
+#include "solvers/mac/tall_cell_matrix.hpp"
 #include "solvers/mac/tall_cell_multigrid.hpp"
 #include "solvers/modified_incomplete_cholesky.hpp"
 
@@ -207,7 +208,7 @@ class CsrMic0PressureSolver final : public PressureSolver<ExecSpace> {
 
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
-    PressureBackend backend, const ExecSpace& exec, const mesh::mac::TallCellGrid& T, CsrMatrix A_t,
+    PressureBackend backend, const ExecSpace& exec, const mesh::mac::TallCellGrid& T,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
     KeptCoarseStencils<typename ExecSpace::memory_space>* kept) {
   if (T.block().split() && backend == PressureBackend::mic0)
@@ -218,12 +219,14 @@ std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
   switch (backend) {
     case PressureBackend::multigrid:
       return std::make_unique<MultigridPressureSolver<ExecSpace, TallCellMultigrid<ExecSpace>>>(
-          exec, T, std::move(A_t), A, TallCellMultigridOptions{}, kept);
+          exec, T, A, TallCellMultigridOptions{}, kept);
     case PressureBackend::hypre:
-      return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(std::move(A_t), T.block().comm,
-                                                                  T.first_unknown());
+      return std::make_unique<BoomerAMGPressureSolver<ExecSpace>>(
+          assemble_tall_cell_matrix(T, kernels::mac::host_stencil(A)), T.block().comm,
+          T.first_unknown());
     case PressureBackend::mic0:
-      return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(std::move(A_t));
+      return std::make_unique<CsrMic0PressureSolver<ExecSpace>>(
+          assemble_tall_cell_matrix(T, kernels::mac::host_stencil(A)));
   }
   throw std::invalid_argument("make_tall_cell_pressure_solver: unknown back end");
 }
@@ -256,7 +259,7 @@ template std::unique_ptr<PressureSolver<kernels::DefaultExecSpace>> make_pressur
     PressureBackend, const kernels::DefaultExecSpace&,
     const kernels::mac::PoissonStencil<kernels::DefaultMemSpace>&, const MacBlock&);
 template std::unique_ptr<PressureSolver<kernels::DefaultExecSpace>> make_tall_cell_pressure_solver(
-    PressureBackend, const kernels::DefaultExecSpace&, const mesh::mac::TallCellGrid&, CsrMatrix,
+    PressureBackend, const kernels::DefaultExecSpace&, const mesh::mac::TallCellGrid&,
     const kernels::mac::PoissonStencil<kernels::DefaultMemSpace>&,
     KeptCoarseStencils<kernels::DefaultMemSpace>*);
 #if defined(KOKKOS_ENABLE_SERIAL) && defined(KOKKOS_ENABLE_OPENMP)
@@ -264,7 +267,7 @@ template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_pressure_solver(
     PressureBackend, const Kokkos::Serial&, const kernels::mac::PoissonStencil<Kokkos::HostSpace>&,
     const MacBlock&);
 template std::unique_ptr<PressureSolver<Kokkos::Serial>> make_tall_cell_pressure_solver(
-    PressureBackend, const Kokkos::Serial&, const mesh::mac::TallCellGrid&, CsrMatrix,
+    PressureBackend, const Kokkos::Serial&, const mesh::mac::TallCellGrid&,
     const kernels::mac::PoissonStencil<Kokkos::HostSpace>&, KeptCoarseStencils<Kokkos::HostSpace>*);
 #endif
 

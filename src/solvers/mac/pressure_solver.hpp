@@ -61,12 +61,13 @@ template <class MemSpace>
 struct KeptCoarseStencils;  // tall_cell_multigrid.hpp
 
 /// A_t = P^T A P of the tall-cell grid T over the uniform stencil A (on a split grid: this
-/// block's rows; MIC(0) refuses one). Taken by value: each back end keeps a moved A_t, not a copy.
+/// block's rows; MIC(0) refuses one), assembled where its back end reads it: the multigrid's on
+/// the device, hypre's and IC(0)'s on the host.
 /// `kept`: the multigrid's coarse lattice stencils, kept between solvers (the other back ends
 /// have none).
 template <class ExecSpace>
 std::unique_ptr<PressureSolver<ExecSpace>> make_tall_cell_pressure_solver(
-    PressureBackend backend, const ExecSpace& exec, const mesh::mac::TallCellGrid& T, CsrMatrix A_t,
+    PressureBackend backend, const ExecSpace& exec, const mesh::mac::TallCellGrid& T,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,
     KeptCoarseStencils<typename ExecSpace::memory_space>* kept = nullptr);
 

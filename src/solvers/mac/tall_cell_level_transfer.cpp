@@ -62,7 +62,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
     carriers.push_back(c);
   }
   const auto is_tall_top = [&](const Carrier& c) {
-    const mesh::mac::TallCellColumn& column = fine.column(c.i, c.k);
+    const mesh::mac::TallCellColumn column = fine.column(c.i, c.k);
     return c.j < column.band && c.j == column.terrain + 1;
   };
 
@@ -198,7 +198,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
     };
     for (std::size_t r = r_begin; r < r_end; ++r) {
       const int i = carriers[r].i, j = carriers[r].j, k = carriers[r].k;
-      const mesh::mac::TallCellColumn& column = fine.column(i, k);
+      const mesh::mac::TallCellColumn column = fine.column(i, k);
       if (j >= column.band) {  // a uniform cell
         const Trilinear tri = trilinear(i, j, k);
         if (plain_row(tri)) continue;
@@ -219,7 +219,7 @@ TallCellLevelTransfer tall_cell_level_transfer(
         const Trilinear tr = trilinear(i, t, k);  // its coarse columns
         for (int c = 0; c < tr.n[2]; ++c)
           for (int a = 0; a < tr.n[0]; ++a) {
-            const mesh::mac::TallCellColumn& C = coarse.column(tr.index[0][a], tr.index[2][c]);
+            const mesh::mac::TallCellColumn C = coarse.column(tr.index[0][a], tr.index[2][c]);
             if (!C.has_tall_cell()) hi = lo - 1;
             lo = std::max(lo, 2 * C.terrain + 1);
             hi = std::min(hi, 2 * C.band - 2);

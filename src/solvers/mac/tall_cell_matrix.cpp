@@ -1,189 +1,173 @@
 #include "solvers/mac/tall_cell_matrix.hpp"
 
-#include <algorithm>
-#include <atomic>
 #include <stdexcept>
-#include <utility>
-
-#include "solvers/mac/row_accumulator.hpp"
+#include <string>
 
 namespace amphora::solvers::mac {
 
-namespace {
-/// (P^T A P)'s row of the uniform cell (i, j, k) with unknown u (global), gathered: A's row
-/// (its diagonal d, -c towards each neighbour) times P, the neighbour's unknowns weighted as
-/// T.weights gives them (a neighbour in a tall cell to its two samples). No two neighbours share
-/// an unknown, so every entry is one product; a zero weight (the top sample's partner at a
-/// tall cell's top row) adds no entry. Entries sorted by column; returns their number (<= 13,
-/// as uniform_row_length counts them). The neighbours are visited in the order of the
-/// numbering (columns x fastest, each column upwards: -z, -x, -y, the cell, +y, +x, +z), so on
-/// one block the entries come sorted and the sort only checks them.
-int uniform_row(const mesh::mac::TallCellGrid& T,
-                const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A, int i, int j, int k,
-                int u, std::pair<int, double>* row) {
-  const kernels::mac::MacGrid& g = T.grid();
-  const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
+namespace detail {
+
+/// The entries of one row under construction: the tall samples' columns (the row's own two and
+/// its four neighbours' two each) accumulated in slots, in the order the terms come; a uniform
+/// cell's column, which one term gives (no two terms of a row share one), handed on at once.
+struct TallRowSlots {
+  int id[10];
+  double value[10];
   int n = 0;
-  const int di[7] = {0, -1, 0, 0, 0, 1, 0}, dj[7] = {0, 0, -1, 0, 1, 0, 0},
-            dk[7] = {-1, 0, 0, 0, 0, 0, 1};
-  const double cond[7] = {A.cz(c - sz), A.cx(c - 1), A.cy(c - sy), 0.0, A.cy(c), A.cx(c), A.cz(c)};
-  for (int f = 0; f < 7; ++f) {
-    if (f == 3) {  // the cell itself
-      row[n++] = {u, A.diag(c)};
-      continue;
-    }
-    if (cond[f] == 0.0) continue;
-    int ids[2];
+  KOKKOS_INLINE_FUNCTION void add(int column, double v) {
+    for (int e = 0; e < n; ++e)
+      if (id[e] == column) {
+        value[e] += v;
+        return;
+      }
+    id[n] = column, value[n++] = v;  // at most 10 tall samples touch a tall row
+  }
+};
+
+/// P^T A P's rows of a block's unknowns. A uniform row is gathered from A's row (uniform_row);
+/// a tall sample's row from the terms of the quadratic form that touch its tall cell
+/// (tall_row): its cells' free-surface terms, its inner faces in one block, its top face, and
+/// the faces to its four neighbouring columns, in the order of the one-pass assembly this
+/// replaced (own terms, -x, +x, then the z faces by the line's parity), so each entry sums its
+/// terms in an order fixed by the grid.
+template <class MemSpace>
+struct TallCellRows {
+  kernels::mac::TallCellMap<MemSpace> T;
+  kernels::mac::PoissonStencil<MemSpace> A;
+  Kokkos::View<int*, MemSpace> carrier;  ///< each unknown's lattice cell
+  /// per column with a tall cell its free-surface terms' sums (surface_terms), -1 in the first
+  /// where it has none
+  Kokkos::View<double* [4], MemSpace> surface;
+  int ghost_base = -1;  ///< local columns from here on for the ring, or global
+  bool unit = false, marked = false;
+  bool face[4] = {false, false, false, false};  ///< a neighbouring block at -x, +x, -z, +z
+
+  KOKKOS_INLINE_FUNCTION const kernels::mac::MacGrid& g() const { return T.own.grid; }
+  /// The column number of this block's unknown u.
+  KOKKOS_INLINE_FUNCTION int own_id(int u) const {
+    return ghost_base >= 0 ? u : static_cast<int>(T.first + u);
+  }
+  KOKKOS_INLINE_FUNCTION int weights(int i, int j, int k, int u[2], double w[2]) const {
+    return T.weights(i, j, k, u, w, ghost_base);
+  }
+  /// The column of column (i, k)'s bottom sample (it has a tall cell).
+  KOKKOS_INLINE_FUNCTION int bottom_id(int i, int k) const {
+    int t, b, f;
+    T.column(i, k, t, b, f);
+    int u[2];
     double w[2];
-    const int m = T.weights(i + di[f], j + dj[f], k + dk[f], ids, w);
-    for (int e = 0; e < m; ++e)
-      if (w[e] != 0.0) row[n++] = {ids[e], -(cond[f] * w[e])};
+    weights(i, t, k, u, w);
+    return u[0];
   }
-  std::sort(row, row + n);
-  return n;
-}
-
-/// The number of entries uniform_row gives, from the columns alone: the cell, and per neighbour
-/// across a face with c != 0 (a fluid cell, so an unknown or a tall cell's row) one entry, or two
-/// for a tall cell's inner row (at its bottom and top rows one sample's weight is zero).
-int uniform_row_length(const mesh::mac::TallCellGrid& T,
-                       const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A, int i, int j,
-                       int k) {
-  const kernels::mac::MacGrid& g = T.grid();
-  const int c = g.index(i, j, k), sy = g.stride_y(), sz = g.stride_z();
-  const int di[6] = {0, -1, 0, 0, 1, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {-1, 0, 0, 0, 0, 1};
-  const float cond[6] = {A.cz(c - sz), A.cx(c - 1), A.cy(c - sy), A.cy(c), A.cx(c), A.cz(c)};
-  int n = 1;
-  for (int f = 0; f < 6; ++f) {
-    if (cond[f] == 0.0f) continue;
-    const mesh::mac::TallCellColumn& col = T.column(i + di[f], k + dk[f]);
-    const int jj = j + dj[f];
-    const bool inner = jj > col.terrain && jj + 1 < col.band;  // tall, and neither end row
-    n += inner ? 2 : 1;
+  KOKKOS_INLINE_FUNCTION static double tall_step(int t, int b) {
+    return b > t ? 1.0 / (b - 1 - t) : 0.0;
   }
-  return n;
-}
-
-/// The rows of the tall cells' samples, from the quadratic form p^T A p = sum_faces c (p_P -
-/// p_Q)^2 + sum_cells D p^2 over the faces and cells that touch a tall cell (the uniform rows
-/// are gathered apart). Accumulated per tall sample: slot[u] is u's accumulator row (-1 for a
-/// uniform unknown).
-class TallRows {
- public:
-  TallRows(const mesh::mac::TallCellGrid& grid,
-           const kernels::mac::PoissonStencil<kernels::HostMemSpace>& stencil)
-      : T(grid),
-        A(stencil),
-        g(grid.grid()),
-        sy(g.stride_y()),
-        sz(g.stride_z()),
-        n(grid.unknowns()),
-        first(grid.first_unknown()),
-        slot(n, -1),
-        tall_rows(number_samples(grid, slot)),
-        rows(tall_rows, 0),
-        unit(stencil.unit_fluid_faces),
-        marked(stencil.surface_free_rows.extent(0) == static_cast<std::size_t>(g.ny) * g.nz) {}
-
-  /// Every tall row's terms. Rows of a column take terms from its own cells and vertical
-  /// faces, from the x faces to the columns of its x line and from the z faces to the
-  /// neighbouring lines: lines run in parallel (host threads), the z faces in two passes over
-  /// lines of one parity, so no row is written by two threads and each row sums its terms in
-  /// an order fixed by the grid, not the threads.
-  CsrMatrix assemble();
-  const std::vector<int>& slots() const { return slot; }
-
- private:
-  static long number_samples(const mesh::mac::TallCellGrid& grid, std::vector<int>& slots) {
-    long count = 0;
-    for (const mesh::mac::TallCellColumn& col : grid.columns())
-      if (col.has_tall_cell())
-        for (int s = 0; s < 2; ++s) slots[col.first_unknown + s] = static_cast<int>(count++);
-    return count;
-  }
-  int tall_slot(int global) const {
-    const long u = global - first;
-    return u >= 0 && u < n ? slot[u] : -1;
-  }
-  /// += scale v v^T in the tall rows among ids
-  void add_outer(const int* ids, const double* v, int m, double scale) {
-    for (int a = 0; a < m; ++a) {
-      const int s = tall_slot(ids[a]);
-      if (s < 0) continue;
-      for (int b = 0; b < m; ++b) rows.add(s, ids[b], scale * v[a] * v[b]);
-    }
-  }
-  /// c (p_P - p_Q)^2 for lattice cells P and Q, whatever they map to (zero weights left out)
-  void add_face(int iP, int jP, int kP, int iQ, int jQ, int kQ, double c) {
-    int ids[4], cell_ids[2];
-    double v[4], w[2];
-    int m = 0;
-    const int nP = T.weights(iP, jP, kP, cell_ids, w);
-    for (int e = 0; e < nP; ++e)
-      if (w[e] != 0.0) ids[m] = cell_ids[e], v[m++] = w[e];
-    const int nQ = T.weights(iQ, jQ, kQ, cell_ids, w);
-    for (int e = 0; e < nQ; ++e)
-      if (w[e] != 0.0) ids[m] = cell_ids[e], v[m++] = -w[e];
-    add_outer(ids, v, m, c);
-  }
-  static double tall_step(const mesh::mac::TallCellColumn& c) {
-    return c.has_tall_cell() ? 1.0 / (c.band - 1 - c.terrain) : 0.0;
-  }
-  /// What the stencil knows of its values lets most rows of a tall cell go unread (their sums
-  /// are the same): rows known free of free-surface terms, and faces between fluid cells with
-  /// c = 1 exactly (`unit`), whose sums over rows are sums of small integers, exact in closed
-  /// form.
-  bool surface_free(int j, int k) const {
+  KOKKOS_INLINE_FUNCTION bool surface_free(int j, int k) const {
     return marked && A.surface_free_rows(A.surface_free_row(j, k)) != 0;
   }
-  /// A column's tall cell: the free-surface terms D p^2 of its rows (D = d - sum c: nonzero
-  /// only where a row meets air beside it), its inner vertical faces in one block, its top face.
-  void column_terms(int i, int k) {
-    const auto& d = A.diag;
-    const auto &cx = A.cx, &cy = A.cy, &cz = A.cz;
-    const mesh::mac::TallCellColumn& col = T.column(i, k);
-    if (!col.has_tall_cell()) return;
-    const int bot = static_cast<int>(T.global_first_unknown(i, k));
-    for (int j = col.terrain; j < col.band; ++j) {
-      if (surface_free(j, k)) continue;
-      const int c = g.index(i, j, k);
-      if (d(c) == 0.0) continue;
-      const double D = d(c) - (double(cx(c - 1)) + double(cx(c)) + double(cy(c - sy)) +
-                               double(cy(c)) + double(cz(c - sz)) + double(cz(c)));
-      if (D == 0.0) continue;
+
+  /// emit(column, value) for each entry of row u, unsorted; returns their number.
+  template <class Emit>
+  KOKKOS_INLINE_FUNCTION int row(int u, const Emit& emit) const {
+    int i, j, k;
+    g().ijk(carrier(u), i, j, k);
+    int t, b, f;
+    T.column(i, k, t, b, f);
+    if (j >= b) return uniform_row(i, j, k, own_id(u), emit);
+    return tall_row(i, k, own_id(u), emit);
+  }
+
+  /// The number of entries row u has: a uniform row's from the columns alone (the cell, and per
+  /// neighbour across a face with c != 0, a fluid cell, one entry, or two for a tall cell's inner
+  /// row: at its bottom and top rows one sample's weight is zero); a tall row's by writing none.
+  KOKKOS_INLINE_FUNCTION int row_length(int u) const {
+    int i, j, k;
+    g().ijk(carrier(u), i, j, k);
+    int t, b, f;
+    T.column(i, k, t, b, f);
+    if (j < b) return tall_row(i, k, own_id(u), [](int, double) {});
+    const int c = g().index(i, j, k), sy = g().stride_y(), sz = g().stride_z();
+    const int di[6] = {0, -1, 0, 0, 1, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {-1, 0, 0, 0, 0, 1};
+    const float cond[6] = {A.cz(c - sz), A.cx(c - 1), A.cy(c - sy), A.cy(c), A.cx(c), A.cz(c)};
+    int n = 1;
+    for (int e = 0; e < 6; ++e) {
+      if (cond[e] == 0.0f) continue;
+      int tn, bn, fn;
+      T.column(i + di[e], k + dk[e], tn, bn, fn);
+      const int jj = j + dj[e];
+      n += jj > tn && jj + 1 < bn ? 2 : 1;  // tall, and neither end row
+    }
+    return n;
+  }
+
+  /// A's row (its diagonal d, -c towards each neighbour) times P: a neighbour's unknowns
+  /// weighted as T.weights gives them; a zero weight adds no entry.
+  template <class Emit>
+  KOKKOS_INLINE_FUNCTION int uniform_row(int i, int j, int k, int self, const Emit& emit) const {
+    const int c = g().index(i, j, k), sy = g().stride_y(), sz = g().stride_z();
+    const int di[7] = {0, -1, 0, 0, 0, 1, 0}, dj[7] = {0, 0, -1, 0, 1, 0, 0},
+              dk[7] = {-1, 0, 0, 0, 0, 0, 1};
+    const double cond[7] = {A.cz(c - sz), A.cx(c - 1), A.cy(c - sy), 0.0,
+                            A.cy(c),      A.cx(c),     A.cz(c)};
+    int n = 0;
+    for (int f = 0; f < 7; ++f) {
+      if (f == 3) {
+        emit(self, A.diag(c)), ++n;
+        continue;
+      }
+      if (cond[f] == 0.0) continue;
       int ids[2];
       double w[2];
-      const int m = T.weights(i, j, k, ids, w);
-      add_outer(ids, w, m, D);
+      const int m = weights(i + di[f], j + dj[f], k + dk[f], ids, w);
+      for (int e = 0; e < m; ++e)
+        if (w[e] != 0.0) emit(ids[e], -(cond[f] * w[e])), ++n;
     }
-    // the faces between its rows: all between fluid cells
-    double inside = unit ? double(col.band - 1 - col.terrain) : 0.0;
-    if (!unit)
-      for (int j = col.terrain; j + 1 < col.band; ++j) inside += cy(g.index(i, j, k));
-    if (inside != 0.0) {
-      const double dt = tall_step(col);
-      const int ids[2] = {bot, bot + 1};
-      const double v[2] = {dt, -dt};
-      add_outer(ids, v, 2, inside);
-    }
-    const double top = cy(g.index(i, col.band - 1, k));
-    if (top != 0.0 && col.band < g.ny) add_face(i, col.band - 1, k, i, col.band, k, top);
+    return n;
   }
-  /// The face between column (i, k) and its +x (dir 0) or +z (dir 1) neighbour, over the rows
-  /// where either side is in a tall cell (above them both are uniform: gathered rows).
-  void face_terms(int dir, int i, int k) {
-    const auto &cx = A.cx, &cz = A.cz;
-    const auto& cond = dir == 0 ? cx : cz;
-    const int in = i + (dir == 0), kn = k + (dir == 1);
-    const mesh::mac::TallCellColumn &col = T.column(i, k), &next = T.column(in, kn);
-    if (!col.has_tall_cell() && !next.has_tall_cell()) return;
-    const double dc = tall_step(col), dn = tall_step(next);
-    // tall against tall: sum_j c_j v(j) v(j)^T with v = (1 - t, t, -(1 - s), -s) linear in
-    // j, so from the moments sum c, sum c x, sum c x^2 (x = j - j0, small for accuracy)
-    const int j0 = std::max(col.terrain, next.terrain), j_tall = std::min(col.band, next.band);
-    const int j_end = std::max(col.band, next.band);
+
+  /// c (p_P - p_Q)^2's terms in row `self`: the tall samples' into slots, a uniform cell's
+  /// emitted (zero weights left out).
+  template <class Emit>
+  KOKKOS_INLINE_FUNCTION int add_face(int self, int iP, int jP, int kP, int iQ, int jQ, int kQ,
+                                      double c, TallRowSlots& slots, const Emit& emit) const {
+    int ids[4], cell_ids[2];
+    double v[4], w[2];
+    bool tall[4];
+    int m = 0;
+    const int nP = weights(iP, jP, kP, cell_ids, w);
+    for (int e = 0; e < nP; ++e)
+      if (w[e] != 0.0) ids[m] = cell_ids[e], v[m] = w[e], tall[m++] = nP == 2;
+    const int nQ = weights(iQ, jQ, kQ, cell_ids, w);
+    for (int e = 0; e < nQ; ++e)
+      if (w[e] != 0.0) ids[m] = cell_ids[e], v[m] = -w[e], tall[m++] = nQ == 2;
+    int emitted = 0;
+    for (int a = 0; a < m; ++a) {
+      if (ids[a] != self) continue;
+      for (int b = 0; b < m; ++b) {
+        const double value = c * v[a] * v[b];
+        if (tall[b])
+          slots.add(ids[b], value);
+        else
+          emit(ids[b], value), ++emitted;
+      }
+    }
+    return emitted;
+  }
+
+  /// The face between columns (iL, kL) and (iL, kL) + e_dir (dir 0: x, 1: z), over the rows
+  /// where either side is in a tall cell, in row `self` (of one of the two columns' samples).
+  template <class Emit>
+  KOKKOS_INLINE_FUNCTION int face_terms(int self, int dir, int iL, int kL, TallRowSlots& slots,
+                                        const Emit& emit) const {
+    const int iU = iL + (dir == 0), kU = kL + (dir == 1);
+    int tL, bL, fL, tU, bU, fU;
+    T.column(iL, kL, tL, bL, fL);
+    T.column(iU, kU, tU, bU, fU);
+    if (bL <= tL && bU <= tU) return 0;
+    const double dc = tall_step(tL, bL), dn = tall_step(tU, bU);
+    const int j0 = tL > tU ? tL : tU, j_tall = bL < bU ? bL : bU, j_end = bL > bU ? bL : bU;
     double m0 = 0.0, m1 = 0.0, m2 = 0.0;
-    int j_from = j0;
+    int j_from = j0, emitted = 0;
     if (unit && j_tall > j0) {  // c = 1 on [j0, j_tall), fluid on both sides
       const long long len = j_tall - j0;
       m0 = double(len), m1 = double(len * (len - 1) / 2);
@@ -191,135 +175,235 @@ class TallRows {
       j_from = j_tall;
     }
     for (int j = j_from; j < j_end; ++j) {
-      const double c = cond(g.index(i, j, k));
+      const int cell = g().index(iL, j, kL);
+      const double c = dir == 0 ? A.cx(cell) : A.cz(cell);
       if (c == 0.0) continue;
       if (j < j_tall) {
         const double x = j - j0;
         m0 += c, m1 += c * x, m2 += c * x * x;
       } else {
-        add_face(i, j, k, in, j, kn, c);
+        emitted += add_face(self, iL, j, kL, iU, j, kU, c, slots, emit);
       }
     }
-    if (m0 != 0.0) {
-      // v(j0 + x) = p + q x
-      const double t0 = (j0 - col.terrain) * dc, s0 = (j0 - next.terrain) * dn;
-      const double p[4] = {1.0 - t0, t0, -(1.0 - s0), -s0}, q[4] = {-dc, dc, dn, -dn};
-      const int bot = static_cast<int>(T.global_first_unknown(i, k));
-      const int nbot = static_cast<int>(T.global_first_unknown(in, kn));
-      const int ids[4] = {bot, bot + 1, nbot, nbot + 1};
-      for (int a = 0; a < 4; ++a) {
-        const int s = tall_slot(ids[a]);
-        if (s < 0) continue;
-        for (int b = 0; b < 4; ++b) {  // (a, b) and (b, a) the same expression: exactly symmetric
-          const int lo = std::min(a, b), hi = std::max(a, b);
-          rows.add(s, ids[b],
-                   p[lo] * p[hi] * m0 + (p[lo] * q[hi] + q[lo] * p[hi]) * m1 + q[lo] * q[hi] * m2);
-        }
+    if (m0 == 0.0) return emitted;
+    // v(j0 + x) = p + q x
+    const double t0 = (j0 - tL) * dc, s0 = (j0 - tU) * dn;
+    const double p[4] = {1.0 - t0, t0, -(1.0 - s0), -s0}, q[4] = {-dc, dc, dn, -dn};
+    const int bot = bottom_id(iL, kL), nbot = bottom_id(iU, kU);
+    const int ids[4] = {bot, bot + 1, nbot, nbot + 1};
+    for (int a = 0; a < 4; ++a) {
+      if (ids[a] != self) continue;
+      for (int b = 0; b < 4; ++b) {  // (a, b) and (b, a) the same expression: exactly symmetric
+        const int lo = a < b ? a : b, hi = a < b ? b : a;
+        slots.add(ids[b],
+                  p[lo] * p[hi] * m0 + (p[lo] * q[hi] + q[lo] * p[hi]) * m1 + q[lo] * q[hi] * m2);
       }
     }
+    return emitted;
   }
 
-  const mesh::mac::TallCellGrid& T;
-  const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A;
-  const kernels::mac::MacGrid& g;
-  const int sy, sz;
-  const long n, first;
-  std::vector<int> slot;
-  const long tall_rows;
-  RowAccumulator<16> rows;
-  const bool unit, marked;
+  /// The free-surface terms D p^2 (D = d - sum c: nonzero only where a row meets air beside it)
+  /// of column (i, k)'s tall cell, in its two samples' rows: surface(col, 2 a + e) = sum_j D_j
+  /// w_a(j) w_e(j) over its rows upwards, or -1 in surface(col, 0) where no row has a term.
+  KOKKOS_INLINE_FUNCTION void surface_terms(int i, int k) const {
+    const kernels::mac::MacGrid& G = g();
+    const int sy = G.stride_y(), sz = G.stride_z(), col = i + G.nx * k;
+    int t, b, f;
+    T.column(i, k, t, b, f);
+    double sum[4] = {0.0, 0.0, 0.0, 0.0};
+    bool any = false;
+    for (int j = t; j < b; ++j) {
+      if (surface_free(j, k)) continue;
+      const int c = G.index(i, j, k);
+      if (A.diag(c) == 0.0) continue;
+      const double D = A.diag(c) - (double(A.cx(c - 1)) + double(A.cx(c)) + double(A.cy(c - sy)) +
+                                    double(A.cy(c)) + double(A.cz(c - sz)) + double(A.cz(c)));
+      if (D == 0.0) continue;
+      const double s = double(j - t) / double(b - 1 - t), w[2] = {1.0 - s, s};
+      for (int a = 0; a < 2; ++a)
+        for (int e = 0; e < 2; ++e) {
+          const double v = D * w[a] * w[e];
+          sum[2 * a + e] = any ? sum[2 * a + e] + v : v;
+        }
+      any = true;
+    }
+    for (int e = 0; e < 4; ++e) surface(col, e) = sum[e];
+    if (!any) surface(col, 0) = -1.0;
+  }
+
+  /// Row `self`, a sample of column (i, k)'s tall cell.
+  template <class Emit>
+  KOKKOS_INLINE_FUNCTION int tall_row(int i, int k, int self, const Emit& emit) const {
+    const kernels::mac::MacGrid& G = g();
+    const int sy = G.stride_y(), sz = G.stride_z();
+    int t, b, f;
+    T.column(i, k, t, b, f);
+    TallRowSlots slots;
+    int emitted = 0;
+    // the free-surface terms, summed per column by surface_terms
+    const int bot = bottom_id(i, k), col = i + G.nx * k;
+    if (surface(col, 0) >= 0.0) {
+      const int a = self - bot;
+      slots.add(bot, surface(col, 2 * a));
+      slots.add(bot + 1, surface(col, 2 * a + 1));
+    }
+    // the faces between its rows (all between fluid cells) in one block
+    double inside = unit ? double(b - 1 - t) : 0.0;
+    if (!unit)
+      for (int j = t; j + 1 < b; ++j) inside += A.cy(G.index(i, j, k));
+    if (inside != 0.0) {
+      const double dt = tall_step(t, b);
+      const double v[2] = {dt, -dt};
+      const int a = self - bot;
+      for (int e = 0; e < 2; ++e) slots.add(bot + e, inside * v[a] * v[e]);
+    }
+    const double top = A.cy(G.index(i, b - 1, k));
+    if (top != 0.0 && b < G.ny) emitted += add_face(self, i, b - 1, k, i, b, k, top, slots, emit);
+    // the faces to the neighbouring columns
+    if (i > 0 || face[0]) emitted += face_terms(self, 0, i - 1, k, slots, emit);
+    if (i + 1 < G.nx || face[1]) emitted += face_terms(self, 0, i, k, slots, emit);
+    const bool lower_first = k % 2 != 0;  // the z faces' passes: even lines first
+    for (int pass = 0; pass < 2; ++pass) {
+      if (pass == (lower_first ? 0 : 1)) {
+        if (k > 0 || face[2]) emitted += face_terms(self, 1, i, k - 1, slots, emit);
+      } else {
+        if (k + 1 < G.nz || face[3]) emitted += face_terms(self, 1, i, k, slots, emit);
+      }
+    }
+    for (int e = 0; e < slots.n; ++e) emit(slots.id[e], slots.value[e]);
+    return emitted + slots.n;
+  }
 };
 
-CsrMatrix TallRows::assemble() {
-  // x faces between a column and its +x neighbour, where either is this block's (on a split
-  // grid the faces to the ghost ring too: their terms in this block's rows); likewise z faces.
-  const auto& nb = T.block().neighbours;
-  const int i_lo = nb[0] >= 0 ? -1 : 0,
-            i_hi = nb[1] >= 0 ? g.nx : g.nx - 1;  // lower column's range
-  const int k_lo = nb[4] >= 0 ? -1 : 0, k_hi = nb[5] >= 0 ? g.nz : g.nz - 1;
-  if (tall_rows > 0) {
-    Kokkos::parallel_for("amphora::tall::assemble_lines",
-                         Kokkos::RangePolicy<kernels::HostExecSpace>(0, g.nz), [&](int k) {
-                           for (int i = 0; i < g.nx; ++i) column_terms(i, k);
-                           for (int i = i_lo; i < i_hi; ++i) face_terms(0, i, k);
-                         });
-    for (int parity = 0; parity < 2; ++parity) {
-      const int first_line = k_lo + ((parity - k_lo) % 2 + 2) % 2,
-                lines = (k_hi - first_line + 1) / 2;
-      Kokkos::parallel_for("amphora::tall::assemble_z_faces",
-                           Kokkos::RangePolicy<kernels::HostExecSpace>(0, std::max(lines, 0)),
-                           [&](int m) {
-                             for (int i = 0; i < g.nx; ++i) face_terms(1, i, first_line + 2 * m);
-                           });
-    }
-  }
-  return rows.to_csr();
-}
+}  // namespace detail
 
-/// The matrix from the tall rows and the uniform rows gathered (uniform_row): every row's
-/// length first (a uniform row's counted, a tall row's from `tall`), then the rows in place
-/// (cheaper than a scratch of 13 entries per unknown filled in the first pass, whose fresh
-/// pages cost more than the second walk).
-CsrMatrix merge_rows(const mesh::mac::TallCellGrid& T,
-                     const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A,
-                     const std::vector<int>& slot, const CsrMatrix& tall) {
-  const kernels::mac::MacGrid& g = T.grid();
-  const long n = T.unknowns(), first = T.first_unknown();
-  CsrMatrix M;
-  M.n = n;
-  M.row_ptr.assign(n + 1, 0);
-  const auto for_each_row = [&](const char* name, bool entries, const auto& f) {
-    Kokkos::parallel_for(
-        name, Kokkos::RangePolicy<kernels::HostExecSpace>(0, g.nx * g.nz), [&](int col) {
-          std::pair<int, double> row[13];
-          T.for_each_unknown_in_column(col % g.nx, col / g.nx, [&](int u, int i, int j, int k) {
-            if (slot[u] < 0) {
-              f(u,
-                entries ? uniform_row(T, A, i, j, k, static_cast<int>(first + u), row)
-                        : uniform_row_length(T, A, i, j, k),
-                nullptr, nullptr, row);
-              return;
-            }
-            const long from = tall.row_ptr[slot[u]], length = tall.row_ptr[slot[u] + 1] - from;
-            f(u, length, tall.cols.data() + from, tall.values.data() + from, nullptr);
-          });
-        });
-  };
-  for_each_row("amphora::tall::row_lengths", false,
-               [&](int u, long length, const int*, const double*, const std::pair<int, double>*) {
-                 M.row_ptr[u + 1] = length;
-               });
-  for (long u = 0; u < n; ++u) M.row_ptr[u + 1] += M.row_ptr[u];
-  M.cols.resize(M.row_ptr[n]);
-  M.values.resize(M.row_ptr[n]);
-  std::atomic<bool> lengths_agree{true};
-  for_each_row(
-      "amphora::tall::rows", true,
-      [&](int u, long length, const int* cols, const double* values,
-          const std::pair<int, double>* row) {
-        const long at = M.row_ptr[u];
-        if (at + length != M.row_ptr[u + 1]) {  // never: the lengths pass counts what this writes
-          lengths_agree = false;
-          return;
+template <class ExecSpace>
+Kokkos::View<int*, typename ExecSpace::memory_space> tall_cell_carriers(
+    const ExecSpace& exec, const mesh::mac::TallCellGrid& T) {
+  using Mem = typename ExecSpace::memory_space;
+  const kernels::mac::TallCellLayout<Mem> L = T.layout<Mem>();
+  const kernels::mac::MacGrid g = L.grid;
+  Kokkos::View<int*, Mem> carrier(
+      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall::carriers")),
+      T.unknowns());
+  Kokkos::parallel_for(
+      "amphora::tall::carriers", kernels::RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz),
+      KOKKOS_LAMBDA(int col) {
+        const int i = col % g.nx, k = col / g.nx;
+        const int t = L.terrain(col), b = L.band(col);
+        int u = L.first_unknown(col);
+        if (b > t) {
+          carrier(u++) = g.index(i, t, k);
+          carrier(u++) = g.index(i, t + 1, k);
         }
-        for (long e = 0; e < length; ++e) {
-          M.cols[at + e] = row ? row[e].first : cols[e];
-          M.values[at + e] = row ? row[e].second : values[e];
+        for (int j = b; j < g.ny; ++j) {
+          const int c = g.index(i, j, k);
+          if (L.cell_unknown(c) >= 0) carrier(u++) = c;
         }
       });
-  if (!lengths_agree)
-    throw std::logic_error(
-        "assemble_tall_cell_matrix: a row's entries differ from its counted length");
+  return carrier;
+}
+
+template <class ExecSpace>
+DeviceCsrMatrix<typename ExecSpace::memory_space> assemble_tall_cell_matrix(
+    const ExecSpace& exec, const mesh::mac::TallCellGrid& T,
+    const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A, bool local_columns,
+    Kokkos::View<int*, typename ExecSpace::memory_space> carriers) {
+  using Mem = typename ExecSpace::memory_space;
+  const int n = static_cast<int>(T.unknowns());
+  detail::TallCellRows<Mem> R;
+  R.T = T.map<Mem>();
+  R.A = A;
+  R.carrier = carriers.data() != nullptr ? carriers : tall_cell_carriers(exec, T);
+  R.ghost_base = local_columns ? n : -1;
+  R.unit = A.unit_fluid_faces;
+  R.marked = A.surface_free_rows.extent(0) == static_cast<std::size_t>(A.grid.ny) * A.grid.nz;
+  const auto& nb = T.block().neighbours;
+  R.face[0] = nb[0] >= 0, R.face[1] = nb[1] >= 0, R.face[2] = nb[4] >= 0, R.face[3] = nb[5] >= 0;
+  const kernels::mac::MacGrid g = A.grid;
+  R.surface = Kokkos::View<double* [4], Mem>(
+      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall::surface_terms")),
+      g.nx * g.nz);
+  const auto band = R.T.own.band, terrain = R.T.own.terrain;
+  Kokkos::parallel_for(
+      "amphora::tall::surface_terms", kernels::RangePolicy<ExecSpace>(exec, 0, g.nx * g.nz),
+      KOKKOS_LAMBDA(int col) {
+        if (band(col) > terrain(col)) R.surface_terms(col % g.nx, col / g.nx);
+      });
+  DeviceCsrMatrix<Mem> M;
+  M.n = n;
+  M.row_ptr = Kokkos::View<int*, Mem>("amphora::tall::row_ptr", n + 1);
+  const auto row_ptr = M.row_ptr;
+  Kokkos::parallel_for(
+      "amphora::tall::row_lengths", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+      KOKKOS_LAMBDA(int u) { row_ptr(u + 1) = R.row_length(u); });
+  int entries = 0;
+  Kokkos::parallel_scan(
+      "amphora::tall::row_scan", kernels::RangePolicy<ExecSpace>(exec, 0, n + 1),
+      KOKKOS_LAMBDA(int u, int& partial, bool final) {
+        partial += row_ptr(u);
+        if (final) row_ptr(u) = partial;
+      },
+      entries);
+  M.cols = Kokkos::View<int*, Mem>(
+      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall::cols")), entries);
+  M.values = Kokkos::View<double*, Mem>(
+      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall::values")),
+      entries);
+  M.inverse_diagonal =
+      Kokkos::View<double*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing,
+                                                    std::string("amphora::tall::inverse_diagonal")),
+                                 n);
+  const auto cols = M.cols;
+  const auto values = M.values;
+  const auto inverse_diagonal = M.inverse_diagonal;
+  int overrun = 0;
+  Kokkos::parallel_reduce(
+      "amphora::tall::rows", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+      KOKKOS_LAMBDA(int u, int& wrong) {
+        const int from = row_ptr(u), end = row_ptr(u + 1);
+        int at = from;
+        R.row(u, [&](int c, double v) {
+          if (at < end) cols(at) = c, values(at) = v;
+          ++at;
+        });
+        if (at != end) {  // never: row_length counts what row writes
+          ++wrong;
+          at = end;
+        }
+        for (int e = from + 1; e < at; ++e)  // insertion sort by column: rows are short
+          for (int s = e; s > from && cols(s - 1) > cols(s); --s) {
+            const int c = cols(s);
+            const double v = values(s);
+            cols(s) = cols(s - 1), values(s) = values(s - 1);
+            cols(s - 1) = c, values(s - 1) = v;
+          }
+        const int self = R.own_id(u);
+        double d = 0.0;
+        for (int e = from; e < at; ++e)
+          if (cols(e) == self) d = values(e);
+        inverse_diagonal(u) = d != 0.0 ? 1.0 / d : 0.0;
+      },
+      overrun);
+  if (overrun != 0)
+    throw std::logic_error("assemble_tall_cell_matrix: " + std::to_string(overrun) +
+                           " rows have other entries than their counted lengths");
   return M;
 }
 
-}  // namespace
-
 CsrMatrix assemble_tall_cell_matrix(const mesh::mac::TallCellGrid& T,
                                     const kernels::mac::PoissonStencil<kernels::HostMemSpace>& A) {
-  TallRows tall(T, A);
-  const CsrMatrix rows = tall.assemble();
-  return merge_rows(T, A, tall.slots(), rows);
+  return to_csr_matrix(assemble_tall_cell_matrix(kernels::HostExecSpace(), T, A, false));
 }
+
+#define AMPHORA_TALL_CELL_MATRIX(E)                                                                \
+  template Kokkos::View<int*, E::memory_space> tall_cell_carriers(const E&,                        \
+                                                                  const mesh::mac::TallCellGrid&); \
+  template DeviceCsrMatrix<E::memory_space> assemble_tall_cell_matrix(                             \
+      const E&, const mesh::mac::TallCellGrid&,                                                    \
+      const kernels::mac::PoissonStencil<E::memory_space>&, bool,                                  \
+      Kokkos::View<int*, E::memory_space>);
+AMPHORA_FOR_EACH_EXEC_SPACE(AMPHORA_TALL_CELL_MATRIX)
+#undef AMPHORA_TALL_CELL_MATRIX
 
 }  // namespace amphora::solvers::mac

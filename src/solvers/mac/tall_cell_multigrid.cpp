@@ -55,17 +55,14 @@ CsrMatrix gather_rows(MPI_Comm comm, const CsrMatrix& M, std::vector<int>& count
 
 template <class ExecSpace>
 TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec,
-                                                const mesh::mac::TallCellGrid& T, CsrMatrix A_t,
-                                                const Stencil& A,
+                                                const mesh::mac::TallCellGrid& T, const Stencil& A,
                                                 const TallCellMultigridOptions& options,
                                                 KeptCoarseStencils<MemSpace>* kept)
     : halo_(T.block()) {
   const mesh::mac::MacBlock& block = T.block();
   const MPI_Comm comm = block.comm;
   const BlockInnerProduct inner{comm};
-  // the level's matrix (moved into the level's operator once read) and grid (T itself on the
-  // finest)
-  CsrMatrix level_matrix = std::move(A_t);
+  // the level's grid (T itself on the finest) and stencil
   const mesh::mac::TallCellGrid* level_grid = &T;
   std::optional<mesh::mac::TallCellGrid> coarse_level_grid;
   Stencil level_A = A;
@@ -74,15 +71,16 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec,
   int unchanged_below = kept ? kept->unchanged_below : 0;  // on this level's lattice
   for (int l = 0;; ++l) {
     auto L = std::make_unique<Level>();
-    const int n = static_cast<int>(level_matrix.n);
+    // the level's matrix, assembled on the device with local columns
+    Kokkos::Profiling::pushRegion("amphora::tall_mg::level_matrix");
+    const auto carriers = tall_cell_carriers(exec, *level_grid);
+    L->A_t = Csr(assemble_tall_cell_matrix(exec, *level_grid, level_A, true, carriers), *level_grid,
+                 carriers);
+    Kokkos::Profiling::popRegion();
+    const int n = L->A_t.n;
     L->b = Vector("amphora::tall_mg::b", n);
     L->x = Vector("amphora::tall_mg::x", n);
     L->r = Vector("amphora::tall_mg::r", n);
-    const auto make_operator = [&] {
-      Kokkos::Profiling::pushRegion("amphora::tall_mg::level_matrix");
-      L->A_t = Csr(std::move(level_matrix), *level_grid, true);
-      Kokkos::Profiling::popRegion();
-    };
     // every rank decides together (a block's first cell must stay on the coarse grid)
     const kernels::mac::MacGrid g = level_A.grid;
     long cells = g.cells();
@@ -91,18 +89,18 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec,
                           level_block.global_lower[0] % 2 == 0 &&
                           level_block.global_lower[2] % 2 == 0;
     if (!on_every_rank(comm, halvable) || cells <= options.max_coarse_cells) {
-      // every block's rows on a split grid; on one block the level's matrix itself (not a copy)
-      CsrMatrix gathered;
-      if (block.split())
-        gathered = gather_rows(comm, level_matrix, coarse_counts_, coarse_displacements_);
-      const CsrMatrix& whole = block.split() ? gathered : level_matrix;
+      // the host's copy of the rows, with global columns; every block's on a split grid
+      const CsrMatrix rows = block.split() ? to_csr_matrix(assemble_tall_cell_matrix(
+                                                 exec, *level_grid, level_A, false, carriers))
+                                           : to_csr_matrix(L->A_t.local);
+      const CsrMatrix whole =
+          block.split() ? gather_rows(comm, rows, coarse_counts_, coarse_displacements_) : rows;
       Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_cholesky");
       coarse_ = std::make_unique<CoarseCholesky>(whole);
       Kokkos::Profiling::popRegion();
       coarse_first_ = level_grid->first_unknown();
       coarse_host_.resize(whole.n);
       coarse_local_.resize(n);
-      make_operator();
       levels_.push_back(std::move(L));
       break;
     }
@@ -112,9 +110,8 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec,
     ChebyshevOptions smoothing;
     smoothing.degree = l == 0 ? options.fine_chebyshev_degree : options.chebyshev_degree;
     smoothing.smoothing_range = options.smoothing_range;
-    smoothing.lambda_max_bound = jacobi_gershgorin_bound(level_matrix, level_grid->first_unknown());
+    smoothing.lambda_max_bound = jacobi_gershgorin_bound(exec, L->A_t.local);
     MPI_Allreduce(MPI_IN_PLACE, &smoothing.lambda_max_bound, 1, MPI_DOUBLE, MPI_MAX, comm);
-    make_operator();
     Kokkos::Profiling::pushRegion("amphora::tall_mg::smoother");
     L->smoother = std::make_unique<ChebyshevSmoother<ExecSpace, Csr, Vector, BlockInnerProduct>>(
         exec, L->A_t, L->A_t.inverse_diagonal, smoothing, inner);
@@ -136,7 +133,7 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec,
     level_A = coarse;
     for (int d : {0, 2}) level_block.global_lower[d] /= 2;
     const auto host_A = kernels::mac::host_stencil(level_A);
-    mesh::mac::TallCellGrid coarse_grid(host_A, *level_grid, level_block);
+    mesh::mac::TallCellGrid coarse_grid(exec, level_A, *level_grid, level_block);
     Kokkos::Profiling::popRegion();
     Kokkos::Profiling::pushRegion("amphora::tall_mg::transfer");
     TallCellLevelTransfer transfer = tall_cell_level_transfer(*level_grid, coarse_grid, host_A);
@@ -148,9 +145,6 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec,
     levels_.push_back(std::move(L));
     coarse_level_grid.emplace(std::move(coarse_grid));  // the finer one is done with
     level_grid = &*coarse_level_grid;
-    Kokkos::Profiling::pushRegion("amphora::tall_mg::coarse_matrix");
-    level_matrix = assemble_tall_cell_matrix(*level_grid, host_A);
-    Kokkos::Profiling::popRegion();
   }
 }
 

@@ -57,12 +57,12 @@ class TallCellMultigrid {
   using Stencil = kernels::mac::PoissonStencil<MemSpace>;
   using Csr = BlockCsrMatrix<MemSpace>;
 
-  /// T and A_t = P^T A P of the uniform stencil A (on a split grid: this block's rows, and A's
-  /// ghost conductances exchanged). Collective over T.block()'s ranks. A_t by value: a moved
-  /// one's arrays are kept as the finest level's matrix where the host can read them.
-  /// With `kept`, the coarse lattice stencils are taken from and left in it.
-  TallCellMultigrid(const ExecSpace& exec, const mesh::mac::TallCellGrid& T, CsrMatrix A_t,
-                    const Stencil& A, const TallCellMultigridOptions& options = {},
+  /// For A_t = P^T A P of the tall-cell grid T over the uniform stencil A (on a split grid: this
+  /// block's rows, and A's ghost conductances exchanged), each level's assembled on the device.
+  /// Collective over T.block()'s ranks. With `kept`, the coarse lattice stencils are taken from
+  /// and left in it.
+  TallCellMultigrid(const ExecSpace& exec, const mesh::mac::TallCellGrid& T, const Stencil& A,
+                    const TallCellMultigridOptions& options = {},
                     KeptCoarseStencils<MemSpace>* kept = nullptr);
   TallCellMultigrid(const TallCellMultigrid&) = delete;  // the smoothers point at the matrices
   TallCellMultigrid& operator=(const TallCellMultigrid&) = delete;
