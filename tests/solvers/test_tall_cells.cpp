@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 #include <type_traits>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "solvers/hypre_boomeramg.hpp"
 #include "solvers/mac/pressure_solver.hpp"
 #include "solvers/mac/stencil_csr.hpp"
+#include "solvers/mac/tall_cell_level_transfer.hpp"
 #include "solvers/mac/tall_cell_matrix.hpp"
 #include "test_backend.hpp"
 
@@ -301,6 +304,59 @@ TEST(TallCellMatrix, HydrostaticPressureIsExactWithAndWithoutTallCells) {
   const Basin b(16, 32, 0.77);
   for (int depth : {32, 6, 3})
     EXPECT_LT(hydrostatic_error(b, depth), 1e-9) << "optical depth " << depth;
+}
+
+// The level transfers built by the test backend's kernels: the restriction is the
+// prolongation's transpose exactly, a plain row (eight uniform coarse cells) holds the
+// trilinear weights, which sum to one, and both matrices equal the host threads' (pattern
+// exactly; values bit for bit on a host backend, within 1e-14 on a GPU, whose compiler may fuse
+// a multiply and an add).
+TEST(TallCellTransfer, RestrictionIsTheProlongationsTransposeOnEveryBackend) {
+  using test::TestExecSpace;
+  using test::TestMemSpace;
+  const Basin b(16, 32, 0.8);
+  const auto A = kernels::mac::copy_stencil<TestMemSpace>(b.A);
+  const auto C = kernels::mac::coarsen_stencil(TestExecSpace(), A);
+  const mesh::mac::TallCellGrid T(TestExecSpace(), A, 4);
+  const mesh::mac::TallCellGrid Tc(TestExecSpace(), C, T);
+  ASSERT_GT(Tc.tall_cells(), 10);
+  const auto t =
+      tall_cell_level_transfer(TestExecSpace(), T, Tc, C, tall_cell_carriers(TestExecSpace(), T));
+  const CsrMatrix Q = to_csr_matrix(t.prolongation), R = to_csr_matrix(t.restriction);
+  ASSERT_EQ(Q.n, T.unknowns());
+  ASSERT_EQ(R.n, Tc.unknowns());
+  std::map<std::pair<long, long>, double> q, r;
+  int plain = 0;
+  for (long i = 0; i < Q.n; ++i) {
+    double sum = 0.0;
+    for (long e = Q.row_ptr[i]; e < Q.row_ptr[i + 1]; ++e)
+      q[{Q.cols[e], i}] = Q.values[e], sum += Q.values[e];
+    if (Q.row_ptr[i + 1] - Q.row_ptr[i] == 8 && std::abs(sum - 1.0) < 1e-15) ++plain;
+  }
+  for (long c = 0; c < R.n; ++c)
+    for (long e = R.row_ptr[c]; e < R.row_ptr[c + 1]; ++e) {
+      if (e > R.row_ptr[c]) EXPECT_LT(R.cols[e - 1], R.cols[e]) << "row " << c;
+      r[{c, R.cols[e]}] = R.values[e];
+    }
+  EXPECT_EQ(q, r);
+  EXPECT_GT(plain, Q.n / 4);
+  // the host threads' transfers of the host's grids
+  const auto Ah = kernels::mac::host_stencil(A), Ch = kernels::mac::host_stencil(C);
+  const mesh::mac::TallCellGrid H(Ah, 4), Hc(Ch, H);
+  const auto h = tall_cell_level_transfer(kernels::HostExecSpace(), H, Hc, Ch,
+                                          tall_cell_carriers(kernels::HostExecSpace(), H));
+  const bool host = std::is_same_v<TestMemSpace, Kokkos::HostSpace>;
+  for (const auto& [M, N] :
+       {std::pair(Q, to_csr_matrix(h.prolongation)), std::pair(R, to_csr_matrix(h.restriction))}) {
+    ASSERT_EQ(M.row_ptr, N.row_ptr);
+    ASSERT_EQ(M.cols, N.cols);
+    for (std::size_t e = 0; e < M.values.size(); ++e) {
+      if (host)
+        ASSERT_EQ(M.values[e], N.values[e]) << "entry " << e;
+      else
+        ASSERT_NEAR(M.values[e], N.values[e], 1e-14) << "entry " << e;
+    }
+  }
 }
 
 TEST(TallCellTransfer, GramSolveInvertsPtP) {

@@ -105,6 +105,17 @@ long number_tall_cells(const ExecSpace& exec, TallCellLayout<MemSpace>& L, const
   return total;
 }
 
+/// The number of L's columns with a tall cell (one scalar to the host).
+template <class ExecSpace, class MemSpace>
+long count_tall_cells(const ExecSpace& exec, const TallCellLayout<MemSpace>& L) {
+  const auto terrain = L.terrain, band = L.band;
+  long n = 0;
+  Kokkos::parallel_reduce(
+      "amphora::tall::count_tall_cells", RangePolicy<ExecSpace>(exec, 0, L.grid.nx * L.grid.nz),
+      KOKKOS_LAMBDA(int c, long& sum) { sum += band(c) > terrain(c) ? 1 : 0; }, n);
+  return n;
+}
+
 /// code = per padded cell of the block: the global unknown of a uniform fluid cell (>= 0),
 /// -(global first unknown + 2) for a cell of a tall cell, -1 elsewhere (what a neighbouring
 /// block reads its ring from, after the ghost exchange).

@@ -58,10 +58,8 @@ void TallCellGrid::build(const ExecSpace& exec, const Stencil& A, const Band& ba
   }
   M.first = first_unknown_;
   if constexpr (std::is_same_v<Mem, kernels::DefaultMemSpace>) built_ = M;
-  host_ = detail::copy_map<kernels::HostMemSpace>(M);
-  tall_cells_ = 0;
-  for (int c = 0; c < grid_.nx * grid_.nz; ++c)
-    tall_cells_ += host_.own.band(c) > host_.own.terrain(c);
+  if constexpr (std::is_same_v<Mem, kernels::HostMemSpace>) host_ = M;
+  tall_cells_ = kernels::mac::count_tall_cells(exec, M.own);
 }
 
 #define AMPHORA_TALL_CELL_GRID(E)                                                            \
@@ -72,28 +70,6 @@ void TallCellGrid::build(const ExecSpace& exec, const Stencil& A, const Band& ba
                                       const TallCellGrid&, const MacBlock&);
 AMPHORA_FOR_EACH_EXEC_SPACE(AMPHORA_TALL_CELL_GRID)
 #undef AMPHORA_TALL_CELL_GRID
-
-std::vector<int> TallCellGrid::unknown_cells() const {
-  std::vector<int> cell(unknowns_, -1);
-  for (int k = 0; k < grid_.nz; ++k)
-    for (int i = 0; i < grid_.nx; ++i)
-      for_each_unknown_in_column(
-          i, k, [&](int u, int ci, int cj, int ck) { cell[u] = grid_.index(ci, cj, ck); });
-  return cell;
-}
-
-std::vector<std::pair<long, int>> TallCellGrid::ring_unknown_cells() const {
-  std::vector<std::pair<long, int>> out;
-  if (!block_.split()) return out;
-  for (int k = -1; k <= grid_.nz; ++k)
-    for (int i = -1; i <= grid_.nx; ++i) {
-      if (i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz) continue;
-      for_each_carrier(column(i, k), host_.ring.unknown, i, k, [&](int u, int ci, int cj, int ck) {
-        out.emplace_back(u, grid_.index(ci, cj, ck));
-      });
-    }
-  return out;
-}
 
 void TallCellGrid::prolongate(const double* y, double* lattice) const {
   const kernels::mac::MacGrid& g = grid_;

@@ -35,6 +35,34 @@ struct TallCellColumn {
   KOKKOS_INLINE_FUNCTION bool has_tall_cell() const { return band > terrain; }
 };
 
+namespace detail {
+template <class MemSpace, class View>
+auto copy_to(const View& v) {
+  return Kokkos::create_mirror_view_and_copy(MemSpace(), v);
+}
+/// M's arrays in MemSpace (the same Views where they are there already).
+template <class MemSpace, class From>
+kernels::mac::TallCellMap<MemSpace> copy_map(const kernels::mac::TallCellMap<From>& M) {
+  kernels::mac::TallCellMap<MemSpace> C;
+  C.first = M.first, C.split = M.split;
+  C.own.grid = M.own.grid;
+  C.own.terrain = copy_to<MemSpace>(M.own.terrain);
+  C.own.band = copy_to<MemSpace>(M.own.band);
+  C.own.first_unknown = copy_to<MemSpace>(M.own.first_unknown);
+  C.own.cell_unknown = copy_to<MemSpace>(M.own.cell_unknown);
+  if (!M.split) return C;
+  C.ring.slots = M.ring.slots;
+  C.ring.terrain = copy_to<MemSpace>(M.ring.terrain);
+  C.ring.band = copy_to<MemSpace>(M.ring.band);
+  C.ring.first_unknown = copy_to<MemSpace>(M.ring.first_unknown);
+  C.ring.unknown = copy_to<MemSpace>(M.ring.unknown);
+  C.ring.first_slot = copy_to<MemSpace>(M.ring.first_slot);
+  C.ring.slot = copy_to<MemSpace>(M.ring.slot);
+  C.ring.slot_cell = copy_to<MemSpace>(M.ring.slot_cell);
+  return C;
+}
+}  // namespace detail
+
 class TallCellGrid {
  public:
   /// The columns of A's fluid cells with uniform rows within optical_depth cells of the lowest
@@ -82,13 +110,13 @@ class TallCellGrid {
   }
   /// Unknown of a uniform fluid cell (padded index), -1 elsewhere (this block's numbering; host).
   const Kokkos::View<int*, kernels::HostMemSpace>& cell_unknown() const {
-    return host_.own.cell_unknown;
+    return host().own.cell_unknown;
   }
   /// Column (i, k) of the block or of its ghost ring (i = -1..nx, k = -1..nz; the ring's
   /// first_unknown in the global numbering; outside the global box: no fluid).
   TallCellColumn column(int i, int k) const {
     TallCellColumn c;
-    host_.column(i, k, c.terrain, c.band, c.first_unknown);
+    host().column(i, k, c.terrain, c.band, c.first_unknown);
     return c;
   }
   /// Global number of the first unknown of column (i, k) (block or ghost ring).
@@ -102,19 +130,14 @@ class TallCellGrid {
   /// samples its lowest two cells, then the uniform fluid cells upwards.
   template <class F>
   void for_each_unknown_in_column(int i, int k, const F& f) const {
-    for_each_carrier(column(i, k), host_.own.cell_unknown, i, k, f);
+    for_each_carrier(column(i, k), host().own.cell_unknown, i, k, f);
   }
-  /// The lattice cell (padded index) that carries each of this block's unknowns in a ghost
-  /// exchange (as for_each_unknown_in_column).
-  std::vector<int> unknown_cells() const;
-  /// The same for the ghost ring's unknowns: (global unknown, padded index) pairs.
-  std::vector<std::pair<long, int>> ring_unknown_cells() const;
 
   /// The (at most two) global unknowns and weights of lattice cell (i, j, k) of the block or of
   /// its ghost ring: p = sum w u.
   /// (Inline: the assemblies and level transfers call it a few times per unknown.)
   int weights(int i, int j, int k, int u[2], double w[2]) const {
-    return host_.weights(i, j, k, u, w);
+    return host().weights(i, j, k, u, w);
   }
   /// Lattice values P y (host, padded lattice; zero off the fluid).
   void prolongate(const double* y, double* lattice) const;
@@ -145,39 +168,19 @@ class TallCellGrid {
   MacBlock block_;
   int optical_depth_ = 0;
   long unknowns_ = 0, tall_cells_ = 0, first_unknown_ = 0, global_unknowns_ = 0;
-  /// the arrays where they were built (the default memory space's, if they were built there)
-  /// and on the host (the same Views where the host can read them)
-  kernels::mac::TallCellMap<kernels::DefaultMemSpace> built_;
-  kernels::mac::TallCellMap<kernels::HostMemSpace> host_;
-};
+  /// The arrays on the host: the built ones where the host can read them, else a copy made at
+  /// the first call (from one thread), so a step that never asks copies nothing.
+  const kernels::mac::TallCellMap<kernels::HostMemSpace>& host() const {
+    if (host_.own.cell_unknown.data() == nullptr)
+      host_ = detail::copy_map<kernels::HostMemSpace>(built_);
+    return host_;
+  }
 
-namespace detail {
-template <class MemSpace, class View>
-auto copy_to(const View& v) {
-  return Kokkos::create_mirror_view_and_copy(MemSpace(), v);
-}
-/// M's arrays in MemSpace (the same Views where they are there already).
-template <class MemSpace, class From>
-kernels::mac::TallCellMap<MemSpace> copy_map(const kernels::mac::TallCellMap<From>& M) {
-  kernels::mac::TallCellMap<MemSpace> C;
-  C.first = M.first, C.split = M.split;
-  C.own.grid = M.own.grid;
-  C.own.terrain = copy_to<MemSpace>(M.own.terrain);
-  C.own.band = copy_to<MemSpace>(M.own.band);
-  C.own.first_unknown = copy_to<MemSpace>(M.own.first_unknown);
-  C.own.cell_unknown = copy_to<MemSpace>(M.own.cell_unknown);
-  if (!M.split) return C;
-  C.ring.slots = M.ring.slots;
-  C.ring.terrain = copy_to<MemSpace>(M.ring.terrain);
-  C.ring.band = copy_to<MemSpace>(M.ring.band);
-  C.ring.first_unknown = copy_to<MemSpace>(M.ring.first_unknown);
-  C.ring.unknown = copy_to<MemSpace>(M.ring.unknown);
-  C.ring.first_slot = copy_to<MemSpace>(M.ring.first_slot);
-  C.ring.slot = copy_to<MemSpace>(M.ring.slot);
-  C.ring.slot_cell = copy_to<MemSpace>(M.ring.slot_cell);
-  return C;
-}
-}  // namespace detail
+  /// the arrays where they were built (the default memory space's, if they were built there)
+  /// and on the host (host())
+  kernels::mac::TallCellMap<kernels::DefaultMemSpace> built_;
+  mutable kernels::mac::TallCellMap<kernels::HostMemSpace> host_;
+};
 
 template <class MemSpace>
 kernels::mac::TallCellMap<MemSpace> TallCellGrid::map() const {
@@ -185,9 +188,9 @@ kernels::mac::TallCellMap<MemSpace> TallCellGrid::map() const {
     if (built_.own.cell_unknown.data() != nullptr) return built_;
   }
   if constexpr (std::is_same_v<MemSpace, kernels::HostMemSpace>)
-    return host_;
+    return host();
   else
-    return detail::copy_map<MemSpace>(host_);
+    return detail::copy_map<MemSpace>(host());
 }
 
 }  // namespace amphora::mesh::mac

@@ -7,27 +7,36 @@
 // prolongation of McAdams, Sifakis & Teran (2010, sec. 4) at the box faces (even reflection at
 // a wall, odd at an open face), with the weights of solid coarse cells (terrain) spread over
 // the others in proportion (a zero normal derivative, as the uniform multigrid's extension into
-// solids gives), air cells holding zero. The restriction is Q^T exactly, so the V-cycle stays
-// symmetric for CG.
+// solids gives), air cells holding zero. A tall cell's two rows are the least-squares fit of
+// the interpolated pressure over its rows. The restriction is Q^T exactly, so the V-cycle
+// stays symmetric for CG.
 //
-// On a split grid Q holds this block's fine rows with global coarse columns (its ghost ring's
-// among them) and Q^T this block's coarse rows with global fine columns, gathered from the rows
-// of the fine ghost ring too (a ring of one cell reaches every coarse cell of the block).
+// Built by kernels in the stencil's memory space, with local columns: Q holds this block's
+// fine rows over the coarse grid's local columns (its unknowns, then its ring's slots), Q^T
+// this block's coarse rows over the fine grid's, gathered from the rows of the fine ghost ring
+// too (a ring of one cell reaches every coarse cell of the block). Each row sums its terms in
+// the order the interpolation meets them and is sorted by column, so the matrices are the same
+// for any number of threads.
 #include "mesh/mac/tall_cell_grid.hpp"
-#include "solvers/csr_matrix.hpp"
+#include "solvers/device_csr.hpp"
 
 namespace amphora::solvers::mac {
 
+template <class MemSpace>
 struct TallCellLevelTransfer {
-  CsrMatrix prolongation;  ///< this block's fine unknowns x global coarse unknowns
-  CsrMatrix restriction;   ///< this block's coarse unknowns x global fine unknowns (the transpose)
+  DeviceCsrMatrix<MemSpace> prolongation;  ///< this block's fine unknowns x coarse columns
+  DeviceCsrMatrix<MemSpace> restriction;   ///< this block's coarse unknowns x fine columns
 };
 
-/// The transfers between `fine` and `coarse` (on the lattice with cells twice as wide); coarse_A
-/// is the coarse lattice matrix on the host (its solid and fluid cells, its box faces; on a split
-/// grid with its ghost ring exchanged).
-TallCellLevelTransfer tall_cell_level_transfer(
-    const mesh::mac::TallCellGrid& fine, const mesh::mac::TallCellGrid& coarse,
-    const kernels::mac::PoissonStencil<kernels::HostMemSpace>& coarse_A);
+/// The transfers between `fine` and `coarse` (on the lattice with cells twice as wide), both
+/// built in coarse_A's memory space; coarse_A is the coarse lattice matrix (its solid and fluid
+/// cells, its box faces; on a split grid with its ghost ring exchanged). fine_carriers: the
+/// lattice cell of each of fine's unknowns (tall_cell_carriers).
+template <class ExecSpace>
+TallCellLevelTransfer<typename ExecSpace::memory_space> tall_cell_level_transfer(
+    const ExecSpace& exec, const mesh::mac::TallCellGrid& fine,
+    const mesh::mac::TallCellGrid& coarse,
+    const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& coarse_A,
+    const Kokkos::View<int*, typename ExecSpace::memory_space>& fine_carriers);
 
 }  // namespace amphora::solvers::mac

@@ -69,11 +69,12 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec,
   complete_block_stencil(exec, halo_, static_cast<const Stencil*>(nullptr), level_A);
   mesh::mac::MacBlock level_block = block;
   int unchanged_below = kept ? kept->unchanged_below : 0;  // on this level's lattice
+  Kokkos::View<int*, MemSpace> carriers;  // the lattice cell of each of the level's unknowns
   for (int l = 0;; ++l) {
     auto L = std::make_unique<Level>();
     // the level's matrix, assembled on the device with local columns
     Kokkos::Profiling::pushRegion("amphora::tall_mg::level_matrix");
-    const auto carriers = tall_cell_carriers(exec, *level_grid);
+    if (l == 0) carriers = tall_cell_carriers(exec, *level_grid);
     L->A_t = Csr(assemble_tall_cell_matrix(exec, *level_grid, level_A, true, carriers), *level_grid,
                  carriers);
     Kokkos::Profiling::popRegion();
@@ -132,17 +133,16 @@ TallCellMultigrid<ExecSpace>::TallCellMultigrid(const ExecSpace& exec,
       kept->levels.push_back(coarse);
     level_A = coarse;
     for (int d : {0, 2}) level_block.global_lower[d] /= 2;
-    const auto host_A = kernels::mac::host_stencil(level_A);
     mesh::mac::TallCellGrid coarse_grid(exec, level_A, *level_grid, level_block);
+    const auto coarse_carriers = tall_cell_carriers(exec, coarse_grid);
     Kokkos::Profiling::popRegion();
     Kokkos::Profiling::pushRegion("amphora::tall_mg::transfer");
-    TallCellLevelTransfer transfer = tall_cell_level_transfer(*level_grid, coarse_grid, host_A);
-    Kokkos::Profiling::popRegion();
-    Kokkos::Profiling::pushRegion("amphora::tall_mg::transfer_matrices");
-    L->prolongation = Csr(std::move(transfer.prolongation), coarse_grid, false);
-    L->restriction = Csr(std::move(transfer.restriction), *level_grid, false);
+    auto transfer = tall_cell_level_transfer(exec, *level_grid, coarse_grid, level_A, carriers);
+    L->prolongation = Csr(std::move(transfer.prolongation), coarse_grid, coarse_carriers);
+    L->restriction = Csr(std::move(transfer.restriction), *level_grid, carriers);
     Kokkos::Profiling::popRegion();
     levels_.push_back(std::move(L));
+    carriers = coarse_carriers;
     coarse_level_grid.emplace(std::move(coarse_grid));  // the finer one is done with
     level_grid = &*coarse_level_grid;
   }
