@@ -3,8 +3,8 @@
 // device). On one rank a DEM step makes no host-device copy, list rebuilds included (periodic
 // boxes' images too); a water step on the uniform grid makes two (the multigrid's coarsest
 // grid, set up again each sub-step: its cell list to the device, its rows to the host); the
-// tall-cell water step makes no explicit copy (its grid and matrices are built on the device;
-// the multigrid's level transfers, still set up on the host, copy by mirror-and-copy).
+// tall-cell water step none that a host build sees (its hierarchy is built on the device; its
+// coarsest level's rows go to the host by mirror-and-copy).
 #include <algorithm>
 #include <cstdio>
 #include <vector>
@@ -156,16 +156,17 @@ TEST(StepTransfers, UniformWaterStepCopiesOnlyTheCoarseGridSetup) {
 }
 
 TEST(StepTransfers, TallCellWaterStepMakesNoExplicitCopy) {
-  // The tall-cell grid and every level's matrix are built on the device; what the host still
-  // builds, the multigrid's level transfers, reads host copies of the coarse grids and
-  // stencils made by create_mirror_view_and_copy, which a host build does not see. Before the
-  // grid and matrices moved (2026-12-07), a host build counted 4 copies a step here, 47 kB:
-  // the grid's layout going back to the device.
+  // The tall-cell grid, every level's matrix and the level transfers are built on the device.
+  // What still crosses on a device is the coarsest level's: its rows to the host's Cholesky
+  // (mirror-and-copy, 3 arrays a sub-step, which a host build does not see) and its right-hand
+  // side and solution each V-cycle (between a device vector and the host's, which on a host
+  // build are two host arrays). Before the hierarchy moved (2026-12-07) a host build counted 4
+  // copies a step here, 47 kB: the grid's layout going back to the device.
   const kernels::DeepCopyCount c = water_step_copies(4);
   if (std::is_same_v<test::TestMemSpace, Kokkos::HostSpace>) {
     EXPECT_EQ(c.host_device(), 0);
   } else {
-    EXPECT_GT(c.host_device(), 0);  // the transfers' host set-up, still
+    EXPECT_GT(c.host_device(), 0);  // the coarsest level's, still
   }
 }
 

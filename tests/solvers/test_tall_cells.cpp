@@ -335,7 +335,9 @@ TEST(TallCellTransfer, RestrictionIsTheProlongationsTransposeOnEveryBackend) {
   }
   for (long c = 0; c < R.n; ++c)
     for (long e = R.row_ptr[c]; e < R.row_ptr[c + 1]; ++e) {
-      if (e > R.row_ptr[c]) EXPECT_LT(R.cols[e - 1], R.cols[e]) << "row " << c;
+      if (e > R.row_ptr[c]) {
+        EXPECT_LT(R.cols[e - 1], R.cols[e]) << "row " << c;
+      }
       r[{c, R.cols[e]}] = R.values[e];
     }
   EXPECT_EQ(q, r);

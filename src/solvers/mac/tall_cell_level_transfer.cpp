@@ -83,13 +83,13 @@ struct TransferRows {
   Kokkos::View<int*, MemSpace> scratch_id;
   Kokkos::View<double*, MemSpace> scratch_w0, scratch_w1;
 
-  Kokkos::View<int* [3], MemSpace> cell;  ///< each row's carrier cell (i, j, k)
+  Kokkos::View<int* [3], MemSpace> row_cell;  ///< each row's carrier cell (i, j, k)
 
   KOKKOS_INLINE_FUNCTION int carrier(int r) const {
     return r < n_fine ? carriers(r) : F.ring.slot_cell(r - n_fine);
   }
   KOKKOS_INLINE_FUNCTION void at(int r, int& i, int& j, int& k) const {
-    i = cell(r, 0), j = cell(r, 1), k = cell(r, 2);
+    i = row_cell(r, 0), j = row_cell(r, 1), k = row_cell(r, 2);
   }
   KOKKOS_INLINE_FUNCTION Trilinear trilinear(int i, int j, int k) const {
     Trilinear t;
@@ -431,16 +431,16 @@ TallCellLevelTransfer<typename ExecSpace::memory_space> tall_cell_level_transfer
   }
   // Q's rows for this block's fine unknowns and its ring's (local fine columns)
   const int rows = R.n_fine + R.F.ring.slots;
-  R.cell = Kokkos::View<int* [3], Mem>(
+  R.row_cell = Kokkos::View<int* [3], Mem>(
       Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall_mg::row_cells")),
       rows);
   {
-    const auto cell = R.cell;
+    const auto row_cell = R.row_cell;
     Kokkos::parallel_for(
         "amphora::tall_mg::transfer_row_cells", Policy(exec, 0, rows), KOKKOS_LAMBDA(int r) {
           int i, j, k;
           R.gf.ijk(R.carrier(r), i, j, k);
-          cell(r, 0) = i, cell(r, 1) = j, cell(r, 2) = k;
+          row_cell(r, 0) = i, row_cell(r, 1) = j, row_cell(r, 2) = k;
         });
   }
   // each tall cell's terms, once, in a scratch: its part at its bottom sample's row

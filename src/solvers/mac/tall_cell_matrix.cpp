@@ -235,7 +235,6 @@ struct TallCellRows {
   template <class Emit>
   KOKKOS_INLINE_FUNCTION int tall_row(int i, int k, int self, const Emit& emit) const {
     const kernels::mac::MacGrid& G = g();
-    const int sy = G.stride_y(), sz = G.stride_z();
     int t, b, f;
     T.column(i, k, t, b, f);
     TallRowSlots slots;
