@@ -73,13 +73,14 @@ AMPHORA_FOR_EACH_EXEC_SPACE(AMPHORA_TALL_CELL_GRID)
 
 void TallCellGrid::prolongate(const double* y, double* lattice) const {
   const kernels::mac::MacGrid& g = grid_;
+  const auto& M = host();
   for (long c = 0; c < g.padded_size(); ++c) lattice[c] = 0.0;
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < g.ny; ++j)
       for (int i = 0; i < g.nx; ++i) {
         int u[2];
         double w[2];
-        const int n = weights(i, j, k, u, w);
+        const int n = M.weights(i, j, k, u, w);
         double v = 0.0;
         for (int m = 0; m < n; ++m) v += w[m] * y[u[m] - first_unknown_];
         lattice[g.index(i, j, k)] = v;
@@ -88,13 +89,14 @@ void TallCellGrid::prolongate(const double* y, double* lattice) const {
 
 void TallCellGrid::restrict_to_unknowns(const double* lattice, double* y) const {
   const kernels::mac::MacGrid& g = grid_;
+  const auto& M = host();
   for (long u = 0; u < unknowns_; ++u) y[u] = 0.0;
   for (int k = 0; k < g.nz; ++k)
     for (int j = 0; j < g.ny; ++j)
       for (int i = 0; i < g.nx; ++i) {
         int u[2];
         double w[2];
-        const int n = weights(i, j, k, u, w);
+        const int n = M.weights(i, j, k, u, w);
         for (int m = 0; m < n; ++m) y[u[m] - first_unknown_] += w[m] * lattice[g.index(i, j, k)];
       }
 }

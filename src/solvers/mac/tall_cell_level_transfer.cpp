@@ -4,6 +4,7 @@
 
 #include "kernels/mac/grid_transfer.hpp"
 #include "kernels/mac/tall_cell_transfer.hpp"
+#include "solvers/csr_rows.hpp"
 
 namespace amphora::solvers::mac {
 
@@ -263,18 +264,6 @@ struct TransferRows {
   }
 };
 
-/// Sorts entries [from, to) of a CSR row by column (insertion sort: rows are short).
-template <class Cols, class Values>
-KOKKOS_INLINE_FUNCTION void sort_row(const Cols& cols, const Values& values, int from, int to) {
-  for (int e = from + 1; e < to; ++e)
-    for (int s = e; s > from && cols(s - 1) > cols(s); --s) {
-      const int c = cols(s);
-      const double v = values(s);
-      cols(s) = cols(s - 1), values(s) = values(s - 1);
-      cols(s - 1) = c, values(s - 1) = v;
-    }
-}
-
 /// R = the columns < n of the matrix (row_ptr, cols, values) transposed, each row's entries in
 /// increasing column: on a device by atomic counts and places, then each row sorted.
 template <class ExecSpace, class Mem>
@@ -321,7 +310,7 @@ void transpose_with_atomics(const ExecSpace& exec, const Kokkos::View<int*, Mem>
       });
   Kokkos::parallel_for(
       "amphora::tall_mg::transpose_sort", Policy(exec, 0, n),
-      KOKKOS_LAMBDA(int c) { sort_row(rc, rv, r_ptr(c), r_ptr(c + 1)); });
+      KOKKOS_LAMBDA(int c) { solvers::detail::sort_csr_row(rc, rv, r_ptr(c), r_ptr(c + 1)); });
 }
 
 /// The same on host threads: each of a few groups of consecutive rows counts and places its
@@ -373,6 +362,18 @@ void transpose_in_groups(const ExecSpace& exec, const Kokkos::View<int*, Mem>& r
       }
   });
 }
+
+/// The rows of Q for assemble_csr_rows: a tall cell's to be sorted by column.
+template <class MemSpace>
+struct QRows {
+  TransferRows<MemSpace> R;
+  template <class Emit>
+  KOKKOS_INLINE_FUNCTION bool operator()(int r, const Emit& emit) const {
+    bool tall;
+    R.row(r, emit, tall);
+    return tall;
+  }
+};
 
 }  // namespace detail
 
@@ -477,34 +478,12 @@ TallCellLevelTransfer<typename ExecSpace::memory_space> tall_cell_level_transfer
       "amphora::tall_mg::transfer_tall_terms", Policy(exec, 0, rows), KOKKOS_LAMBDA(int r) {
         if (R.scratch_at(r + 1) > R.scratch_at(r)) R.tall_cell_terms(r);
       });
-  // the rows: lengths, then entries, each row sorted
-  Kokkos::View<int*, Mem> row_ptr("amphora::tall_mg::q_row_ptr", rows + 1);
-  Kokkos::parallel_for(
-      "amphora::tall_mg::transfer_lengths", Policy(exec, 0, rows), KOKKOS_LAMBDA(int r) {
-        bool tall;
-        row_ptr(r + 1) = R.row(
-            r, [](int, double) {}, tall);
-      });
-  int entries = 0;
-  Kokkos::parallel_scan(
-      "amphora::tall_mg::transfer_scan", Policy(exec, 0, rows + 1),
-      KOKKOS_LAMBDA(int r, int& partial, bool final) {
-        partial += row_ptr(r);
-        if (final) row_ptr(r) = partial;
-      },
-      entries);
-  const auto cols = alloc_int("amphora::tall_mg::q_cols", entries);
-  const Kokkos::View<double*, Mem> values(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall_mg::q_values")),
-      entries);
-  Kokkos::parallel_for(
-      "amphora::tall_mg::transfer_rows", Policy(exec, 0, rows), KOKKOS_LAMBDA(int r) {
-        int at = row_ptr(r);
-        bool tall;
-        R.row(
-            r, [&](int c, double v) { cols(at) = c, values(at++) = v; }, tall);
-        if (tall) detail::sort_row(cols, values, row_ptr(r), at);
-      });
+  // the rows, a tall cell's sorted by column
+  const DeviceCsrMatrix<Mem> Q_all =
+      assemble_csr_rows(exec, rows, detail::QRows<Mem>{R}, std::string("amphora::tall_mg::q"));
+  const auto row_ptr = Q_all.row_ptr;
+  const auto cols = Q_all.cols;
+  const auto values = Q_all.values;
   TallCellLevelTransfer<Mem> T;
   T.prolongation.n = R.n_fine;
   T.prolongation.row_ptr = Kokkos::subview(row_ptr, Kokkos::make_pair(0, R.n_fine + 1));

@@ -1,5 +1,7 @@
 #include "solvers/mac/tall_cell_matrix.hpp"
 
+#include "solvers/csr_rows.hpp"
+
 #include <stdexcept>
 #include <string>
 
@@ -75,29 +77,6 @@ struct TallCellRows {
     T.column(i, k, t, b, f);
     if (j >= b) return uniform_row(i, j, k, own_id(u), emit);
     return tall_row(i, k, own_id(u), emit);
-  }
-
-  /// The number of entries row u has: a uniform row's from the columns alone (the cell, and per
-  /// neighbour across a face with c != 0, a fluid cell, one entry, or two for a tall cell's inner
-  /// row: at its bottom and top rows one sample's weight is zero); a tall row's by writing none.
-  KOKKOS_INLINE_FUNCTION int row_length(int u) const {
-    int i, j, k;
-    g().ijk(carrier(u), i, j, k);
-    int t, b, f;
-    T.column(i, k, t, b, f);
-    if (j < b) return tall_row(i, k, own_id(u), [](int, double) {});
-    const int c = g().index(i, j, k), sy = g().stride_y(), sz = g().stride_z();
-    const int di[6] = {0, -1, 0, 0, 1, 0}, dj[6] = {0, 0, -1, 1, 0, 0}, dk[6] = {-1, 0, 0, 0, 0, 1};
-    const float cond[6] = {A.cz(c - sz), A.cx(c - 1), A.cy(c - sy), A.cy(c), A.cx(c), A.cz(c)};
-    int n = 1;
-    for (int e = 0; e < 6; ++e) {
-      if (cond[e] == 0.0f) continue;
-      int tn, bn, fn;
-      T.column(i + di[e], k + dk[e], tn, bn, fn);
-      const int jj = j + dj[e];
-      n += jj > tn && jj + 1 < bn ? 2 : 1;  // tall, and neither end row
-    }
-    return n;
   }
 
   /// A's row (its diagonal d, -c towards each neighbour) times P: a neighbour's unknowns
@@ -274,6 +253,17 @@ struct TallCellRows {
   }
 };
 
+/// The rows for assemble_csr_rows, each to be sorted by column.
+template <class MemSpace>
+struct SortedRows {
+  TallCellRows<MemSpace> R;
+  template <class Emit>
+  KOKKOS_INLINE_FUNCTION bool operator()(int u, const Emit& emit) const {
+    R.row(u, emit);
+    return true;
+  }
+};
+
 }  // namespace detail
 
 template <class ExecSpace>
@@ -329,64 +319,25 @@ DeviceCsrMatrix<typename ExecSpace::memory_space> assemble_tall_cell_matrix(
       KOKKOS_LAMBDA(int col) {
         if (band(col) > terrain(col)) R.surface_terms(col % g.nx, col / g.nx);
       });
-  DeviceCsrMatrix<Mem> M;
-  M.n = n;
-  M.row_ptr = Kokkos::View<int*, Mem>("amphora::tall::row_ptr", n + 1);
-  const auto row_ptr = M.row_ptr;
-  Kokkos::parallel_for(
-      "amphora::tall::row_lengths", kernels::RangePolicy<ExecSpace>(exec, 0, n),
-      KOKKOS_LAMBDA(int u) { row_ptr(u + 1) = R.row_length(u); });
-  int entries = 0;
-  Kokkos::parallel_scan(
-      "amphora::tall::row_scan", kernels::RangePolicy<ExecSpace>(exec, 0, n + 1),
-      KOKKOS_LAMBDA(int u, int& partial, bool final) {
-        partial += row_ptr(u);
-        if (final) row_ptr(u) = partial;
-      },
-      entries);
-  M.cols = Kokkos::View<int*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall::cols")), entries);
-  M.values = Kokkos::View<double*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall::values")),
-      entries);
+  DeviceCsrMatrix<Mem> M =
+      assemble_csr_rows(exec, n, detail::SortedRows<Mem>{R}, std::string("amphora::tall::matrix"));
   M.inverse_diagonal =
       Kokkos::View<double*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing,
                                                     std::string("amphora::tall::inverse_diagonal")),
                                  n);
+  const auto row_ptr = M.row_ptr;
   const auto cols = M.cols;
   const auto values = M.values;
   const auto inverse_diagonal = M.inverse_diagonal;
-  int overrun = 0;
-  Kokkos::parallel_reduce(
-      "amphora::tall::rows", kernels::RangePolicy<ExecSpace>(exec, 0, n),
-      KOKKOS_LAMBDA(int u, int& wrong) {
-        const int from = row_ptr(u), end = row_ptr(u + 1);
-        int at = from;
-        R.row(u, [&](int c, double v) {
-          if (at < end) cols(at) = c, values(at) = v;
-          ++at;
-        });
-        if (at != end) {  // never: row_length counts what row writes
-          ++wrong;
-          at = end;
-        }
-        for (int e = from + 1; e < at; ++e)  // insertion sort by column: rows are short
-          for (int s = e; s > from && cols(s - 1) > cols(s); --s) {
-            const int c = cols(s);
-            const double v = values(s);
-            cols(s) = cols(s - 1), values(s) = values(s - 1);
-            cols(s - 1) = c, values(s - 1) = v;
-          }
+  Kokkos::parallel_for(
+      "amphora::tall::inverse_diagonal", kernels::RangePolicy<ExecSpace>(exec, 0, n),
+      KOKKOS_LAMBDA(int u) {
         const int self = R.own_id(u);
         double d = 0.0;
-        for (int e = from; e < at; ++e)
+        for (int e = row_ptr(u); e < row_ptr(u + 1); ++e)
           if (cols(e) == self) d = values(e);
         inverse_diagonal(u) = d != 0.0 ? 1.0 / d : 0.0;
-      },
-      overrun);
-  if (overrun != 0)
-    throw std::logic_error("assemble_tall_cell_matrix: " + std::to_string(overrun) +
-                           " rows have other entries than their counted lengths");
+      });
   return M;
 }
 
