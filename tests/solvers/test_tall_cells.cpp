@@ -124,8 +124,9 @@ TEST(TallCellMatrix, IsSymmetricAndEqualsPtAPWithTallCells) {
 // The grid and matrix built by the kernels of the test's backend equal the host's: the same
 // grid and sparsity, and values bit for bit on a host backend; on a GPU within 1e-14 of the
 // largest entry (its compiler may fuse a multiply and an add, which rounds once instead of
-// twice). With local columns (this block's unknowns, then its ring's: none on one block) the
-// matrix is the same.
+// twice). With local columns (this block's unknowns, then its ring's: none on one block), and
+// with the device's schedule (rows counted, then written) on host threads, the matrix is the
+// same.
 TEST(TallCellMatrix, TheBackendsKernelsBuildTheHostsGridAndMatrix) {
   using test::TestExecSpace;
   using test::TestMemSpace;
@@ -148,8 +149,10 @@ TEST(TallCellMatrix, TheBackendsKernelsBuildTheHostsGridAndMatrix) {
   const bool host = std::is_same_v<TestMemSpace, Kokkos::HostSpace>;
   double largest = 0.0;
   for (double v : M.values) largest = std::max(largest, std::abs(v));
-  for (bool local : {false, true}) {
-    const CsrMatrix R = to_csr_matrix(assemble_tall_cell_matrix(TestExecSpace(), D, A, local));
+  for (const auto& [local, device_schedule] : {std::pair(false, false), std::pair(true, false),
+                                               std::pair(false, true), std::pair(true, true)}) {
+    const CsrMatrix R = to_csr_matrix(assemble_tall_cell_matrix(
+        TestExecSpace(), D, A, local, tall_cell_carriers(TestExecSpace(), D), device_schedule));
     ASSERT_EQ(R.n, M.n);
     EXPECT_EQ(R.row_ptr, M.row_ptr);
     EXPECT_EQ(R.cols, M.cols);
@@ -308,9 +311,9 @@ TEST(TallCellMatrix, HydrostaticPressureIsExactWithAndWithoutTallCells) {
 
 // The level transfers built by the test backend's kernels: the restriction is the
 // prolongation's transpose exactly, a plain row (eight uniform coarse cells) holds the
-// trilinear weights, which sum to one, and both matrices equal the host threads' (pattern
-// exactly; values bit for bit on a host backend, within 1e-14 on a GPU, whose compiler may fuse
-// a multiply and an add).
+// trilinear weights, which sum to one, and both matrices equal the host threads' and the
+// device schedule's (pattern exactly; values bit for bit on a host backend, within 1e-14 on a
+// GPU, whose compiler may fuse a multiply and an add).
 TEST(TallCellTransfer, RestrictionIsTheProlongationsTransposeOnEveryBackend) {
   using test::TestExecSpace;
   using test::TestMemSpace;
@@ -320,8 +323,8 @@ TEST(TallCellTransfer, RestrictionIsTheProlongationsTransposeOnEveryBackend) {
   const mesh::mac::TallCellGrid T(TestExecSpace(), A, 4);
   const mesh::mac::TallCellGrid Tc(TestExecSpace(), C, T);
   ASSERT_GT(Tc.tall_cells(), 10);
-  const auto t =
-      tall_cell_level_transfer(TestExecSpace(), T, Tc, C, tall_cell_carriers(TestExecSpace(), T));
+  const auto carriers = tall_cell_carriers(TestExecSpace(), T);
+  const auto t = tall_cell_level_transfer(TestExecSpace(), T, Tc, C, carriers);
   const CsrMatrix Q = to_csr_matrix(t.prolongation), R = to_csr_matrix(t.restriction);
   ASSERT_EQ(Q.n, T.unknowns());
   ASSERT_EQ(R.n, Tc.unknowns());
@@ -347,9 +350,12 @@ TEST(TallCellTransfer, RestrictionIsTheProlongationsTransposeOnEveryBackend) {
   const mesh::mac::TallCellGrid H(Ah, 4), Hc(Ch, H);
   const auto h = tall_cell_level_transfer(kernels::HostExecSpace(), H, Hc, Ch,
                                           tall_cell_carriers(kernels::HostExecSpace(), H));
+  // and the device's schedule (rows counted, then written; Q^T by atomics) on this backend
+  const auto d = tall_cell_level_transfer(TestExecSpace(), T, Tc, C, carriers, true);
   const bool host = std::is_same_v<TestMemSpace, Kokkos::HostSpace>;
   for (const auto& [M, N] :
-       {std::pair(Q, to_csr_matrix(h.prolongation)), std::pair(R, to_csr_matrix(h.restriction))}) {
+       {std::pair(Q, to_csr_matrix(h.prolongation)), std::pair(R, to_csr_matrix(h.restriction)),
+        std::pair(Q, to_csr_matrix(d.prolongation)), std::pair(R, to_csr_matrix(d.restriction))}) {
     ASSERT_EQ(M.row_ptr, N.row_ptr);
     ASSERT_EQ(M.cols, N.cols);
     for (std::size_t e = 0; e < M.values.size(); ++e) {

@@ -14,10 +14,7 @@
 // its ghost ring (their rows and global unknowns) from the neighbouring blocks, so the matrix
 // rows of its unknowns can be assembled with their couplings across the block faces.
 #include <type_traits>
-#include <utility>
-#include <vector>
 
-#include "kernels/host_vector.hpp"
 #include "kernels/mac/poisson_stencil.hpp"
 #include "mesh/mac/lattice_halo.hpp"
 #include "kernels/mac/tall_cell_columns.hpp"
@@ -67,9 +64,10 @@ class TallCellGrid {
  public:
   /// The columns of A's fluid cells with uniform rows within optical_depth cells of the lowest
   /// non-fluid row above the terrain; a tall cell needs at least two rows (else the column stays
-  /// uniform). Built by kernels on exec in A's memory space (kernels/mac/tall_cell_numbering),
-  /// with a host copy for the host's assemblies. On a split grid (block.split()) every rank of
-  /// block.comm constructs its block's grid together (collective).
+  /// uniform). Built by kernels on exec in A's memory space (kernels/mac/tall_cell_numbering);
+  /// the host's accessors below read a host copy made at their first call. On a split grid
+  /// (block.split()) every rank of block.comm constructs its block's grid together
+  /// (collective).
   template <class ExecSpace>
   TallCellGrid(const ExecSpace& exec,
                const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A,

@@ -382,7 +382,8 @@ TallCellLevelTransfer<typename ExecSpace::memory_space> tall_cell_level_transfer
     const ExecSpace& exec, const mesh::mac::TallCellGrid& fine,
     const mesh::mac::TallCellGrid& coarse,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& coarse_A,
-    const Kokkos::View<int*, typename ExecSpace::memory_space>& fine_carriers) {
+    const Kokkos::View<int*, typename ExecSpace::memory_space>& fine_carriers,
+    bool device_schedule) {
   using Mem = typename ExecSpace::memory_space;
   using Policy = kernels::RangePolicy<ExecSpace>;
   const auto alloc_int = [](const char* label, long n) {
@@ -479,8 +480,8 @@ TallCellLevelTransfer<typename ExecSpace::memory_space> tall_cell_level_transfer
         if (R.scratch_at(r + 1) > R.scratch_at(r)) R.tall_cell_terms(r);
       });
   // the rows, a tall cell's sorted by column
-  const DeviceCsrMatrix<Mem> Q_all =
-      assemble_csr_rows(exec, rows, detail::QRows<Mem>{R}, std::string("amphora::tall_mg::q"));
+  const DeviceCsrMatrix<Mem> Q_all = assemble_csr_rows(
+      exec, rows, detail::QRows<Mem>{R}, std::string("amphora::tall_mg::q"), device_schedule);
   const auto row_ptr = Q_all.row_ptr;
   const auto cols = Q_all.cols;
   const auto values = Q_all.values;
@@ -495,10 +496,10 @@ TallCellLevelTransfer<typename ExecSpace::memory_space> tall_cell_level_transfer
   Kokkos::View<int*, Mem> r_ptr("amphora::tall_mg::r_row_ptr", n_coarse + 1);
   Kokkos::View<int*, Mem> r_cols;
   Kokkos::View<double*, Mem> r_values;
-  if constexpr (kernels::runs_on_host_v<ExecSpace>)
-    detail::transpose_in_groups(exec, row_ptr, cols, values, n_coarse, r_ptr, r_cols, r_values);
-  else
+  if (device_schedule)
     detail::transpose_with_atomics(exec, row_ptr, cols, values, n_coarse, r_ptr, r_cols, r_values);
+  else if constexpr (kernels::runs_on_host_v<ExecSpace>)
+    detail::transpose_in_groups(exec, row_ptr, cols, values, n_coarse, r_ptr, r_cols, r_values);
   T.restriction.n = n_coarse;
   T.restriction.row_ptr = r_ptr;
   T.restriction.cols = r_cols;
@@ -510,7 +511,7 @@ TallCellLevelTransfer<typename ExecSpace::memory_space> tall_cell_level_transfer
   template TallCellLevelTransfer<E::memory_space> tall_cell_level_transfer(     \
       const E&, const mesh::mac::TallCellGrid&, const mesh::mac::TallCellGrid&, \
       const kernels::mac::PoissonStencil<E::memory_space>&,                     \
-      const Kokkos::View<int*, E::memory_space>&);
+      const Kokkos::View<int*, E::memory_space>&, bool);
 AMPHORA_FOR_EACH_EXEC_SPACE(AMPHORA_TALL_CELL_TRANSFER)
 #undef AMPHORA_TALL_CELL_TRANSFER
 

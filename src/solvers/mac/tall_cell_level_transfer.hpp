@@ -31,12 +31,14 @@ struct TallCellLevelTransfer {
 /// The transfers between `fine` and `coarse` (on the lattice with cells twice as wide), both
 /// built in coarse_A's memory space; coarse_A is the coarse lattice matrix (its solid and fluid
 /// cells, its box faces; on a split grid with its ghost ring exchanged). fine_carriers: the
-/// lattice cell of each of fine's unknowns (tall_cell_carriers).
+/// lattice cell of each of fine's unknowns (tall_cell_carriers). device_schedule: Q's rows
+/// counted, then written, and Q^T by atomics, as on a device, on host threads too (tests).
 template <class ExecSpace>
 TallCellLevelTransfer<typename ExecSpace::memory_space> tall_cell_level_transfer(
     const ExecSpace& exec, const mesh::mac::TallCellGrid& fine,
     const mesh::mac::TallCellGrid& coarse,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& coarse_A,
-    const Kokkos::View<int*, typename ExecSpace::memory_space>& fine_carriers);
+    const Kokkos::View<int*, typename ExecSpace::memory_space>& fine_carriers,
+    bool device_schedule = !kernels::runs_on_host_v<ExecSpace>);
 
 }  // namespace amphora::solvers::mac

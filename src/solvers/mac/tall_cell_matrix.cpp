@@ -56,7 +56,7 @@ struct TallCellRows {
   KOKKOS_INLINE_FUNCTION int bottom_id(int i, int k) const {
     int t, b, f;
     T.column(i, k, t, b, f);
-    int u[2];
+    int u[2] = {0, 0};
     double w[2];
     weights(i, t, k, u, w);
     return u[0];
@@ -297,7 +297,7 @@ template <class ExecSpace>
 DeviceCsrMatrix<typename ExecSpace::memory_space> assemble_tall_cell_matrix(
     const ExecSpace& exec, const mesh::mac::TallCellGrid& T,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A, bool local_columns,
-    Kokkos::View<int*, typename ExecSpace::memory_space> carriers) {
+    Kokkos::View<int*, typename ExecSpace::memory_space> carriers, bool device_schedule) {
   using Mem = typename ExecSpace::memory_space;
   const int n = static_cast<int>(T.unknowns());
   detail::TallCellRows<Mem> R;
@@ -319,8 +319,8 @@ DeviceCsrMatrix<typename ExecSpace::memory_space> assemble_tall_cell_matrix(
       KOKKOS_LAMBDA(int col) {
         if (band(col) > terrain(col)) R.surface_terms(col % g.nx, col / g.nx);
       });
-  DeviceCsrMatrix<Mem> M =
-      assemble_csr_rows(exec, n, detail::SortedRows<Mem>{R}, std::string("amphora::tall::matrix"));
+  DeviceCsrMatrix<Mem> M = assemble_csr_rows(exec, n, detail::SortedRows<Mem>{R},
+                                             std::string("amphora::tall::matrix"), device_schedule);
   M.inverse_diagonal =
       Kokkos::View<double*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing,
                                                     std::string("amphora::tall::inverse_diagonal")),
@@ -352,7 +352,7 @@ CsrMatrix assemble_tall_cell_matrix(const mesh::mac::TallCellGrid& T,
   template DeviceCsrMatrix<E::memory_space> assemble_tall_cell_matrix(                             \
       const E&, const mesh::mac::TallCellGrid&,                                                    \
       const kernels::mac::PoissonStencil<E::memory_space>&, bool,                                  \
-      Kokkos::View<int*, E::memory_space>);
+      Kokkos::View<int*, E::memory_space>, bool);
 AMPHORA_FOR_EACH_EXEC_SPACE(AMPHORA_TALL_CELL_MATRIX)
 #undef AMPHORA_TALL_CELL_MATRIX
 

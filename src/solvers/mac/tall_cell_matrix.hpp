@@ -18,12 +18,14 @@ namespace amphora::solvers::mac {
 
 /// This block's rows of P^T A P in A's memory space, with the inverse diagonal; columns global,
 /// or local (local_columns). Not collective: T's ring is known already. `carriers`:
-/// tall_cell_carriers(exec, T) if the caller has them.
+/// tall_cell_carriers(exec, T) if the caller has them. device_schedule: the rows counted, then
+/// written, as on a device, on host threads too (solvers/csr_rows.hpp; tests).
 template <class ExecSpace>
 DeviceCsrMatrix<typename ExecSpace::memory_space> assemble_tall_cell_matrix(
     const ExecSpace& exec, const mesh::mac::TallCellGrid& T,
     const kernels::mac::PoissonStencil<typename ExecSpace::memory_space>& A, bool local_columns,
-    Kokkos::View<int*, typename ExecSpace::memory_space> carriers = {});
+    Kokkos::View<int*, typename ExecSpace::memory_space> carriers = {},
+    bool device_schedule = !kernels::runs_on_host_v<ExecSpace>);
 
 /// The same on the host with global columns (the host back ends, hypre's and IC(0)'s).
 CsrMatrix assemble_tall_cell_matrix(const mesh::mac::TallCellGrid& T,
