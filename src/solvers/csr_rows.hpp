@@ -25,6 +25,33 @@ KOKKOS_INLINE_FUNCTION void sort_csr_row(const Cols& cols, const Values& values,
       cols(s - 1) = c, values(s - 1) = v;
     }
 }
+/// row_ptr(r) = the entries of the rows before r, from row_ptr(r + 1) = row r's and row_ptr(0)
+/// = 0; returns the entries of all.
+template <class ExecSpace, class Mem>
+int scan_row_lengths(const ExecSpace& exec, const Kokkos::View<int*, Mem>& row_ptr,
+                     const std::string& label) {
+  int entries = 0;
+  Kokkos::parallel_scan(
+      label + "::scan",
+      kernels::RangePolicy<ExecSpace>(exec, 0, static_cast<int>(row_ptr.extent(0))),
+      KOKKOS_LAMBDA(int r, int& partial, bool final) {
+        partial += row_ptr(r);
+        if (final) row_ptr(r) = partial;
+      },
+      entries);
+  return entries;
+}
+
+/// Columns and values for `entries` entries, uninitialised.
+template <class Mem>
+void allocate_entries(Kokkos::View<int*, Mem>& cols, Kokkos::View<double*, Mem>& values,
+                      int entries, const std::string& label) {
+  cols = Kokkos::View<int*, Mem>(Kokkos::view_alloc(Kokkos::WithoutInitializing, label + "::cols"),
+                                 entries);
+  values = Kokkos::View<double*, Mem>(
+      Kokkos::view_alloc(Kokkos::WithoutInitializing, label + "::values"), entries);
+}
+
 template <class ExecSpace>
 DeviceCsrMatrix<typename ExecSpace::memory_space> csr_rows_start(int rows,
                                                                  const std::string& label) {
@@ -49,18 +76,7 @@ DeviceCsrMatrix<typename ExecSpace::memory_space> csr_rows_counted(const ExecSpa
         row(r, [&](int, double) { ++n; });
         row_ptr(r + 1) = n;
       });
-  int entries = 0;
-  Kokkos::parallel_scan(
-      label + "::scan", Policy(exec, 0, rows + 1),
-      KOKKOS_LAMBDA(int r, int& partial, bool final) {
-        partial += row_ptr(r);
-        if (final) row_ptr(r) = partial;
-      },
-      entries);
-  M.cols = Kokkos::View<int*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, label + "::cols"), entries);
-  M.values = Kokkos::View<double*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, label + "::values"), entries);
+  allocate_entries(M.cols, M.values, scan_row_lengths(exec, row_ptr, label), label);
   const auto cols = M.cols;
   const auto values = M.values;
   Kokkos::parallel_for(
@@ -78,7 +94,6 @@ DeviceCsrMatrix<typename ExecSpace::memory_space> csr_rows_grouped(const ExecSpa
                                                                    const Row& row,
                                                                    const std::string& label) {
   using Mem = typename ExecSpace::memory_space;
-  using Policy = kernels::RangePolicy<ExecSpace>;
   DeviceCsrMatrix<Mem> M = csr_rows_start<ExecSpace>(rows, label);
   const auto row_ptr = M.row_ptr;
   // groups of consecutive rows, several per thread for balance, each into its own buffers
@@ -86,7 +101,6 @@ DeviceCsrMatrix<typename ExecSpace::memory_space> csr_rows_grouped(const ExecSpa
   const auto first_row = [=](int q) { return int(long(q) * rows / groups); };
   std::vector<std::vector<int>> group_cols(groups);
   std::vector<std::vector<double>> group_values(groups);
-  std::vector<int> group_sort(groups, 0);
   Kokkos::parallel_for(label + "::rows", Kokkos::RangePolicy<ExecSpace>(exec, 0, groups),
                        [&](int q) {
                          std::vector<int>& c = group_cols[q];
@@ -107,18 +121,7 @@ DeviceCsrMatrix<typename ExecSpace::memory_space> csr_rows_grouped(const ExecSpa
                                std::swap(c[s - 1], c[s]), std::swap(v[s - 1], v[s]);
                          }
                        });
-  int entries = 0;
-  Kokkos::parallel_scan(
-      label + "::scan", Policy(exec, 0, rows + 1),
-      [=](int r, int& partial, bool final) {
-        partial += row_ptr(r);
-        if (final) row_ptr(r) = partial;
-      },
-      entries);
-  M.cols = Kokkos::View<int*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, label + "::cols"), entries);
-  M.values = Kokkos::View<double*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, label + "::values"), entries);
+  allocate_entries(M.cols, M.values, scan_row_lengths(exec, row_ptr, label), label);
   const auto cols = M.cols;
   const auto values = M.values;
   Kokkos::parallel_for(

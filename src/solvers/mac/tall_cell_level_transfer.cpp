@@ -279,20 +279,9 @@ void transpose_with_atomics(const ExecSpace& exec, const Kokkos::View<int*, Mem>
         for (int e = row_ptr(r); e < row_ptr(r + 1); ++e)
           if (cols(e) < n) Kokkos::atomic_increment(&r_ptr(cols(e) + 1));
       });
-  int entries = 0;
-  Kokkos::parallel_scan(
-      "amphora::tall_mg::transpose_scan", Policy(exec, 0, n + 1),
-      KOKKOS_LAMBDA(int c, int& partial, bool final) {
-        partial += r_ptr(c);
-        if (final) r_ptr(c) = partial;
-      },
-      entries);
-  r_cols = Kokkos::View<int*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall_mg::r_cols")),
-      entries);
-  r_values = Kokkos::View<double*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall_mg::r_values")),
-      entries);
+  const std::string label = "amphora::tall_mg::transpose";
+  solvers::detail::allocate_entries(r_cols, r_values,
+                                    solvers::detail::scan_row_lengths(exec, r_ptr, label), label);
   const Kokkos::View<int*, Mem> next(
       Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall_mg::r_next")), n);
   const auto rc = r_cols;
@@ -345,12 +334,7 @@ void transpose_in_groups(const ExecSpace& exec, const Kokkos::View<int*, Mem>& r
         }
       },
       entries);
-  r_cols = Kokkos::View<int*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall_mg::r_cols")),
-      entries);
-  r_values = Kokkos::View<double*, Mem>(
-      Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall_mg::r_values")),
-      entries);
+  solvers::detail::allocate_entries(r_cols, r_values, entries, "amphora::tall_mg::transpose");
   const auto rc = r_cols;
   const auto rv = r_values;
   Kokkos::parallel_for("amphora::tall_mg::transpose_fill", Policy(exec, 0, groups), [=](int q) {
@@ -457,17 +441,8 @@ TallCellLevelTransfer<typename ExecSpace::memory_space> tall_cell_level_transfer
           at(r + 1) = j == t && t < b ? R.dense_size(i, k, t, b, base, first) : 0;
         });
   }
-  int scratch = 0;
-  {
-    const auto at = R.scratch_at;
-    Kokkos::parallel_scan(
-        "amphora::tall_mg::transfer_scratch_scan", Policy(exec, 0, rows + 1),
-        KOKKOS_LAMBDA(int r, int& partial, bool final) {
-          partial += at(r);
-          if (final) at(r) = partial;
-        },
-        scratch);
-  }
+  const int scratch =
+      solvers::detail::scan_row_lengths(exec, R.scratch_at, "amphora::tall_mg::transfer_scratch");
   R.scratch_id = alloc_int("amphora::tall_mg::scratch_id", scratch);
   R.scratch_w0 = Kokkos::View<double*, Mem>(
       Kokkos::view_alloc(Kokkos::WithoutInitializing, std::string("amphora::tall_mg::scratch_w0")),
