@@ -68,6 +68,8 @@ struct DenseTerms {
   }
 };
 
+/// Q's rows: per row (a fine unknown of the block or of its ring) the interpolation of the
+/// coarse unknowns at its carrier cell, a tall cell's fitted over its rows.
 template <class MemSpace>
 struct TransferRows {
   kernels::mac::TallCellMap<MemSpace> F, C;  ///< the fine and coarse grids

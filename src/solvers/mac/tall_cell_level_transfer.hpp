@@ -15,8 +15,8 @@
 // fine rows over the coarse grid's local columns (its unknowns, then its ring's slots), Q^T
 // this block's coarse rows over the fine grid's, gathered from the rows of the fine ghost ring
 // too (a ring of one cell reaches every coarse cell of the block). Each row sums its terms in
-// the order the interpolation meets them and is sorted by column, so the matrices are the same
-// for any number of threads.
+// the order the interpolation meets them and lists them by column (a plain trilinear row in the
+// order of its eight cells), so the matrices are the same for any number of threads.
 #include "mesh/mac/tall_cell_grid.hpp"
 #include "solvers/device_csr.hpp"
 

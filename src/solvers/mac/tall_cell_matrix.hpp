@@ -6,8 +6,9 @@
 // the quadratic form
 //   p^T A p = sum_faces c_f (p_i - p_j)^2 + sum_cells D_i p_i^2,  p = P y,
 // over the faces and cells that touch it, with the faces inside a tall cell and between two tall
-// cells summed in closed blocks. Each row is counted, then written and sorted by column, so the
-// matrix is the same on every backend. On a split grid: the rows of this block's unknowns, its
+// cells summed in closed blocks. Each row is written sorted by column (solvers/csr_rows.hpp:
+// counted first on a device), so the matrix is the same on every backend and for any number of
+// threads. On a split grid: the rows of this block's unknowns, its
 // ghost ring supplying the neighbours across the block faces, with global columns or local ones
 // (this block's unknowns, then the ring's slots: kernels::mac::TallCellRing).
 #include "mesh/mac/tall_cell_grid.hpp"
