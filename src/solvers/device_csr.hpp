@@ -1,11 +1,6 @@
 #pragma once
-// An assembled CSR matrix in a memory space, with y = A x as a kernel (one row per work item)
-// and 1/diag(A) for Jacobi-type smoothers.
-#include <memory>
-#include <type_traits>
-#include <vector>
-
-#include "kernels/host_vector.hpp"
+// An assembled CSR matrix in a memory space (solvers/csr_rows.hpp builds one), with y = A x as a
+// kernel (one row per work item) and 1/diag(A) for Jacobi-type smoothers.
 #include "kernels/spaces.hpp"
 #include "solvers/csr_matrix.hpp"
 
@@ -21,28 +16,6 @@ struct DeviceCsrMatrix {
   Kokkos::View<int*, MemSpace> row_ptr, cols;
   Vector values, inverse_diagonal;
 
-  DeviceCsrMatrix() = default;
-  /// A copy of A; with_inverse_diagonal: also 1 / a_ii (zero where a_ii is; a square matrix).
-  explicit DeviceCsrMatrix(const CsrMatrix& A, bool with_inverse_diagonal = true)
-      : n(static_cast<int>(A.n)) {
-    copy(A, with_inverse_diagonal);
-  }
-  /// A itself, where MemSpace is the host's: its columns and values are kept and viewed,
-  /// not copied (the multigrid's transfers are assembled every sub-step); elsewhere a copy.
-  DeviceCsrMatrix(CsrMatrix&& A, bool with_inverse_diagonal) : n(static_cast<int>(A.n)) {
-    // HostSpace itself, not any space the host can read: a managed (UVM) space would let GPU
-    // kernels read the vector's pageable memory
-    if constexpr (std::is_same_v<MemSpace, Kokkos::HostSpace>) {
-      auto kept = std::make_shared<CsrMatrix>(std::move(A));
-      cols = Kokkos::View<int*, MemSpace>(kept->cols.data(), kept->cols.size());
-      values = Vector(kept->values.data(), kept->values.size());
-      finish(*kept, with_inverse_diagonal);
-      kept_ = std::move(kept);
-    } else {
-      copy(A, with_inverse_diagonal);
-    }
-  }
-
   template <class ExecSpace, class X, class Y>
   void apply(const ExecSpace& exec, const X& x, const Y& y) const {
     const auto rp = row_ptr;
@@ -56,35 +29,6 @@ struct DeviceCsrMatrix {
           y(i) = s;
         });
   }
-
- private:
-  void copy(const CsrMatrix& A, bool with_inverse_diagonal) {
-    cols = kernels::to_view<MemSpace>(A.cols, "amphora::csr::cols");
-    values = kernels::to_view<MemSpace>(A.values, "amphora::csr::values");
-    finish(A, with_inverse_diagonal);
-  }
-  /// The row pointers (as int) and the inverse diagonal.
-  /// Both filled on the host threads, a row each (set up every sub-step by the tall-cell
-  /// multigrid, whose finest matrix has about 650k entries in the deep splash).
-  void finish(const CsrMatrix& A, bool with_inverse_diagonal) {
-    using HostPolicy = Kokkos::RangePolicy<Kokkos::DefaultHostExecutionSpace>;
-    Kokkos::View<int*, Kokkos::HostSpace> rp(
-        Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::csr::row_ptr"), A.row_ptr.size());
-    Kokkos::parallel_for("amphora::csr::row_ptr", HostPolicy(0, rp.extent(0)),
-                         [&](std::size_t i) { rp(i) = static_cast<int>(A.row_ptr[i]); });
-    row_ptr = Kokkos::create_mirror_view_and_copy(MemSpace(), rp);
-    if (!with_inverse_diagonal) return;
-    Kokkos::View<double*, Kokkos::HostSpace> inv(
-        Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::csr::inverse_diagonal"), A.n);
-    Kokkos::parallel_for("amphora::csr::inverse_diagonal", HostPolicy(0, A.n), [&](long i) {
-      double v = 0.0;
-      for (long e = A.row_ptr[i]; e < A.row_ptr[i + 1]; ++e)
-        if (A.cols[e] == i && A.values[e] != 0.0) v = 1.0 / A.values[e];
-      inv(i) = v;
-    });
-    inverse_diagonal = Kokkos::create_mirror_view_and_copy(MemSpace(), inv);
-  }
-  std::shared_ptr<const CsrMatrix> kept_;  ///< the arrays cols and values view, if kept
 };
 
 /// r = b - A x for an assembled matrix.

@@ -374,7 +374,7 @@ TEST(TallCellTransfer, GramSolveInvertsPtP) {
   ASSERT_GT(T.tall_cells(), 100);
   using test::TestMemSpace;
   const test::TestExecSpace exec;
-  const auto layout = mesh::mac::make_layout<TestMemSpace>(T);
+  const auto layout = T.layout<TestMemSpace>();
   std::vector<double> y(T.unknowns());
   for (std::size_t u = 0; u < y.size(); ++u) y[u] = std::sin(0.37 * u) + 0.1 * (u % 7);
   const auto yv = kernels::to_view<TestMemSpace>(y);

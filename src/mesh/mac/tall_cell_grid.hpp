@@ -117,20 +117,6 @@ class TallCellGrid {
     host().column(i, k, c.terrain, c.band, c.first_unknown);
     return c;
   }
-  /// Global number of the first unknown of column (i, k) (block or ghost ring).
-  long global_first_unknown(int i, int k) const {
-    const bool own = i >= 0 && i < grid_.nx && k >= 0 && k < grid_.nz;
-    return (own ? first_unknown_ : 0) + column(i, k).first_unknown;
-  }
-
-  /// f(u, i, j, k) for the unknowns u of this block's column (i, k) in their order (this block's
-  /// numbering) and the lattice cell (i, j, k) that carries each: a tall cell's bottom and top
-  /// samples its lowest two cells, then the uniform fluid cells upwards.
-  template <class F>
-  void for_each_unknown_in_column(int i, int k, const F& f) const {
-    for_each_carrier(column(i, k), host().own.cell_unknown, i, k, f);
-  }
-
   /// The (at most two) global unknowns and weights of lattice cell (i, j, k) of the block or of
   /// its ghost ring: p = sum w u.
   /// (Inline: the assemblies and level transfers call it a few times per unknown.)
@@ -147,21 +133,6 @@ class TallCellGrid {
   /// grid, and the host copies.
   template <class ExecSpace, class Stencil, class Band>
   void build(const ExecSpace& exec, const Stencil& A, const Band& band_of);
-  /// f(u, i, j, k) for the unknowns of column (i, k) as `uniform` (per padded cell) and the
-  /// column number them.
-  template <class F, class Uniform>
-  void for_each_carrier(const TallCellColumn& col, const Uniform& uniform, int i, int k,
-                        const F& f) const {
-    if (col.has_tall_cell()) {
-      f(col.first_unknown, i, col.terrain, k);
-      f(col.first_unknown + 1, i, col.terrain + 1, k);
-    }
-    for (int j = col.band; j < grid_.ny; ++j) {
-      const int u = uniform(grid_.index(i, j, k));
-      if (u >= 0) f(u, i, j, k);
-    }
-  }
-
   kernels::mac::MacGrid grid_;
   MacBlock block_;
   int optical_depth_ = 0;
@@ -189,16 +160,6 @@ kernels::mac::TallCellMap<MemSpace> TallCellGrid::map() const {
     return host();
   else
     return detail::copy_map<MemSpace>(host());
-}
-
-}  // namespace amphora::mesh::mac
-
-namespace amphora::mesh::mac {
-
-/// The grid's arrays in a memory space, for kernels.
-template <class MemSpace>
-kernels::mac::TallCellLayout<MemSpace> make_layout(const TallCellGrid& T) {
-  return T.layout<MemSpace>();
 }
 
 }  // namespace amphora::mesh::mac
