@@ -200,7 +200,10 @@ TEST(VoidFraction, BoundedIsTheUnboundedWhereNoBoundBinds) {
   ASSERT_GT(*std::min_element(hf.begin(), hf.end()), 0.36);
   ASSERT_LE(*std::max_element(hf.begin(), hf.end()), 1.0);
   EXPECT_EQ(fraction.bounds().iterations, 0);
-  EXPECT_EQ(host(eps), hf);
+  // The bounded path keeps CG's eps. The two solves deposit their right-hand sides with
+  // atomics, so on threads they differ in round-off (a few ulps of 1 measured), not bit for bit.
+  const auto he = host(eps);
+  for (std::size_t i = 0; i < he.size(); ++i) EXPECT_NEAR(he[i], hf[i], 1e-13) << "node " << i;
 }
 
 TEST(VoidFraction, BoundsOutOfOrderAreRefused) {
