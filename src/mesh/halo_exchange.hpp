@@ -44,6 +44,7 @@ class HaloExchange {
       for (int side = 0; side < 2; ++side) {
         const int to = decomposition_.neighbor(comm_.rank(), d, side);
         const int from = decomposition_.neighbor(comm_.rank(), d, 1 - side);
+        if (to < 0 && from < 0) continue;
         // Send the interior slab next to `side`; receive into the ghost slab on the other side.
         const Region send = slab(field, d, side, /*ghost=*/false);
         const Region recv = slab(field, d, 1 - side, /*ghost=*/true);
@@ -51,9 +52,12 @@ class HaloExchange {
                         send.size());
         Buffer recv_buf(Kokkos::view_alloc(Kokkos::WithoutInitializing, "amphora::halo::recv"),
                         recv.size());
-        if (to >= 0) pack(exec, field, send, send_buf);
-        exec.fence();
-        auto send_host = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), send_buf);
+        auto send_host = Kokkos::create_mirror_view(send_buf);
+        if (to >= 0) {
+          pack(exec, field, send, send_buf);
+          exec.fence();
+          Kokkos::deep_copy(send_host, send_buf);
+        }
         auto recv_host = Kokkos::create_mirror_view(recv_buf);
         MPI_Sendrecv(send_host.data(), static_cast<int>(send.size()), MPI_DOUBLE,
                      to >= 0 ? to : MPI_PROC_NULL, 100 + 2 * d + side, recv_host.data(),

@@ -1,10 +1,10 @@
 // Host-device traffic of a time step, counted with the Kokkos Tools deep-copy hook
 // (kernels/deep_copy_counter.hpp: host_device() counts what crosses on this build, or would on a
 // device). On one rank a DEM step makes no host-device copy, list rebuilds included (periodic
-// boxes' images too); a water step on the uniform grid makes two (the multigrid's coarsest
-// grid, set up again each sub-step: its cell list to the device, its rows to the host); the
-// tall-cell water step none that a host build sees (its hierarchy is built on the device; its
-// coarsest level's rows go to the host by mirror-and-copy).
+// boxes' images too, also where only some directions are periodic); a water step on the uniform
+// grid makes two (the multigrid's coarsest grid, set up again each sub-step: its cell list to the
+// device, its rows to the host); the tall-cell water step none that a host build sees (its
+// hierarchy is built on the device; its coarsest level's rows go to the host by mirror-and-copy).
 #include <algorithm>
 #include <cstdio>
 #include <vector>
@@ -54,6 +54,15 @@ TEST(StepTransfers, PeriodicDemStepsStayOnTheDevice) {
   System s = shaken_packing<test::TestExecSpace>(1000, 0.03, {true, true, true}, 0.6);
   expect_steps_on_the_device(s);
   EXPECT_GT(s.particles().n_ghost, 100) << "the images must be there";
+}
+
+// Periodic in x alone (a bed or a channel): walls bound y and z, which have no ghosts to send,
+// so their faces make no copy either (an empty copy fences the device like any other).
+TEST(StepTransfers, PartlyPeriodicDemStepsStayOnTheDevice) {
+  using physics::dem::test_systems::shaken_packing;
+  System s = shaken_packing<test::TestExecSpace>(1000, 0.034, {true, false, false}, 0.6);
+  expect_steps_on_the_device(s);
+  EXPECT_GT(s.particles().n_ghost, 30) << "the images must be there";
 }
 
 /// Rows of spheres in free flight along +x, each row at its own speed (so no contacts), through

@@ -39,6 +39,7 @@ class ParticleHalo {
     int total = n_owned;
     Arrays a = grow(total);
     for (int d = 0; d < 3; ++d) {
+      if (dec.neighbor(d, 0) < 0 && dec.neighbor(d, 1) < 0) continue;  // walls: no leg
       // never ghosts that came in along this direction (they would go back home)
       const int candidates = total;
       for (int side = 0; side < 2; ++side) {
@@ -60,11 +61,13 @@ class ParticleHalo {
               dec.exchange_face(d, side, std::vector<double>(h.data(), h.data() + h.size()));
           leg.recv_count = static_cast<int>(in.size()) / w;
           a = grow(total + leg.recv_count);
-          Kokkos::View<double*, Mem> rbuf("amphora::halo::arrived", in.size());
-          auto hr = Kokkos::create_mirror_view(rbuf);
-          std::copy(in.begin(), in.end(), hr.data());
-          Kokkos::deep_copy(rbuf, hr);
-          a.record.unpack(exec, rbuf, leg.recv_count, total, d, leg.shift);
+          if (!in.empty()) {
+            Kokkos::View<double*, Mem> rbuf("amphora::halo::arrived", in.size());
+            auto hr = Kokkos::create_mirror_view(rbuf);
+            std::copy(in.begin(), in.end(), hr.data());
+            Kokkos::deep_copy(rbuf, hr);
+            a.record.unpack(exec, rbuf, leg.recv_count, total, d, leg.shift);
+          }
         }
         total += leg.recv_count;
         legs_.push_back(leg);
@@ -88,16 +91,21 @@ class ParticleHalo {
                                 : Kokkos::View<double*, Mem>("amphora::halo::recv_buf",
                                                              size_t(leg.recv_count) * w);
       }
-      moving.pack(exec, leg.send, ns, leg.send_buf);
+      if (ns > 0) moving.pack(exec, leg.send, ns, leg.send_buf);
       if (!leg.self) {
-        exec.fence();
-        // host mirrors (the buffers themselves on host spaces): both sides know the sizes
-        const auto hb = Kokkos::create_mirror_view_and_copy(kernels::HostMemSpace(), leg.send_buf);
+        // host mirrors (the buffers themselves on host spaces): both sides know the sizes. An
+        // empty buffer is not copied (Kokkos fences on every copy of an empty View).
+        auto hb = Kokkos::create_mirror_view(leg.send_buf);
         const auto hrb = Kokkos::create_mirror_view(leg.recv_buf);
+        if (ns > 0) {
+          exec.fence();
+          Kokkos::deep_copy(hb, leg.send_buf);
+        }
         dec.exchange_face(leg.d, leg.side, hb.data(), int(hb.size()), hrb.data(), int(hrb.size()));
-        Kokkos::deep_copy(leg.recv_buf, hrb);
+        if (leg.recv_count > 0) Kokkos::deep_copy(leg.recv_buf, hrb);
       }
-      moving.unpack(exec, leg.recv_buf, leg.recv_count, leg.recv_first, leg.d, leg.shift);
+      if (leg.recv_count > 0)
+        moving.unpack(exec, leg.recv_buf, leg.recv_count, leg.recv_first, leg.d, leg.shift);
     }
     exec.fence();
   }
