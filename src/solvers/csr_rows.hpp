@@ -101,26 +101,27 @@ DeviceCsrMatrix<typename ExecSpace::memory_space> csr_rows_grouped(const ExecSpa
   const auto first_row = [=](int q) { return int(long(q) * rows / groups); };
   std::vector<std::vector<int>> group_cols(groups);
   std::vector<std::vector<double>> group_values(groups);
-  Kokkos::parallel_for(label + "::rows", Kokkos::RangePolicy<ExecSpace>(exec, 0, groups),
-                       [&](int q) {
-                         std::vector<int>& c = group_cols[q];
-                         std::vector<double>& v = group_values[q];
-                         c.reserve(8 * std::size_t(first_row(q + 1) - first_row(q)));
-                         v.reserve(c.capacity());
-                         const auto push = [&](int column, double value) {
-                           c.push_back(column), v.push_back(value);
-                         };
-                         const kernels::AnySpaceCall<decltype(push)> emit{push};
-                         for (int r = first_row(q); r < first_row(q + 1); ++r) {
-                           const std::size_t from = c.size();
-                           const bool sort = row(r, emit);
-                           row_ptr(r + 1) = static_cast<int>(c.size() - from);
-                           if (!sort) continue;
-                           for (std::size_t e = from + 1; e < c.size(); ++e)
-                             for (std::size_t s = e; s > from && c[s - 1] > c[s]; --s)
-                               std::swap(c[s - 1], c[s]), std::swap(v[s - 1], v[s]);
-                         }
-                       });
+  Kokkos::parallel_for(
+      label + "::rows", Kokkos::RangePolicy<ExecSpace>(exec, 0, groups), [&](int q) {
+        std::vector<int>& c = group_cols[q];
+        std::vector<double>& v = group_values[q];
+        c.reserve(8 * std::size_t(first_row(q + 1) - first_row(q)));
+        v.reserve(c.capacity());
+        const auto push = [&](int column, double value) {
+          c.push_back(column), v.push_back(value);
+        };
+        const kernels::AnySpaceCall<decltype(push)> emit{push};
+        for (int r = first_row(q); r < first_row(q + 1); ++r) {
+          const std::size_t from = c.size();
+          const bool sort = row(r, emit);
+          row_ptr(r + 1) = static_cast<int>(c.size() - from);
+          if (!sort) continue;
+          using Unmanaged = Kokkos::MemoryTraits<Kokkos::Unmanaged>;
+          sort_csr_row(Kokkos::View<int*, Kokkos::HostSpace, Unmanaged>(c.data(), c.size()),
+                       Kokkos::View<double*, Kokkos::HostSpace, Unmanaged>(v.data(), v.size()),
+                       int(from), int(c.size()));
+        }
+      });
   allocate_entries(M.cols, M.values, scan_row_lengths(exec, row_ptr, label), label);
   const auto cols = M.cols;
   const auto values = M.values;

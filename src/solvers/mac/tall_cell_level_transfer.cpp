@@ -473,10 +473,15 @@ TallCellLevelTransfer<typename ExecSpace::memory_space> tall_cell_level_transfer
   Kokkos::View<int*, Mem> r_ptr("amphora::tall_mg::r_row_ptr", n_coarse + 1);
   Kokkos::View<int*, Mem> r_cols;
   Kokkos::View<double*, Mem> r_values;
-  if (device_schedule)
+  // as assemble_csr_rows: host threads group unless told the device's schedule
+  bool atomics = true;
+  if constexpr (kernels::runs_on_host_v<ExecSpace>) {
+    atomics = device_schedule;
+    if (!atomics)
+      detail::transpose_in_groups(exec, row_ptr, cols, values, n_coarse, r_ptr, r_cols, r_values);
+  }
+  if (atomics)
     detail::transpose_with_atomics(exec, row_ptr, cols, values, n_coarse, r_ptr, r_cols, r_values);
-  else if constexpr (kernels::runs_on_host_v<ExecSpace>)
-    detail::transpose_in_groups(exec, row_ptr, cols, values, n_coarse, r_ptr, r_cols, r_values);
   T.restriction.n = n_coarse;
   T.restriction.row_ptr = r_ptr;
   T.restriction.cols = r_cols;
