@@ -24,14 +24,16 @@
 // BPOperator/bp/p: the bare operator of BP bp, y = A x, on ~4e7 DoFs (components counted;
 // vectors of 320 MB, beyond the last-level cache). Bound: STREAM / 16 bytes per DoF.
 //
-// StoredGeometryLarge/op/p: LaplaceLarge's operator (op 0) and BP5's (op 5) on a curved box of
-// ~4e7 DoFs with the geometry stored at the points: the memory-bound form. Bound: STREAM / (16 B
+// StoredGeometryLarge/op/p/team: LaplaceLarge's operator (op 0) and BP5's (op 5) on a curved box
+// of ~4e7 DoFs with the geometry stored at the points: the memory-bound form, a cell per thread
+// (team 0) or through the team schedule (team 1, Options::team_kernel). Bound: STREAM / (16 B
 // + the stored geometry's bytes per DoF).
 //
 // GeometryModes/mode/p: Laplace (Gauss p+1) on ~2 million DoFs with each geometry mode (0
-// cartesian, 1 affine, 2 stored at points, 3 on the fly; curved cells for 2 and 3):
-// throughput against geometry bytes per DoF, the memory-for-flops trade. (Cartesian and affine
-// boxes have equal cells, whose coefficients are kept once: their geometry bytes are ~0.)
+// cartesian, 1 affine, 2 stored at points, 3 on the fly; curved cells for 2 and 3; 4: stored
+// through the team schedule): throughput against geometry bytes per DoF, the memory-for-flops
+// trade. (Cartesian and affine boxes have equal cells, whose coefficients are kept once: their
+// geometry bytes are ~0.)
 //
 // GenericKernel/p/generic: the run-time-size fallback against the compiled kernel (below).
 //
@@ -242,6 +244,7 @@ void StoredGeometryLarge(benchmark::State& state) {
   Op::Options o = which == 5 ? bp_options(5, p) : Op::Options{};
   o.kind = amphora::solvers::matrix_free::OperatorKind::laplace;
   o.geometry = amphora::solvers::matrix_free::GeometryMode::stored;
+  o.team_kernel = state.range(2) == 1;
   auto m = mesh::hex::unit_cube<3>(cells_for(4e7, p));
   m.deformation = mesh::hex::sinusoidal_deformation(3, 0.05);
   const DistributedSpace space(m, p, amphora::Communicator());
@@ -256,13 +259,14 @@ void StoredGeometryLarge(benchmark::State& state) {
   state.counters["ranks"] = space.communicator().size();
 }
 BENCHMARK(StoredGeometryLarge)
-    ->ArgsProduct({{0, 5}, {2, 3, 4, 5, 6, 7, 8}})
+    ->ArgsProduct({{0, 5}, {2, 3, 4, 5, 6, 7, 8}, {0, 1}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
 void GeometryModes(benchmark::State& state) {
   using amphora::solvers::matrix_free::GeometryMode;
-  const auto mode = static_cast<GeometryMode>(state.range(0));
+  const bool team = state.range(0) == 4;
+  const auto mode = team ? GeometryMode::stored : static_cast<GeometryMode>(state.range(0));
   const int p = static_cast<int>(state.range(1));
   auto m = mesh::hex::unit_cube<3>(cells_for(2e6, p));
   if (mode == GeometryMode::stored || mode == GeometryMode::on_the_fly)
@@ -270,6 +274,7 @@ void GeometryModes(benchmark::State& state) {
   const mesh::hex::QkSpace<3, Exec> space(m, p);
   Op::Options o;
   o.geometry = mode;
+  o.team_kernel = team;
   const Op op(space, o);
   Vector x = random_vector(space.n_dofs(), 3), y("y", space.n_dofs());
   time_applications(state, op, x, y);
@@ -278,7 +283,7 @@ void GeometryModes(benchmark::State& state) {
   state.counters["geometry_B/DoF"] = op.geometry_bytes() / n;
 }
 BENCHMARK(GeometryModes)
-    ->ArgsProduct({{0, 1, 2, 3}, {2, 4, 6}})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {2, 4, 6}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

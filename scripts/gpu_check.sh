@@ -103,7 +103,7 @@ fi
 if [ "$quick" = 1 ]; then
   benches=("stream|bench_stream|^StreamTriad/1048576/"
            "matrix_free_bp5|bench_matrix_free|^BP/5/[24]/5/"
-           "matrix_free_stored|bench_matrix_free|^GeometryModes/2/[24]/"
+           "matrix_free_stored|bench_matrix_free|^GeometryModes/[24]/[24]/"
            "dem|bench_dem|^DenseBed/10000/"
            "mac_pressure|bench_mac_pressure|^Uniform/0/64/")
 else

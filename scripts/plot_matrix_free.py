@@ -75,8 +75,8 @@ if bp:
 geo = medians(load(f"{out}/matrix_free_geometry_2threads.json"))
 if geo:
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
-    names = ["cartesian", "affine", "stored", "on the fly"]
-    for mode in range(4):
+    names = ["cartesian", "affine", "stored", "on the fly", "stored, team"]
+    for mode in range(5):
         pts = sorted((r["geometry_B/DoF"], r["MDoF/s"], args(r)[1]) for r in geo if args(r)[0] == mode)
         if pts:
             ax.plot([x + 0.01 for x, _, _ in pts], [y for _, y, _ in pts], "o-", label=names[mode])

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "deformed_box.hpp"
 #include "kernels/blas1.hpp"
@@ -49,6 +50,7 @@ struct Case {
   bool with_field = false;
   int components = 1;
   bool generic = false;  // force the run-time-size kernel
+  int team_size = -1;    // >= 0: the team schedule with this many threads (0: its choice)
 };
 
 template <int dim>
@@ -57,7 +59,8 @@ void check(const Case& c, int nx, int ny, int nz) {
                std::to_string(static_cast<int>(c.kind)) + " geometry " +
                std::to_string(static_cast<int>(c.geometry)) + " " + c.shape + " nq+" +
                std::to_string(c.n_q_extra) + (c.gauss_lobatto ? " GL" : "") +
-               (c.with_field ? " field" : ""));
+               (c.with_field ? " field" : "") +
+               (c.team_size >= 0 ? " team " + std::to_string(c.team_size) : ""));
   const TestExecSpace exec;
   const auto m = mixed_mesh<dim>(nx, ny, nz, c.shape);
   const mesh::hex::QkSpace<dim, TestExecSpace> space(m, c.degree);
@@ -82,6 +85,8 @@ void check(const Case& c, int nx, int ny, int nz) {
                                  : kernels::sumfac::QuadratureKind::gauss;
   o.components = c.components;
   o.generic_kernel = c.generic;
+  o.team_kernel = c.team_size >= 0;
+  o.team_size = c.team_size;
   if (!field.empty()) o.field = to_device(field);
   const MatrixFreeOperator<dim, TestExecSpace> op(space, o);
   const auto A = test::assemble_reference<dim>(space, c.kind, o.n_q, c.gauss_lobatto, field);
@@ -283,6 +288,94 @@ TEST(MatrixFreeOperator, CollocatedVectorVariableCoefficientAndConvectionOperato
   // 3D collocation through the points: from n_q = 6 the point sweeps run in place and the
   // integration goes straight into the nodal values
   for (int k : {2, 5, 7}) check<3>({K::laplace, G::stored, "curved", k, 0, true}, 3, 2, 2);
+}
+
+// The team schedule (kernels/sumfac/team_cell_kernel.hpp), which devices may take for the
+// stored-geometry mass and Laplace: the same assembled matrices, on curved cells with periodic,
+// Dirichlet and Neumann faces and partial batches, Gauss (n_q = k + 1, k + 2) and collocated
+// Gauss-Lobatto points, a coefficient field, 3 components; teams of one thread, of the
+// kernel's choice and of two where the backend has them (then the team shares every sweep).
+TEST(MatrixFreeOperator, TeamKernelMatchesAssembledMatrices) {
+  std::vector<int> sizes{1};  // (0, the kernel's choice, is 1 on host spaces)
+  if (TestExecSpace().concurrency() >= 2) sizes.push_back(2);
+  if (!kernels::runs_on_host_v<TestExecSpace>) sizes.push_back(0);
+  for (int t : sizes)
+    for (int k = 1; k <= 4; ++k) {
+      Case c{K::laplace, G::stored, "curved", k};
+      c.team_size = t;
+      check<2>(c, 5, 3, 1);
+      check<3>(c, 5, 3, 2);
+      c.gauss_lobatto = true;  // collocated
+      check<3>(c, 5, 3, 2);
+      c.gauss_lobatto = false, c.n_q_extra = 1, c.with_field = true;
+      check<3>(c, 5, 3, 2);
+      Case m{K::mass, G::stored, "curved", k, 1};
+      m.team_size = t;
+      check<2>(m, 5, 3, 1);
+      m.components = 3;
+      check<3>(m, 5, 3, 2);
+    }
+  Case high{K::laplace, G::stored, "curved", 7, 1};  // 9 points: one cell per team
+  high.team_size = 0;
+  check<3>(high, 2, 2, 1);
+}
+
+// The team schedule's apply_unconstrained (the lifting of Dirichlet values) and CG direction
+// equal the cell-per-thread schedule's to round-off.
+TEST(MatrixFreeOperator, TeamKernelUnconstrainedAndDirectionMatchTheCellKernel) {
+  const TestExecSpace exec;
+  const auto m = mixed_mesh<3>(5, 3, 2, "curved");
+  const mesh::hex::QkSpace<3, TestExecSpace> space(m, 3);
+  const long n = space.n_dofs();
+  typename MatrixFreeOperator<3, TestExecSpace>::Options o;
+  const MatrixFreeOperator<3, TestExecSpace> cell(space, o);
+  o.team_kernel = true;
+  const MatrixFreeOperator<3, TestExecSpace> team(space, o);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> xh(n), zh(n);
+  for (double& e : xh) e = u(rng);
+  for (double& e : zh) e = u(rng);
+  const Vector x = to_device(xh), y_cell("y_cell", n), y_team("y_team", n);
+  cell.apply_unconstrained(exec, x, y_cell);
+  team.apply_unconstrained(exec, x, y_team);
+  const auto max_diff = [&](const Vector& a, const Vector& b, double& scale) {
+    const std::vector<double> ah = to_host(a), bh = to_host(b);
+    double err = 0.0;
+    scale = 0.0;
+    for (long i = 0; i < n; ++i) {
+      scale = std::max(scale, std::abs(ah[i]));
+      err = std::max(err, std::abs(ah[i] - bh[i]));
+    }
+    return err;
+  };
+  double scale = 0.0, err = max_diff(y_cell, y_team, scale);
+  EXPECT_LT(err, 1e-13 * scale) << "apply_unconstrained";
+  const Vector z = to_device(zh), p_cell = to_device(xh), p_team = to_device(xh);
+  const double pq_cell = cell.apply_direction(exec, z, 0.5, p_cell, y_cell);
+  const double pq_team = team.apply_direction(exec, z, 0.5, p_team, y_team);
+  err = max_diff(y_cell, y_team, scale);
+  EXPECT_LT(err, 1e-13 * scale) << "apply_direction: q";
+  EXPECT_NEAR(pq_team, pq_cell, 1e-13 * std::abs(pq_cell)) << "apply_direction: p.q";
+}
+
+TEST(MatrixFreeOperator, TeamKernelRefusesOperatorsItDoesNotTake) {
+  const auto m = mixed_mesh<3>(3, 2, 2, "curved");
+  const mesh::hex::QkSpace<3, TestExecSpace> space(m, 2);
+  typename MatrixFreeOperator<3, TestExecSpace>::Options o;
+  o.team_kernel = true;
+  o.geometry = G::on_the_fly;
+  EXPECT_THROW((MatrixFreeOperator<3, TestExecSpace>(space, o)), std::invalid_argument);
+  o.geometry = G::stored;
+  o.n_q = 5;  // degree + 3: only the generic kernel has it
+  EXPECT_THROW((MatrixFreeOperator<3, TestExecSpace>(space, o)), std::invalid_argument);
+  o.n_q = 0;
+  o.kind = K::elasticity;
+  o.components = 3;
+  EXPECT_THROW((MatrixFreeOperator<3, TestExecSpace>(space, o)), std::invalid_argument);
+  o.kind = K::laplace;
+  o.components = 1;
+  EXPECT_NO_THROW((MatrixFreeOperator<3, TestExecSpace>(space, o)));
 }
 
 // Linear elasticity, dim coupled components through one point functor, equals the textbook

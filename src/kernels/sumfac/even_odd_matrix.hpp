@@ -47,6 +47,20 @@ struct EvenOddMatrix {
     }
     return r;
   }
+
+  /// The dense row-major matrix, M[o * n_cols + i], into out (n_rows * n_cols entries).
+  KOKKOS_INLINE_FUNCTION void to_dense(double* out) const {
+    for (int o = 0; o < half_rows; ++o) {
+      for (int i = 0; i < half_cols; ++i) {
+        out[o * n_cols + i] = even[o][i] + odd[o][i];
+        out[o * n_cols + n_cols - 1 - i] = even[o][i] - odd[o][i];
+      }
+      if (has_middle_col) out[o * n_cols + n_cols / 2] = middle[o];
+    }
+    for (int o = half_rows; o < n_rows; ++o)
+      for (int i = 0; i < n_cols; ++i)
+        out[o * n_cols + i] = sign * out[(n_rows - 1 - o) * n_cols + n_cols - 1 - i];
+  }
 };
 
 /// The even and odd parts of a line of n entries at stride xs, which every product with an

@@ -59,6 +59,11 @@ class MatrixFreeOperator {
     /// Use the run-time-size kernel even where a compiled one exists (it serves the pairs the
     /// table lacks on its own; mass and constant-coefficient Laplace).
     bool generic_kernel = false;
+    /// Apply through the team schedule (kernels/sumfac/team_cell_kernel.hpp: a team's threads
+    /// share each cell's sweeps) instead of a cell per thread: mass and Laplace with stored
+    /// geometry; team_size threads per team (0: the kernel's choice).
+    bool team_kernel = false;
+    int team_size = 0;
     /// Laplace: coefficient a(x) as a Q_k field (n_dofs); convection and Oseen: the advecting
     /// velocity (dim blocked); VANS: the advecting velocity, the void fraction and the implicit
     /// drag (dim + 2 blocked, kernels::sumfac::VansPoint).

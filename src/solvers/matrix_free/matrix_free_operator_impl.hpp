@@ -8,6 +8,7 @@
 #include "kernels/host_vector.hpp"
 #include "kernels/sumfac/quadrature_1d.hpp"
 #include "kernels/sumfac/generic_cell_kernel.hpp"
+#include "kernels/sumfac/team_cell_kernel.hpp"
 #include "kernels/sumfac/vans_point.hpp"
 #include "solvers/matrix_free/degree_dispatch.hpp"
 #include "solvers/matrix_free/matrix_free_operator.hpp"
@@ -119,6 +120,34 @@ struct MatrixFreeOperator<dim, ExecSpace>::Impl {
     kernels::sumfac::for_each_batch_coloured(
         exec, k.lattice, "amphora::MatrixFreeOperator::apply", zero,
         KOKKOS_LAMBDA(int b0, int b1) { k.template apply_row<atomic>(src, dst, comps, b0, b1); });
+    if (constrained) copy_constrained(op, exec, x, y);
+  }
+
+  template <class P, int n_p, int n_q>
+  using TeamKernel = kernels::sumfac::TeamCellKernel<dim, n_p, n_q, ExecSpace, P>;
+
+  /// The team schedule's kernel of this operator (Options::team_kernel).
+  template <class P, int n_p, int n_q>
+  static TeamKernel<P, n_p, n_q> team_kernel(const MatrixFreeOperator& op) {
+    auto k = TeamKernel<P, n_p, n_q>::create(
+        *static_cast<const kernels::sumfac::ShapeData<n_p, n_q>*>(op.impl_->shape.get()));
+    k.lattice = op.space_->lattice();
+    k.point = make_point<P>(op.options_, op.space_->degree());
+    const auto& c = op.impl_->point_coef;
+    k.point_coef = Kokkos::View<const double*, memory_space, Kokkos::MemoryUnmanaged>(
+        reinterpret_cast<const double*>(c.data()), c.extent(0) * sizeof(T) / sizeof(double));
+    k.constrained_components = op.constrained_components_;
+    return k;
+  }
+
+  /// apply_impl through the team schedule.
+  template <class P, int n_p, int n_q, bool constrained = true>
+  static void team_apply(const MatrixFreeOperator& op, const ExecSpace& exec, const Vector& x,
+                         const Vector& y) {
+    auto k = team_kernel<P, n_p, n_q>(op);
+    if (!constrained) k.constrained_components = 0;
+    kernels::blas1::fill(exec, y, 0.0);
+    k.apply(exec, x.data(), y.data(), op.options_.components, op.options_.team_size);
     if (constrained) copy_constrained(op, exec, x, y);
   }
 

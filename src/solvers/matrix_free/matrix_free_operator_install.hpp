@@ -42,6 +42,13 @@ void MatrixFreeOperator<dim, ExecSpace>::Impl::install(const MatrixFreeOperator&
     throw std::invalid_argument("MatrixFreeOperator: " + what);
   };
   constexpr int max = compiled_degree_v<P>;
+  constexpr bool team =
+      P::n_components == 1 && P::structure != kernels::sumfac::PointStructure::general;
+  if (options.team_kernel && (!team || options.geometry != GeometryMode::stored ||
+                              options.generic_kernel || !compiled_kernel(k, n_q, max)))
+    fail(
+        "team_kernel takes the mass or Laplace operator with geometry stored at the points "
+        "and a compiled kernel");
   if (options.generic_kernel || !compiled_kernel(k, n_q, max)) {
     if constexpr (P::n_components == 1 &&
                   P::structure != kernels::sumfac::PointStructure::general) {
@@ -78,6 +85,13 @@ void MatrixFreeOperator<dim, ExecSpace>::Impl::install(const MatrixFreeOperator&
       impl.direction = &Impl::template direction_impl<P, n_p, nq>;
     impl.diagonal = &Impl::template diagonal_impl<P, n_p, nq>;
     impl.elements = &Impl::template elements_impl<P, n_p, nq>;
+    if constexpr (team) {
+      if (options.team_kernel) {
+        impl.apply = &Impl::template team_apply<P, n_p, nq>;
+        impl.apply_unconstrained = &Impl::template team_apply<P, n_p, nq, false>;
+        impl.direction = &Impl::direction_in_passes;
+      }
+    }
   });
 }
 
