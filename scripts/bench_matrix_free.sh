@@ -41,5 +41,5 @@ done
 RANKS=2 run dealii 1 '^LaplaceDealii' --benchmark_repetitions=5 --benchmark_min_time=2 --benchmark_report_aggregates_only=true
 run bp 2 "$bp_filter"
 run bpop 2 '^BPOperator/' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
-run stored 2 '^StoredGeometryLarge/.*/0/' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+run stored 2 '^StoredGeometryLarge/[0-9]+/[0-9]+/0/' --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
 /usr/bin/python3 scripts/plot_matrix_free.py "$out"
