@@ -81,6 +81,9 @@ int main(int argc, char** argv) {
   run->add_option("--restart", restart, "continue from this checkpoint");
   run->add_option("--max-steps", max_steps, "stop after this many steps (writes a checkpoint)");
   run->add_flag("--no-output", no_output, "write nothing (for timing)");
+  std::string kernel_profile;
+  run->add_option("--kernel-profile", kernel_profile,
+                  "time every kernel of the steps (fenced: slower) and write them to this CSV");
 
   auto* check = app.add_subcommand("check", "validate a scene without running it");
   check->add_option("scene", scene_path, "scene file (TOML)")->required();
@@ -125,6 +128,7 @@ int main(int argc, char** argv) {
       opt.restart = restart;
       opt.max_steps = max_steps;
       opt.write_output = !no_output;
+      opt.kernel_profile = kernel_profile;
       const io::RunResult r = io::run_scene(scene, comm, opt);
       if (r.diverged) return fail(comm, r.message, 3);
       if (comm.is_root()) {

@@ -6,6 +6,8 @@
 # (tests at once: 4 on a GPU, 1 otherwise), GPU_CHECK_QUICK=1 (small benchmark sizes: the
 # OpenMP rehearsal on 2 cores; never for reported figures), OUT (where logs and the JSON results
 # go; default output/gpu_check). Exit status: 0 if every test passed and every benchmark ran.
+# Last, kernel profiles (AMPHORA_KERNEL_PROFILE) of the MAC solve and the stored-geometry
+# operator, as time allows; the summary prints their longest kernels.
 set -uo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 given=${1:-$here/build/gpu-bundle}
@@ -125,6 +127,27 @@ for b in "${benches[@]}"; do
     { say "$name failed (rc $?): $(tail -n 2 "$out/bench/$name.log" | tr '\n' ' ')"; bench_ok=0; }
 done
 
+# --- kernel profiles of the goals not met: each kernel fenced and timed by label and by region
+# (the multigrid's levels), so the rates above stay the ones to report -------------------------
+if [ "$quick" = 1 ]; then
+  profiles=("mac_pressure|bench_mac_pressure|^Uniform/0/64/"
+            "matrix_free_stored_p4|bench_matrix_free|^GeometryModes/2/4/")
+else
+  profiles=("mac_pressure|bench_mac_pressure|^Uniform/0/256/"
+            "matrix_free_stored_p4|bench_matrix_free|^StoredGeometryLarge/0/4/0/"
+            "matrix_free_stored_team_p4|bench_matrix_free|^StoredGeometryLarge/0/4/1/")
+fi
+mkdir -p "$out/profile"
+for b in "${profiles[@]}"; do
+  IFS='|' read -r name exe filter <<< "$b"
+  t=$(( $(left) - 15 ))
+  if [ "$t" -lt 30 ]; then say "no time left for the profile of $name"; continue; fi
+  say "profile $name ($filter, at most ${t}s)"
+  ( cd "$out/bench" && AMPHORA_KERNEL_PROFILE="$out/profile/$name.csv" OMP_NUM_THREADS=$threads \
+      timeout -k 5 "$t" "$bundle/bin/$exe" --benchmark_filter="$filter" ) > "$out/profile/$name.log" 2>&1 ||
+    say "profile $name failed (rc $?): $(tail -n 2 "$out/profile/$name.log" | tr '\n' ' ')"
+done
+
 # --- the table ---------------------------------------------------------------------------------
 {
   echo
@@ -135,5 +158,10 @@ done
   done
   cat "$out"/tests/*.result 2> /dev/null | awk -F'\t' '$2 !~ /^PASS/ {printf "  %-44s %s\n", $1, $2}'
   python3 "$here/scripts/gpu_check_table.py" "$out/bench" 2>&1
+  for f in "$out"/profile/*.csv; do
+    [ -s "$f" ] || continue
+    echo "kernel profile $(basename "$f" .csv) (fenced; the benchmark's STREAM run left out):"
+    python3 "$here/scripts/kernel_profile_table.py" "$f" 8 'stream' 2>&1
+  done
 } | tee "$out/summary.txt"
 [ "$npass" -eq "$ntests" ] && [ "$bench_ok" = 1 ] && [ "$scenes_ok" = 1 ]

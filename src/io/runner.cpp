@@ -1,11 +1,14 @@
 #include "io/runner.hpp"
 
+#include <Kokkos_Core.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <sstream>
 
 #include "io/diagnostics_csv.hpp"
@@ -13,6 +16,7 @@
 #include "io/hdf5_file.hpp"
 #include "io/progress.hpp"
 #include "io/module_registry.hpp"
+#include "kernels/kernel_profile.hpp"
 
 namespace amphora::io {
 
@@ -125,6 +129,32 @@ std::unique_ptr<H5Reader> open_restart(const std::string& file, const Scene& sce
   return restart;
 }
 
+/// --kernel-profile: every kernel from start() to the end of the stepping loop timed, written as
+/// CSV when the loop ends (a diverged run's too). The file is opened at construction, so a path
+/// that cannot be written fails before the set-up.
+class LoopProfile {
+ public:
+  LoopProfile(std::string file, const Communicator& comm) : file_(std::move(file)) {
+    if (file_.empty()) return;
+    if (comm.size() > 1 && !comm.is_root()) file_ += ".rank" + std::to_string(comm.rank());
+    if (!std::ofstream(file_)) throw RunError("--kernel-profile: cannot write " + file_);
+  }
+  void start() {
+    if (!file_.empty()) profile_ = std::make_unique<kernels::KernelProfile>();
+  }
+  ~LoopProfile() {
+    if (!profile_) return;
+    std::ofstream out(file_);
+    kernels::write_kernel_profile_csv(out, *profile_);
+  }
+  LoopProfile(const LoopProfile&) = delete;
+  LoopProfile& operator=(const LoopProfile&) = delete;
+
+ private:
+  std::string file_;
+  std::unique_ptr<kernels::KernelProfile> profile_;
+};
+
 }  // namespace
 
 void check_scene(const Scene& scene, const Communicator& comm) { make_module(scene, comm); }
@@ -132,6 +162,7 @@ void check_scene(const Scene& scene, const Communicator& comm) { make_module(sce
 RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptions& options) {
   const Parameters& run = scene.run;
   const std::string dir = run.string("output_dir");
+  LoopProfile profile(options.kernel_profile, comm);
   auto module = make_module(scene, comm);
 
   // The step: the requested (or cfl-scaled stable) one, shrunk to land on end_time exactly.
@@ -187,6 +218,7 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
   Diagnostics last_diagnostics;  // at the final step, computed once
   const long long first_step = step;
   double stepping = 0.0;  // wall time in advance() only
+  profile.start();
   kernels::DeepCopyCounter
       copies;  // host-device traffic of the steps (not of output or checkpoints)
   kernels::DeepCopyCount copied;
@@ -199,7 +231,9 @@ RunResult run_scene(const Scene& scene, const Communicator& comm, const RunOptio
     }
     work += double(module->work_per_step());
     const kernels::DeepCopyCount before = copies.count();
+    Kokkos::Profiling::pushRegion("amphora::step");  // a profile's region (kernel_profile.hpp)
     module->advance(t, dt);
+    Kokkos::Profiling::popRegion();
     copied = copied + (copies.count() - before);
     stepping += progress.elapsed() - t0;
     ++step;

@@ -22,6 +22,9 @@ struct RunOptions {
   long long max_steps = -1;  ///< stop (with a checkpoint) after this many steps of this run
   bool write_output = true;  ///< fields, series, diagnostics and checkpoints
   bool quiet = false;        ///< no progress lines
+  /// CSV of every kernel of the stepping loop, timed (kernels/kernel_profile.hpp; "" for none);
+  /// rank r > 0 of several writes FILE.rank<r>.
+  std::string kernel_profile;
 };
 
 struct RunResult {

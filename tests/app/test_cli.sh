@@ -22,4 +22,11 @@ grep -q "^Usage: .*amphora \[OPTIONS\] SUBCOMMAND" help.txt || { cat help.txt; f
 shipped=$(ls "$AMPHORA_SOURCE_DIR"/scenes/*.toml | wc -l)
 [ "$(grep -c '^  scenes/.*\.toml  ' scenes.txt)" = "$shipped" ] || { cat scenes.txt; fail "run lists $shipped scenes"; }
 grep -q "scenes/dem_drum.toml *A thin rotating drum" scenes.txt || { cat scenes.txt; fail "scene summary"; }
+# --kernel-profile: the steps' kernels timed into a CSV; a path it cannot write fails first
+"$AMPHORA" run scene.toml --no-output --max-steps 20 --kernel-profile profile.csv > /dev/null
+head -n 1 profile.csv | grep -q '^region,label,calls,seconds,mean_us,min_us,share$' || { cat profile.csv; fail "profile header"; }
+grep -q '^"amphora::step",".*",20,' profile.csv || { cat profile.csv; fail "profile of 20 steps"; }
+grep -q '^"","(outside kernels)",0,' profile.csv || { cat profile.csv; fail "profile's outside row"; }
+expect_error 2 "^amphora: error: --kernel-profile: cannot write nowhere/p.csv$" "$AMPHORA" run scene.toml --kernel-profile nowhere/p.csv
+[ ! -e out ] || fail "a run whose profile cannot be written wrote output"
 echo "cli: ok"

@@ -79,6 +79,9 @@ MacMultigrid<ExecSpace>::MacMultigrid(const ExecSpace& exec, const Stencil& A,
   }
   for (const LevelStencil& S : levels_) {
     const long n = S.grid.padded_size();
+    regions_.push_back("amphora::mac_mg level " + std::to_string(regions_.size()) + " (" +
+                       std::to_string(S.grid.nx) + "x" + std::to_string(S.grid.ny) + "x" +
+                       std::to_string(S.grid.nz) + ")");
     x_.emplace_back("amphora::mac_mg::x", n);  // zero, ghost entries stay zero on one block
     b_.emplace_back("amphora::mac_mg::b", n);
     r_.emplace_back("amphora::mac_mg::r", n);
@@ -285,12 +288,15 @@ double MacMultigrid<ExecSpace>::bytes_per_application() const {
 template <class ExecSpace>
 void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
   if (l + 1 == levels()) {
+    Kokkos::Profiling::pushRegion(regions_[l]);
     coarse_solve(exec);
+    Kokkos::Profiling::popRegion();
     return;
   }
   const LevelStencil &A = levels_[l], &C = levels_[l + 1];
   const LevelVector x = x_[l];
   const int nu = options_.smoothing_steps << l;
+  Kokkos::Profiling::pushRegion(regions_[l]);  // a kernel profile's level (kernel_profile.hpp)
   kernels::blas1::fill(exec, x, 0.0f);
   for (int s = 0; s < nu; ++s) smooth(exec, l, 0);
   // restriction R = E^T P^T: the fine residual's ghosts feed P^T, the coarse ghosts E^T
@@ -302,7 +308,9 @@ void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
     sync(exec, l + 1, b_[l + 1]);
     kernels::mac::gather_from_solids(exec, C, b_[l + 1]);
   }
+  Kokkos::Profiling::popRegion();
   vcycle(exec, l + 1);
+  Kokkos::Profiling::pushRegion(regions_[l]);
   // prolongation P E
   sync(exec, l + 1, x_[l + 1]);
   if (C.any_solid) {
@@ -311,6 +319,7 @@ void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
   }
   kernels::mac::prolongate_add(exec, C, A, x_[l + 1], x);
   for (int s = 0; s < nu; ++s) smooth(exec, l, 1);
+  Kokkos::Profiling::popRegion();
 }
 
 template class MacMultigrid<kernels::DefaultExecSpace>;

@@ -135,6 +135,7 @@ class MacMultigrid {
   std::vector<LevelStencil> levels_;
   std::vector<int> parity_;             // per level: (global i + k of the block's first cell) % 2
   std::vector<LevelVector> x_, b_, r_;  // per level
+  std::vector<std::string> regions_;    // per level: its Kokkos::Profiling region
   // the coarsest grid gathered from every block: this block's interior cells (k, j, i order),
   // where the gathered values go in the whole coarsest grid, and its fluid cells' numbering
   Kokkos::View<int*, MemSpace> coarse_cells_;
