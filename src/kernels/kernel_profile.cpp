@@ -13,6 +13,7 @@
 
 namespace amphora::kernels {
 namespace {
+namespace timing {  // named, so a unity build's other files in this namespace cannot collide
 
 using Clock = std::chrono::steady_clock;
 using Begin = void (*)(const char*, std::uint32_t, std::uint64_t*);
@@ -67,64 +68,65 @@ void on_end(std::uint64_t id) {
   if (previous_end[kind]) previous_end[kind](id);
 }
 
+}  // namespace timing
 }  // namespace
 
 KernelProfile::KernelProfile() {
-  if (active.exchange(true))
+  if (timing::active.exchange(true))
     throw std::logic_error("amphora::KernelProfile: one is already timing");
   namespace tools = Kokkos::Tools::Experimental;
   const auto callbacks = tools::get_callbacks();
-  previous_begin[0] = callbacks.begin_parallel_for;
-  previous_begin[1] = callbacks.begin_parallel_reduce;
-  previous_begin[2] = callbacks.begin_parallel_scan;
-  previous_end[0] = callbacks.end_parallel_for;
-  previous_end[1] = callbacks.end_parallel_reduce;
-  previous_end[2] = callbacks.end_parallel_scan;
-  previous_push = callbacks.push_region;
-  previous_pop = callbacks.pop_region;
-  tools::set_begin_parallel_for_callback(&on_begin<0>);
-  tools::set_begin_parallel_reduce_callback(&on_begin<1>);
-  tools::set_begin_parallel_scan_callback(&on_begin<2>);
-  tools::set_end_parallel_for_callback(&on_end<0>);
-  tools::set_end_parallel_reduce_callback(&on_end<1>);
-  tools::set_end_parallel_scan_callback(&on_end<2>);
-  tools::set_push_region_callback(&on_push);
-  tools::set_pop_region_callback(&on_pop);
+  timing::previous_begin[0] = callbacks.begin_parallel_for;
+  timing::previous_begin[1] = callbacks.begin_parallel_reduce;
+  timing::previous_begin[2] = callbacks.begin_parallel_scan;
+  timing::previous_end[0] = callbacks.end_parallel_for;
+  timing::previous_end[1] = callbacks.end_parallel_reduce;
+  timing::previous_end[2] = callbacks.end_parallel_scan;
+  timing::previous_push = callbacks.push_region;
+  timing::previous_pop = callbacks.pop_region;
+  tools::set_begin_parallel_for_callback(&timing::on_begin<0>);
+  tools::set_begin_parallel_reduce_callback(&timing::on_begin<1>);
+  tools::set_begin_parallel_scan_callback(&timing::on_begin<2>);
+  tools::set_end_parallel_for_callback(&timing::on_end<0>);
+  tools::set_end_parallel_reduce_callback(&timing::on_end<1>);
+  tools::set_end_parallel_scan_callback(&timing::on_end<2>);
+  tools::set_push_region_callback(&timing::on_push);
+  tools::set_pop_region_callback(&timing::on_pop);
   reset();
 }
 
 KernelProfile::~KernelProfile() {
   namespace tools = Kokkos::Tools::Experimental;
-  tools::set_begin_parallel_for_callback(previous_begin[0]);
-  tools::set_begin_parallel_reduce_callback(previous_begin[1]);
-  tools::set_begin_parallel_scan_callback(previous_begin[2]);
-  tools::set_end_parallel_for_callback(previous_end[0]);
-  tools::set_end_parallel_reduce_callback(previous_end[1]);
-  tools::set_end_parallel_scan_callback(previous_end[2]);
-  tools::set_push_region_callback(previous_push);
-  tools::set_pop_region_callback(previous_pop);
-  regions.clear();
-  table.clear();
-  open.clear();
-  active = false;
+  tools::set_begin_parallel_for_callback(timing::previous_begin[0]);
+  tools::set_begin_parallel_reduce_callback(timing::previous_begin[1]);
+  tools::set_begin_parallel_scan_callback(timing::previous_begin[2]);
+  tools::set_end_parallel_for_callback(timing::previous_end[0]);
+  tools::set_end_parallel_reduce_callback(timing::previous_end[1]);
+  tools::set_end_parallel_scan_callback(timing::previous_end[2]);
+  tools::set_push_region_callback(timing::previous_push);
+  tools::set_pop_region_callback(timing::previous_pop);
+  timing::regions.clear();
+  timing::table.clear();
+  timing::open.clear();
+  timing::active = false;
 }
 
 std::vector<KernelTime> KernelProfile::kernels() const {
   std::vector<KernelTime> rows;
-  for (const auto& [key, row] : table) rows.push_back(row);
+  for (const auto& [key, row] : timing::table) rows.push_back(row);
   std::stable_sort(rows.begin(), rows.end(),
                    [](const KernelTime& a, const KernelTime& b) { return a.seconds > b.seconds; });
   return rows;
 }
 
 double KernelProfile::seconds() const {
-  return std::chrono::duration<double>(Clock::now() - started).count();
+  return std::chrono::duration<double>(timing::Clock::now() - timing::started).count();
 }
 
 void KernelProfile::reset() {
-  table.clear();
-  open.clear();
-  started = Clock::now();
+  timing::table.clear();
+  timing::open.clear();
+  timing::started = timing::Clock::now();
 }
 
 void write_kernel_profile_csv(std::ostream& out, const KernelProfile& profile) {

@@ -36,8 +36,8 @@ class KernelProfile {
   void reset();
 };
 
-/// CSV with a header: region, label, calls, seconds, mean_us, min_us, share (of the wall time); a last
-/// row "(outside kernels)" holds the wall time the kernels do not cover.
+/// CSV with a header: region, label, calls, seconds, mean_us, min_us, share (of the wall time); a
+/// last row "(outside kernels)" holds the wall time the kernels do not cover.
 void write_kernel_profile_csv(std::ostream& out, const KernelProfile& profile);
 
 }  // namespace amphora::kernels

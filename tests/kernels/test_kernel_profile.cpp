@@ -68,8 +68,9 @@ TEST(KernelProfile, CountsEveryKernelByLabelAndTimesIt) {
   EXPECT_LE(covered, profile.seconds());
   std::ostringstream csv;
   kernels::write_kernel_profile_csv(csv, profile);
-  EXPECT_EQ(csv.str().rfind("region,label,calls,seconds,mean_us,min_us,share\n\"\",\"test::spin\",2,", 0),
-            0u)
+  EXPECT_EQ(
+      csv.str().rfind("region,label,calls,seconds,mean_us,min_us,share\n\"\",\"test::spin\",2,", 0),
+      0u)
       << csv.str();
   EXPECT_NE(csv.str().find("\"(outside kernels)\""), std::string::npos);
 }
