@@ -3,7 +3,9 @@
 // Uniform/backend/n: the 7-point Poisson problem of the anchors on an n^3 box of fluid
 // cells, pressure zero on all six box faces, a smooth right-hand side; backend 0 = own
 // multigrid-CG, 1 = hypre Struct PFMG-CG (both on 1 rank with OMP_NUM_THREADS threads, or on the
-// ranks of mpiexec, each owning a z slab), 2 = MIC(0)-CG (sequential). Counters: iterations,
+// ranks of mpiexec, each owning a z slab), 2 = MIC(0)-CG (sequential), 3 = multigrid-CG with the
+// levels of at most 4096 cells smoothed by one team in one launch (MacMultigridOptions::
+// team_smoothing_cells: a device schedule, measured beside 0 on a GPU). Counters: iterations,
 // unknowns, unknowns per second (unknowns / time), setup seconds; for multigrid-CG also the solve's
 // seconds without setup, the bytes one CG iteration moves by the streaming model of
 // MacMultigrid::bytes_per_cg_iteration, and the rate a run at STREAM triad bandwidth would reach
@@ -158,6 +160,18 @@ void Uniform(benchmark::State& state) {
       iterations = r.iterations;
       rel = r.final_relative_residual;
       Kokkos::deep_copy(x, xh);
+    } else if (backend == 3) {
+      mac::MacMultigridOptions options;
+      options.team_smoothing_cells = 4096;
+      const mac::MacMultigrid<Exec> mg(exec, box.A, options, box.block);
+      exec.fence();
+      setup = seconds_since(t0);
+      const auto r = mg.solve(exec, box.b, x, control);
+      exec.fence();
+      solve_s = seconds_since(t0) - setup;
+      bytes_per_iteration = mg.bytes_per_cg_iteration();
+      iterations = r.iterations;
+      rel = r.final_residual / r.rhs_norm;
     } else {
       auto solver = mac::make_pressure_solver(
           backend == 0 ? mac::PressureBackend::multigrid : mac::PressureBackend::mic0, exec, box.A,
@@ -198,12 +212,15 @@ void Uniform(benchmark::State& state) {
     state.counters["bound_unknowns_per_s"] = unknowns * total_bw / (iterations * total_bytes);
     state.counters["solve_GB/s"] = iterations * total_bytes / solve_s * 1e-9;
   }
-  static const char* names[] = {"multigrid-CG", "hypre PFMG-CG", "MIC(0)-CG"};
+  static const char* names[] = {"multigrid-CG", "hypre PFMG-CG", "MIC(0)-CG",
+                                "multigrid-CG, one-team coarse smoothing"};
   state.SetLabel(names[backend]);
 }
 BENCHMARK(Uniform)
     ->ArgsProduct({{0, 1, 2}, {64, 128, 192}})
+    ->Args({3, 64})
     ->Args({0, 256})
+    ->Args({3, 256})
     ->Unit(benchmark::kMillisecond)
     ->UseManualTime()
     ->Iterations(1);

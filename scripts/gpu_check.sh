@@ -107,11 +107,11 @@ if [ "$quick" = 1 ]; then
            "matrix_free_bp5|bench_matrix_free|^BP/5/[24]/5/"
            "matrix_free_stored|bench_matrix_free|^GeometryModes/[24]/[24]/"
            "dem|bench_dem|^DenseBed/10000/"
-           "mac_pressure|bench_mac_pressure|^Uniform/0/64/")
+           "mac_pressure|bench_mac_pressure|^Uniform/[03]/64/")
 else
   benches=("stream|bench_stream|^Stream(Copy|Triad)/67108864/"
            "dem|bench_dem|^DenseBed/1000000/"
-           "mac_pressure|bench_mac_pressure|^Uniform/0/256/")
+           "mac_pressure|bench_mac_pressure|^Uniform/[03]/256/")
   for p in 2 3 4 5 6 7 8; do benches+=("matrix_free_bp5_p$p|bench_matrix_free|^BPOperator/5/$p/"); done
   for p in 2 3 4 5 6; do benches+=("matrix_free_stored_p$p|bench_matrix_free|^StoredGeometryLarge/[05]/$p/"); done
 fi
@@ -134,6 +134,7 @@ if [ "$quick" = 1 ]; then
             "matrix_free_stored_p4|bench_matrix_free|^GeometryModes/2/4/")
 else
   profiles=("mac_pressure|bench_mac_pressure|^Uniform/0/256/"
+            "mac_pressure_team|bench_mac_pressure|^Uniform/3/256/"
             "matrix_free_stored_p4|bench_matrix_free|^StoredGeometryLarge/0/4/0/"
             "matrix_free_stored_team_p4|bench_matrix_free|^StoredGeometryLarge/0/4/1/")
 fi

@@ -116,6 +116,44 @@ TEST(MacSmoothers, RedBlackSweepsSolveTheirColourAndJacobiIsItsFormula) {
   EXPECT_LT(err, 1e-13);
 }
 
+// The one-team schedule of several steps (a multigrid's coarse levels on a device) does what
+// the half-sweeps do in turn, to round-off (the same arithmetic per cell), on even and odd grids,
+// for teams of one thread, of two (on a host space several threads then share each half-sweep)
+// and of the largest size.
+TEST(MacSmoothers, OneTeamsStepsEqualTheHalfSweepsInTurn) {
+  const TestExecSpace exec;
+  for (const int n : {16, 15}) {
+    const SphereScene s(n, true);
+    const auto A = s.stencil();
+    const auto d = kernels::to_std_vector(A.diag);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<double> U(-1, 1);
+    std::vector<double> bh(d.size(), 0.0), xh(d.size(), 0.0);
+    for (std::size_t c = 0; c < d.size(); ++c)
+      if (d[c] > 0) bh[c] = U(rng), xh[c] = U(rng);
+    const Vector b = kernels::to_view<TestMemSpace>(bh);
+    const Vector expected = kernels::to_view<TestMemSpace>(xh);
+    for (int s3 = 0; s3 < 3; ++s3) {
+      kernels::mac::red_black_gauss_seidel_cells(exec, A, b, expected, 1);
+      kernels::mac::red_black_gauss_seidel_cells(exec, A, b, expected, 0);
+    }
+    const auto want = kernels::to_std_vector(expected);
+    double scale = 0;
+    for (const double v : want) scale = std::max(scale, std::abs(v));
+    EXPECT_GT(scale, 0.1);
+    for (const int team_size : {1, 2, 0}) {
+      if (team_size == 2 && exec.concurrency() < 2) continue;
+      const Vector x = kernels::to_view<TestMemSpace>(xh);
+      kernels::mac::red_black_gauss_seidel_team(exec, A, b, x, 1, 3, team_size);
+      const auto got = kernels::to_std_vector(x);
+      double diff = 0;
+      for (std::size_t c = 0; c < got.size(); ++c)
+        diff = std::max(diff, std::abs(got[c] - want[c]));
+      EXPECT_LE(diff, 1e-14 * scale) << n << "^3, team size " << team_size;
+    }
+  }
+}
+
 TEST(MacGridTransfer, RestrictionIsTheTransposeOfProlongation) {
   const TestExecSpace exec;
   for (auto [n, terrain] : {std::pair{8, false}, {12, false}, {16, false}, {8, true}, {16, true}}) {
@@ -203,6 +241,37 @@ TEST(MacMultigrid, GhostFluidSphereConvergesAtSecondOrderWithFlatIterationCounts
 // sides, open top), with and without a flat free surface: 7 at 16^3, 32^3 and 64^3. (Before the
 // coarse levels formed their free-surface terms from a coarsened level set, the free-surface
 // cases grew by one or two per refinement: grid_transfer.hpp.)
+// Coarse levels smoothed by one team (MacMultigridOptions::team_smoothing_cells) give the V-cycle
+// of the half-sweeps: the same CG iterations and solution to round-off.
+TEST(MacMultigrid, OneTeamCoarseSmoothingGivesTheSameSolve) {
+  const TestExecSpace exec;
+  const SphereScene s(32, true);
+  const auto A = s.stencil();
+  const auto d = kernels::to_std_vector(A.diag);
+  std::vector<double> bh(d.size(), 0.0);
+  for (std::size_t c = 0; c < d.size(); ++c)
+    if (d[c] > 0) bh[c] = 1e-3 * std::sin(0.01 * double(c));
+  const Vector b = kernels::to_view<TestMemSpace>(bh);
+  SolverControl control;
+  control.relative_tolerance = 1e-10;
+  MacMultigridOptions team;
+  team.team_smoothing_cells = 8 * 8 * 8;  // the 8^3 and 4^3 levels
+  const MacMultigrid<TestExecSpace> plain(exec, A), teamed(exec, A, team);
+  ASSERT_GE(plain.levels(), 3);
+  Vector x0("x0", d.size()), x1("x1", d.size());
+  const SolverResult r0 = plain.solve(exec, b, x0, control),
+                     r1 = teamed.solve(exec, b, x1, control);
+  EXPECT_TRUE(r0.converged && r1.converged);
+  EXPECT_EQ(r0.iterations, r1.iterations);
+  const auto p0 = kernels::to_std_vector(x0), p1 = kernels::to_std_vector(x1);
+  double diff = 0, scale = 0;
+  for (std::size_t c = 0; c < p0.size(); ++c)
+    diff = std::max(diff, std::abs(p0[c] - p1[c])), scale = std::max(scale, std::abs(p0[c]));
+  // the V-cycle is in single precision: its round-off, damped by CG to the tolerance
+  EXPECT_LE(diff, 1e-9 * scale);
+  EXPECT_GT(scale, 0.0);
+}
+
 TEST(MacMultigrid, IterationsDoNotGrowWithRefinement) {
   const test_problems::BoxFaces f;
   const test_problems::IterationCase cases[] = {{"open box", f.open, 2.0, 0, 7},

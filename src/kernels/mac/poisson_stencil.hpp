@@ -205,6 +205,38 @@ void red_black_gauss_seidel(const ExecSpace& exec, const PoissonStencil<MemSpace
       });
 }
 
+/// `steps` red-black Gauss–Seidel steps (each `colour`, then the other) in one launch, by one
+/// team with a barrier after each half-sweep: for grids so small that a device's launches, not
+/// its bandwidth, bound the sweeps (a multigrid's coarse levels). Each cell's update is
+/// red_black_gauss_seidel's. team_size 0: the largest the space allows for this kernel (at most
+/// 1024).
+template <class ExecSpace, class MemSpace, class S, class B, class X>
+void red_black_gauss_seidel_team(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A,
+                                 const B& b, const X& x, int colour, int steps, int team_size = 0) {
+  using Policy = Kokkos::TeamPolicy<ExecSpace>;
+  using Member = typename Policy::member_type;
+  const PoissonStencil<MemSpace, S> a = A;
+  const kernels::mac::MacGrid g = A.grid;
+  const int half = (g.nx + 1) / 2, n = half * g.ny * g.nz;
+  const auto body = KOKKOS_LAMBDA(const Member& team) {
+    for (int s = 0; s < 2 * steps; ++s) {
+      const int c0 = colour ^ (s & 1);
+      Kokkos::parallel_for(Kokkos::TeamThreadRange(team, n), [&](int t) {
+        const int row = t / half, j = row % g.ny, k = row / g.ny;
+        const int i = 2 * (t % half) + ((j + k + c0) & 1);
+        if (i >= g.nx) return;
+        const int c = g.index(i, j, k);
+        x(c) = a.inverse_diag(c) * (b(c) + a.neighbour_sum(x, c));
+      });
+      team.team_barrier();
+    }
+  };
+  if (team_size <= 0)
+    team_size = math::min(1024, Policy(exec, 1, 1).team_size_max(body, Kokkos::ParallelForTag()));
+  Kokkos::parallel_for("amphora::mac::red_black_gauss_seidel_team", Policy(exec, 1, team_size),
+                       body);
+}
+
 /// Damped Jacobi: x_new = x + omega D^-1 (b - A x), written to x_new (x is read only).
 template <class ExecSpace, class MemSpace, class S, class B, class X, class XN>
 void jacobi(const ExecSpace& exec, const PoissonStencil<MemSpace, S>& A, const B& b, const X& x,

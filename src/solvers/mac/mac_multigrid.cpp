@@ -273,6 +273,17 @@ void MacMultigrid<ExecSpace>::smooth(const ExecSpace& exec, int l, int first_col
 }
 
 template <class ExecSpace>
+void MacMultigrid<ExecSpace>::smooth_steps(const ExecSpace& exec, int l, int first_colour,
+                                           int steps) const {
+  if (!halo_.block().split() && levels_[l].grid.cells() <= options_.team_smoothing_cells) {
+    kernels::mac::red_black_gauss_seidel_team(exec, levels_[l], b_[l], x_[l],
+                                              first_colour ^ parity_[l], steps, options_.team_size);
+    return;
+  }
+  for (int s = 0; s < steps; ++s) smooth(exec, l, first_colour);
+}
+
+template <class ExecSpace>
 double MacMultigrid<ExecSpace>::bytes_per_application() const {
   double bytes = 24.0 * static_cast<double>(fine_.grid.padded_size());
   for (int l = 0; l + 1 < levels(); ++l) {
@@ -298,7 +309,7 @@ void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
   const int nu = options_.smoothing_steps << l;
   Kokkos::Profiling::pushRegion(regions_[l]);  // a kernel profile's level (kernel_profile.hpp)
   kernels::blas1::fill(exec, x, 0.0f);
-  for (int s = 0; s < nu; ++s) smooth(exec, l, 0);
+  smooth_steps(exec, l, 0, nu);
   // restriction R = E^T P^T: the fine residual's ghosts feed P^T, the coarse ghosts E^T
   sync(exec, l, x);
   kernels::mac::residual(exec, A, b_[l], x, r_[l]);
@@ -318,7 +329,7 @@ void MacMultigrid<ExecSpace>::vcycle(const ExecSpace& exec, int l) const {
     sync(exec, l + 1, x_[l + 1]);
   }
   kernels::mac::prolongate_add(exec, C, A, x_[l + 1], x);
-  for (int s = 0; s < nu; ++s) smooth(exec, l, 1);
+  smooth_steps(exec, l, 1, nu);
   Kokkos::Profiling::popRegion();
 }
 

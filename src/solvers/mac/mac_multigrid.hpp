@@ -28,6 +28,11 @@ namespace amphora::solvers::mac {
 struct MacMultigridOptions {
   int smoothing_steps = 2;       ///< red-black sweeps before and after the coarse correction
   long max_coarse_cells = 4096;  ///< largest coarsest grid factorised directly
+  /// Levels of at most this many cells are smoothed by one team in one launch per smoothing
+  /// (red_black_gauss_seidel_team: on a device, 2 launches a level a V-cycle where the sweeps
+  /// take 4 smoothing_steps 2^l); 0: never. Unsplit grids only. Opt-in until a GPU measures it.
+  long team_smoothing_cells = 0;
+  int team_size = 0;  ///< of that team; 0: the largest the execution space allows (<= 1024)
 };
 
 /// Empty if the multigrid can coarsen g down to at most max_coarse_cells; otherwise a message
@@ -119,6 +124,8 @@ class MacMultigrid {
   void vcycle(const ExecSpace& exec, int l) const;
   void coarse_solve(const ExecSpace& exec) const;
   void smooth(const ExecSpace& exec, int l, int first_colour) const;
+  /// `steps` smoothings of level l (smooth's), by one team where the options say so.
+  void smooth_steps(const ExecSpace& exec, int l, int first_colour, int steps) const;
   /// Ghost exchange of level l's block (nothing on one block).
   template <class View>
   void sync(const ExecSpace& exec, int l, const View& v) const {
