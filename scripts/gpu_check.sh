@@ -131,12 +131,12 @@ done
 # (the multigrid's levels), so the rates above stay the ones to report -------------------------
 if [ "$quick" = 1 ]; then
   profiles=("mac_pressure|bench_mac_pressure|^Uniform/0/64/"
+            "mac_pressure_team|bench_mac_pressure|^Uniform/3/64/"
             "matrix_free_stored_p4|bench_matrix_free|^GeometryModes/2/4/")
 else
   profiles=("mac_pressure|bench_mac_pressure|^Uniform/0/256/"
             "mac_pressure_team|bench_mac_pressure|^Uniform/3/256/"
-            "matrix_free_stored_p4|bench_matrix_free|^StoredGeometryLarge/0/4/0/"
-            "matrix_free_stored_team_p4|bench_matrix_free|^StoredGeometryLarge/0/4/1/")
+            "matrix_free_stored_p4|bench_matrix_free|^StoredGeometryLarge/0/4/0/")
 fi
 mkdir -p "$out/profile"
 for b in "${profiles[@]}"; do
