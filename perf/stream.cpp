@@ -55,8 +55,31 @@ void StreamTriad(benchmark::State& state) {
   });
 }
 
+/// Launches/n: 1000 kernels in a row, each adding one to n entries (each depends on the last),
+/// one fence at the end: what a launch costs when a solver queues many small kernels, as a
+/// multigrid's coarse levels do (their grids hold 512 or 4096 cells). Reports seconds per launch.
+void Launches(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0)), launches = 1000;
+  View a("amphora::stream::a", n);
+  for (auto _ : state) {
+    Kokkos::fence();
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int l = 0; l < launches; ++l)
+      Kokkos::parallel_for(
+          "amphora::perf::launch", amphora::kernels::RangePolicy<DefaultExecSpace>(0, n),
+          KOKKOS_LAMBDA(int i) { a(i) += 1.0; });
+    Kokkos::fence();
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  state.counters["s_per_launch"] = benchmark::Counter(
+      launches, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 }  // namespace bench_stream_cases
 using namespace bench_stream_cases;
+
+BENCHMARK(Launches)->UseManualTime()->Unit(benchmark::kMicrosecond)->Arg(512)->Arg(4096);
 
 BENCHMARK(StreamCopy)
     ->UseManualTime()

@@ -104,12 +104,14 @@ fi
 # results); the quick filters are the OpenMP rehearsal's.
 if [ "$quick" = 1 ]; then
   benches=("stream|bench_stream|^StreamTriad/1048576/"
+           "launches|bench_stream|^Launches/"
            "matrix_free_bp5|bench_matrix_free|^BP/5/[24]/5/"
            "matrix_free_stored|bench_matrix_free|^GeometryModes/[24]/[24]/"
            "dem|bench_dem|^DenseBed/10000/"
            "mac_pressure|bench_mac_pressure|^Uniform/[03]/64/")
 else
   benches=("stream|bench_stream|^Stream(Copy|Triad)/67108864/"
+           "launches|bench_stream|^Launches/"
            "dem|bench_dem|^DenseBed/1000000/"
            "mac_pressure|bench_mac_pressure|^Uniform/[03]/256/")
   for p in 2 3 4 5 6 7 8; do benches+=("matrix_free_bp5_p$p|bench_matrix_free|^BPOperator/5/$p/"); done

@@ -1,5 +1,5 @@
 """The table gpu_check.sh prints last: each benchmark's rate, its bound and the goal, from the
-Google Benchmark JSON files in one folder (stream, matrix_free, dem, mac_pressure)."""
+Google Benchmark JSON files in one folder (stream, launches, matrix_free, dem, mac_pressure)."""
 import json
 import os
 import sys
@@ -33,6 +33,8 @@ def main(folder):
     print(f"  {'benchmark':<34} {'rate':>11} {'unit':<12} {'bound':>7}  goal")
     for b in load(folder, "stream"):
         row(short(b["name"]), b["bandwidth"] / 1e9, "GB/s")
+    for b in load(folder, "launches"):
+        row(short(b["name"]), 1e6 * b["s_per_launch"], "us/launch")
     for b in load(folder, "matrix_free"):
         name, c = short(b["name"]), b
         rate, bound = c["MDoF/s"] * 1e6, c["bound_MDoF/s"] * 1e6
