@@ -53,7 +53,8 @@ def main(folder):
         rate = b["unknowns_per_s"]
         bound = b.get("bound_unknowns_per_s")
         goal = ">= 30 % of bound " + ("met" if bound and rate >= 0.3 * bound else "NOT met") if b["unknowns"] >= 256 ** 3 else ""
-        row(short(b["name"]), rate, "unknowns/s", bound, goal)
+        name = f'{short(b["name"])} ({int(b["iterations"])} it)' if "iterations" in b else short(b["name"])
+        row(name, rate, "unknowns/s", bound, goal)
 
 
 if __name__ == "__main__":
